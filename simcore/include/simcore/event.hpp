@@ -1,0 +1,51 @@
+// An event of the discrete-event kernel: a small plain record, copied by value, never allocated.
+#pragma once
+
+#include <cstdint>
+
+#include "simcore/time.hpp"
+
+namespace simcore {
+
+enum class EventKind : std::uint8_t {
+  Start,            // block program start (time 0)
+  Message,          // a message arrives at `block` on `face`; arg = message slot
+  NeighborAdded,    // arg = neighbor id
+  NeighborRemoved,  // arg = neighbor id
+  Tap,              // user tap
+  Timer,            // arg = timer id
+  MotionEnd,        // arg = motion slot
+  Sensor,           // arg = packed sensor reading slot
+  Count
+};
+
+const char* eventKindName(EventKind kind);
+
+// Ties at equal time are broken by priority class, then insertion sequence: the order is total and
+// independent of the future-event set implementation. World changes (motion ends) come before the
+// topology notifications they cause, which come before messages and block-program events.
+enum class PriorityClass : std::uint8_t { World = 0, Topology = 1, Message = 2, Program = 3 };
+inline constexpr int kPriorityClassCount = 4;
+
+PriorityClass priorityClassOf(EventKind kind);
+
+struct Event {
+  SimTime time = 0;
+  std::uint64_t order = 0;  // (class << 56) | sequence: the tie-break key after time
+  std::uint32_t block = 0;
+  EventKind kind = EventKind::Start;
+  std::uint8_t face = 0;
+  std::uint16_t spare = 0;
+  std::uint64_t arg = 0;
+
+  static constexpr int kSequenceBits = 56;
+  PriorityClass priorityClass() const { return PriorityClass(order >> kSequenceBits); }
+  std::uint64_t sequence() const { return order & ((std::uint64_t(1) << kSequenceBits) - 1); }
+};
+static_assert(sizeof(Event) == 32, "events must stay small plain records");
+
+inline bool earlier(const Event& a, const Event& b) {
+  return a.time < b.time || (a.time == b.time && a.order < b.order);
+}
+
+}  // namespace simcore

@@ -1,0 +1,33 @@
+// The future-event set: where pending events wait, ordered by (time, priority class, sequence).
+// Implementations are interchangeable at run time and must give the same order.
+#pragma once
+
+#include <cstddef>
+#include <memory>
+#include <optional>
+#include <string_view>
+
+#include "simcore/event.hpp"
+
+namespace simcore {
+
+class FutureEventSet {
+ public:
+  virtual ~FutureEventSet() = default;
+  virtual const char* name() const = 0;
+  virtual void push(const Event& event) = 0;
+  // The earliest event, or nullptr when empty. May reorganize internally, hence not const.
+  virtual const Event* peek() = 0;
+  // Removes the event last returned by peek(); peek() must have returned non-null just before.
+  virtual void pop() = 0;
+  virtual std::size_t size() const = 0;
+  virtual void clear() = 0;
+};
+
+enum class FesKind { Heap, Calendar };
+
+std::optional<FesKind> parseFesKind(std::string_view name);
+const char* fesKindName(FesKind kind);
+std::unique_ptr<FutureEventSet> makeFutureEventSet(FesKind kind);
+
+}  // namespace simcore

@@ -1,0 +1,161 @@
+// A Simulation owns everything of one run: the world, the event queue, the block program's state,
+// the statistics and the fingerprint. No globals: tests build many in one process.
+#pragma once
+
+#include <cstdint>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "simcore/blockcode.h"
+#include "simcore/event_queue.hpp"
+#include "simcore/observer.hpp"
+#include "simcore/stats.hpp"
+#include "simcore/target_spec.hpp"
+#include "simcore/world.hpp"
+
+namespace simcore {
+
+struct SimulationConfig {
+  std::uint64_t seed = 1;
+  FesKind fes = FesKind::Heap;
+  // Overrides of the target's defaults (negative = keep the target's value).
+  double linkRateBitsPerSecond = -1;
+  SimTime linkLatency = -1;
+  SimTime linkJitter = -1;
+  SimTime motionDuration = -1;
+};
+
+enum class RunStatus { Idle, TimeLimit, EventLimit };
+
+class Simulation {
+ public:
+  Simulation(const TargetSpec& target, GridSize size, const SimulationConfig& config = {});
+  ~Simulation();
+  Simulation(const Simulation&) = delete;
+  Simulation& operator=(const Simulation&) = delete;
+
+  // --- Building the world (before the first run call) ---
+  BlockId addBlock(const Cell& cell, std::uint32_t color);
+  BlockId addBlock(const Cell& cell) { return addBlock(cell, target_.defaultColor); }
+  // The block program every block runs. The table must outlive the simulation.
+  void setBlockCode(const vs_blockcode* code);
+  void scheduleTap(BlockId block, SimTime time);
+  void scheduleAccel(BlockId block, SimTime time, std::int32_t x, std::int32_t y, std::int32_t z);
+
+  // --- Running ---
+  // Process events while the next one is at or before `until`, at most `maxEvents` of them.
+  // Idle: queue empty (or the next event is after `until`: then now() is advanced to `until`).
+  RunStatus run(SimTime until = kTimeInfinity, std::uint64_t maxEvents = UINT64_MAX);
+  RunStatus runUntilEmpty() { return run(); }
+  RunStatus runUntil(SimTime t) { return run(t); }
+  // Process exactly one event; false if none is pending.
+  bool step() { return run(kTimeInfinity, 1) == RunStatus::EventLimit; }
+
+  // --- Changing the world while it runs (tests, IDE) ---
+  // Removes a block: its links break (in-flight messages on them are dropped) and neighbors are told.
+  void removeBlock(BlockId id);
+
+  // --- Observing ---
+  SimTime now() const { return queue_.now(); }
+  const World& world() const { return world_; }
+  World& world() { return world_; }
+  const TargetSpec& target() const { return target_; }
+  const LinkModel& link() const { return link_; }
+  const Statistics& statistics() const;
+  std::uint64_t fingerprint() const { return fingerprint_.value(); }
+  std::uint64_t seed() const { return config_.seed; }
+  const char* fesName() const;
+  std::size_t pendingEvents() const { return queue_.size(); }
+  void addObserver(SimulationObserver* observer) { observers_.push_back(observer); }
+  void removeObserver(SimulationObserver* observer);
+  // Interpolated position (cell units) of a block, mid-motion included.
+  Vec3 position(BlockId id) const;
+  // The block program's per-block state (nullptr if none).
+  void* blockState(BlockId id) { return stateSize_ ? stateBase_ + std::size_t(id) * stateSize_ : nullptr; }
+  std::string blockInfo(BlockId id);
+  // Bytes of kernel memory held per block (for reports), excluding the event queue.
+  std::size_t bytesPerBlockEstimate() const;
+
+  // Host services behind the block ABI (blockcode.h). Public for the C trampolines only.
+  struct Services;
+
+ private:
+  struct FaceState {
+    SimTime busyUntil = 0;          // end of the last transmission queued on this face
+    std::uint16_t epoch = 0;        // bumped whenever the link on this face breaks
+    std::uint16_t inFlight = 0;     // messages sent on this face, not yet delivered
+  };
+  struct MessageSlot {
+    BlockId from = kNoBlock;
+    std::uint8_t fromFace = 0;
+    std::uint16_t epoch = 0;
+    std::uint32_t size = 0;
+    std::uint32_t nextFree = kNoBlock;
+    std::vector<std::uint8_t> data;  // capacity is kept across reuse
+  };
+  struct MotionSlot {
+    Cell from, to;
+    SimTime start = 0, end = 0;
+    std::uint32_t nextFree = kNoBlock;
+  };
+  struct TimerSlot {
+    std::uint64_t tag = 0;
+    std::uint32_t generation = 0;
+    std::uint32_t nextFree = kNoBlock;
+    bool pending = false;
+  };
+
+  void startIfNeeded();
+  void dispatch(const Event& e);
+  void deliver(BlockId block, const vs_event& ev);
+  void breakLinks(BlockId id);
+  void formLinks(BlockId id);
+  void schedule(SimTime t, BlockId b, EventKind k, int face, std::uint64_t arg) {
+    queue_.schedule(t, priorityClassOf(k), b, k, std::uint8_t(face), arg);
+  }
+  FaceState& face(BlockId b, int f) { return faces_[std::size_t(b) * std::size_t(faceCount_) + std::size_t(f)]; }
+  SimTime transmissionTime(std::uint32_t size) const;
+  void releaseMessage(std::uint32_t slot);
+  void releaseMotion(std::uint32_t slot);
+  void releaseTimer(std::uint32_t slot);
+
+  // Services (called through the ABI).
+  int send(BlockId from, int face, const void* data, std::uint32_t size, SimTime delay);
+  int move(BlockId id, int face);
+  int setTimer(BlockId id, SimTime delay, std::uint64_t tag, std::uint64_t* timerId);
+  int cancelTimer(std::uint64_t timerId);
+  void setColor(BlockId id, std::uint32_t rgb);
+
+  TargetSpec target_;
+  SimulationConfig config_;
+  LinkModel link_;
+  SimTime motionDuration_;
+  World world_;
+  int faceCount_;
+  EventQueue queue_;
+  std::vector<FaceState> faces_;
+  std::vector<MessageSlot> messages_;
+  std::uint32_t freeMessage_ = kNoBlock;
+  std::vector<MotionSlot> motions_;
+  std::uint32_t freeMotion_ = kNoBlock;
+  std::vector<TimerSlot> timers_;
+  std::uint32_t freeTimer_ = kNoBlock;
+  std::vector<std::array<std::int32_t, 3>> accel_;     // latest reading per block (targets with one)
+  std::vector<std::array<std::int32_t, 3>> accelPending_;  // readings of scheduled Sensor events
+  std::uint64_t jitterRng_ = 0;
+  std::vector<SimTime> lastArrival_;  // per face, only with jitter (keeps links in order)
+
+  const vs_blockcode* code_ = nullptr;
+  std::uint32_t stateSize_ = 0;
+  std::unique_ptr<unsigned char[]> stateStorage_;
+  unsigned char* stateBase_ = nullptr;
+  bool started_ = false;
+
+  mutable Statistics stats_;
+  Fingerprint fingerprint_;
+  std::vector<SimulationObserver*> observers_;
+  double wallSeconds_ = 0;
+};
+
+}  // namespace simcore

@@ -1,0 +1,90 @@
+// The world: a bounded grid of cells on a lattice, the blocks (stored contiguously, addressed by
+// dense ids) and the cell -> block index that makes every neighbor lookup O(1).
+#pragma once
+
+#include <cstdint>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "simcore/lattice.hpp"
+
+namespace simcore {
+
+using BlockId = std::uint32_t;
+inline constexpr BlockId kNoBlock = 0xFFFFFFFFu;
+
+struct GridSize {
+  std::int32_t x = 1, y = 1, z = 1;
+};
+
+struct Block {
+  Cell cell;                         // destination cell while moving
+  std::uint32_t color = 0;           // 0xRRGGBB
+  std::uint64_t rng = 0;             // PCG32 state (stream = block id)
+  std::uint32_t motion = kNoBlock;   // motion slot while moving
+  std::int32_t value = 0;            // displayed value (Smart Blocks)
+  bool alive = true;
+};
+
+class World {
+ public:
+  World(std::unique_ptr<Lattice> lattice, GridSize size);
+
+  const Lattice& lattice() const { return *lattice_; }
+  GridSize size() const { return size_; }
+  int faceCount() const { return faceCount_; }
+
+  bool inBounds(const Cell& c) const {
+    return c.x >= 0 && c.y >= 0 && c.z >= 0 && c.x < size_.x && c.y < size_.y && c.z < size_.z;
+  }
+  std::size_t cellIndex(const Cell& c) const {
+    return std::size_t(c.x) + std::size_t(size_.x) * (std::size_t(c.y) + std::size_t(size_.y) * std::size_t(c.z));
+  }
+
+  // Adds a block; returns its id, or kNoBlock if the cell is outside, invalid or taken.
+  BlockId addBlock(const Cell& cell, std::uint32_t color);
+  std::size_t blockCount() const { return blocks_.size(); }
+  Block& block(BlockId id) { return blocks_[id]; }
+  const Block& block(BlockId id) const { return blocks_[id]; }
+  const std::vector<Block>& blocks() const { return blocks_; }
+
+  // The block settled in a cell (not one moving into or out of it), or kNoBlock.
+  BlockId settledAt(const Cell& c) const {
+    if (!inBounds(c)) return kNoBlock;
+    const std::uint32_t v = grid_[cellIndex(c)];
+    return (v & kReservedBit) ? kNoBlock : v;
+  }
+  // Whether nothing occupies or has reserved the cell.
+  bool isFree(const Cell& c) const { return inBounds(c) && grid_[cellIndex(c)] == kEmpty; }
+  // Any block occupying or moving through the cell, or kNoBlock.
+  BlockId anyAt(const Cell& c) const {
+    if (!inBounds(c)) return kNoBlock;
+    const std::uint32_t v = grid_[cellIndex(c)];
+    return v == kEmpty ? kNoBlock : (v & ~kReservedBit);
+  }
+
+  // The neighbor linked to `face` of a settled block (kNoBlock if none, or if the block moves).
+  BlockId neighbor(BlockId id, int face) const {
+    const Block& b = blocks_[id];
+    if (b.motion != kNoBlock || !b.alive) return kNoBlock;
+    return settledAt(lattice_->neighborCell(b.cell, face));
+  }
+
+  // Grid bookkeeping for motions and removals (the kernel keeps links and events consistent).
+  void reserve(const Cell& c, BlockId id) { grid_[cellIndex(c)] = id | kReservedBit; }
+  void settle(const Cell& c, BlockId id) { grid_[cellIndex(c)] = id; }
+  void clearCell(const Cell& c) { grid_[cellIndex(c)] = kEmpty; }
+
+ private:
+  static constexpr std::uint32_t kEmpty = 0xFFFFFFFFu;
+  static constexpr std::uint32_t kReservedBit = 0x80000000u;
+
+  std::unique_ptr<Lattice> lattice_;
+  GridSize size_;
+  int faceCount_;
+  std::vector<std::uint32_t> grid_;
+  std::vector<Block> blocks_;
+};
+
+}  // namespace simcore

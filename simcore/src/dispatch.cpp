@@ -1,0 +1,169 @@
+// Event dispatch: turns popped kernel events into world changes and block-program callbacks.
+#include <cstdio>
+
+#include "simcore/simulation.hpp"
+
+#include "host_api.hpp"
+#include "slot_pool.hpp"
+
+namespace simcore {
+
+void Simulation::deliver(BlockId block, const vs_event& ev) {
+  if (!code_ || !code_->event) return;
+  vs_ctx ctx{&kHostApi, this, block, blockState(block)};
+  code_->event(&ctx, &ev);
+}
+
+void Simulation::dispatch(const Event& e) {
+  Block& b = world_.block(e.block);
+  if (!b.alive) {
+    // Events for a removed block are discarded unseen; only their slots are given back.
+    if (e.kind == EventKind::Message) releaseMessage(std::uint32_t(e.arg));
+    if (e.kind == EventKind::MotionEnd) releaseMotion(std::uint32_t(e.arg));
+    if (e.kind == EventKind::Timer && timers_[std::uint32_t(e.arg)].generation == std::uint32_t(e.arg >> 32)) {
+      timers_[std::uint32_t(e.arg)].pending = false;
+      releaseTimer(std::uint32_t(e.arg));
+    }
+    return;
+  }
+  vs_event ev;
+  ev.face = -1;
+  ev.other = VS_NO_BLOCK;
+  ev.data = nullptr;
+  ev.size = 0;
+  ev.timer_id = 0;
+  ev.tag = 0;
+  ev.sensor = 0;
+  switch (e.kind) {
+    case EventKind::Message: {
+      MessageSlot& m = messages_[std::uint32_t(e.arg)];
+      if (face(m.from, m.fromFace).epoch != m.epoch) {
+        // The link broke while this message was in flight; it was counted as dropped then.
+        releaseMessage(std::uint32_t(e.arg));
+        return;
+      }
+      --face(m.from, m.fromFace).inFlight;
+      ev.kind = VS_EV_MESSAGE;
+      ev.face = e.face;
+      ev.other = m.from;
+      ev.data = m.data.data();
+      ev.size = m.size;
+      ++stats_.messagesReceived;
+      break;
+    }
+    case EventKind::Timer: {
+      const std::uint32_t slot = std::uint32_t(e.arg);
+      TimerSlot& t = timers_[slot];
+      if (t.generation != std::uint32_t(e.arg >> 32)) return;
+      if (!t.pending) {  // cancelled: the slot was kept until now so the id stayed unique
+        releaseTimer(slot);
+        return;
+      }
+      t.pending = false;
+      ev.kind = VS_EV_TIMER;
+      ev.timer_id = e.arg;
+      ev.tag = t.tag;
+      releaseTimer(slot);
+      break;
+    }
+    case EventKind::Start:
+      break;
+    case EventKind::NeighborAdded:
+    case EventKind::NeighborRemoved:
+      ev.kind = e.kind == EventKind::NeighborAdded ? VS_EV_NEIGHBOR_ADDED : VS_EV_NEIGHBOR_REMOVED;
+      ev.face = e.face;
+      ev.other = BlockId(e.arg);
+      break;
+    case EventKind::Tap:
+      ev.kind = VS_EV_TAP;
+      break;
+    case EventKind::MotionEnd: {
+      MotionSlot& m = motions_[std::uint32_t(e.arg)];
+      world_.clearCell(m.from);
+      world_.settle(m.to, e.block);
+      b.motion = kNoBlock;
+      releaseMotion(std::uint32_t(e.arg));
+      ++stats_.motionsEnded;
+      formLinks(e.block);
+      ev.kind = VS_EV_MOTION_END;
+      break;
+    }
+    case EventKind::Sensor: {
+      const auto& v = accelPending_[std::size_t(e.arg)];
+      if (!accel_.empty()) accel_[e.block] = v;
+      ev.kind = VS_EV_SENSOR;
+      ev.sensor = VS_SENSOR_ACCEL;
+      ev.values[0] = v[0];
+      ev.values[1] = v[1];
+      ev.values[2] = v[2];
+      break;
+    }
+    case EventKind::Count:
+      return;
+  }
+  ++stats_.eventsProcessed;
+  ++stats_.eventsByKind[std::size_t(e.kind)];
+  fingerprint_.add(e.time, e.block, e.kind);
+  if (!observers_.empty())
+    for (SimulationObserver* o : observers_) o->onEvent(*this, e);
+  if (e.kind == EventKind::Start) {
+    if (code_ && code_->start) {
+      vs_ctx ctx{&kHostApi, this, e.block, blockState(e.block)};
+      code_->start(&ctx);
+    }
+  } else {
+    deliver(e.block, ev);
+  }
+  if (e.kind == EventKind::Message) releaseMessage(std::uint32_t(e.arg));
+}
+
+void Simulation::breakLinks(BlockId id) {
+  for (int f = 0; f < faceCount_; ++f) {
+    const BlockId n = world_.neighbor(id, f);
+    if (n == kNoBlock) continue;
+    const int back = world_.lattice().oppositeFace(world_.block(id).cell, f);
+    FaceState* sides[2] = {&face(id, f), &face(n, back)};
+    const BlockId senders[2] = {id, n};
+    const BlockId receivers[2] = {n, id};
+    const int senderFaces[2] = {f, back};
+    for (int s = 0; s < 2; ++s) {
+      FaceState& fs = *sides[s];
+      stats_.messagesDropped += fs.inFlight;
+      if (!observers_.empty())
+        for (std::uint16_t k = 0; k < fs.inFlight; ++k)
+          for (SimulationObserver* o : observers_) o->onMessageDropped(*this, senders[s], senderFaces[s], receivers[s]);
+      fs.inFlight = 0;
+      ++fs.epoch;
+      fs.busyUntil = queue_.now();
+    }
+    schedule(queue_.now(), id, EventKind::NeighborRemoved, f, n);
+    schedule(queue_.now(), n, EventKind::NeighborRemoved, back, id);
+  }
+}
+
+void Simulation::formLinks(BlockId id) {
+  for (int f = 0; f < faceCount_; ++f) {
+    const BlockId n = world_.neighbor(id, f);
+    if (n == kNoBlock) continue;
+    const int back = world_.lattice().oppositeFace(world_.block(id).cell, f);
+    schedule(queue_.now(), id, EventKind::NeighborAdded, f, n);
+    schedule(queue_.now(), n, EventKind::NeighborAdded, back, id);
+  }
+}
+
+void Simulation::removeBlock(BlockId id) {
+  startIfNeeded();
+  Block& b = world_.block(id);
+  if (!b.alive) return;
+  if (b.motion != kNoBlock) {
+    const MotionSlot& m = motions_[b.motion];  // released when its MotionEnd event comes
+    world_.clearCell(m.from);
+    world_.clearCell(m.to);
+  } else {
+    breakLinks(id);
+    world_.clearCell(b.cell);
+  }
+  b.alive = false;
+}
+
+}  // namespace simcore

@@ -1,0 +1,129 @@
+#include "simcore/simulation.hpp"
+
+#include <algorithm>
+#include <chrono>
+#include <cstring>
+#include <stdexcept>
+
+#include "simcore/rng.hpp"
+#include "slot_pool.hpp"
+
+namespace simcore {
+
+
+Simulation::Simulation(const TargetSpec& target, GridSize size, const SimulationConfig& config)
+    : target_(target),
+      config_(config),
+      link_(target.link),
+      motionDuration_(config.motionDuration >= 0 ? config.motionDuration : target.motionDuration),
+      world_(target.makeLattice(), size),
+      faceCount_(world_.faceCount()),
+      queue_(makeFutureEventSet(config.fes)) {
+  if (config.linkRateBitsPerSecond > 0) link_.rateBitsPerSecond = config.linkRateBitsPerSecond;
+  if (config.linkLatency >= 0) link_.latency = config.linkLatency;
+  if (config.linkJitter >= 0) link_.jitter = config.linkJitter;
+  jitterRng_ = BlockRng::initialState(config.seed, 0xFFFFFFFEu);
+}
+
+Simulation::~Simulation() = default;
+
+const char* Simulation::fesName() const { return const_cast<EventQueue&>(queue_).futureEventSet().name(); }
+
+BlockId Simulation::addBlock(const Cell& cell, std::uint32_t color) {
+  if (started_) throw std::logic_error("blocks can only be added before the simulation starts");
+  const BlockId id = world_.addBlock(cell, color);
+  if (id == kNoBlock) return id;
+  world_.block(id).rng = BlockRng::initialState(config_.seed, id);
+  return id;
+}
+
+void Simulation::setBlockCode(const vs_blockcode* code) {
+  if (started_) throw std::logic_error("the block code must be set before the simulation starts");
+  if (code && code->abi_version != VS_ABI_VERSION)
+    throw std::runtime_error("block code '" + std::string(code->name ? code->name : "?") +
+                             "' was built for block ABI version " + std::to_string(code->abi_version) +
+                             ", this simulator speaks version " + std::to_string(VS_ABI_VERSION));
+  code_ = code;
+}
+
+void Simulation::scheduleTap(BlockId block, SimTime time) { schedule(time, block, EventKind::Tap, 0, 0); }
+
+void Simulation::scheduleAccel(BlockId block, SimTime time, std::int32_t x, std::int32_t y, std::int32_t z) {
+  accelPending_.push_back({x, y, z});
+  schedule(time, block, EventKind::Sensor, 0, accelPending_.size() - 1);
+}
+
+void Simulation::startIfNeeded() {
+  if (started_) return;
+  started_ = true;
+  const std::size_t n = world_.blockCount();
+  faces_.assign(n * std::size_t(faceCount_), FaceState{});
+  if (link_.jitter > 0) lastArrival_.assign(n * std::size_t(faceCount_), 0);
+  if (target_.hasAccelerometer) accel_.assign(n, {0, 0, -1});
+  stateSize_ = code_ ? (code_->state_size + 15u) & ~15u : 0;
+  if (stateSize_) {
+    stateStorage_.reset(new unsigned char[n * stateSize_ + 16]);
+    stateBase_ = stateStorage_.get() + ((16 - (reinterpret_cast<std::uintptr_t>(stateStorage_.get()) & 15)) & 15);
+    std::memset(stateBase_, 0, n * stateSize_);
+  }
+  for (BlockId id = 0; id < n; ++id) schedule(0, id, EventKind::Start, 0, 0);
+}
+
+SimTime Simulation::transmissionTime(std::uint32_t size) const {
+  return SimTime(double(size) * 8.0 * 1e9 / link_.rateBitsPerSecond + 0.5);
+}
+
+void Simulation::removeObserver(SimulationObserver* observer) {
+  observers_.erase(std::remove(observers_.begin(), observers_.end(), observer), observers_.end());
+}
+
+const Statistics& Simulation::statistics() const {
+  stats_.simulatedTime = queue_.now();
+  stats_.maxQueueSize = queue_.maxSize();
+  stats_.wallSeconds = wallSeconds_;
+  return stats_;
+}
+
+RunStatus Simulation::run(SimTime until, std::uint64_t maxEvents) {
+  startIfNeeded();
+  const auto wallStart = std::chrono::steady_clock::now();
+  RunStatus status = RunStatus::Idle;
+  Event e;
+  std::uint64_t processed = 0;
+  for (;;) {
+    if (processed == maxEvents) {
+      status = RunStatus::EventLimit;
+      break;
+    }
+    if (!queue_.popUntil(until, e)) {
+      if (!queue_.empty()) {
+        status = RunStatus::TimeLimit;
+        queue_.advanceTo(until);
+      } else if (until != kTimeInfinity) {
+        queue_.advanceTo(until);
+      }
+      break;
+    }
+    ++processed;
+    dispatch(e);
+  }
+  wallSeconds_ += std::chrono::duration<double>(std::chrono::steady_clock::now() - wallStart).count();
+  return status;
+}
+
+std::size_t Simulation::bytesPerBlockEstimate() const {
+  return sizeof(Block) + std::size_t(faceCount_) * sizeof(FaceState) + stateSize_;
+}
+
+Vec3 Simulation::position(BlockId id) const {
+  const Block& b = world_.block(id);
+  const Lattice& lat = world_.lattice();
+  if (b.motion == kNoBlock) return lat.cellCenter(b.cell);
+  const MotionSlot& m = motions_[b.motion];
+  const Vec3 a = lat.cellCenter(m.from), c = lat.cellCenter(m.to);
+  double f = m.end > m.start ? double(queue_.now() - m.start) / double(m.end - m.start) : 1.0;
+  f = std::clamp(f, 0.0, 1.0);
+  return Vec3{a.x + (c.x - a.x) * f, a.y + (c.y - a.y) * f, a.z + (c.z - a.z) * f};
+}
+
+}  // namespace simcore

@@ -1,0 +1,27 @@
+#include "blinkyblocks/blinkyblocks.hpp"
+
+namespace targets {
+
+simcore::TargetSpec blinkyBlocksTarget() {
+  simcore::TargetSpec t;
+  t.name = "blinkyblocks";
+  t.makeLattice = [] {
+    // x to the right, y to the back, z up.
+    return std::make_unique<simcore::RegularLattice>(
+        "cubic",
+        std::vector<simcore::Cell>{{0, 0, -1}, {0, 1, 0}, {1, 0, 0}, {0, -1, 0}, {-1, 0, 0}, {0, 0, 1}},
+        /*planar=*/false);
+  };
+  t.faceNames = {"bottom", "back", "right", "front", "left", "top"};
+  // The real blocks talk over asynchronous serial lines between neighboring faces. We model them at
+  // 38.4 kbit/s with no extra latency; both can be overridden per run.
+  t.link.rateBitsPerSecond = 38400;
+  t.canTranslate = false;
+  t.hasTap = true;
+  t.hasAccelerometer = true;
+  t.blockSizeMm = 40.0;
+  t.defaultColor = 0x808080;
+  return t;
+}
+
+}  // namespace targets
