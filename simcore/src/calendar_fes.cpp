@@ -40,8 +40,10 @@ void CalendarFes::push(const Event& event) {
     node = std::uint32_t(pool_.size());
     pool_.push_back(Node{event, kNil});
   }
-  if (size_ == 0) {
-    // An empty calendar has no meaningful "current" window: start it at this event.
+  if (size_ == 0 || event.time < currentTop_ - width_) {
+    // An empty calendar has no meaningful "current" window, and an event before the current window
+    // (a peek moved the window forward to a later event) would be missed by the next scan, which
+    // starts at the current window: start the window at this event.
     current_ = bucketOf(event.time);
     currentTop_ = (event.time / width_ + 1) * width_;
   }

@@ -15,14 +15,18 @@ void Simulation::deliver(BlockId block, const vs_event& ev) {
 }
 
 void Simulation::dispatch(const Event& e) {
-  Block& b = world_.block(e.block);
-  if (!b.alive) {
+  // Only the compact alive array is read here: neighbor notifications need nothing else of the block.
+  if (!world_.isAlive(e.block)) {
     // Events for a removed block are discarded unseen; only their slots are given back.
     if (e.kind == EventKind::Message) releaseMessage(std::uint32_t(e.arg));
     if (e.kind == EventKind::MotionEnd) releaseMotion(std::uint32_t(e.arg));
-    if (e.kind == EventKind::Timer && timers_[std::uint32_t(e.arg)].generation == std::uint32_t(e.arg >> 32)) {
-      timers_[std::uint32_t(e.arg)].pending = false;
-      releaseTimer(std::uint32_t(e.arg));
+    if (e.kind == EventKind::Timer && e.face == kTimerHasSlot) {
+      TimerSlot& t = timers_[std::uint32_t(e.arg)];
+      const std::uint32_t gen = std::uint32_t(e.arg >> 32);
+      if (t.generation == gen || t.generation == gen + 1) {
+        t.generation = gen + 1;
+        releaseTimer(std::uint32_t(e.arg));
+      }
     }
     return;
   }
@@ -37,12 +41,13 @@ void Simulation::dispatch(const Event& e) {
   switch (e.kind) {
     case EventKind::Message: {
       MessageSlot& m = messages_[std::uint32_t(e.arg)];
-      if (face(m.from, m.fromFace).epoch != m.epoch) {
+      FaceState& sent = face(m.from, m.fromFace);
+      if (sent.epoch != m.epoch) {
         // The link broke while this message was in flight; it was counted as dropped then.
         releaseMessage(std::uint32_t(e.arg));
         return;
       }
-      --face(m.from, m.fromFace).inFlight;
+      if (--sent.inFlight == 0) facesInFlight_[m.from] &= std::uint16_t(~(1u << m.fromFace));
       ev.kind = VS_EV_MESSAGE;
       ev.face = e.face;
       ev.other = m.from;
@@ -52,14 +57,20 @@ void Simulation::dispatch(const Event& e) {
       break;
     }
     case EventKind::Timer: {
+      ev.kind = VS_EV_TIMER;
+      if (e.face != kTimerHasSlot) {
+        ev.tag = e.arg;
+        break;
+      }
       const std::uint32_t slot = std::uint32_t(e.arg);
       TimerSlot& t = timers_[slot];
-      if (t.generation != std::uint32_t(e.arg >> 32)) return;
-      if (!t.pending) {  // cancelled: the slot was kept until now so the id stayed unique
+      const std::uint32_t gen = std::uint32_t(e.arg >> 32);
+      if (t.generation == gen + 1) {  // cancelled: the slot was kept until now so the id stayed unique
         releaseTimer(slot);
         return;
       }
-      t.pending = false;
+      if (t.generation != gen) return;
+      t.generation = gen + 1;
       ev.kind = VS_EV_TIMER;
       ev.timer_id = e.arg;
       ev.tag = t.tag;
@@ -81,7 +92,7 @@ void Simulation::dispatch(const Event& e) {
       MotionSlot& m = motions_[std::uint32_t(e.arg)];
       world_.clearCell(m.from);
       world_.settle(m.to, e.block);
-      b.motion = kNoBlock;
+      world_.block(e.block).motion = kNoBlock;
       releaseMotion(std::uint32_t(e.arg));
       ++stats_.motionsEnded;
       formLinks(e.block);
@@ -122,19 +133,23 @@ void Simulation::breakLinks(BlockId id) {
     const BlockId n = world_.neighbor(id, f);
     if (n == kNoBlock) continue;
     const int back = world_.lattice().oppositeFace(world_.block(id).cell, f);
-    FaceState* sides[2] = {&face(id, f), &face(n, back)};
     const BlockId senders[2] = {id, n};
     const BlockId receivers[2] = {n, id};
     const int senderFaces[2] = {f, back};
     for (int s = 0; s < 2; ++s) {
-      FaceState& fs = *sides[s];
+      // A face with nothing in flight has nothing to drop, and its transmitter is idle: its state
+      // (usually a cache miss for the neighbor) need not be touched.
+      std::uint16_t& mask = facesInFlight_[senders[s]];
+      if (!(mask & (1u << senderFaces[s]))) continue;
+      mask &= std::uint16_t(~(1u << senderFaces[s]));
+      FaceState& fs = face(senders[s], senderFaces[s]);
       stats_.messagesDropped += fs.inFlight;
       if (!observers_.empty())
         for (std::uint16_t k = 0; k < fs.inFlight; ++k)
           for (SimulationObserver* o : observers_) o->onMessageDropped(*this, senders[s], senderFaces[s], receivers[s]);
       fs.inFlight = 0;
       ++fs.epoch;
-      fs.busyUntil = queue_.now();
+      fs.setBusyUntil(queue_.now());
     }
     schedule(queue_.now(), id, EventKind::NeighborRemoved, f, n);
     schedule(queue_.now(), n, EventKind::NeighborRemoved, back, id);
@@ -154,7 +169,7 @@ void Simulation::formLinks(BlockId id) {
 void Simulation::removeBlock(BlockId id) {
   startIfNeeded();
   Block& b = world_.block(id);
-  if (!b.alive) return;
+  if (!world_.isAlive(id)) return;
   if (b.motion != kNoBlock) {
     const MotionSlot& m = motions_[b.motion];  // released when its MotionEnd event comes
     world_.clearCell(m.from);
@@ -163,7 +178,7 @@ void Simulation::removeBlock(BlockId id) {
     breakLinks(id);
     world_.clearCell(b.cell);
   }
-  b.alive = false;
+  world_.markRemoved(id);
 }
 
 }  // namespace simcore

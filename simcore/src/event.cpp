@@ -19,6 +19,10 @@ const char* eventKindName(EventKind kind) {
 
 PriorityClass priorityClassOf(EventKind kind) {
   switch (kind) {
+    // Start is in the first class so that at t = 0 every block starts before anything that other
+    // blocks' start callbacks (or scheduleTap/removeBlock before the run) cause at the same time:
+    // the block ABI promises `start` before any `event`.
+    case EventKind::Start:
     case EventKind::MotionEnd: return PriorityClass::World;
     case EventKind::NeighborAdded:
     case EventKind::NeighborRemoved: return PriorityClass::Topology;

@@ -39,8 +39,8 @@ struct Simulation::Services {
   static uint32_t color(vs_ctx* c) { return sim(c).world_.block(c->block).color; }
   static int setValue(vs_ctx* c, int32_t v) {
     Simulation& s = sim(c);
-    if (!s.target_.hasDisplayValue) return VS_ERR_UNSUPPORTED;
-    s.world_.block(c->block).value = v;
+    if (s.displayValues_.empty()) return VS_ERR_UNSUPPORTED;
+    s.displayValues_[c->block] = v;
     return VS_OK;
   }
   static int move(vs_ctx* c, int face) { return sim(c).move(c->block, face); }
@@ -115,9 +115,10 @@ int Simulation::send(BlockId from, int f, const void* data, std::uint32_t size, 
   const SimTime now = queue_.now();
   FaceState& fs = face(from, f);
   const SimTime ready = now + delay;
-  const SimTime begin = ready > fs.busyUntil ? ready : fs.busyUntil;
+  const SimTime busy = fs.busyUntil();
+  const SimTime begin = ready > busy ? ready : busy;
   const SimTime end = begin + transmissionTime(size);
-  fs.busyUntil = end;
+  fs.setBusyUntil(end);
   SimTime arrival = end + link_.latency;
   if (link_.jitter > 0) {
     arrival += SimTime(BlockRng::below(jitterRng_, 0xFFFFFFFEu, std::uint32_t(std::min<SimTime>(link_.jitter, 0xFFFFFFFE)) + 1));
@@ -133,7 +134,7 @@ int Simulation::send(BlockId from, int f, const void* data, std::uint32_t size, 
   m.size = size;
   if (m.data.size() < size) m.data.resize(size);
   if (size) std::memcpy(m.data.data(), data, size);
-  ++fs.inFlight;
+  if (fs.inFlight++ == 0) facesInFlight_[from] |= std::uint16_t(1u << f);
   ++stats_.messagesSent;
   stats_.bytesSent += size;
   const int back = world_.lattice().oppositeFace(world_.block(from).cell, f);
@@ -171,24 +172,27 @@ int Simulation::move(BlockId id, int f) {
 
 int Simulation::setTimer(BlockId id, SimTime delay, std::uint64_t tag, std::uint64_t* timerId) {
   if (delay < 0) return VS_ERR_BAD_ARGUMENT;
+  if (!timerId) {
+    schedule(queue_.now() + delay, id, EventKind::Timer, 0, tag);
+    return VS_OK;
+  }
   const std::uint32_t slot = allocateSlot(timers_, freeTimer_);
   TimerSlot& t = timers_[slot];
-  ++t.generation;
+  t.generation |= 1u;  // odd: pending (a released slot's generation is even)
   t.tag = tag;
-  t.pending = true;
   const std::uint64_t fullId = (std::uint64_t(t.generation) << 32) | slot;
   if (timerId) *timerId = fullId;
-  schedule(queue_.now() + delay, id, EventKind::Timer, 0, fullId);
+  schedule(queue_.now() + delay, id, EventKind::Timer, kTimerHasSlot, fullId);
   return VS_OK;
 }
 
 int Simulation::cancelTimer(std::uint64_t timerId) {
   const std::uint32_t slot = std::uint32_t(timerId);
-  if (slot >= timers_.size()) return VS_ERR_NOT_FOUND;
+  if (timerId == 0 || slot >= timers_.size()) return VS_ERR_NOT_FOUND;
   TimerSlot& t = timers_[slot];
-  if (!t.pending || t.generation != std::uint32_t(timerId >> 32)) return VS_ERR_NOT_FOUND;
+  if (!t.pending() || t.generation != std::uint32_t(timerId >> 32)) return VS_ERR_NOT_FOUND;
   // The slot stays reserved until its event comes up, so the id cannot be reused before then.
-  t.pending = false;
+  ++t.generation;
   ++stats_.timersCancelled;
   return VS_OK;
 }

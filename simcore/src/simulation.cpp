@@ -10,6 +10,10 @@
 
 namespace simcore {
 
+namespace {
+constexpr std::size_t kPrefetchFar = 8, kPrefetchMid = 4;
+}  // namespace
+
 
 Simulation::Simulation(const TargetSpec& target, GridSize size, const SimulationConfig& config)
     : target_(target),
@@ -19,6 +23,7 @@ Simulation::Simulation(const TargetSpec& target, GridSize size, const Simulation
       world_(target.makeLattice(), size),
       faceCount_(world_.faceCount()),
       queue_(makeFutureEventSet(config.fes)) {
+  if (faceCount_ > 16) throw std::logic_error("lattices with more than 16 faces are not supported");
   if (config.linkRateBitsPerSecond > 0) link_.rateBitsPerSecond = config.linkRateBitsPerSecond;
   if (config.linkLatency >= 0) link_.latency = config.linkLatency;
   if (config.linkJitter >= 0) link_.jitter = config.linkJitter;
@@ -58,15 +63,17 @@ void Simulation::startIfNeeded() {
   started_ = true;
   const std::size_t n = world_.blockCount();
   faces_.assign(n * std::size_t(faceCount_), FaceState{});
+  facesInFlight_.assign(n, 0);
   if (link_.jitter > 0) lastArrival_.assign(n * std::size_t(faceCount_), 0);
   if (target_.hasAccelerometer) accel_.assign(n, {0, 0, -1});
+  if (target_.hasDisplayValue) displayValues_.assign(n, 0);
   stateSize_ = code_ ? (code_->state_size + 15u) & ~15u : 0;
   if (stateSize_) {
-    stateStorage_.reset(new unsigned char[n * stateSize_ + 16]);
-    stateBase_ = stateStorage_.get() + ((16 - (reinterpret_cast<std::uintptr_t>(stateStorage_.get()) & 15)) & 15);
-    std::memset(stateBase_, 0, n * stateSize_);
+    stateStorage_.assign(n * stateSize_ + 16, 0);
+    unsigned char* raw = stateStorage_.data();
+    stateBase_ = raw + ((16 - (reinterpret_cast<std::uintptr_t>(raw) & 15)) & 15);
   }
-  for (BlockId id = 0; id < n; ++id) schedule(0, id, EventKind::Start, 0, 0);
+  for (BlockId id = 0; id < n; ++id) schedule(0, id, EventKind::Start, 0, 0, /*bypassFifo=*/true);
 }
 
 SimTime Simulation::transmissionTime(std::uint32_t size) const {
@@ -105,11 +112,28 @@ RunStatus Simulation::run(SimTime until, std::uint64_t maxEvents) {
       break;
     }
     ++processed;
+    // Blocks are visited in time order, i.e. at random in memory. A two-stage software pipeline
+    // loads what upcoming events will touch, so the cache misses overlap with the work of this one:
+    // far ahead the block's own records, then the grid around it.
+    if (const Event* a = queue_.peekAhead(kPrefetchFar)) prefetchRecords(*a);
+    if (const Event* a = queue_.peekAhead(kPrefetchMid)) prefetchCells(*a);
     dispatch(e);
   }
   wallSeconds_ += std::chrono::duration<double>(std::chrono::steady_clock::now() - wallStart).count();
   return status;
 }
+
+void Simulation::prefetchRecords(const Event& e) const {
+  const BlockId id = e.block;
+  __builtin_prefetch(&world_.block(id));
+  if (stateSize_) __builtin_prefetch(stateBase_ + std::size_t(id) * stateSize_);
+  const std::uint32_t slot = std::uint32_t(e.arg);
+  if (e.kind == EventKind::Timer && e.face == kTimerHasSlot && slot < timers_.size()) __builtin_prefetch(&timers_[slot]);
+  if (e.kind == EventKind::Message && slot < messages_.size()) __builtin_prefetch(&messages_[slot]);
+  if (e.kind == EventKind::MotionEnd && slot < motions_.size()) __builtin_prefetch(&motions_[slot]);
+}
+
+void Simulation::prefetchCells(const Event& e) const { world_.prefetchAround(world_.block(e.block).cell); }
 
 std::size_t Simulation::bytesPerBlockEstimate() const {
   return sizeof(Block) + std::size_t(faceCount_) * sizeof(FaceState) + stateSize_;

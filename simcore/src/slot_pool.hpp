@@ -8,8 +8,8 @@ namespace simcore {
 
 inline constexpr std::uint32_t kNoSlot = 0xFFFFFFFFu;
 
-template <class Slot>
-std::uint32_t allocateSlot(std::vector<Slot>& pool, std::uint32_t& freeList) {
+template <class Pool>
+std::uint32_t allocateSlot(Pool& pool, std::uint32_t& freeList) {
   if (freeList != kNoSlot) {
     const std::uint32_t i = freeList;
     freeList = pool[i].nextFree;
@@ -19,8 +19,8 @@ std::uint32_t allocateSlot(std::vector<Slot>& pool, std::uint32_t& freeList) {
   return std::uint32_t(pool.size() - 1);
 }
 
-template <class Slot>
-void releaseSlot(std::vector<Slot>& pool, std::uint32_t& freeList, std::uint32_t i) {
+template <class Pool>
+void releaseSlot(Pool& pool, std::uint32_t& freeList, std::uint32_t i) {
   pool[i].nextFree = freeList;
   freeList = i;
 }

@@ -20,6 +20,7 @@ BlockId World::addBlock(const Cell& cell, std::uint32_t color) {
   b.cell = cell;
   b.color = color;
   blocks_.push_back(b);
+  alive_.push_back(1);
   grid_[cellIndex(cell)] = id;
   return id;
 }

@@ -69,7 +69,7 @@ typedef struct vs_event {
   vs_block_id other; /* MESSAGE: the sender; NEIGHBOR_*: the neighbor; otherwise VS_NO_BLOCK */
   const void *data;  /* MESSAGE: payload (valid during the callback only) */
   uint32_t size;     /* MESSAGE: payload size in bytes */
-  uint64_t timer_id; /* TIMER: the id returned by set_timer */
+  uint64_t timer_id; /* TIMER: the id set_timer returned, or 0 if none was asked for */
   uint64_t tag;      /* TIMER: the tag given to set_timer */
   int sensor;        /* SENSOR: enum vs_sensor */
   int32_t values[3]; /* SENSOR: reading (ACCEL: x, y, z) */
@@ -100,8 +100,9 @@ struct vs_host_api {
   int (*send)(vs_ctx *ctx, int face, const void *data, uint32_t size, vs_time delay);
   /* `send` on every face that has a neighbor; returns the number of messages queued (>= 0). */
   int (*send_all)(vs_ctx *ctx, const void *data, uint32_t size, vs_time delay);
-  /* Fire a VS_EV_TIMER event after `delay` ns carrying `tag`; *timer_id (if not NULL) receives an id
-   * usable with cancel_timer. */
+  /* Fire a VS_EV_TIMER event after `delay` ns carrying `tag`. If `timer_id` is not NULL, it receives
+   * a non-zero id usable with cancel_timer; ask for one only when you may cancel: timers without an
+   * id cost the host no bookkeeping (their event reports timer_id 0). */
   int (*set_timer)(vs_ctx *ctx, vs_time delay, uint64_t tag, uint64_t *timer_id);
   /* Cancel a pending timer. VS_ERR_NOT_FOUND if it already fired or was cancelled. */
   int (*cancel_timer)(vs_ctx *ctx, uint64_t timer_id);

@@ -8,6 +8,7 @@
 #include <vector>
 
 #include "simcore/future_event_set.hpp"
+#include "simcore/huge_page_allocator.hpp"
 
 namespace simcore {
 
@@ -36,7 +37,7 @@ class CalendarFes final : public FutureEventSet {
   SimTime estimateWidth();
   bool locateEarliest();
 
-  std::vector<Node> pool_;
+  std::vector<Node, HugePageAllocator<Node>> pool_;
   std::uint32_t freeList_ = kNil;
   std::vector<std::uint32_t> buckets_;
   SimTime width_ = 1000;

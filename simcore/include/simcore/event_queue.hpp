@@ -47,9 +47,10 @@ class EventQueue {
   std::uint64_t nextSequence() const { return sequence_; }
   FutureEventSet& futureEventSet() { return *fes_; }
 
-  // Schedules an event; `time` must not be earlier than now().
+  // Schedules an event; `time` must not be earlier than now(). `bypassFifo` sends an event due now
+  // to the future-event set anyway (for bulk scheduling, so the FIFO does not grow to hold them all).
   void schedule(SimTime time, PriorityClass cls, std::uint32_t block, EventKind kind,
-                std::uint8_t face, std::uint64_t arg) {
+                std::uint8_t face, std::uint64_t arg, bool bypassFifo = false) {
     Event e;
     e.time = time;
     e.order = (std::uint64_t(cls) << Event::kSequenceBits) | sequence_++;
@@ -57,7 +58,7 @@ class EventQueue {
     e.kind = kind;
     e.face = face;
     e.arg = arg;
-    if (time == now_) {
+    if (time == now_ && !bypassFifo) {
       rings_[std::size_t(cls)].pushBack(e);
       nonEmptyRings_ |= 1u << unsigned(cls);
     } else {
@@ -95,6 +96,10 @@ class EventQueue {
     now_ = out.time;
     return true;
   }
+
+  // A hint of an event coming soon (about k events ahead, after those due now), or nullptr; for
+  // prefetching only.
+  const Event* peekAhead(std::size_t k) { return fes_->peekAhead(k); }
 
   bool empty() const { return count_ == 0; }
   std::size_t size() const { return count_; }

@@ -20,11 +20,14 @@ class FutureEventSet {
   virtual const Event* peek() = 0;
   // Removes the event last returned by peek(); peek() must have returned non-null just before.
   virtual void pop() = 0;
+  // The k-th next event (k = 0 is peek()) when the implementation knows it cheaply, else nullptr.
+  // Used only as a prefetch hint.
+  virtual const Event* peekAhead(std::size_t /*k*/) { return nullptr; }
   virtual std::size_t size() const = 0;
   virtual void clear() = 0;
 };
 
-enum class FesKind { Heap, Calendar };
+enum class FesKind { Heap, Calendar, Ladder };
 
 std::optional<FesKind> parseFesKind(std::string_view name);
 const char* fesKindName(FesKind kind);

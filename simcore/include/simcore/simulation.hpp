@@ -71,6 +71,8 @@ class Simulation {
   void removeObserver(SimulationObserver* observer);
   // Interpolated position (cell units) of a block, mid-motion included.
   Vec3 position(BlockId id) const;
+  // The value a block displays (targets with a display; 0 otherwise).
+  std::int32_t displayValue(BlockId id) const { return displayValues_.empty() ? 0 : displayValues_[id]; }
   // The block program's per-block state (nullptr if none).
   void* blockState(BlockId id) { return stateSize_ ? stateBase_ + std::size_t(id) * stateSize_ : nullptr; }
   std::string blockInfo(BlockId id);
@@ -81,10 +83,16 @@ class Simulation {
   struct Services;
 
  private:
+  // 12 bytes with 4-byte alignment (the time is split) so a block's faces share a cache line.
   struct FaceState {
-    SimTime busyUntil = 0;          // end of the last transmission queued on this face
-    std::uint16_t epoch = 0;        // bumped whenever the link on this face breaks
-    std::uint16_t inFlight = 0;     // messages sent on this face, not yet delivered
+    std::uint32_t busyLow = 0, busyHigh = 0;  // end of the last transmission queued on this face
+    std::uint16_t epoch = 0;                  // bumped whenever the link on this face breaks
+    std::uint16_t inFlight = 0;               // messages sent on this face, not yet delivered
+    SimTime busyUntil() const { return SimTime((std::uint64_t(busyHigh) << 32) | busyLow); }
+    void setBusyUntil(SimTime t) {
+      busyLow = std::uint32_t(std::uint64_t(t));
+      busyHigh = std::uint32_t(std::uint64_t(t) >> 32);
+    }
   };
   struct MessageSlot {
     BlockId from = kNoBlock;
@@ -99,11 +107,14 @@ class Simulation {
     SimTime start = 0, end = 0;
     std::uint32_t nextFree = kNoBlock;
   };
+  // Timer events carry their tag in `arg`, unless the program asked for an id to cancel them: then
+  // `face` is kTimerHasSlot and `arg` is (generation << 32 | slot) of a TimerSlot.
+  static constexpr std::uint8_t kTimerHasSlot = 1;
   struct TimerSlot {
     std::uint64_t tag = 0;
-    std::uint32_t generation = 0;
+    std::uint32_t generation = 0;  // odd while the timer is pending
     std::uint32_t nextFree = kNoBlock;
-    bool pending = false;
+    bool pending() const { return generation & 1u; }
   };
 
   void startIfNeeded();
@@ -111,9 +122,11 @@ class Simulation {
   void deliver(BlockId block, const vs_event& ev);
   void breakLinks(BlockId id);
   void formLinks(BlockId id);
-  void schedule(SimTime t, BlockId b, EventKind k, int face, std::uint64_t arg) {
-    queue_.schedule(t, priorityClassOf(k), b, k, std::uint8_t(face), arg);
+  void schedule(SimTime t, BlockId b, EventKind k, int face, std::uint64_t arg, bool bypassFifo = false) {
+    queue_.schedule(t, priorityClassOf(k), b, k, std::uint8_t(face), arg, bypassFifo);
   }
+  void prefetchRecords(const Event& e) const;
+  void prefetchCells(const Event& e) const;
   FaceState& face(BlockId b, int f) { return faces_[std::size_t(b) * std::size_t(faceCount_) + std::size_t(f)]; }
   SimTime transmissionTime(std::uint32_t size) const;
   void releaseMessage(std::uint32_t slot);
@@ -134,13 +147,15 @@ class Simulation {
   World world_;
   int faceCount_;
   EventQueue queue_;
-  std::vector<FaceState> faces_;
+  std::vector<FaceState, HugePageAllocator<FaceState>> faces_;
+  std::vector<std::uint16_t> facesInFlight_;  // per block: bit f set while face f has messages in flight
   std::vector<MessageSlot> messages_;
   std::uint32_t freeMessage_ = kNoBlock;
-  std::vector<MotionSlot> motions_;
+  std::vector<MotionSlot, HugePageAllocator<MotionSlot>> motions_;
   std::uint32_t freeMotion_ = kNoBlock;
-  std::vector<TimerSlot> timers_;
+  std::vector<TimerSlot, HugePageAllocator<TimerSlot>> timers_;
   std::uint32_t freeTimer_ = kNoBlock;
+  std::vector<std::int32_t> displayValues_;              // per block (targets with a display)
   std::vector<std::array<std::int32_t, 3>> accel_;     // latest reading per block (targets with one)
   std::vector<std::array<std::int32_t, 3>> accelPending_;  // readings of scheduled Sensor events
   std::uint64_t jitterRng_ = 0;
@@ -148,7 +163,7 @@ class Simulation {
 
   const vs_blockcode* code_ = nullptr;
   std::uint32_t stateSize_ = 0;
-  std::unique_ptr<unsigned char[]> stateStorage_;
+  std::vector<unsigned char, HugePageAllocator<unsigned char>> stateStorage_;
   unsigned char* stateBase_ = nullptr;
   bool started_ = false;
 

@@ -7,6 +7,7 @@
 #include <string>
 #include <vector>
 
+#include "simcore/huge_page_allocator.hpp"
 #include "simcore/lattice.hpp"
 
 namespace simcore {
@@ -18,14 +19,17 @@ struct GridSize {
   std::int32_t x = 1, y = 1, z = 1;
 };
 
+// Kept to 32 bytes: a million of them are touched in random order every simulated second.
 struct Block {
+  std::uint64_t rng = 0;             // PCG32 state (stream = block id)
   Cell cell;                         // destination cell while moving
   std::uint32_t color = 0;           // 0xRRGGBB
-  std::uint64_t rng = 0;             // PCG32 state (stream = block id)
   std::uint32_t motion = kNoBlock;   // motion slot while moving
-  std::int32_t value = 0;            // displayed value (Smart Blocks)
-  bool alive = true;
+  bool alive = true;                 // mirrored in World's compact alive array for the hot path
 };
+static_assert(sizeof(Block) == 32);
+
+using BlockVector = std::vector<Block, HugePageAllocator<Block>>;
 
 class World {
  public:
@@ -44,10 +48,20 @@ class World {
 
   // Adds a block; returns its id, or kNoBlock if the cell is outside, invalid or taken.
   BlockId addBlock(const Cell& cell, std::uint32_t color);
+  void reserveBlocks(std::size_t n) {
+    blocks_.reserve(n);
+    alive_.reserve(n);
+  }
+  // One byte per block, so that checking a block (notifications to neighbors) stays in cache.
+  bool isAlive(BlockId id) const { return alive_[id] != 0; }
+  void markRemoved(BlockId id) {
+    alive_[id] = 0;
+    blocks_[id].alive = false;
+  }
   std::size_t blockCount() const { return blocks_.size(); }
   Block& block(BlockId id) { return blocks_[id]; }
   const Block& block(BlockId id) const { return blocks_[id]; }
-  const std::vector<Block>& blocks() const { return blocks_; }
+  const BlockVector& blocks() const { return blocks_; }
 
   // The block settled in a cell (not one moving into or out of it), or kNoBlock.
   BlockId settledAt(const Cell& c) const {
@@ -67,8 +81,23 @@ class World {
   // The neighbor linked to `face` of a settled block (kNoBlock if none, or if the block moves).
   BlockId neighbor(BlockId id, int face) const {
     const Block& b = blocks_[id];
-    if (b.motion != kNoBlock || !b.alive) return kNoBlock;
+    if (b.motion != kNoBlock || !alive_[id]) return kNoBlock;
     return settledAt(lattice_->neighborCell(b.cell, face));
+  }
+
+  // Hint: start loading the grid lines around a cell (the previous, same and next row and layer).
+  void prefetchAround(const Cell& c) const {
+    if (!inBounds(c)) return;
+    const std::size_t i = cellIndex(c), n = grid_.size();
+    const std::size_t row = std::size_t(size_.x), layer = row * std::size_t(size_.y);
+    const std::uint32_t* g = grid_.data();
+    __builtin_prefetch(g + i);
+    if (i >= row) __builtin_prefetch(g + i - row);
+    if (i + row < n) __builtin_prefetch(g + i + row);
+    if (size_.z > 1) {
+      if (i >= layer) __builtin_prefetch(g + i - layer);
+      if (i + layer < n) __builtin_prefetch(g + i + layer);
+    }
   }
 
   // Grid bookkeeping for motions and removals (the kernel keeps links and events consistent).
@@ -83,8 +112,9 @@ class World {
   std::unique_ptr<Lattice> lattice_;
   GridSize size_;
   int faceCount_;
-  std::vector<std::uint32_t> grid_;
-  std::vector<Block> blocks_;
+  std::vector<std::uint32_t, HugePageAllocator<std::uint32_t>> grid_;
+  BlockVector blocks_;
+  std::vector<std::uint8_t> alive_;
 };
 
 }  // namespace simcore

@@ -1,0 +1,161 @@
+#include "options.hpp"
+
+#include <charconv>
+#include <string_view>
+
+namespace vsim {
+
+const char* usageText() {
+  return R"(usage: vsim WORLD.xml [--code LIB.so] [options]
+
+Runs the block program LIB.so on every block of the world WORLD.xml (headless) and prints a
+summary: target, blocks, events, simulated and wall time, events/s, the run fingerprint and a
+histogram of the final colors (plus each block's color for worlds of at most 20 blocks).
+
+Without --until the run goes on until no event is pending. A block program that never goes
+quiet (timers that re-arm, endless messages) then runs forever: give --until (Ctrl-C stops a run
+early and still prints the summary).
+
+options:
+  --code LIB.so         block program (C BlockCode .so); overrides the world's code= attribute
+  --target NAME         blinkyblocks or smartblocks; overrides the world's target= attribute
+                        (default when neither says: blinkyblocks)
+  --until T             stop at simulated time T: 10s, 1500ms, 2min, 250us (bare number = s)
+  --seed S              seed of the per-block random streams (default: the world's, else 1)
+  --fes heap|calendar|ladder
+                        future-event set implementation (default heap; same results, speed only)
+  --tap ID@T            tap block ID at time T (repeatable, or comma-separated: 0@1s,3@2s)
+  --stats               print the kernel statistics (events per kind, messages, queue size)
+  --json FILE           write the summary and statistics as JSON ("-" = stdout, no text summary)
+  --export FILE         write the final configuration as a world XML ("-" = stdout)
+  --trace FILTER        trace the run: 'blocks=0,5-9;kinds=message,tap;from=1s;to=2s'
+                        (every clause optional; 'all' traces everything). Kinds: start, message,
+                        neighbor-added, neighbor-removed, tap, timer, motion-end, sensor, send,
+                        drop, color, motion, trace; groups: all, events, neighbor
+  --trace-format text|json
+                        one readable line or one JSON object per record (default text)
+  --trace-file FILE     where the trace goes (default stderr; "-" = stdout); --trace-format and
+                        --trace-file alone trace everything
+  --quiet, -q           no summary, no warnings, no progress line (errors are still printed)
+  --no-progress         no progress line (shown on a terminal for runs longer than a second)
+  --help, -h            this text
+  --version             the version
+
+exit codes:
+  0    the run completed (queue empty or --until reached)
+  1    runtime error: the simulation failed, or an output file could not be written
+  2    usage error: bad command line, bad trace filter, no block code given
+  3    input error: bad or missing world file, unknown target in it, bad block code .so
+  130  interrupted (Ctrl-C); the summary of the partial run is printed
+
+examples:
+  vsim examples/worlds/color-flood.xml --code build/release/blockcodes/color_flood.so
+  vsim examples/worlds/tap-cycle.xml --code build/release/blockcodes/tap_cycle.so \
+       --tap 2@1s --trace 'kinds=tap,color'
+)";
+}
+
+namespace {
+
+std::uint64_t parseCount(std::string_view option, std::string_view text) {
+  std::uint64_t v = 0;
+  const auto [end, ec] = std::from_chars(text.data(), text.data() + text.size(), v);
+  if (text.empty() || ec != std::errc() || end != text.data() + text.size())
+    throw UsageError(std::string(option) + " wants a non-negative integer, got '" + std::string(text) + "'");
+  return v;
+}
+
+simcore::SimTime parseTime(std::string_view option, std::string_view text) {
+  const auto t = simcore::parseDuration(text);
+  if (!t)
+    throw UsageError(std::string(option) + " wants a duration like 10s, 1500ms or 2min, got '" +
+                     std::string(text) + "'");
+  return *t;
+}
+
+void parseTaps(std::string_view text, std::vector<TapRequest>& taps) {
+  for (;;) {
+    const auto comma = text.find(',');
+    const std::string_view item = text.substr(0, comma);
+    const auto at = item.find('@');
+    if (at == std::string_view::npos)
+      throw UsageError("--tap wants BLOCK@TIME like 3@1.5s, got '" + std::string(item) + "'");
+    const std::uint64_t block = parseCount("--tap block", item.substr(0, at));
+    if (block > 0xFFFFFFFEull) throw UsageError("--tap: block id " + std::to_string(block) + " is too large");
+    taps.push_back({std::uint32_t(block), parseTime("--tap time", item.substr(at + 1))});
+    if (comma == std::string_view::npos) return;
+    text.remove_prefix(comma + 1);
+  }
+}
+
+}  // namespace
+
+Options parseOptions(int argc, char** argv) {
+  Options o;
+  bool traceFormatOrFile = false;
+  for (int i = 1; i < argc; ++i) {
+    std::string_view arg = argv[i];
+    // Both "--opt value" and "--opt=value".
+    std::optional<std::string_view> inlineValue;
+    if (arg.size() > 2 && arg.substr(0, 2) == "--") {
+      const auto eq = arg.find('=');
+      if (eq != std::string_view::npos) {
+        inlineValue = arg.substr(eq + 1);
+        arg = arg.substr(0, eq);
+      }
+    }
+    auto value = [&]() -> std::string_view {
+      if (inlineValue) return *inlineValue;
+      if (i + 1 >= argc) throw UsageError(std::string(arg) + " needs a value");
+      return argv[++i];
+    };
+    auto flag = [&] {
+      if (inlineValue) throw UsageError(std::string(arg) + " takes no value");
+    };
+
+    if (arg == "--help" || arg == "-h") flag(), o.help = true;
+    else if (arg == "--version") flag(), o.version = true;
+    else if (arg == "--quiet" || arg == "-q") flag(), o.quiet = true;
+    else if (arg == "--no-progress") flag(), o.progress = false;
+    else if (arg == "--stats") flag(), o.stats = true;
+    else if (arg == "--code") o.code = value();
+    else if (arg == "--target") o.target = value();
+    else if (arg == "--until") o.until = parseTime("--until", value());
+    else if (arg == "--seed") o.seed = parseCount("--seed", value());
+    else if (arg == "--fes") {
+      const std::string_view name = value();
+      const auto kind = simcore::parseFesKind(name);
+      if (!kind) throw UsageError("--fes is heap, calendar or ladder, got '" + std::string(name) + "'");
+      o.fes = *kind;
+    } else if (arg == "--tap") parseTaps(value(), o.taps);
+    else if (arg == "--json") o.jsonFile = value();
+    else if (arg == "--export") o.exportFile = value();
+    else if (arg == "--trace") {
+      o.traceFilter = simcore::parseTraceFilter(value());  // TraceFilterError: a usage error too
+      o.trace = true;
+    } else if (arg == "--trace-format") {
+      const std::string_view name = value();
+      const auto format = simcore::parseTraceFormat(name);
+      if (!format) throw UsageError("--trace-format is text or json, got '" + std::string(name) + "'");
+      o.traceFormat = *format;
+      traceFormatOrFile = true;
+    } else if (arg == "--trace-file") {
+      o.traceFile = value();
+      if (o.traceFile.empty()) throw UsageError("--trace-file needs a file name");
+      traceFormatOrFile = true;
+    } else if (arg.size() > 1 && arg[0] == '-' && arg != "-") {
+      throw UsageError("unknown option '" + std::string(argv[i]) + "' (see vsim --help)");
+    } else if (o.world.empty()) {
+      o.world = arg;
+    } else {
+      throw UsageError("one world file only: got '" + o.world + "' and '" + std::string(arg) + "'");
+    }
+  }
+  if (o.help || o.version) return o;
+  if (o.world.empty()) throw UsageError("no world file given (usage: vsim WORLD.xml --code LIB.so; see --help)");
+  if (traceFormatOrFile) o.trace = true;
+  if (o.jsonFile == "-" && o.exportFile == "-") throw UsageError("--json and --export cannot both write to stdout");
+  return o;
+}
+
+}  // namespace vsim

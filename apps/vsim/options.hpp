@@ -1,0 +1,62 @@
+// vsim's command line: what the user asked for, parsed and checked before anything is loaded.
+#pragma once
+
+#include <cstdint>
+#include <optional>
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+#include "simcore/future_event_set.hpp"
+#include "simcore/time.hpp"
+#include "simcore/trace.hpp"
+
+namespace vsim {
+
+// Exit codes (documented in --help; scripts and tests rely on them).
+enum ExitCode : int {
+  kExitOk = 0,
+  kExitRuntime = 1,      // the run failed, or an output file could not be written
+  kExitUsage = 2,        // bad command line
+  kExitInput = 3,        // bad world file, unknown target in it, block code that cannot be loaded
+  kExitInterrupted = 130 // Ctrl-C: the run stopped early (the summary is still printed)
+};
+
+class UsageError : public std::runtime_error {
+ public:
+  using std::runtime_error::runtime_error;
+};
+
+struct TapRequest {
+  std::uint32_t block = 0;
+  simcore::SimTime time = 0;
+};
+
+struct Options {
+  std::string world;                      // the XML world file
+  std::string code;                       // --code: overrides the world's code= attribute
+  std::string target;                     // --target: overrides the world's target= attribute
+  std::optional<simcore::SimTime> until;  // --until; none = until the event queue is empty
+  std::optional<std::uint64_t> seed;      // --seed; none = the world's seed, else 1
+  simcore::FesKind fes = simcore::FesKind::Heap;
+  bool stats = false;
+  std::string jsonFile;    // --json ("-" = stdout)
+  std::string exportFile;  // --export ("-" = stdout)
+  bool trace = false;
+  simcore::TraceFilter traceFilter;
+  simcore::TraceFormat traceFormat = simcore::TraceFormat::Text;
+  std::string traceFile;   // --trace-file; "" = stderr, "-" = stdout
+  std::vector<TapRequest> taps;
+  bool quiet = false;
+  bool progress = true;    // --no-progress turns the terminal progress line off
+  bool help = false;
+  bool version = false;
+};
+
+// Parses argv; throws UsageError with a one-line message.
+Options parseOptions(int argc, char** argv);
+
+// The --help text.
+const char* usageText();
+
+}  // namespace vsim

@@ -1,0 +1,18 @@
+#!/usr/bin/env bash
+# Configures and builds (incrementally; a no-op when up to date), then runs the whole test suite.
+# This is the one test command: developers run it, and CI runs it through .ci/run.
+#   PRESET=debug|asan ./scripts/test.sh   other presets of CMakePresets.json (default release)
+#   JOBS=N                                build and test jobs (default 2)
+# Needs the toolchain: ./scripts/setup.sh installs it on Debian 12.
+set -euo pipefail
+cd "$(dirname "${BASH_SOURCE[0]}")/.."
+
+PRESET=${PRESET:-release}
+JOBS=${JOBS:-2}
+command -v cmake >/dev/null && command -v ninja >/dev/null ||
+  { echo "test: cmake and ninja are missing; run ./scripts/setup.sh first" >&2; exit 1; }
+
+# MELD_BUILD_TESTS=ON explicitly: a build folder configured without the tests must not pass silently.
+cmake --preset "$PRESET" -DMELD_BUILD_TESTS=ON
+cmake --build --preset "$PRESET" --parallel "$JOBS"
+ctest --preset "$PRESET" --parallel "$JOBS" --output-on-failure

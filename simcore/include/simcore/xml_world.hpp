@@ -1,0 +1,105 @@
+// XML world files in the VisibleSim format (Blinky Blocks, Smart Blocks) plus our own attributes:
+// reading them into a plain description, building a Simulation from one, and writing the final
+// configuration of a run back in the same format. The format is documented in
+// examples/worlds/README.md.
+//
+// The loader knows nothing of targets (simcore must not depend on targets/): the target name is
+// stored as written, and the front end turns it into a TargetSpec.
+#pragma once
+
+#include <array>
+#include <cstdint>
+#include <iosfwd>
+#include <optional>
+#include <stdexcept>
+#include <string>
+#include <string_view>
+#include <utility>
+#include <vector>
+
+#include "simcore/lattice.hpp"
+#include "simcore/time.hpp"
+#include "simcore/world.hpp"
+
+namespace simcore {
+
+class Simulation;
+
+// An error in a world file. what() is "file:line:col: error: message" (or "file: error: message"
+// when there is no position, e.g. the file cannot be read); the parts are kept for the IDE.
+class XmlWorldError : public std::runtime_error {
+ public:
+  XmlWorldError(std::string file, int line, int column, std::string message);
+  const std::string& file() const { return file_; }
+  int line() const { return line_; }      // 1-based; 0 = no position
+  int column() const { return column_; }  // 1-based, in characters
+  const std::string& message() const { return message_; }
+
+ private:
+  std::string file_;
+  int line_, column_;
+  std::string message_;
+};
+
+// Where something was written in the file (1-based; 0 = made by code, not read from a file).
+struct SourcePos {
+  int line = 0, column = 0;
+};
+
+struct BlockDescription {
+  Cell cell;
+  std::optional<std::uint32_t> color;  // 0xRRGGBB; nullopt = the target's default color
+  SourcePos pos;                        // the <block>, <blocksBox> or <blocksLine> that made it
+};
+
+struct ScheduledTap {
+  BlockId block = 0;  // dense id: index in WorldDescription::blocks
+  SimTime time = 0;
+  SourcePos pos;
+};
+
+struct ScheduledAccel {
+  BlockId block = 0;
+  SimTime time = 0;
+  std::array<std::int32_t, 3> value{};
+  SourcePos pos;
+};
+
+// Attributes of an element we keep only to write them back (<camera>, <spotlight>), in file order.
+struct KeptElement {
+  bool present = false;
+  std::vector<std::pair<std::string, std::string>> attributes;
+};
+
+struct WorldDescription {
+  std::string path;                      // the file read (or the name given to parseWorldXml)
+  std::string target;                    // as written ("" if absent); not validated here
+  GridSize grid;
+  std::optional<std::uint32_t> listColor;  // color="..." of the first <blockList>
+  std::string blockSize;                 // blockSize="..." of the first <blockList>, validated
+  KeptElement camera, spotlight;
+  std::vector<BlockDescription> blocks;  // in document order = dense block ids
+  std::optional<std::uint64_t> seed;
+  std::string code;     // C BlockCode .so; relative paths resolved against the file's folder
+  std::string program;  // Meld program; resolved likewise
+  std::vector<ScheduledTap> taps;
+  std::vector<ScheduledAccel> accels;
+  std::vector<std::string> warnings;     // "file:line:col: warning: ..." (unknown elements, ...)
+};
+
+// Reads and validates a world file. Throws XmlWorldError.
+WorldDescription loadWorldXml(const std::string& path);
+// The same from text in memory; `pathForMessages` names it in messages and resolves relative paths.
+WorldDescription parseWorldXml(std::string_view text, const std::string& pathForMessages);
+
+// Adds the blocks (in order, so ids match the description) to a simulation that has none yet, and
+// schedules the taps and accelerometer readings. Throws XmlWorldError at the offending element
+// (cell outside the simulation's grid, tap on an unknown block, tap on a target without tap ...).
+void populateSimulation(const WorldDescription& world, Simulation& sim);
+
+// Writes the current configuration (cells and colors of the alive blocks, renumbered densely in id
+// order) in the same format, keeping gridSize, camera, spotlight and the <world> attributes of
+// `original`. The schedule is not written: it belongs to the run that already happened.
+void exportWorldXml(const Simulation& sim, const WorldDescription& original, std::ostream& out);
+
+}  // namespace simcore

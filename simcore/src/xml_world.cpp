@@ -1,0 +1,462 @@
+// Reading XML world files (format: examples/worlds/README.md). The loader parses the whole file
+// with pugixml in place, so every element and attribute name still points into our own buffer:
+// that pointer gives the byte offset, and the offset gives the line:col of every message.
+#include "simcore/xml_world.hpp"
+
+#include <algorithm>
+#include <cctype>
+#include <cerrno>
+#include <charconv>
+#include <cmath>
+#include <cstdlib>
+#include <cstring>
+#include <filesystem>
+#include <fstream>
+#include <initializer_list>
+#include <sstream>
+#include <unordered_map>
+
+#include <pugixml.hpp>
+
+namespace simcore {
+
+XmlWorldError::XmlWorldError(std::string file, int line, int column, std::string message)
+    : std::runtime_error(line > 0 ? file + ":" + std::to_string(line) + ":" + std::to_string(column) +
+                                        ": error: " + message
+                                  : file + ": error: " + message),
+      file_(std::move(file)), line_(line), column_(column), message_(std::move(message)) {}
+
+namespace {
+
+constexpr std::uint64_t kMaxCells = std::uint64_t(1) << 31;
+
+// Byte offsets -> line:column. Columns count characters (UTF-8 lead bytes), as editors do.
+class SourceMap {
+ public:
+  explicit SourceMap(std::string_view text) : text_(text) {
+    lineStarts_.push_back(0);
+    for (std::size_t i = 0; i < text.size(); ++i)
+      if (text[i] == '\n') lineStarts_.push_back(i + 1);
+  }
+  SourcePos at(std::size_t offset) const {
+    offset = std::min(offset, text_.size());
+    std::size_t line = std::size_t(std::upper_bound(lineStarts_.begin(), lineStarts_.end(), offset) -
+                                   lineStarts_.begin());
+    int column = 1;
+    for (std::size_t i = lineStarts_[line - 1]; i < offset; ++i)
+      if ((static_cast<unsigned char>(text_[i]) & 0xC0) != 0x80) ++column;
+    return SourcePos{int(line), column};
+  }
+
+ private:
+  std::string_view text_;
+  std::vector<std::size_t> lineStarts_;
+};
+
+std::string_view trim(std::string_view s) {
+  while (!s.empty() && std::isspace(static_cast<unsigned char>(s.front()))) s.remove_prefix(1);
+  while (!s.empty() && std::isspace(static_cast<unsigned char>(s.back()))) s.remove_suffix(1);
+  return s;
+}
+
+// "1, 2,3" -> {1,2,3}; nullopt if any component is not a whole integer.
+std::optional<std::vector<long long>> parseIntList(std::string_view text) {
+  std::vector<long long> values;
+  while (true) {
+    const std::size_t comma = text.find(',');
+    const std::string_view part = trim(text.substr(0, comma));
+    long long v = 0;
+    const auto [end, ec] = std::from_chars(part.data(), part.data() + part.size(), v);
+    if (part.empty() || ec != std::errc() || end != part.data() + part.size()) return std::nullopt;
+    values.push_back(v);
+    if (comma == std::string_view::npos) return values;
+    text.remove_prefix(comma + 1);
+  }
+}
+
+std::optional<std::vector<double>> parseRealList(std::string_view text) {
+  std::vector<double> values;
+  std::istringstream in{std::string(text)};
+  std::string part;
+  while (std::getline(in, part, ',')) {
+    const std::string p(trim(part));
+    char* end = nullptr;
+    const double v = std::strtod(p.c_str(), &end);
+    if (p.empty() || end != p.c_str() + p.size() || !std::isfinite(v)) return std::nullopt;
+    values.push_back(v);
+  }
+  if (values.empty() || (!text.empty() && text.back() == ',')) return std::nullopt;
+  return values;
+}
+
+std::string cellText(const Cell& c) {
+  // Appended piece by piece: "(" + std::string&& trips a false -Wrestrict in GCC 12.
+  std::string s = "(";
+  s += std::to_string(c.x);
+  s += ',';
+  s += std::to_string(c.y);
+  s += ',';
+  s += std::to_string(c.z);
+  s += ')';
+  return s;
+}
+
+class Loader {
+ public:
+  Loader(std::string_view text, std::string path) : map_(text), buffer_(text), path_(std::move(path)) {
+    world_.path = path_;
+  }
+  WorldDescription run();
+
+ private:
+  using Attr = pugi::xml_attribute;
+  using Node = pugi::xml_node;
+
+  // --- Positions and messages ---
+  SourcePos posOfPointer(const char* p) const {
+    if (p < buffer_.data() || p > buffer_.data() + buffer_.size()) return SourcePos{1, 1};
+    return map_.at(std::size_t(p - buffer_.data()));
+  }
+  // The '<' of the start tag (pugixml's name pointer is just after it).
+  SourcePos posOf(Node n) const { return posOfPointer(n.name() - 1); }
+  SourcePos posOf(Attr a) const { return posOfPointer(a.name()); }
+  [[noreturn]] void fail(SourcePos p, const std::string& message) const {
+    throw XmlWorldError(path_, p.line, p.column, message);
+  }
+  [[noreturn]] void badAttribute(Node n, Attr a, const std::string& problem) const {
+    fail(posOf(a), "attribute '" + std::string(a.name()) + "' of <" + n.name() + ">: \"" + a.value() +
+                       "\" " + problem);
+  }
+  void warn(SourcePos p, const std::string& message) {
+    world_.warnings.push_back(path_ + ":" + std::to_string(p.line) + ":" + std::to_string(p.column) +
+                              ": warning: " + message);
+  }
+  void warnUnknownAttributes(Node n, std::initializer_list<std::string_view> known);
+  Attr required(Node n, const char* name) const {
+    Attr a = n.attribute(name);
+    if (!a) fail(posOf(n), "<" + std::string(n.name()) + "> needs attribute '" + name + "'");
+    return a;
+  }
+
+  // --- Values ---
+  Cell cellAttribute(Node n, Attr a) const;
+  std::uint32_t colorAttribute(Node n, Attr a) const;
+  std::optional<std::uint32_t> optionalColor(Node n, std::optional<std::uint32_t> fallback) const {
+    Attr a = n.attribute("color");
+    return a ? std::optional<std::uint32_t>(colorAttribute(n, a)) : fallback;
+  }
+  Cell checkedCell(Node n, Attr a) const;
+  long long positiveInt(Node n, Attr a) const;
+
+  // --- Elements ---
+  void readWorld(Node world);
+  void readWorldAttributes(Node world);
+  void readGridSize(Node world, Attr a);
+  void readKept(Node n, KeptElement& into);
+  void readBlockList(Node list);
+  void readBlock(Node n, std::optional<std::uint32_t> listColor);
+  void readBox(Node n, std::optional<std::uint32_t> listColor);
+  void readLine(Node n, std::optional<std::uint32_t> listColor);
+  void readSchedule(Node schedule);
+  BlockId blockIdAttribute(Node n);
+  SimTime timeAttribute(Node n);
+  void checkScheduledBlocks();
+  void addBlock(Node n, Attr where, const Cell& c, std::optional<std::uint32_t> color);
+  // Calls `f(child)` for element children; warns about text and about elements not in `known`.
+  template <class F>
+  void forChildren(Node parent, std::initializer_list<std::string_view> known, F f);
+
+  SourceMap map_;
+  std::string buffer_;  // parsed in place, so names and values point into it
+  std::string path_;
+  WorldDescription world_;
+  std::unordered_map<std::uint64_t, std::size_t> occupied_;  // cell index -> block index
+  std::vector<std::pair<BlockId, SourcePos>> scheduledBlocks_;  // block attribute of each tap/accel
+  bool sawBlockList_ = false;
+};
+
+void Loader::warnUnknownAttributes(Node n, std::initializer_list<std::string_view> known) {
+  for (Attr a : n.attributes())
+    if (std::find(known.begin(), known.end(), std::string_view(a.name())) == known.end())
+      warn(posOf(a), "unknown attribute '" + std::string(a.name()) + "' of <" + n.name() + "> ignored");
+}
+
+template <class F>
+void Loader::forChildren(Node parent, std::initializer_list<std::string_view> known, F f) {
+  for (Node child : parent.children()) {
+    if (child.type() == pugi::node_pcdata || child.type() == pugi::node_cdata) {
+      const std::string_view text = child.value();
+      const std::size_t first = text.find_first_not_of(" \t\r\n");
+      if (first != std::string_view::npos)
+        warn(posOfPointer(text.data() + first), "text inside <" + std::string(parent.name()) + "> ignored");
+      continue;
+    }
+    if (child.type() != pugi::node_element) continue;
+    if (std::find(known.begin(), known.end(), std::string_view(child.name())) == known.end()) {
+      warn(posOf(child), "unknown element <" + std::string(child.name()) + "> ignored");
+      continue;
+    }
+    f(child);
+  }
+}
+
+Cell Loader::cellAttribute(Node n, Attr a) const {
+  // Two components are the planar (Smart Blocks) form of VisibleSim: z = 0.
+  const auto v = parseIntList(a.value());
+  if (!v || v->size() < 2 || v->size() > 3) badAttribute(n, a, "is not three integers");
+  for (long long c : *v)
+    if (c < INT32_MIN || c > INT32_MAX) badAttribute(n, a, "is not three integers");
+  return Cell{std::int32_t((*v)[0]), std::int32_t((*v)[1]), v->size() == 3 ? std::int32_t((*v)[2]) : 0};
+}
+
+Cell Loader::checkedCell(Node n, Attr a) const {
+  const Cell c = cellAttribute(n, a);
+  const GridSize& g = world_.grid;
+  if (c.x < 0 || c.y < 0 || c.z < 0 || c.x >= g.x || c.y >= g.y || c.z >= g.z)
+    badAttribute(n, a, "is outside the grid " + std::to_string(g.x) + "x" + std::to_string(g.y) + "x" +
+                           std::to_string(g.z));
+  return c;
+}
+
+std::uint32_t Loader::colorAttribute(Node n, Attr a) const {
+  const auto v = parseIntList(a.value());
+  if (!v || v->size() != 3) badAttribute(n, a, "is not three integers r,g,b in 0..255");
+  std::uint32_t rgb = 0;
+  for (long long c : *v) {
+    if (c < 0 || c > 255) badAttribute(n, a, "has a component outside 0..255");
+    rgb = (rgb << 8) | std::uint32_t(c);
+  }
+  return rgb;
+}
+
+long long Loader::positiveInt(Node n, Attr a) const {
+  const auto v = parseIntList(a.value());
+  if (!v || v->size() != 1 || (*v)[0] <= 0 || (*v)[0] > INT32_MAX) badAttribute(n, a, "is not a positive integer");
+  return (*v)[0];
+}
+
+WorldDescription Loader::run() {
+  pugi::xml_document doc;
+  const pugi::xml_parse_result r =
+      doc.load_buffer_inplace(buffer_.data(), buffer_.size(), pugi::parse_default, pugi::encoding_utf8);
+  if (r.status == pugi::status_no_document_element) fail(SourcePos{1, 1}, "no root element: expected <world>");
+  if (!r) fail(map_.at(std::size_t(std::max<std::ptrdiff_t>(r.offset, 0))), std::string("malformed XML: ") + r.description());
+  Node root = doc.document_element();
+  if (std::string_view(root.name()) != "world")
+    fail(posOf(root), "the root element is <" + std::string(root.name()) + ">, expected <world>");
+  for (Node extra = root.next_sibling(); extra; extra = extra.next_sibling())
+    if (extra.type() == pugi::node_element)
+      warn(posOf(extra), "element <" + std::string(extra.name()) + "> after <world> ignored");
+  readWorld(root);
+  return std::move(world_);
+}
+
+void Loader::readWorld(Node world) {
+  readWorldAttributes(world);
+  forChildren(world, {"camera", "spotlight", "blockList", "schedule"}, [&](Node child) {
+    const std::string_view name = child.name();
+    if (name == "camera") readKept(child, world_.camera);
+    else if (name == "spotlight") readKept(child, world_.spotlight);
+    else if (name == "blockList") readBlockList(child);
+    else readSchedule(child);
+  });
+  // Checked last: a <schedule> may come before the blocks it names.
+  checkScheduledBlocks();
+}
+
+void Loader::readWorldAttributes(Node world) {
+  warnUnknownAttributes(world, {"gridSize", "windowSize", "target", "seed", "code", "program"});
+  readGridSize(world, required(world, "gridSize"));
+  world_.target = world.attribute("target").value();
+  if (Attr a = world.attribute("seed")) {
+    const std::string_view v = trim(a.value());
+    std::uint64_t seed = 0;
+    const auto [end, ec] = std::from_chars(v.data(), v.data() + v.size(), seed);
+    if (v.empty() || ec != std::errc() || end != v.data() + v.size())
+      badAttribute(world, a, "is not a non-negative integer");
+    world_.seed = seed;
+  }
+  // Relative paths name files next to the world file, wherever the simulator is started from.
+  const auto resolve = [&](const char* p) -> std::string {
+    if (!*p || std::filesystem::path(p).is_absolute()) return p;
+    return (std::filesystem::path(path_).parent_path() / p).lexically_normal().string();
+  };
+  world_.code = resolve(world.attribute("code").value());
+  world_.program = resolve(world.attribute("program").value());
+}
+
+void Loader::readGridSize(Node world, Attr a) {
+  // Two components: the planar VisibleSim form, one layer high.
+  const auto v = parseIntList(a.value());
+  if (!v || v->size() < 2 || v->size() > 3) badAttribute(world, a, "is not three positive integers");
+  std::uint64_t cells = 1;
+  for (long long c : *v) {
+    if (c <= 0 || c > INT32_MAX) badAttribute(world, a, "is not three positive integers");
+    cells *= std::uint64_t(c);
+    if (cells > kMaxCells) badAttribute(world, a, "has more than 2^31 cells");
+  }
+  world_.grid = GridSize{std::int32_t((*v)[0]), std::int32_t((*v)[1]), v->size() == 3 ? std::int32_t((*v)[2]) : 1};
+}
+
+void Loader::readKept(Node n, KeptElement& into) {
+  if (into.present) {
+    warn(posOf(n), "second <" + std::string(n.name()) + "> ignored");
+    return;
+  }
+  const std::initializer_list<std::string_view> kKnown = {"target", "directionSpherical", "angle", "near", "far"};
+  warnUnknownAttributes(n, kKnown);
+  into.present = true;
+  for (Attr a : n.attributes())
+    if (std::find(kKnown.begin(), kKnown.end(), std::string_view(a.name())) != kKnown.end())
+      into.attributes.emplace_back(a.name(), a.value());
+}
+
+void Loader::readBlockList(Node list) {
+  warnUnknownAttributes(list, {"color", "blockSize", "blocksSize"});
+  const std::optional<std::uint32_t> color = optionalColor(list, std::nullopt);
+  // Older VisibleSim files spell it blocksSize.
+  Attr size = list.attribute("blockSize") ? list.attribute("blockSize") : list.attribute("blocksSize");
+  if (size) {
+    const auto v = parseRealList(size.value());
+    if (!v || v->size() != 3 || (*v)[0] <= 0 || (*v)[1] <= 0 || (*v)[2] <= 0)
+      badAttribute(list, size, "is not three positive numbers");
+  }
+  if (!sawBlockList_) {
+    world_.listColor = color;
+    world_.blockSize = size.value();
+    sawBlockList_ = true;
+  }
+  forChildren(list, {"block", "blocksBox", "blocksLine"}, [&](Node child) {
+    const std::string_view name = child.name();
+    if (name == "block") readBlock(child, color);
+    else if (name == "blocksBox") readBox(child, color);
+    else readLine(child, color);
+  });
+}
+
+void Loader::addBlock(Node n, Attr where, const Cell& c, std::optional<std::uint32_t> color) {
+  const GridSize& g = world_.grid;
+  const std::uint64_t key =
+      std::uint64_t(c.x) + std::uint64_t(g.x) * (std::uint64_t(c.y) + std::uint64_t(g.y) * std::uint64_t(c.z));
+  const auto [it, inserted] = occupied_.emplace(key, world_.blocks.size());
+  if (!inserted) {
+    const BlockDescription& other = world_.blocks[it->second];
+    fail(posOf(where), "<" + std::string(n.name()) + ">: cell " + cellText(c) + " already holds block " +
+                           std::to_string(it->second) + " (line " + std::to_string(other.pos.line) + ")");
+  }
+  world_.blocks.push_back(BlockDescription{c, color, posOf(n)});
+}
+
+void Loader::readBlock(Node n, std::optional<std::uint32_t> listColor) {
+  warnUnknownAttributes(n, {"position", "color"});
+  Attr position = required(n, "position");
+  addBlock(n, position, checkedCell(n, position), optionalColor(n, listColor));
+}
+
+void Loader::readBox(Node n, std::optional<std::uint32_t> listColor) {
+  warnUnknownAttributes(n, {"origin", "size", "color"});
+  Attr originAttr = required(n, "origin"), sizeAttr = required(n, "size");
+  const Cell origin = checkedCell(n, originAttr);
+  const Cell size = cellAttribute(n, sizeAttr);
+  const GridSize& g = world_.grid;
+  if (size.x <= 0 || size.y <= 0 || size.z <= 0) badAttribute(n, sizeAttr, "is not three positive integers");
+  if (std::int64_t(origin.x) + size.x > g.x || std::int64_t(origin.y) + size.y > g.y ||
+      std::int64_t(origin.z) + size.z > g.z)
+    badAttribute(n, sizeAttr, "makes the box from " + cellText(origin) + " leave the grid");
+  const std::optional<std::uint32_t> color = optionalColor(n, listColor);
+  // x varies fastest, then y, then z: the documented id order of a box.
+  for (std::int32_t z = 0; z < size.z; ++z)
+    for (std::int32_t y = 0; y < size.y; ++y)
+      for (std::int32_t x = 0; x < size.x; ++x)
+        addBlock(n, sizeAttr, Cell{origin.x + x, origin.y + y, origin.z + z}, color);
+}
+
+void Loader::readLine(Node n, std::optional<std::uint32_t> listColor) {
+  warnUnknownAttributes(n, {"origin", "direction", "length", "color"});
+  Attr originAttr = required(n, "origin"), dirAttr = required(n, "direction"), lenAttr = required(n, "length");
+  const Cell origin = checkedCell(n, originAttr);
+  std::string_view dir = trim(dirAttr.value());
+  const int sign = dir.starts_with('-') ? -1 : 1;
+  if (dir.starts_with('-') || dir.starts_with('+')) dir.remove_prefix(1);
+  if (dir != "x" && dir != "y" && dir != "z") badAttribute(n, dirAttr, "is not one of x, y, z, -x, -y, -z");
+  const Cell step{dir == "x" ? sign : 0, dir == "y" ? sign : 0, dir == "z" ? sign : 0};
+  const long long length = positiveInt(n, lenAttr);
+  const GridSize& g = world_.grid;
+  const std::int64_t ex = origin.x + step.x * (length - 1), ey = origin.y + step.y * (length - 1),
+                     ez = origin.z + step.z * (length - 1);
+  if (ex < 0 || ey < 0 || ez < 0 || ex >= g.x || ey >= g.y || ez >= g.z)
+    badAttribute(n, lenAttr, "makes the line from " + cellText(origin) + " leave the grid");
+  const std::optional<std::uint32_t> color = optionalColor(n, listColor);
+  for (long long i = 0; i < length; ++i)
+    addBlock(n, lenAttr,
+             Cell{std::int32_t(origin.x + step.x * i), std::int32_t(origin.y + step.y * i),
+                  std::int32_t(origin.z + step.z * i)},
+             color);
+}
+
+BlockId Loader::blockIdAttribute(Node n) {
+  Attr a = required(n, "block");
+  const std::string_view v = trim(a.value());
+  BlockId id = 0;
+  const auto [end, ec] = std::from_chars(v.data(), v.data() + v.size(), id);
+  if (v.empty() || ec != std::errc() || end != v.data() + v.size() || id == kNoBlock)
+    badAttribute(n, a, "is not a block id (a non-negative integer)");
+  scheduledBlocks_.emplace_back(id, posOf(a));
+  return id;
+}
+
+SimTime Loader::timeAttribute(Node n) {
+  Attr a = required(n, "time");
+  const std::optional<SimTime> t = parseDuration(trim(a.value()));
+  if (!t) badAttribute(n, a, "is not a duration (like 1.5s, 250ms, 10us, 42ns)");
+  return *t;
+}
+
+void Loader::readSchedule(Node schedule) {
+  warnUnknownAttributes(schedule, {});
+  forChildren(schedule, {"tap", "accel"}, [&](Node n) {
+    if (std::string_view(n.name()) == "tap") {
+      warnUnknownAttributes(n, {"block", "time"});
+      const BlockId id = blockIdAttribute(n);
+      world_.taps.push_back(ScheduledTap{id, timeAttribute(n), posOf(n)});
+      return;
+    }
+    warnUnknownAttributes(n, {"block", "time", "value"});
+    const BlockId id = blockIdAttribute(n);
+    const SimTime t = timeAttribute(n);
+    Attr value = required(n, "value");
+    const auto v = parseIntList(value.value());
+    if (!v || v->size() != 3) badAttribute(n, value, "is not three integers");
+    for (long long c : *v)
+      if (c < INT32_MIN || c > INT32_MAX) badAttribute(n, value, "is not three integers");
+    world_.accels.push_back(
+        ScheduledAccel{id, t, {std::int32_t((*v)[0]), std::int32_t((*v)[1]), std::int32_t((*v)[2])}, posOf(n)});
+  });
+}
+
+void Loader::checkScheduledBlocks() {
+  const std::size_t count = world_.blocks.size();
+  for (const auto& [id, pos] : scheduledBlocks_)
+    if (id >= count)
+      fail(pos, "block " + std::to_string(id) + " does not exist: the world has " + std::to_string(count) +
+                    " blocks" + (count ? " (ids 0.." + std::to_string(count - 1) + ")" : std::string()));
+}
+
+}  // namespace
+
+WorldDescription parseWorldXml(std::string_view text, const std::string& pathForMessages) {
+  return Loader(text, pathForMessages).run();
+}
+
+WorldDescription loadWorldXml(const std::string& path) {
+  std::error_code ec;
+  if (std::filesystem::is_directory(path, ec)) throw XmlWorldError(path, 0, 0, "is a directory, not a world file");
+  std::ifstream in(path, std::ios::binary);
+  if (!in) throw XmlWorldError(path, 0, 0, "cannot open the world file: " + std::string(std::strerror(errno)));
+  std::ostringstream text;
+  text << in.rdbuf();
+  if (in.bad()) throw XmlWorldError(path, 0, 0, "cannot read the world file");
+  return parseWorldXml(text.str(), path);
+}
+
+}  // namespace simcore

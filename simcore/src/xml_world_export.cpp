@@ -1,0 +1,108 @@
+// From a world description to a running Simulation, and from a Simulation back to a world file.
+#include <filesystem>
+#include <ostream>
+
+#include <pugixml.hpp>
+
+#include "simcore/simulation.hpp"
+#include "simcore/xml_world.hpp"
+
+namespace simcore {
+
+namespace {
+
+std::string colorText(std::uint32_t rgb) {
+  return std::to_string((rgb >> 16) & 0xFF) + "," + std::to_string((rgb >> 8) & 0xFF) + "," +
+         std::to_string(rgb & 0xFF);
+}
+
+std::string cellText(const Cell& c) {
+  return std::to_string(c.x) + "," + std::to_string(c.y) + "," + std::to_string(c.z);
+}
+
+// Why the world refused a block that the description placed (the loader checked the file's own grid,
+// but the simulation may have been built with another grid or a lattice with parity rules).
+std::string refusal(const World& w, const Cell& c) {
+  if (!w.inBounds(c)) return "cell (" + cellText(c) + ") is outside the simulation's grid";
+  if (!w.lattice().isValidCell(c)) return "cell (" + cellText(c) + ") is not a cell of the " + w.lattice().name() + " lattice";
+  return "cell (" + cellText(c) + ") is already taken";
+}
+
+void checkScheduled(const WorldDescription& d, const Simulation& sim, BlockId block, SourcePos pos, bool supported,
+                    const char* what) {
+  // Descriptions can be built or edited by code, so the loader's check is repeated here.
+  if (block >= sim.world().blockCount())
+    throw XmlWorldError(d.path, pos.line, pos.column, "block " + std::to_string(block) + " does not exist");
+  if (!supported)
+    throw XmlWorldError(d.path, pos.line, pos.column, "target '" + sim.target().name + "' has no " + what);
+}
+
+}  // namespace
+
+void populateSimulation(const WorldDescription& d, Simulation& sim) {
+  // Ids in the schedule are indices in d.blocks; they stay valid only if we number from 0.
+  if (sim.world().blockCount() != 0)
+    throw XmlWorldError(d.path, 0, 0, "the simulation already has blocks; a world file needs an empty one");
+  for (const BlockDescription& b : d.blocks)
+    if (sim.addBlock(b.cell, b.color.value_or(sim.target().defaultColor)) == kNoBlock)
+      throw XmlWorldError(d.path, b.pos.line, b.pos.column, refusal(sim.world(), b.cell));
+  for (const ScheduledTap& t : d.taps) {
+    checkScheduled(d, sim, t.block, t.pos, sim.target().hasTap, "tap sensor");
+    sim.scheduleTap(t.block, t.time);
+  }
+  for (const ScheduledAccel& a : d.accels) {
+    checkScheduled(d, sim, a.block, a.pos, sim.target().hasAccelerometer, "accelerometer");
+    sim.scheduleAccel(a.block, a.time, a.value[0], a.value[1], a.value[2]);
+  }
+}
+
+namespace {
+
+void writeWorldAttributes(pugi::xml_node world, const Simulation& sim, const WorldDescription& original) {
+  const GridSize g = sim.world().size();
+  world.append_attribute("gridSize") = (std::to_string(g.x) + "," + std::to_string(g.y) + "," + std::to_string(g.z)).c_str();
+  // The target that actually ran, whatever the original said (it may have come from the command line).
+  world.append_attribute("target") = sim.target().name.c_str();
+  if (original.seed) world.append_attribute("seed") = std::to_string(*original.seed).c_str();
+  // Absolute: the exported file may be written anywhere, and relative paths were resolved at load.
+  if (!original.code.empty())
+    world.append_attribute("code") = std::filesystem::absolute(original.code).lexically_normal().c_str();
+  if (!original.program.empty())
+    world.append_attribute("program") = std::filesystem::absolute(original.program).lexically_normal().c_str();
+}
+
+void writeKept(pugi::xml_node world, const char* name, const KeptElement& kept) {
+  if (!kept.present) return;
+  pugi::xml_node n = world.append_child(name);
+  for (const auto& [key, value] : kept.attributes) n.append_attribute(key.c_str()) = value.c_str();
+}
+
+}  // namespace
+
+void exportWorldXml(const Simulation& sim, const WorldDescription& original, std::ostream& out) {
+  pugi::xml_document doc;
+  pugi::xml_node decl = doc.append_child(pugi::node_declaration);
+  decl.append_attribute("version") = "1.0";
+  decl.append_attribute("encoding") = "UTF-8";
+  std::string note = " configuration at t = " + formatTime(sim.now()) + ", exported from " + original.path + " ";
+  for (std::size_t i; (i = note.find("--")) != std::string::npos;) note.replace(i, 2, "- -");  // invalid in comments
+  doc.append_child(pugi::node_comment).set_value(note.c_str());
+  pugi::xml_node world = doc.append_child("world");
+  writeWorldAttributes(world, sim, original);
+  writeKept(world, "camera", original.camera);
+  writeKept(world, "spotlight", original.spotlight);
+  pugi::xml_node list = world.append_child("blockList");
+  if (original.listColor) list.append_attribute("color") = colorText(*original.listColor).c_str();
+  if (!original.blockSize.empty()) list.append_attribute("blockSize") = original.blockSize.c_str();
+  // Every block carries its own color: colors change during a run.
+  for (const Block& b : sim.world().blocks()) {
+    if (!b.alive) continue;
+    pugi::xml_node n = list.append_child("block");
+    n.append_attribute("position") = cellText(b.cell).c_str();
+    n.append_attribute("color") = colorText(b.color).c_str();
+  }
+  doc.save(out, "  ", pugi::format_default, pugi::encoding_utf8);
+  out << '\n';  // pugixml ends the file without one
+}
+
+}  // namespace simcore

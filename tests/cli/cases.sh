@@ -1,0 +1,233 @@
+#!/bin/sh
+# The vsim command-line tests, one function per case; tests/cli/CMakeLists.txt runs
+# `cases.sh NAME` for each (CTest test cli.NAME). Keeping them in one script keeps them readable:
+# arguments with ';' (trace filters) would otherwise have to survive CMake list splitting.
+#
+# Environment: VSIM (the binary), BLOCKCODES (folder of the example .so files), NO_ENTRY_SO and
+# BAD_ABI_SO (broken block programs), SRC (repository root), WORK (scratch folder for this case).
+# UPDATE_GOLDEN=1 rewrites the golden files in tests/cli/expected/ instead of comparing.
+set -u
+EXPECTED="$SRC/tests/cli/expected"
+WORLDS="$SRC/examples/worlds"
+TWORLDS="$SRC/tests/cli/worlds"
+FLOOD="$BLOCKCODES/color_flood.so"
+TAPS="$BLOCKCODES/tap_cycle.so"
+rm -rf "$WORK"
+mkdir -p "$WORK"
+OUT="$WORK/stdout"
+ERR="$WORK/stderr"
+: >"$OUT"
+: >"$ERR"
+
+fail() {
+  echo "FAIL: $*" >&2
+  echo "--- stdout" >&2
+  cat "$OUT" >&2
+  echo "--- stderr" >&2
+  cat "$ERR" >&2
+  exit 1
+}
+
+# run RC ARGS...: runs vsim with no stdin, checks the exit code.
+run() {
+  want=$1
+  shift
+  "$VSIM" "$@" >"$OUT" 2>"$ERR" </dev/null
+  rc=$?
+  [ "$rc" -eq "$want" ] || fail "vsim $*: exit code $rc, expected $want"
+}
+
+# has FILE TEXT: FILE contains TEXT (a fixed string).
+has() { grep -F -q -e "$2" "$1" || fail "$(basename "$1") lacks '$2'"; }
+
+# stable FILE: the output without the lines that change between runs or machines.
+stable() { grep -v -E '^  (world|block code|wall time|events/s) ' "$1"; }
+
+# golden NAME FILE: stable(FILE) must equal tests/cli/expected/NAME.
+golden() {
+  if [ "${UPDATE_GOLDEN:-0}" = 1 ]; then
+    stable "$2" >"$EXPECTED/$1"
+    echo "updated $EXPECTED/$1"
+    return
+  fi
+  stable "$2" | diff -u "$EXPECTED/$1" - >"$WORK/diff" || {
+    cat "$WORK/diff" >&2
+    fail "output differs from tests/cli/expected/$1 (UPDATE_GOLDEN=1 ctest -R cli rewrites it)"
+  }
+}
+
+fingerprint() { sed -n 's/^  fingerprint *//p' "$1"; }
+histogram() { sed -n '/^  colors /,/^  final blocks/p' "$1" | grep -v 'final blocks'; }
+
+# --- command line --------------------------------------------------------------------------
+
+case_help() {
+  run 0 --help
+  has "$OUT" "usage: vsim WORLD.xml"
+  has "$OUT" "exit codes:"
+  has "$OUT" "--until"
+}
+
+case_version() {
+  run 0 --version
+  has "$OUT" "vsim "
+}
+
+case_unknown_option() {
+  run 2 "$WORLDS/color-flood.xml" --frobnicate
+  has "$ERR" "unknown option '--frobnicate'"
+}
+
+case_no_world() {
+  run 2 --code "$FLOOD"
+  has "$ERR" "no world file"
+}
+
+case_bad_until() {
+  run 2 "$WORLDS/color-flood.xml" --code "$FLOOD" --until soon
+  has "$ERR" "--until wants a duration"
+}
+
+case_bad_trace_filter() {
+  run 2 "$WORLDS/color-flood.xml" --code "$FLOOD" --trace 'blocks=0;kinds=bogus'
+  has "$ERR" "unknown kind 'bogus'"
+  run 2 "$WORLDS/color-flood.xml" --code "$FLOOD" --trace 'blocks=9-2'
+  has "$ERR" "range '9-2' is empty"
+  run 2 "$WORLDS/color-flood.xml" --code "$FLOOD" --trace 'from=2s;to=1s'
+  has "$ERR" "'from' is after 'to'"
+}
+
+case_bad_tap() {
+  run 2 "$WORLDS/tap-cycle.xml" --code "$TAPS" --tap 99@1s
+  has "$ERR" "no block 99"
+  run 2 "$WORLDS/tap-cycle.xml" --code "$TAPS" --tap 1
+  has "$ERR" "--tap wants BLOCK@TIME"
+}
+
+case_unknown_target_option() {
+  run 2 "$WORLDS/color-flood.xml" --code "$FLOOD" --target catoms9d
+  has "$ERR" "unknown target 'catoms9d'"
+}
+
+case_no_code() {
+  run 2 "$TWORLDS/no-code.xml"
+  has "$ERR" "no block code"
+}
+
+# --- inputs --------------------------------------------------------------------------------
+
+case_missing_world() {
+  run 3 "$WORK/does-not-exist.xml" --code "$FLOOD"
+  has "$ERR" "does-not-exist.xml"
+}
+
+case_broken_world() {
+  run 3 "$TWORLDS/broken.xml" --code "$FLOOD"
+  has "$ERR" "broken.xml:5:"
+  has "$ERR" "error:"
+}
+
+case_unknown_target_world() {
+  run 3 "$TWORLDS/bad-target.xml" --code "$FLOOD"
+  has "$ERR" "unknown target 'catoms9d'"
+}
+
+case_code_missing() {
+  run 3 "$WORLDS/color-flood.xml" --code "$WORK/nothing.so"
+  has "$ERR" "nothing.so"
+}
+
+case_code_not_elf() {
+  run 3 "$WORLDS/color-flood.xml" --code "$WORLDS/color-flood.xml"
+  has "$ERR" "is not a shared object"
+}
+
+case_code_no_entry() {
+  run 3 "$WORLDS/color-flood.xml" --code "$NO_ENTRY_SO"
+  has "$ERR" "does not export \`vs_blockcode_entry\`"
+}
+
+case_code_bad_abi() {
+  run 3 "$WORLDS/color-flood.xml" --code "$BAD_ABI_SO"
+  has "$ERR" "block ABI version 999"
+}
+
+# --- runs ----------------------------------------------------------------------------------
+
+case_flood_small() {
+  run 0 "$TWORLDS/flood-small.xml" --code "$FLOOD"
+  golden flood-small.txt "$OUT"
+}
+
+case_flood_demo() {
+  run 0 "$WORLDS/color-flood.xml" --code "$FLOOD" --stats
+  golden flood-demo.txt "$OUT"
+}
+
+case_flood_smartblocks() {
+  run 0 "$WORLDS/smartblocks-line.xml" --code "$FLOOD"
+  golden flood-smartblocks.txt "$OUT"
+}
+
+case_tap_cycle() {
+  run 0 "$WORLDS/tap-cycle.xml" --code "$TAPS" --tap 0@5s --tap 1@6s,1@7s
+  golden tap-cycle.txt "$OUT"
+}
+
+case_until() {
+  run 0 "$WORLDS/color-flood.xml" --code "$FLOOD" --until 500ms
+  has "$OUT" "--until reached, 1 event pending"
+  has "$OUT" "0.500000000 s"
+}
+
+case_same_fingerprint() {
+  # Twice the same, and the same with every future-event set: the order of events is total.
+  for fes in heap heap calendar ladder; do
+    run 0 "$WORLDS/color-flood.xml" --code "$FLOOD" --fes $fes
+    fingerprint "$OUT" >>"$WORK/fingerprints"
+  done
+  [ "$(sort -u "$WORK/fingerprints" | wc -l)" -eq 1 ] || fail "fingerprints differ: $(cat "$WORK/fingerprints")"
+  [ -n "$(head -n 1 "$WORK/fingerprints")" ] || fail "no fingerprint line"
+}
+
+case_trace_text() {
+  run 0 "$TWORLDS/flood-small.xml" --code "$FLOOD" --trace 'blocks=0-1;kinds=start,send,message,color,trace;to=10ms' \
+    --trace-file "$WORK/trace.txt"
+  golden trace-text.txt "$WORK/trace.txt"
+}
+
+case_trace_json() {
+  run 0 "$WORLDS/tap-cycle.xml" --code "$TAPS" --trace 'kinds=tap,color,trace' --trace-format json \
+    --trace-file "$WORK/trace.jsonl"
+  golden trace-json.jsonl "$WORK/trace.jsonl"
+}
+
+case_json_report() {
+  run 0 "$TWORLDS/flood-small.xml" --code "$FLOOD" --json "$WORK/report.json"
+  # CMake's JSON parser checks that the file is valid JSON and reads fields back.
+  cmake -DFILE="$WORK/report.json" -DKEYS="fingerprint;blocks;end;statistics.messages_sent" \
+    -P "$SRC/tests/cli/json_get.cmake" >"$WORK/fields" 2>&1 || { cat "$WORK/fields" >&2; fail "bad JSON report"; }
+  has "$WORK/fields" "fingerprint=$(fingerprint "$OUT")"
+  has "$WORK/fields" "blocks=18"
+  has "$WORK/fields" "end=queue-empty"
+}
+
+case_export_reload() {
+  # The exported world keeps the final colors: a run that changes no color (tap_cycle without
+  # taps) on it ends with the same histogram as the run that produced it.
+  run 0 "$TWORLDS/flood-small.xml" --code "$FLOOD" --export "$WORK/final.xml"
+  histogram "$OUT" >"$WORK/histogram-before"
+  run 0 "$WORK/final.xml" --code "$TAPS"
+  histogram "$OUT" >"$WORK/histogram-after"
+  has "$OUT" "blocks          18"
+  diff -u "$WORK/histogram-before" "$WORK/histogram-after" >&2 || fail "the exported world lost the final colors"
+}
+
+case_quiet() {
+  run 0 "$TWORLDS/flood-small.xml" --code "$FLOOD" --quiet
+  [ ! -s "$OUT" ] || fail "--quiet printed a summary"
+}
+
+name=$(echo "${1:?usage: cases.sh CASE}" | tr - _)
+"case_$name"
+echo "ok: $1"

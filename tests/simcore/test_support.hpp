@@ -1,0 +1,233 @@
+// Shared helpers of the simcore unit tests: building worlds, a scriptable block program that records
+// every event it gets (a plain C-style vs_blockcode table whose callbacks forward to std::function
+// hooks), and a random-walk + flood block program for whole-run tests.
+#pragma once
+
+#include <cstdint>
+#include <cstring>
+#include <functional>
+#include <map>
+#include <memory>
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+#include "blinkyblocks/blinkyblocks.hpp"
+#include "simcore/blockcode.h"
+#include "simcore/rng.hpp"
+#include "simcore/simulation.hpp"
+#include "smartblocks/smartblocks.hpp"
+
+namespace testsupport {
+
+using simcore::BlockId;
+using simcore::Cell;
+using simcore::SimTime;
+
+inline std::unique_ptr<simcore::Simulation> makeSim(const simcore::TargetSpec& target, simcore::GridSize size,
+                                                    const std::vector<Cell>& cells,
+                                                    const simcore::SimulationConfig& cfg = {}) {
+  auto sim = std::make_unique<simcore::Simulation>(target, size, cfg);
+  for (const Cell& c : cells)
+    if (sim->addBlock(c) == simcore::kNoBlock) throw std::logic_error("test world: cannot place a block");
+  return sim;
+}
+inline std::unique_ptr<simcore::Simulation> makeSmart(simcore::GridSize size, const std::vector<Cell>& cells,
+                                                      const simcore::SimulationConfig& cfg = {}) {
+  return makeSim(targets::smartBlocksTarget(), size, cells, cfg);
+}
+inline std::unique_ptr<simcore::Simulation> makeBlinky(simcore::GridSize size, const std::vector<Cell>& cells,
+                                                       const simcore::SimulationConfig& cfg = {}) {
+  return makeSim(targets::blinkyBlocksTarget(), size, cells, cfg);
+}
+
+// The value a block displays (set_value), whichever way the kernel stores it.
+template <class Sim>
+std::int32_t shownValue(Sim& sim, BlockId id) {
+  if constexpr (requires { sim.displayValue(id); })
+    return sim.displayValue(id);
+  else
+    return sim.world().block(id).value;
+}
+
+// One callback as the block program saw it. kind 0 stands for `start`.
+struct Rec {
+  SimTime time = 0;
+  BlockId block = 0;
+  int kind = 0;
+  int face = -1;
+  BlockId other = VS_NO_BLOCK;
+  std::vector<std::uint8_t> data;
+  std::uint64_t timerId = 0, tag = 0;
+  int sensor = 0;
+  std::int32_t values[3] = {0, 0, 0};
+};
+inline constexpr int kStartRec = 0;
+
+// A block program built in the test. Callbacks are looked up by the simulation they run in (the
+// ctx->host pointer), so several Scripts and Simulations can live in one process.
+class Script {
+ public:
+  std::function<void(vs_ctx*)> onStart;
+  std::function<void(vs_ctx*, const vs_event&)> onEvent;
+  std::function<int(vs_ctx*, char*, size_t)> onInfo;
+  std::vector<Rec> log;
+
+  explicit Script(simcore::Simulation& sim, std::uint32_t stateSize = 0) : sim_(&sim) {
+    table_ = vs_blockcode{VS_ABI_VERSION, "test-script", stateSize, &start, &event, &info};
+    registry()[sim_] = this;
+    sim.setBlockCode(&table_);
+  }
+  ~Script() { registry().erase(sim_); }
+  Script(const Script&) = delete;
+  Script& operator=(const Script&) = delete;
+
+  const vs_blockcode* table() const { return &table_; }
+
+  // Recorded callbacks of one block (and of one kind, unless kind < 0).
+  std::vector<Rec> of(BlockId block, int kind = -1) const {
+    std::vector<Rec> out;
+    for (const Rec& r : log)
+      if (r.block == block && (kind < 0 || r.kind == kind)) out.push_back(r);
+    return out;
+  }
+  std::size_t count(int kind) const {
+    std::size_t n = 0;
+    for (const Rec& r : log) n += r.kind == kind;
+    return n;
+  }
+
+ private:
+  static std::map<const void*, Script*>& registry() {
+    static std::map<const void*, Script*> r;
+    return r;
+  }
+  static Script& self(vs_ctx* c) { return *registry().at(c->host); }
+  static void start(vs_ctx* c) {
+    Script& s = self(c);
+    Rec r;
+    r.time = c->api->now(c);
+    r.block = c->block;
+    s.log.push_back(r);
+    if (s.onStart) s.onStart(c);
+  }
+  static void event(vs_ctx* c, const vs_event* ev) {
+    Script& s = self(c);
+    Rec r;
+    r.time = c->api->now(c);
+    r.block = c->block;
+    r.kind = ev->kind;
+    r.face = ev->face;
+    r.other = ev->other;
+    if (ev->size) r.data.assign(static_cast<const std::uint8_t*>(ev->data), static_cast<const std::uint8_t*>(ev->data) + ev->size);
+    r.timerId = ev->timer_id;
+    r.tag = ev->tag;
+    r.sensor = ev->sensor;
+    std::memcpy(r.values, ev->values, sizeof r.values);
+    s.log.push_back(r);
+    if (s.onEvent) s.onEvent(c, *ev);
+  }
+  static int info(vs_ctx* c, char* text, size_t capacity) {
+    Script& s = self(c);
+    return s.onInfo ? s.onInfo(c, text, capacity) : 0;
+  }
+
+  simcore::Simulation* sim_;
+  vs_blockcode table_{};
+};
+
+// Observer that records drops, sends, traces and colors.
+struct Recorder : simcore::SimulationObserver {
+  struct Drop {
+    std::uint32_t from;
+    int face;
+    std::uint32_t to;
+    SimTime when;
+  };
+  std::vector<Drop> drops;
+  std::vector<std::pair<std::uint32_t, std::string>> traces;
+  std::vector<std::pair<std::uint32_t, std::uint32_t>> colors;
+  std::vector<simcore::Event> events;
+  std::uint64_t sent = 0;
+  void onEvent(const simcore::Simulation&, const simcore::Event& e) override { events.push_back(e); }
+  void onMessageSent(const simcore::Simulation&, std::uint32_t, int, std::uint32_t, std::uint32_t, SimTime) override {
+    ++sent;
+  }
+  void onMessageDropped(const simcore::Simulation& s, std::uint32_t from, int face, std::uint32_t to) override {
+    drops.push_back({from, face, to, s.now()});
+  }
+  void onColorChanged(const simcore::Simulation&, std::uint32_t block, std::uint32_t rgb) override {
+    colors.emplace_back(block, rgb);
+  }
+  void onBlockTrace(const simcore::Simulation&, std::uint32_t block, std::string_view text) override {
+    traces.emplace_back(block, std::string(text));
+  }
+};
+
+// Random walk + flood (like examples/c/brownian_flood.c, but terminating): every block waits a random
+// time in [0, 1] s, tries a move through a random face, and repeats until it has tried
+// kWalkAttempts times; block 0 floods a 4-byte hop count that every block forwards once.
+inline constexpr std::uint8_t kWalkAttempts = 12;
+struct WalkState {
+  std::uint8_t attempts;
+  std::uint8_t flooded;
+};
+namespace walk_detail {
+inline void waitThenTry(vs_ctx* c) {
+  WalkState* s = static_cast<WalkState*>(c->state);
+  if (s->attempts++ < kWalkAttempts) vs_set_timer(c, vs_time(vs_random_below(c, 1000000001u)), 1);
+}
+inline void flood(vs_ctx* c, std::uint32_t hops) {
+  static_cast<WalkState*>(c->state)->flooded = 1;
+  vs_set_color(c, 0xFF0000);
+  const std::uint32_t next = hops + 1;
+  vs_send_all(c, &next, sizeof next, 0);
+}
+inline void start(vs_ctx* c) {
+  if (c->block == 0) flood(c, 0);
+  waitThenTry(c);
+}
+inline void event(vs_ctx* c, const vs_event* ev) {
+  WalkState* s = static_cast<WalkState*>(c->state);
+  switch (ev->kind) {
+    case VS_EV_TIMER:
+      if (vs_move(c, int(vs_random_below(c, std::uint32_t(c->api->face_count(c))))) != VS_OK) waitThenTry(c);
+      break;
+    case VS_EV_MOTION_END: waitThenTry(c); break;
+    case VS_EV_NEIGHBOR_ADDED:
+      // A flooded block tells newcomers, so the flood keeps spreading through motion.
+      if (s->flooded) {
+        const std::uint32_t hops = 1;
+        c->api->send(c, ev->face, &hops, sizeof hops, 0);
+      }
+      break;
+    case VS_EV_MESSAGE:
+      if (!s->flooded && ev->size == 4) {
+        std::uint32_t hops;
+        std::memcpy(&hops, ev->data, 4);
+        flood(c, hops);
+      }
+      break;
+    default: break;
+  }
+}
+}  // namespace walk_detail
+inline const vs_blockcode kRandomWalk = {VS_ABI_VERSION, "random-walk", sizeof(WalkState), &walk_detail::start,
+                                         &walk_detail::event, nullptr};
+
+// `n` Smart Blocks on distinct cells of an L x L grid, placed from (seed) with the kernel's RNG.
+inline std::unique_ptr<simcore::Simulation> makeWalkWorld(std::uint32_t n, std::int32_t L,
+                                                          const simcore::SimulationConfig& cfg,
+                                                          std::uint64_t placementSeed = 7) {
+  auto sim = std::make_unique<simcore::Simulation>(targets::smartBlocksTarget(), simcore::GridSize{L, L, 1}, cfg);
+  std::uint64_t st = simcore::BlockRng::initialState(placementSeed, 12345);
+  while (sim->world().blockCount() < n) {
+    const std::uint32_t c = simcore::BlockRng::below(st, 12345, std::uint32_t(L * L));
+    const Cell cell{std::int32_t(c % std::uint32_t(L)), std::int32_t(c / std::uint32_t(L)), 0};
+    if (sim->world().isFree(cell)) sim->addBlock(cell);
+  }
+  sim->setBlockCode(&kRandomWalk);
+  return sim;
+}
+
+}  // namespace testsupport
