@@ -8,35 +8,8 @@
 set -euo pipefail
 cd "$(dirname "${BASH_SOURCE[0]}")/.."
 
-PACKAGES=(
-  cmake ninja-build g++ ccache
-  antlr4 libantlr4-runtime-dev
-  llvm-19-dev libzstd-dev
-  qt6-base-dev libqt6opengl6-dev
-  libboost-test-dev libpugixml-dev libeigen3-dev
-  xvfb xauth libgl1-mesa-dri fonts-dejavu-core
-)
 JOBS=${JOBS:-2}
-
-missing=()
-for package in "${PACKAGES[@]}"; do
-  if ! dpkg-query -W -f='${Status}' "$package" 2>/dev/null | grep -q 'install ok installed'; then
-    missing+=("$package")
-  fi
-done
-
-if ((${#missing[@]})); then
-  echo "setup: installing ${#missing[@]} missing packages: ${missing[*]}"
-  sudo=()
-  if [[ $(id -u) -ne 0 ]]; then
-    command -v sudo >/dev/null || { echo "setup: not root and no sudo: install ${missing[*]} as root" >&2; exit 1; }
-    sudo=(sudo)
-  fi
-  "${sudo[@]}" env DEBIAN_FRONTEND=noninteractive apt-get update
-  "${sudo[@]}" env DEBIAN_FRONTEND=noninteractive apt-get install -y --no-install-recommends "${missing[@]}"
-else
-  echo "setup: all ${#PACKAGES[@]} toolchain packages are installed"
-fi
+bash scripts/install-packages.sh
 
 echo "setup: configuring and building (release preset, $JOBS jobs)"
 cmake --preset release

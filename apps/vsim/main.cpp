@@ -205,9 +205,10 @@ int runVsim(const Options& o) {
     json.close();
   }
   if (exported.wanted()) {
-    // The exported world names the code that ran, which --code may have chosen.
+    // The exported world names the code and the seed that ran (--code and --seed may have chosen).
     simcore::WorldDescription ran = world;
     ran.code = codePath;
+    ran.seed = sim.seed();
     simcore::exportWorldXml(sim, ran, exported.stream());
     exported.close();
   }

@@ -1,5 +1,7 @@
 // Event dispatch: turns popped kernel events into world changes and block-program callbacks.
 #include <cstdio>
+#include <cstring>
+#include <string>
 
 #include "simcore/simulation.hpp"
 
@@ -14,12 +16,27 @@ void Simulation::deliver(BlockId block, const vs_event& ev) {
   code_->event(&ctx, &ev);
 }
 
+std::string Simulation::blockInfo(BlockId id) {
+  // The per-block state exists once the run has started; before that there is nothing to describe.
+  if (!code_ || !code_->info || !started_ || id >= world_.blockCount()) return {};
+  vs_ctx ctx{&kHostApi, this, id, blockState(id)};
+  char text[256];
+  text[0] = '\0';
+  const int n = code_->info(&ctx, text, sizeof text);
+  if (n < int(sizeof text)) return std::string(text, strnlen(text, sizeof text));
+  std::string longer(std::size_t(n) + 1, '\0');  // the text did not fit: ask again with room for it
+  code_->info(&ctx, longer.data(), longer.size());
+  longer.resize(strnlen(longer.c_str(), longer.size()));
+  return longer;
+}
+
 void Simulation::dispatch(const Event& e) {
   // Only the compact alive array is read here: neighbor notifications need nothing else of the block.
   if (!world_.isAlive(e.block)) {
     // Events for a removed block are discarded unseen; only their slots are given back.
     if (e.kind == EventKind::Message) releaseMessage(std::uint32_t(e.arg));
     if (e.kind == EventKind::MotionEnd) releaseMotion(std::uint32_t(e.arg));
+    if (e.kind == EventKind::Sensor) releaseSlot(sensorReadings_, freeSensorReading_, std::uint32_t(e.arg));
     if (e.kind == EventKind::Timer && e.face == kTimerHasSlot) {
       TimerSlot& t = timers_[std::uint32_t(e.arg)];
       const std::uint32_t gen = std::uint32_t(e.arg >> 32);
@@ -100,7 +117,8 @@ void Simulation::dispatch(const Event& e) {
       break;
     }
     case EventKind::Sensor: {
-      const auto& v = accelPending_[std::size_t(e.arg)];
+      const std::array<std::int32_t, 3> v = sensorReadings_[std::uint32_t(e.arg)].values;
+      releaseSlot(sensorReadings_, freeSensorReading_, std::uint32_t(e.arg));
       if (!accel_.empty()) accel_[e.block] = v;
       ev.kind = VS_EV_SENSOR;
       ev.sensor = VS_SENSOR_ACCEL;

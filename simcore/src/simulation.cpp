@@ -51,11 +51,25 @@ void Simulation::setBlockCode(const vs_blockcode* code) {
   code_ = code;
 }
 
-void Simulation::scheduleTap(BlockId block, SimTime time) { schedule(time, block, EventKind::Tap, 0, 0); }
+void Simulation::checkExternalEvent(BlockId block, SimTime time, const char* what) const {
+  if (block >= world_.blockCount())
+    throw std::invalid_argument(std::string(what) + " for block " + std::to_string(block) + ", but the world has " +
+                                std::to_string(world_.blockCount()) + " blocks");
+  if (time < queue_.now())
+    throw std::invalid_argument(std::string(what) + " at " + formatTime(time) + ", before the current time " +
+                                formatTime(queue_.now()));
+}
+
+void Simulation::scheduleTap(BlockId block, SimTime time) {
+  checkExternalEvent(block, time, "tap");
+  schedule(time, block, EventKind::Tap, 0, 0);
+}
 
 void Simulation::scheduleAccel(BlockId block, SimTime time, std::int32_t x, std::int32_t y, std::int32_t z) {
-  accelPending_.push_back({x, y, z});
-  schedule(time, block, EventKind::Sensor, 0, accelPending_.size() - 1);
+  checkExternalEvent(block, time, "accelerometer reading");
+  const std::uint32_t slot = allocateSlot(sensorReadings_, freeSensorReading_);
+  sensorReadings_[slot].values = {x, y, z};
+  schedule(time, block, EventKind::Sensor, 0, slot);
 }
 
 void Simulation::startIfNeeded() {

@@ -4,7 +4,8 @@
 # arguments with ';' (trace filters) would otherwise have to survive CMake list splitting.
 #
 # Environment: VSIM (the binary), BLOCKCODES (folder of the example .so files), NO_ENTRY_SO and
-# BAD_ABI_SO (broken block programs), SRC (repository root), WORK (scratch folder for this case).
+# BAD_ABI_SO (broken block programs), SRC (repository root), WORK (scratch folder for this case),
+# CMAKE (the cmake that configured the build; used as a JSON parser).
 # UPDATE_GOLDEN=1 rewrites the golden files in tests/cli/expected/ instead of comparing.
 set -u
 EXPECTED="$SRC/tests/cli/expected"
@@ -205,7 +206,7 @@ case_trace_json() {
 case_json_report() {
   run 0 "$TWORLDS/flood-small.xml" --code "$FLOOD" --json "$WORK/report.json"
   # CMake's JSON parser checks that the file is valid JSON and reads fields back.
-  cmake -DFILE="$WORK/report.json" -DKEYS="fingerprint;blocks;end;statistics.messages_sent" \
+  "${CMAKE:-cmake}" -DFILE="$WORK/report.json" -DKEYS="fingerprint;blocks;end;statistics.messages_sent" \
     -P "$SRC/tests/cli/json_get.cmake" >"$WORK/fields" 2>&1 || { cat "$WORK/fields" >&2; fail "bad JSON report"; }
   has "$WORK/fields" "fingerprint=$(fingerprint "$OUT")"
   has "$WORK/fields" "blocks=18"
@@ -221,6 +222,10 @@ case_export_reload() {
   histogram "$OUT" >"$WORK/histogram-after"
   has "$OUT" "blocks          18"
   diff -u "$WORK/histogram-before" "$WORK/histogram-after" >&2 || fail "the exported world lost the final colors"
+  # It names the code that ran (absolute path) and the seed: it runs again without --code.
+  run 0 "$WORK/final.xml"
+  has "$OUT" "color-flood"
+  has "$WORK/final.xml" 'seed="1"'
 }
 
 case_quiet() {

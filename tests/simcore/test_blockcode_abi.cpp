@@ -3,6 +3,7 @@
 
 #include <dlfcn.h>
 
+#include <algorithm>
 #include <cstdint>
 #include <cstring>
 #include <stdexcept>
@@ -159,6 +160,7 @@ BOOST_AUTO_TEST_CASE(every_host_service_round_trips_through_the_c_table) {
   BOOST_CHECK_EQUAL(timers[0].face, -1);
   BOOST_CHECK_EQUAL(timers[0].other, VS_NO_BLOCK);
   BOOST_CHECK_EQUAL(timers[1].tag, 9u);
+  BOOST_CHECK_EQUAL(timers[1].timerId, 0u);  // set without asking for an id
   BOOST_CHECK_EQUAL(timers[1].time, 3 * kMillisecond);
   BOOST_CHECK_EQUAL(sim->statistics().timersCancelled, 1u);
   // Tap and sensor reading.
@@ -211,6 +213,51 @@ BOOST_AUTO_TEST_CASE(start_comes_before_every_other_event_of_a_block) {
   }
   BOOST_CHECK_EQUAL(s.of(1, VS_EV_NEIGHBOR_REMOVED).size(), 1u);
   BOOST_CHECK_EQUAL(s.of(2, VS_EV_TAP).size(), 1u);
+}
+
+BOOST_AUTO_TEST_CASE(stale_timer_ids_cannot_cancel_a_newer_timer) {
+  // Timer A fires; timer B, set in A's callback, may reuse A's slot: A's id must not cancel B.
+  auto sim = testsupport::makeSmart({1, 1, 1}, {{0, 0, 0}});
+  Script s(*sim);
+  std::uint64_t a = 0, b = 0;
+  s.onStart = [&](vs_ctx* c) {
+    BOOST_CHECK_EQUAL(c->api->set_timer(c, kMillisecond, 1, &a), VS_OK);
+    BOOST_CHECK_NE(a, 0u);
+    BOOST_CHECK_EQUAL(c->api->cancel_timer(c, 0), VS_ERR_NOT_FOUND);
+  };
+  s.onEvent = [&](vs_ctx* c, const vs_event& ev) {
+    if (ev.tag != 1) return;
+    BOOST_CHECK_EQUAL(c->api->set_timer(c, kMillisecond, 2, &b), VS_OK);
+    BOOST_CHECK_NE(a, b);
+    BOOST_CHECK_EQUAL(c->api->cancel_timer(c, a), VS_ERR_NOT_FOUND);
+  };
+  sim->runUntilEmpty();
+  const auto timers = s.of(0, VS_EV_TIMER);
+  BOOST_REQUIRE_EQUAL(timers.size(), 2u);
+  BOOST_CHECK_EQUAL(timers[1].tag, 2u);
+  BOOST_CHECK_EQUAL(timers[1].timerId, b);
+  BOOST_CHECK_EQUAL(timers[1].time, 2 * kMillisecond);
+  BOOST_CHECK_EQUAL(sim->statistics().timersCancelled, 0u);
+}
+
+BOOST_AUTO_TEST_CASE(block_info_comes_from_the_info_callback) {
+  auto sim = testsupport::makeSmart({3, 1, 1}, {{0, 0, 0}, {1, 0, 0}});
+  Script s(*sim, sizeof(std::uint32_t));
+  s.onStart = [&](vs_ctx* c) { *static_cast<std::uint32_t*>(c->state) = 10 + c->block; };
+  s.onInfo = [&](vs_ctx* c, char* text, size_t capacity) -> int {
+    std::string t = "block " + std::to_string(c->block) + " state " + std::to_string(*static_cast<std::uint32_t*>(c->state));
+    if (c->block == 1) t += std::string(300, '.');  // longer than a first guess of the host
+    if (capacity) {
+      const std::size_t n = std::min(capacity - 1, t.size());
+      std::memcpy(text, t.data(), n);
+      text[n] = '\0';
+    }
+    return int(t.size());
+  };
+  BOOST_CHECK_EQUAL(sim->blockInfo(0), "");  // no state before the run starts
+  sim->runUntilEmpty();
+  BOOST_CHECK_EQUAL(sim->blockInfo(0), "block 0 state 10");
+  BOOST_CHECK_EQUAL(sim->blockInfo(1), "block 1 state 11" + std::string(300, '.'));
 }
 
 BOOST_AUTO_TEST_CASE(abi_version_mismatch_and_null_callbacks) {
@@ -266,6 +313,9 @@ BOOST_AUTO_TEST_CASE(c_blockcode_loaded_with_dlopen_runs) {
     char text[32];
     BOOST_CHECK_EQUAL(code->info(&ctx, text, sizeof text), 7);
     BOOST_CHECK_EQUAL(std::string(text), "flooded");
+    BOOST_CHECK_EQUAL(sim->blockInfo(0), "flooded");
+    for (BlockId b = 0; b < 60; ++b)
+      if (sim->world().block(b).color != 0xFF0000u) BOOST_CHECK_EQUAL(sim->blockInfo(b), "not reached");
     prints.push_back(sim->fingerprint());
   }
   BOOST_CHECK_EQUAL(prints[0], prints[1]);

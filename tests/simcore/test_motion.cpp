@@ -101,6 +101,7 @@ BOOST_AUTO_TEST_CASE(neighbors_removed_at_start_and_added_at_end_on_both_sides) 
       // While moving, a block has no neighbors, and the position service gives the destination.
       BOOST_CHECK_EQUAL(ctx->api->neighbor_count(ctx), 0);
       BOOST_CHECK_EQUAL(ctx->api->neighbor(ctx, kEast), VS_NO_BLOCK);
+      BOOST_CHECK_EQUAL(ctx->api->send(ctx, kEast, "m", 1, 0), VS_ERR_NO_NEIGHBOR);
       std::int32_t xyz[3];
       ctx->api->position(ctx, xyz);
       pos.assign(xyz, xyz + 3);

@@ -40,6 +40,7 @@ class Simulation {
   BlockId addBlock(const Cell& cell) { return addBlock(cell, target_.defaultColor); }
   // The block program every block runs. The table must outlive the simulation.
   void setBlockCode(const vs_blockcode* code);
+  // Both throw std::invalid_argument for an unknown block or a time before now().
   void scheduleTap(BlockId block, SimTime time);
   void scheduleAccel(BlockId block, SimTime time, std::int32_t x, std::int32_t y, std::int32_t z);
 
@@ -118,6 +119,7 @@ class Simulation {
   };
 
   void startIfNeeded();
+  void checkExternalEvent(BlockId block, SimTime time, const char* what) const;
   void dispatch(const Event& e);
   void deliver(BlockId block, const vs_event& ev);
   void breakLinks(BlockId id);
@@ -157,7 +159,12 @@ class Simulation {
   std::uint32_t freeTimer_ = kNoBlock;
   std::vector<std::int32_t> displayValues_;              // per block (targets with a display)
   std::vector<std::array<std::int32_t, 3>> accel_;     // latest reading per block (targets with one)
-  std::vector<std::array<std::int32_t, 3>> accelPending_;  // readings of scheduled Sensor events
+  struct SensorSlot {
+    std::array<std::int32_t, 3> values{};
+    std::uint32_t nextFree = kNoBlock;
+  };
+  std::vector<SensorSlot> sensorReadings_;  // readings of scheduled Sensor events
+  std::uint32_t freeSensorReading_ = kNoBlock;
   std::uint64_t jitterRng_ = 0;
   std::vector<SimTime> lastArrival_;  // per face, only with jitter (keeps links in order)
 
