@@ -64,6 +64,7 @@ void Simulation::dispatch(const Event& e) {
         releaseMessage(std::uint32_t(e.arg));
         return;
       }
+      --messagesInFlight_;
       if (--sent.inFlight == 0) facesInFlight_[m.from] &= std::uint16_t(~(1u << m.fromFace));
       ev.kind = VS_EV_MESSAGE;
       ev.face = e.face;
@@ -108,7 +109,7 @@ void Simulation::dispatch(const Event& e) {
     case EventKind::MotionEnd: {
       MotionSlot& m = motions_[std::uint32_t(e.arg)];
       world_.clearCell(m.from);
-      world_.settle(m.to, e.block);
+      world_.settle(world_.block(e.block).cell, e.block);
       world_.block(e.block).motion = kNoBlock;
       releaseMotion(std::uint32_t(e.arg));
       ++stats_.motionsEnded;
@@ -154,7 +155,8 @@ void Simulation::breakLinks(BlockId id) {
     const BlockId senders[2] = {id, n};
     const BlockId receivers[2] = {n, id};
     const int senderFaces[2] = {f, back};
-    for (int s = 0; s < 2; ++s) {
+    // With no message in flight anywhere there is nothing to drop: skip the per-face bookkeeping.
+    for (int s = 0; s < 2 && messagesInFlight_ > 0; ++s) {
       // A face with nothing in flight has nothing to drop, and its transmitter is idle: its state
       // (usually a cache miss for the neighbor) need not be touched.
       std::uint16_t& mask = facesInFlight_[senders[s]];
@@ -162,6 +164,7 @@ void Simulation::breakLinks(BlockId id) {
       mask &= std::uint16_t(~(1u << senderFaces[s]));
       FaceState& fs = face(senders[s], senderFaces[s]);
       stats_.messagesDropped += fs.inFlight;
+      messagesInFlight_ -= fs.inFlight;
       if (!observers_.empty())
         for (std::uint16_t k = 0; k < fs.inFlight; ++k)
           for (SimulationObserver* o : observers_) o->onMessageDropped(*this, senders[s], senderFaces[s], receivers[s]);
@@ -169,6 +172,7 @@ void Simulation::breakLinks(BlockId id) {
       ++fs.epoch;
       fs.setBusyUntil(queue_.now());
     }
+    world_.prefetchAlive(n);  // its notification is dispatched right after this event
     schedule(queue_.now(), id, EventKind::NeighborRemoved, f, n);
     schedule(queue_.now(), n, EventKind::NeighborRemoved, back, id);
   }
@@ -179,6 +183,7 @@ void Simulation::formLinks(BlockId id) {
     const BlockId n = world_.neighbor(id, f);
     if (n == kNoBlock) continue;
     const int back = world_.lattice().oppositeFace(world_.block(id).cell, f);
+    world_.prefetchAlive(n);  // its notification is dispatched right after this event
     schedule(queue_.now(), id, EventKind::NeighborAdded, f, n);
     schedule(queue_.now(), n, EventKind::NeighborAdded, back, id);
   }
@@ -191,7 +196,7 @@ void Simulation::removeBlock(BlockId id) {
   if (b.motion != kNoBlock) {
     const MotionSlot& m = motions_[b.motion];  // released when its MotionEnd event comes
     world_.clearCell(m.from);
-    world_.clearCell(m.to);
+    world_.clearCell(b.cell);
   } else {
     breakLinks(id);
     world_.clearCell(b.cell);

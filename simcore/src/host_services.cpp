@@ -113,7 +113,7 @@ int Simulation::send(BlockId from, int f, const void* data, std::uint32_t size, 
   const BlockId to = world_.neighbor(from, f);
   if (to == kNoBlock) return VS_ERR_NO_NEIGHBOR;
   const SimTime now = queue_.now();
-  FaceState& fs = face(from, f);
+  FaceState& fs = faceForSending(from, f);
   const SimTime ready = now + delay;
   const SimTime busy = fs.busyUntil();
   const SimTime begin = ready > busy ? ready : busy;
@@ -134,6 +134,7 @@ int Simulation::send(BlockId from, int f, const void* data, std::uint32_t size, 
   m.size = size;
   if (m.data.size() < size) m.data.resize(size);
   if (size) std::memcpy(m.data.data(), data, size);
+  ++messagesInFlight_;
   if (fs.inFlight++ == 0) facesInFlight_[from] |= std::uint16_t(1u << f);
   ++stats_.messagesSent;
   stats_.bytesSent += size;
@@ -156,9 +157,7 @@ int Simulation::move(BlockId id, int f) {
   const std::uint32_t slot = allocateSlot(motions_, freeMotion_);
   MotionSlot& m = motions_[slot];
   m.from = b.cell;
-  m.to = to;
-  m.start = queue_.now();
-  m.end = m.start + motionDuration_;
+  m.end = queue_.now() + motionDuration_;
   world_.reserve(m.from, id);
   world_.reserve(to, id);
   b.cell = to;
@@ -166,7 +165,7 @@ int Simulation::move(BlockId id, int f) {
   ++stats_.motionsStarted;
   schedule(m.end, id, EventKind::MotionEnd, f, slot);
   if (!observers_.empty())
-    for (SimulationObserver* o : observers_) o->onMotionStarted(*this, id, m.from, m.to, m.end);
+    for (SimulationObserver* o : observers_) o->onMotionStarted(*this, id, m.from, to, m.end);
   return VS_OK;
 }
 
@@ -201,6 +200,14 @@ void Simulation::setColor(BlockId id, std::uint32_t rgb) {
   world_.block(id).color = rgb;
   if (!observers_.empty())
     for (SimulationObserver* o : observers_) o->onColorChanged(*this, id, rgb);
+}
+
+Simulation::FaceState& Simulation::faceForSending(BlockId b, int f) {
+  if (faceGroup_[b] == kNoBlock) {
+    faceGroup_[b] = std::uint32_t(faces_.size() / std::size_t(faceCount_));
+    faces_.resize(faces_.size() + std::size_t(faceCount_));
+  }
+  return face(b, f);
 }
 
 void Simulation::releaseMessage(std::uint32_t slot) { releaseSlot(messages_, freeMessage_, slot); }

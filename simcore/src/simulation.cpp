@@ -11,7 +11,7 @@
 namespace simcore {
 
 namespace {
-constexpr std::size_t kPrefetchFar = 8, kPrefetchMid = 4;
+constexpr std::size_t kPrefetchFar = 12, kPrefetchMid = 6;
 }  // namespace
 
 
@@ -76,12 +76,20 @@ void Simulation::startIfNeeded() {
   if (started_) return;
   started_ = true;
   const std::size_t n = world_.blockCount();
-  faces_.assign(n * std::size_t(faceCount_), FaceState{});
+  faces_.clear();
+  faceGroup_.assign(n, kNoBlock);
   facesInFlight_.assign(n, 0);
   if (link_.jitter > 0) lastArrival_.assign(n * std::size_t(faceCount_), 0);
   if (target_.hasAccelerometer) accel_.assign(n, {0, 0, -1});
   if (target_.hasDisplayValue) displayValues_.assign(n, 0);
-  stateSize_ = code_ ? (code_->state_size + 15u) & ~15u : 0;
+  // Each block's state is aligned like any C object of its size could need: to 16 bytes, or to its
+  // size rounded up to a power of two when that is smaller (a 2-byte state takes 2 bytes, not 16).
+  stateSize_ = 0;
+  if (code_ && code_->state_size) {
+    std::uint32_t stride = 1;
+    while (stride < code_->state_size && stride < 16) stride <<= 1;
+    stateSize_ = stride < 16 ? stride : (code_->state_size + 15u) & ~15u;
+  }
   if (stateSize_) {
     stateStorage_.assign(n * stateSize_ + 16, 0);
     unsigned char* raw = stateStorage_.data();
@@ -104,6 +112,21 @@ const Statistics& Simulation::statistics() const {
   stats_.wallSeconds = wallSeconds_;
   return stats_;
 }
+
+// Always inlined: GCC infers that a function whose only effect is a prefetch is pure, and then
+// deletes every call to it.
+[[gnu::always_inline]] inline void Simulation::prefetchRecords(const Event& e) const {
+  const BlockId id = e.block;
+  __builtin_prefetch(&world_.block(id));
+  world_.prefetchAlive(id);
+  if (stateSize_) __builtin_prefetch(stateBase_ + std::size_t(id) * stateSize_);
+  const std::uint32_t slot = std::uint32_t(e.arg);
+  if (e.kind == EventKind::Timer && e.face == kTimerHasSlot && slot < timers_.size()) __builtin_prefetch(&timers_[slot]);
+  if (e.kind == EventKind::Message && slot < messages_.size()) __builtin_prefetch(&messages_[slot]);
+  if (e.kind == EventKind::MotionEnd && slot < motions_.size()) __builtin_prefetch(&motions_[slot]);
+}
+
+[[gnu::always_inline]] inline void Simulation::prefetchCells(const Event& e) const { world_.prefetchAround(world_.block(e.block).cell); }
 
 RunStatus Simulation::run(SimTime until, std::uint64_t maxEvents) {
   startIfNeeded();
@@ -137,18 +160,6 @@ RunStatus Simulation::run(SimTime until, std::uint64_t maxEvents) {
   return status;
 }
 
-void Simulation::prefetchRecords(const Event& e) const {
-  const BlockId id = e.block;
-  __builtin_prefetch(&world_.block(id));
-  if (stateSize_) __builtin_prefetch(stateBase_ + std::size_t(id) * stateSize_);
-  const std::uint32_t slot = std::uint32_t(e.arg);
-  if (e.kind == EventKind::Timer && e.face == kTimerHasSlot && slot < timers_.size()) __builtin_prefetch(&timers_[slot]);
-  if (e.kind == EventKind::Message && slot < messages_.size()) __builtin_prefetch(&messages_[slot]);
-  if (e.kind == EventKind::MotionEnd && slot < motions_.size()) __builtin_prefetch(&motions_[slot]);
-}
-
-void Simulation::prefetchCells(const Event& e) const { world_.prefetchAround(world_.block(e.block).cell); }
-
 std::size_t Simulation::bytesPerBlockEstimate() const {
   return sizeof(Block) + std::size_t(faceCount_) * sizeof(FaceState) + stateSize_;
 }
@@ -158,8 +169,9 @@ Vec3 Simulation::position(BlockId id) const {
   const Lattice& lat = world_.lattice();
   if (b.motion == kNoBlock) return lat.cellCenter(b.cell);
   const MotionSlot& m = motions_[b.motion];
-  const Vec3 a = lat.cellCenter(m.from), c = lat.cellCenter(m.to);
-  double f = m.end > m.start ? double(queue_.now() - m.start) / double(m.end - m.start) : 1.0;
+  const Vec3 a = lat.cellCenter(m.from), c = lat.cellCenter(b.cell);
+  const SimTime start = m.end - motionDuration_;
+  double f = m.end > start ? double(queue_.now() - start) / double(m.end - start) : 1.0;
   f = std::clamp(f, 0.0, 1.0);
   return Vec3{a.x + (c.x - a.x) * f, a.y + (c.y - a.y) * f, a.z + (c.z - a.z) * f};
 }

@@ -27,7 +27,7 @@ class LadderFes final : public FutureEventSet {
   void clear() override;
 
  private:
-  static constexpr std::size_t kTargetPerBucket = 64;
+  static constexpr std::size_t kTargetPerBucket = 128;
   static constexpr std::size_t kMaxBuckets = std::size_t(1) << 20;
 
   bool advance();

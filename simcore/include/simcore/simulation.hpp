@@ -103,10 +103,11 @@ class Simulation {
     std::uint32_t nextFree = kNoBlock;
     std::vector<std::uint8_t> data;  // capacity is kept across reuse
   };
+  // The destination is the block's cell; the start is end - motionDuration_.
   struct MotionSlot {
-    Cell from, to;
-    SimTime start = 0, end = 0;
+    Cell from;
     std::uint32_t nextFree = kNoBlock;
+    SimTime end = 0;
   };
   // Timer events carry their tag in `arg`, unless the program asked for an id to cancel them: then
   // `face` is kTimerHasSlot and `arg` is (generation << 32 | slot) of a TimerSlot.
@@ -129,7 +130,10 @@ class Simulation {
   }
   void prefetchRecords(const Event& e) const;
   void prefetchCells(const Event& e) const;
-  FaceState& face(BlockId b, int f) { return faces_[std::size_t(b) * std::size_t(faceCount_) + std::size_t(f)]; }
+  // A block's face states exist from its first send on (most blocks of a large world may never
+  // send); faceGroup_[b] is the index of its group of faceCount_ states, or kNoBlock.
+  FaceState& face(BlockId b, int f) { return faces_[std::size_t(faceGroup_[b]) * std::size_t(faceCount_) + std::size_t(f)]; }
+  FaceState& faceForSending(BlockId b, int f);
   SimTime transmissionTime(std::uint32_t size) const;
   void releaseMessage(std::uint32_t slot);
   void releaseMotion(std::uint32_t slot);
@@ -150,6 +154,8 @@ class Simulation {
   int faceCount_;
   EventQueue queue_;
   std::vector<FaceState, HugePageAllocator<FaceState>> faces_;
+  std::vector<std::uint32_t> faceGroup_;
+  std::uint64_t messagesInFlight_ = 0;  // sent, not yet delivered nor dropped
   std::vector<std::uint16_t> facesInFlight_;  // per block: bit f set while face f has messages in flight
   std::vector<MessageSlot> messages_;
   std::uint32_t freeMessage_ = kNoBlock;
