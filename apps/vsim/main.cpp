@@ -161,6 +161,10 @@ int runVsim(const Options& o) {
   simcore::SimulationConfig config;
   config.seed = o.seed ? *o.seed : world.seed.value_or(1);
   config.fes = o.fes;
+  config.linkRateBitsPerSecond = o.linkRate;
+  config.linkLatency = o.linkLatency;
+  config.linkJitter = o.linkJitter;
+  config.motionDuration = o.motionTime;
   simcore::Simulation sim(target, world.grid, config);
   try {
     simcore::populateSimulation(world, sim);

@@ -1,6 +1,7 @@
 #include "options.hpp"
 
 #include <charconv>
+#include <cstdlib>
 #include <string_view>
 
 namespace vsim {
@@ -24,6 +25,10 @@ options:
   --seed S              seed of the per-block random streams (default: the world's, else 1)
   --fes heap|calendar|ladder
                         future-event set implementation (default heap; same results, speed only)
+  --link-rate BPS       link data rate in bit/s (target default: 38400 Blinky, 1e6 Smart Blocks)
+  --link-latency T      extra delay after each transmission (default 0)
+  --link-jitter T       random extra delay in [0, T]; never reorders a link (default 0)
+  --motion-time T       duration of one motion (Smart Blocks default 1s)
   --tap ID@T            tap block ID at time T (repeatable, or comma-separated: 0@1s,3@2s)
   --stats               print the kernel statistics (events per kind, messages, queue size)
   --json FILE           write the summary and statistics as JSON ("-" = stdout, no text summary)
@@ -71,6 +76,15 @@ simcore::SimTime parseTime(std::string_view option, std::string_view text) {
     throw UsageError(std::string(option) + " wants a duration like 10s, 1500ms or 2min, got '" +
                      std::string(text) + "'");
   return *t;
+}
+
+double parseRate(std::string_view option, std::string_view text) {
+  const std::string s(text);
+  char* end = nullptr;
+  const double v = std::strtod(s.c_str(), &end);
+  if (s.empty() || *end || !(v > 0) || v > 1e15)
+    throw UsageError(std::string(option) + " wants a positive number of bit/s like 1e6, got '" + s + "'");
+  return v;
 }
 
 void parseTaps(std::string_view text, std::vector<TapRequest>& taps) {
@@ -127,7 +141,11 @@ Options parseOptions(int argc, char** argv) {
       const auto kind = simcore::parseFesKind(name);
       if (!kind) throw UsageError("--fes is heap, calendar or ladder, got '" + std::string(name) + "'");
       o.fes = *kind;
-    } else if (arg == "--tap") parseTaps(value(), o.taps);
+    } else if (arg == "--link-rate") o.linkRate = parseRate("--link-rate", value());
+    else if (arg == "--link-latency") o.linkLatency = parseTime("--link-latency", value());
+    else if (arg == "--link-jitter") o.linkJitter = parseTime("--link-jitter", value());
+    else if (arg == "--motion-time") o.motionTime = parseTime("--motion-time", value());
+    else if (arg == "--tap") parseTaps(value(), o.taps);
     else if (arg == "--json") o.jsonFile = value();
     else if (arg == "--export") o.exportFile = value();
     else if (arg == "--trace") {

@@ -39,6 +39,9 @@ struct Options {
   std::optional<simcore::SimTime> until;  // --until; none = until the event queue is empty
   std::optional<std::uint64_t> seed;      // --seed; none = the world's seed, else 1
   simcore::FesKind fes = simcore::FesKind::Heap;
+  // Link and motion overrides of the target's defaults (negative = keep the target's).
+  double linkRate = -1;
+  simcore::SimTime linkLatency = -1, linkJitter = -1, motionTime = -1;
   bool stats = false;
   std::string jsonFile;    // --json ("-" = stdout)
   std::string exportFile;  // --export ("-" = stdout)

@@ -228,6 +228,23 @@ case_export_reload() {
   has "$WORK/final.xml" 'seed="1"'
 }
 
+case_link_options() {
+  # Slower links stretch the flood in simulated time; a bad rate is a usage error.
+  run 0 "$TWORLDS/flood-small.xml" --code "$FLOOD"
+  sed -n "s/^  simulated time *//p" "$OUT" | head -n 1 >"$WORK/fast"
+  fingerprint "$OUT" >"$WORK/fast-fp"
+  run 0 "$TWORLDS/flood-small.xml" --code "$FLOOD" --link-rate 9600 --link-latency 2ms --link-jitter 1ms
+  sed -n "s/^  simulated time *//p" "$OUT" | head -n 1 >"$WORK/slow"
+  fingerprint "$OUT" >"$WORK/slow-fp"
+  cmp -s "$WORK/fast-fp" "$WORK/slow-fp" && fail "link options did not change the run"
+  awk -v f="$(cut -d' ' -f1 "$WORK/fast")" -v s="$(cut -d' ' -f1 "$WORK/slow")" 'BEGIN { exit !(s > f) }' ||
+    fail "a slower link did not make the flood take longer ($(cat "$WORK/fast") vs $(cat "$WORK/slow"))"
+  run 2 "$TWORLDS/flood-small.xml" --code "$FLOOD" --link-rate 0
+  has "$ERR" "--link-rate wants a positive number"
+  run 2 "$TWORLDS/flood-small.xml" --code "$FLOOD" --motion-time soon
+  has "$ERR" "--motion-time wants a duration"
+}
+
 case_quiet() {
   run 0 "$TWORLDS/flood-small.xml" --code "$FLOOD" --quiet
   [ ! -s "$OUT" ] || fail "--quiet printed a summary"

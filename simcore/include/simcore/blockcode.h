@@ -6,8 +6,10 @@
  * apart, and a block program cannot see the simulator's internals.
  *
  * Loading: a shared object exports `const vs_blockcode *vs_blockcode_entry(void)`. The host checks
- * `abi_version`, allocates `state_size` zeroed bytes per block (contiguous, 16-byte aligned, owned by
- * the host, never moved during a run) and calls `start` once per block at time 0, then `event` for
+ * `abi_version`, allocates `state_size` zeroed bytes per block (contiguous, owned by the host, never
+ * moved during a run; aligned to 16 bytes, or to `state_size` rounded up to a power of two when that
+ * is smaller — enough for any C struct of that size) and calls `start` once per block at time 0,
+ * before any other event of that block, then `event` for
  * every event addressed to that block. Callbacks of one simulation run on one thread, one at a time.
  *
  * Time is simulated time: a signed 64-bit count of nanoseconds (vs_time). All host services take the
