@@ -79,7 +79,8 @@ simcore::TargetSpec chooseTarget(const Options& o, const simcore::WorldDescripti
   if (world.target.empty()) return *targets::makeTarget("blinkyblocks");
   auto spec = targets::makeTarget(world.target);
   if (!spec)
-    throw Failure{kExitInput, world.path + ": error: unknown target '" + world.target + "' (targets: " + names + ")"};
+    throw Failure{kExitInput,
+                  world.path + ": error: unknown target '" + world.target + "' (targets: " + names + ")"};
   return *spec;
 }
 
@@ -135,7 +136,8 @@ int runVsim(const Options& o) {
   Output json(o.jsonFile), exported(o.exportFile);
   std::unique_ptr<std::ofstream> traceFile;
   std::ostream* traceOut = &std::cerr;
-  if (o.trace && o.traceFile == "-") traceOut = &std::cout;
+  if (o.trace && o.traceFile == "-")
+    traceOut = &std::cout;
   else if (o.trace && !o.traceFile.empty()) {
     traceFile = std::make_unique<std::ofstream>(o.traceFile, std::ios::binary);
     if (!*traceFile) throw Failure{kExitRuntime, "cannot write trace file '" + o.traceFile + "'"};
@@ -190,7 +192,8 @@ int runVsim(const Options& o) {
   try {
     info.end = runSimulation(sim, o, progress);
   } catch (const std::exception& e) {
-    throw Failure{kExitRuntime, std::string("simulation failed at ") + simcore::formatTime(sim.now()) + ": " + e.what()};
+    throw Failure{kExitRuntime,
+                  std::string("simulation failed at ") + simcore::formatTime(sim.now()) + ": " + e.what()};
   }
   traceOut->flush();
   if (traceFile) {
@@ -241,8 +244,10 @@ int main(int argc, char** argv) {
     return runVsim(options);
   } catch (const Failure& f) {
     // Messages that already say "file:line:col: error:" stay as they are, for editors to parse.
-    if (f.message.find(": error: ") != std::string::npos) std::cerr << f.message << '\n';
-    else std::cerr << "vsim: error: " << f.message << '\n';
+    if (f.message.find(": error: ") != std::string::npos)
+      std::cerr << f.message << '\n';
+    else
+      std::cerr << "vsim: error: " << f.message << '\n';
     return f.code;
   } catch (const std::exception& e) {
     std::cerr << "vsim: error: " << e.what() << '\n';

@@ -127,27 +127,43 @@ Options parseOptions(int argc, char** argv) {
       if (inlineValue) throw UsageError(std::string(arg) + " takes no value");
     };
 
-    if (arg == "--help" || arg == "-h") flag(), o.help = true;
-    else if (arg == "--version") flag(), o.version = true;
-    else if (arg == "--quiet" || arg == "-q") flag(), o.quiet = true;
-    else if (arg == "--no-progress") flag(), o.progress = false;
-    else if (arg == "--stats") flag(), o.stats = true;
-    else if (arg == "--code") o.code = value();
-    else if (arg == "--target") o.target = value();
-    else if (arg == "--until") o.until = parseTime("--until", value());
-    else if (arg == "--seed") o.seed = parseCount("--seed", value());
+    if (arg == "--help" || arg == "-h")
+      flag(), o.help = true;
+    else if (arg == "--version")
+      flag(), o.version = true;
+    else if (arg == "--quiet" || arg == "-q")
+      flag(), o.quiet = true;
+    else if (arg == "--no-progress")
+      flag(), o.progress = false;
+    else if (arg == "--stats")
+      flag(), o.stats = true;
+    else if (arg == "--code")
+      o.code = value();
+    else if (arg == "--target")
+      o.target = value();
+    else if (arg == "--until")
+      o.until = parseTime("--until", value());
+    else if (arg == "--seed")
+      o.seed = parseCount("--seed", value());
     else if (arg == "--fes") {
       const std::string_view name = value();
       const auto kind = simcore::parseFesKind(name);
       if (!kind) throw UsageError("--fes is heap, calendar or ladder, got '" + std::string(name) + "'");
       o.fes = *kind;
-    } else if (arg == "--link-rate") o.linkRate = parseRate("--link-rate", value());
-    else if (arg == "--link-latency") o.linkLatency = parseTime("--link-latency", value());
-    else if (arg == "--link-jitter") o.linkJitter = parseTime("--link-jitter", value());
-    else if (arg == "--motion-time") o.motionTime = parseTime("--motion-time", value());
-    else if (arg == "--tap") parseTaps(value(), o.taps);
-    else if (arg == "--json") o.jsonFile = value();
-    else if (arg == "--export") o.exportFile = value();
+    } else if (arg == "--link-rate")
+      o.linkRate = parseRate("--link-rate", value());
+    else if (arg == "--link-latency")
+      o.linkLatency = parseTime("--link-latency", value());
+    else if (arg == "--link-jitter")
+      o.linkJitter = parseTime("--link-jitter", value());
+    else if (arg == "--motion-time")
+      o.motionTime = parseTime("--motion-time", value());
+    else if (arg == "--tap")
+      parseTaps(value(), o.taps);
+    else if (arg == "--json")
+      o.jsonFile = value();
+    else if (arg == "--export")
+      o.exportFile = value();
     else if (arg == "--trace") {
       o.traceFilter = simcore::parseTraceFilter(value());  // TraceFilterError: a usage error too
       o.trace = true;
@@ -170,9 +186,11 @@ Options parseOptions(int argc, char** argv) {
     }
   }
   if (o.help || o.version) return o;
-  if (o.world.empty()) throw UsageError("no world file given (usage: vsim WORLD.xml --code LIB.so; see --help)");
+  if (o.world.empty())
+    throw UsageError("no world file given (usage: vsim WORLD.xml --code LIB.so; see --help)");
   if (traceFormatOrFile) o.trace = true;
-  if (o.jsonFile == "-" && o.exportFile == "-") throw UsageError("--json and --export cannot both write to stdout");
+  if (o.jsonFile == "-" && o.exportFile == "-")
+    throw UsageError("--json and --export cannot both write to stdout");
   return o;
 }
 

@@ -16,10 +16,10 @@ namespace vsim {
 // Exit codes (documented in --help; scripts and tests rely on them).
 enum ExitCode : int {
   kExitOk = 0,
-  kExitRuntime = 1,      // the run failed, or an output file could not be written
-  kExitUsage = 2,        // bad command line
-  kExitInput = 3,        // bad world file, unknown target in it, block code that cannot be loaded
-  kExitInterrupted = 130 // Ctrl-C: the run stopped early (the summary is still printed)
+  kExitRuntime = 1,       // the run failed, or an output file could not be written
+  kExitUsage = 2,         // bad command line
+  kExitInput = 3,         // bad world file, unknown target in it, block code that cannot be loaded
+  kExitInterrupted = 130  // Ctrl-C: the run stopped early (the summary is still printed)
 };
 
 class UsageError : public std::runtime_error {
@@ -48,10 +48,10 @@ struct Options {
   bool trace = false;
   simcore::TraceFilter traceFilter;
   simcore::TraceFormat traceFormat = simcore::TraceFormat::Text;
-  std::string traceFile;   // --trace-file; "" = stderr, "-" = stdout
+  std::string traceFile;  // --trace-file; "" = stderr, "-" = stdout
   std::vector<TapRequest> taps;
   bool quiet = false;
-  bool progress = true;    // --no-progress turns the terminal progress line off
+  bool progress = true;  // --no-progress turns the terminal progress line off
   bool help = false;
   bool version = false;
 };

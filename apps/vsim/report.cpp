@@ -30,9 +30,12 @@ std::string rate(double eventsPerSecond, double wall) {
 
 const char* endName(RunEnd end) {
   switch (end) {
-    case RunEnd::QueueEmpty: return "queue-empty";
-    case RunEnd::UntilReached: return "until";
-    case RunEnd::Interrupted: return "interrupted";
+    case RunEnd::QueueEmpty:
+      return "queue-empty";
+    case RunEnd::UntilReached:
+      return "until";
+    case RunEnd::Interrupted:
+      return "interrupted";
   }
   return "?";
 }
@@ -41,9 +44,12 @@ std::string endText(const simcore::Simulation& sim, const RunInfo& info) {
   const std::size_t n = sim.pendingEvents();
   const std::string pending = std::to_string(n) + (n == 1 ? " event pending" : " events pending");
   switch (info.end) {
-    case RunEnd::QueueEmpty: return "queue empty";
-    case RunEnd::UntilReached: return "--until reached, " + pending;
-    case RunEnd::Interrupted: return "interrupted, " + pending;
+    case RunEnd::QueueEmpty:
+      return "queue empty";
+    case RunEnd::UntilReached:
+      return "--until reached, " + pending;
+    case RunEnd::Interrupted:
+      return "interrupted, " + pending;
   }
   return "?";
 }
@@ -143,8 +149,10 @@ void writeJsonReport(std::ostream& out, const simcore::Simulation& sim, const Ru
   for (std::size_t i = 0; i < histogram.size(); ++i) {
     const char* name = simcore::colorName(histogram[i].rgb);
     out << (i ? "," : "") << "{\"rgb\":\"" << rgbText(histogram[i].rgb) << "\",\"name\":";
-    if (name) simcore::writeJsonString(out, name);
-    else out << "null";
+    if (name)
+      simcore::writeJsonString(out, name);
+    else
+      out << "null";
     out << ",\"count\":" << histogram[i].count << '}';
   }
   out << ']';
@@ -156,8 +164,8 @@ void writeJsonReport(std::ostream& out, const simcore::Simulation& sim, const Ru
       const simcore::Block& b = world.block(id);
       if (!b.alive) continue;
       out << (first ? "" : ",")
-          << format("{\"id\":%u,\"cell\":[%d,%d,%d],\"rgb\":\"%s\"", unsigned(id), b.cell.x, b.cell.y, b.cell.z,
-                    rgbText(b.color).c_str());
+          << format("{\"id\":%u,\"cell\":[%d,%d,%d],\"rgb\":\"%s\"", unsigned(id), b.cell.x, b.cell.y,
+                    b.cell.z, rgbText(b.color).c_str());
       if (sim.target().hasDisplayValue) out << ",\"value\":" << sim.displayValue(id);
       out << '}';
       first = false;
@@ -169,7 +177,8 @@ void writeJsonReport(std::ostream& out, const simcore::Simulation& sim, const Ru
   bool first = true;
   for (std::size_t k = 0; k < s.eventsByKind.size(); ++k) {
     if (!s.eventsByKind[k]) continue;
-    out << (first ? "" : ",") << '"' << simcore::eventKindName(simcore::EventKind(k)) << "\":" << s.eventsByKind[k];
+    out << (first ? "" : ",") << '"' << simcore::eventKindName(simcore::EventKind(k))
+        << "\":" << s.eventsByKind[k];
     first = false;
   }
   out << "},\"messages_sent\":" << s.messagesSent << ",\"messages_received\":" << s.messagesReceived

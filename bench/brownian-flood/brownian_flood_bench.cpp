@@ -31,7 +31,8 @@ struct Options {
 
 void usage(std::FILE* out) {
   std::fputs(
-      "usage: brownian-flood [--blocks N] [--until T] [--seed S] [--fes heap|calendar|ladder] [--json] [--no-progress]\n"
+      "usage: brownian-flood [--blocks N] [--until T] [--seed S] [--fes heap|calendar|ladder] [--json] "
+      "[--no-progress]\n"
       "  Benchmark B1: N Smart Blocks in Brownian motion on an L x L grid (L = ceil(sqrt(2N))),\n"
       "  flood from block 0, 1 Mbit/s links. Defaults: --blocks 7000 --until 600s --seed 1 --fes heap.\n"
       "  T takes a unit: 600s, 10min, 1500ms (bare numbers are seconds).\n",
@@ -126,7 +127,8 @@ int main(int argc, char** argv) {
     const std::uint64_t remaining = cells - c;
     const double u = double(simcore::BlockRng::next(placement, 0xFFFFFFF0u)) / 4294967296.0;
     if (double(remaining) * u < double(needed)) {
-      sim.addBlock(simcore::Cell{std::int32_t(c % std::uint64_t(L)), std::int32_t(c / std::uint64_t(L)), 0}, 0x4080FF);
+      sim.addBlock(simcore::Cell{std::int32_t(c % std::uint64_t(L)), std::int32_t(c / std::uint64_t(L)), 0},
+                   0x4080FF);
       --needed;
     }
   }
@@ -156,16 +158,18 @@ int main(int argc, char** argv) {
   const double eps = double(s.eventsProcessed) / wall;
 
   if (o.json) {
-    std::printf(
-        "{\"benchmark\":\"brownian-flood\",\"blocks\":%" PRIu64 ",\"grid\":%d,\"simulated_s\":%.3f,\"seed\":%" PRIu64
-        ",\"fes\":\"%s\",\"events\":%" PRIu64 ",\"wall_s\":%.3f,\"events_per_s\":%.0f,\"peak_rss_kb\":%ld,"
-        "\"bytes_per_block\":%.1f,\"motions\":%" PRIu64 ",\"messages_sent\":%" PRIu64 ",\"messages_dropped\":%" PRIu64
-        ",\"flooded\":%" PRIu64 ",\"max_queue\":%" PRIu64 ",\"fingerprint\":\"%016" PRIx64 "\"}\n",
-        o.blocks, L, double(sim.now()) / 1e9, o.seed, sim.fesName(), s.eventsProcessed, wall, eps, rssKb,
-        bytesPerBlock, s.motionsStarted, s.messagesSent, s.messagesDropped, flooded, s.maxQueueSize,
-        sim.fingerprint());
+    std::printf("{\"benchmark\":\"brownian-flood\",\"blocks\":%" PRIu64
+                ",\"grid\":%d,\"simulated_s\":%.3f,\"seed\":%" PRIu64 ",\"fes\":\"%s\",\"events\":%" PRIu64
+                ",\"wall_s\":%.3f,\"events_per_s\":%.0f,\"peak_rss_kb\":%ld,"
+                "\"bytes_per_block\":%.1f,\"motions\":%" PRIu64 ",\"messages_sent\":%" PRIu64
+                ",\"messages_dropped\":%" PRIu64 ",\"flooded\":%" PRIu64 ",\"max_queue\":%" PRIu64
+                ",\"fingerprint\":\"%016" PRIx64 "\"}\n",
+                o.blocks, L, double(sim.now()) / 1e9, o.seed, sim.fesName(), s.eventsProcessed, wall, eps,
+                rssKb, bytesPerBlock, s.motionsStarted, s.messagesSent, s.messagesDropped, flooded,
+                s.maxQueueSize, sim.fingerprint());
   } else {
-    std::printf("brownian-flood: %" PRIu64 " blocks on a %dx%d grid, %.1f s simulated, seed %" PRIu64 ", fes %s\n",
+    std::printf("brownian-flood: %" PRIu64 " blocks on a %dx%d grid, %.1f s simulated, seed %" PRIu64
+                ", fes %s\n",
                 o.blocks, L, L, double(sim.now()) / 1e9, o.seed, sim.fesName());
     std::printf("  %-18s %" PRIu64 "\n", "events", s.eventsProcessed);
     std::printf("  %-18s %.3f\n", "wall s", wall);

@@ -19,12 +19,12 @@ typedef struct brownian_state {
 
 enum { TIMER_TRY_MOVE = 1 };
 
-static void wait_then_try(vs_ctx *c) {
+static void wait_then_try(vs_ctx* c) {
   vs_set_timer(c, (vs_time)vs_random_below(c, 1000000001u), TIMER_TRY_MOVE);
 }
 
-static void forward_flood(vs_ctx *c, uint32_t hops) {
-  brownian_state *s = (brownian_state *)c->state;
+static void forward_flood(vs_ctx* c, uint32_t hops) {
+  brownian_state* s = (brownian_state*)c->state;
   s->flooded = 1;
   s->hops = hops > 255 ? 255 : (uint8_t)hops;
   vs_set_color(c, 0xFF0000);
@@ -32,13 +32,13 @@ static void forward_flood(vs_ctx *c, uint32_t hops) {
   vs_send_all(c, &next, sizeof next, 0);
 }
 
-static void on_start(vs_ctx *c) {
+static void on_start(vs_ctx* c) {
   if (c->block == 0) forward_flood(c, 0);
   wait_then_try(c);
 }
 
-static void on_event(vs_ctx *c, const vs_event *ev) {
-  brownian_state *s = (brownian_state *)c->state;
+static void on_event(vs_ctx* c, const vs_event* ev) {
+  brownian_state* s = (brownian_state*)c->state;
   switch (ev->kind) {
     case VS_EV_TIMER:
       if (vs_move(c, (int)vs_random_below(c, 4)) != VS_OK) wait_then_try(c);
@@ -58,10 +58,10 @@ static void on_event(vs_ctx *c, const vs_event *ev) {
   }
 }
 
-static int on_info(vs_ctx *c, char *text, size_t capacity) {
-  const brownian_state *s = (const brownian_state *)c->state;
+static int on_info(vs_ctx* c, char* text, size_t capacity) {
+  const brownian_state* s = (const brownian_state*)c->state;
   if (!capacity) return 0;
-  const char *msg = s->flooded ? "flooded" : "not reached";
+  const char* msg = s->flooded ? "flooded" : "not reached";
   size_t n = strlen(msg);
   if (n >= capacity) n = capacity - 1;
   memcpy(text, msg, n);
@@ -73,4 +73,4 @@ static const vs_blockcode brownian_flood_code = {
     VS_ABI_VERSION, "brownian-flood", sizeof(brownian_state), on_start, on_event, on_info,
 };
 
-const vs_blockcode *vs_blockcode_entry(void) { return &brownian_flood_code; }
+const vs_blockcode* vs_blockcode_entry(void) { return &brownian_flood_code; }

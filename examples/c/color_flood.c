@@ -35,14 +35,14 @@ typedef struct flood_state {
   uint32_t hops;
 } flood_state;
 
-static int newer(const flood_msg *m, const flood_state *s) {
+static int newer(const flood_msg* m, const flood_state* s) {
   if (m->wave != s->wave) return m->wave > s->wave;
   if (m->origin != s->origin) return m->origin > s->origin;
   return m->hops < s->hops;
 }
 
-static void adopt(vs_ctx *c, const flood_msg *m) {
-  flood_state *s = (flood_state *)c->state;
+static void adopt(vs_ctx* c, const flood_msg* m) {
+  flood_state* s = (flood_state*)c->state;
   s->wave = m->wave;
   s->origin = m->origin;
   s->hops = m->hops;
@@ -53,8 +53,8 @@ static void adopt(vs_ctx *c, const flood_msg *m) {
   vs_send_all(c, &next, sizeof next, 0);
 }
 
-static void start_wave(vs_ctx *c) {
-  const flood_state *s = (const flood_state *)c->state;
+static void start_wave(vs_ctx* c) {
+  const flood_state* s = (const flood_state*)c->state;
   flood_msg m = {s->wave + 1, c->block, 0};
   char line[64];
   snprintf(line, sizeof line, "wave %u starts here", (unsigned)m.wave);
@@ -62,12 +62,12 @@ static void start_wave(vs_ctx *c) {
   adopt(c, &m);
 }
 
-static void on_start(vs_ctx *c) {
+static void on_start(vs_ctx* c) {
   if (c->block == 0) start_wave(c);
 }
 
-static void on_event(vs_ctx *c, const vs_event *ev) {
-  flood_state *s = (flood_state *)c->state;
+static void on_event(vs_ctx* c, const vs_event* ev) {
+  flood_state* s = (flood_state*)c->state;
   if (ev->kind == VS_EV_TAP) {
     start_wave(c);
   } else if (ev->kind == VS_EV_MESSAGE && ev->size == sizeof(flood_msg)) {
@@ -81,8 +81,8 @@ static void on_event(vs_ctx *c, const vs_event *ev) {
   }
 }
 
-static int on_info(vs_ctx *c, char *text, size_t capacity) {
-  const flood_state *s = (const flood_state *)c->state;
+static int on_info(vs_ctx* c, char* text, size_t capacity) {
+  const flood_state* s = (const flood_state*)c->state;
   if (s->wave == 0) return snprintf(text, capacity, "not reached");
   return snprintf(text, capacity, "wave %u from #%u, %u hops", (unsigned)s->wave, (unsigned)s->origin,
                   (unsigned)s->hops);
@@ -92,4 +92,4 @@ static const vs_blockcode color_flood_code = {
     VS_ABI_VERSION, "color-flood", sizeof(flood_state), on_start, on_event, on_info,
 };
 
-const vs_blockcode *vs_blockcode_entry(void) { return &color_flood_code; }
+const vs_blockcode* vs_blockcode_entry(void) { return &color_flood_code; }

@@ -12,15 +12,15 @@
 #include "simcore/blockcode.h"
 
 static const uint32_t kCycle[6] = {0xFF0000, 0xFFA500, 0xFFFF00, 0x00FF00, 0x0000FF, 0x800080};
-static const char *const kCycleNames[6] = {"red", "orange", "yellow", "green", "blue", "purple"};
+static const char* const kCycleNames[6] = {"red", "orange", "yellow", "green", "blue", "purple"};
 
 typedef struct tap_state {
   uint32_t taps;
 } tap_state;
 
-static void on_event(vs_ctx *c, const vs_event *ev) {
+static void on_event(vs_ctx* c, const vs_event* ev) {
   if (ev->kind != VS_EV_TAP) return;
-  tap_state *s = (tap_state *)c->state;
+  tap_state* s = (tap_state*)c->state;
   const uint32_t k = s->taps++ % 6;
   vs_set_color(c, kCycle[k]);
   char line[48];
@@ -28,8 +28,8 @@ static void on_event(vs_ctx *c, const vs_event *ev) {
   c->api->trace(c, line);
 }
 
-static int on_info(vs_ctx *c, char *text, size_t capacity) {
-  const tap_state *s = (const tap_state *)c->state;
+static int on_info(vs_ctx* c, char* text, size_t capacity) {
+  const tap_state* s = (const tap_state*)c->state;
   return snprintf(text, capacity, "%u taps", (unsigned)s->taps);
 }
 
@@ -37,4 +37,4 @@ static const vs_blockcode tap_cycle_code = {
     VS_ABI_VERSION, "tap-cycle", sizeof(tap_state), NULL, on_event, on_info,
 };
 
-const vs_blockcode *vs_blockcode_entry(void) { return &tap_cycle_code; }
+const vs_blockcode* vs_blockcode_entry(void) { return &tap_cycle_code; }

@@ -19,7 +19,7 @@ namespace {
 // dlopen's own messages for a wrong file are cryptic ("invalid ELF header"); checking the file
 // first gives the user an answer in their terms.
 void checkFile(const std::string& path) {
-  struct stat st{};
+  struct stat st {};
   if (::stat(path.c_str(), &st) != 0) fail(path, std::strerror(errno));
   if (S_ISDIR(st.st_mode)) fail(path, "is a directory, not a shared object");
   std::ifstream in(path, std::ios::binary);
@@ -28,9 +28,13 @@ void checkFile(const std::string& path) {
     if (!in.is_open()) fail(path, "cannot be read");
     fail(path, "is not a shared object (file too short)");
   }
-  if (std::memcmp(magic, "\x7f" "ELF", 4) != 0)
-    fail(path, "is not a shared object (no ELF header); build a C BlockCode with "
-               "`cc -shared -fPIC -I simcore/include prog.c -o prog.so`");
+  if (std::memcmp(magic,
+                  "\x7f"
+                  "ELF",
+                  4) != 0)
+    fail(path,
+         "is not a shared object (no ELF header); build a C BlockCode with "
+         "`cc -shared -fPIC -I simcore/include prog.c -o prog.so`");
 }
 
 }  // namespace

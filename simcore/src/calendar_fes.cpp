@@ -72,8 +72,7 @@ bool CalendarFes::locateEarliest() {
   std::uint32_t best = kNil;
   for (std::uint32_t b = 0; b < nb; ++b) {
     const std::uint32_t head = buckets_[b];
-    if (head != kNil && (best == kNil || earlier(pool_[head].event, pool_[buckets_[best]].event)))
-      best = b;
+    if (head != kNil && (best == kNil || earlier(pool_[head].event, pool_[buckets_[best]].event))) best = b;
   }
   if (best == kNil) return false;
   const SimTime t = pool_[buckets_[best]].event.time;

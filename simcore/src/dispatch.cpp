@@ -3,9 +3,8 @@
 #include <cstring>
 #include <string>
 
-#include "simcore/simulation.hpp"
-
 #include "host_api.hpp"
+#include "simcore/simulation.hpp"
 #include "slot_pool.hpp"
 
 namespace simcore {
@@ -167,7 +166,8 @@ void Simulation::breakLinks(BlockId id) {
       messagesInFlight_ -= fs.inFlight;
       if (!observers_.empty())
         for (std::uint16_t k = 0; k < fs.inFlight; ++k)
-          for (SimulationObserver* o : observers_) o->onMessageDropped(*this, senders[s], senderFaces[s], receivers[s]);
+          for (SimulationObserver* o : observers_)
+            o->onMessageDropped(*this, senders[s], senderFaces[s], receivers[s]);
       fs.inFlight = 0;
       ++fs.epoch;
       fs.setBusyUntil(queue_.now());

@@ -15,9 +15,12 @@ std::optional<FesKind> parseFesKind(std::string_view name) {
 
 const char* fesKindName(FesKind kind) {
   switch (kind) {
-    case FesKind::Heap: return "heap";
-    case FesKind::Calendar: return "calendar";
-    case FesKind::Ladder: return "ladder";
+    case FesKind::Heap:
+      return "heap";
+    case FesKind::Calendar:
+      return "calendar";
+    case FesKind::Ladder:
+      return "ladder";
   }
   return "?";
 }

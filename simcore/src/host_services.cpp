@@ -121,7 +121,8 @@ int Simulation::send(BlockId from, int f, const void* data, std::uint32_t size, 
   fs.setBusyUntil(end);
   SimTime arrival = end + link_.latency;
   if (link_.jitter > 0) {
-    arrival += SimTime(BlockRng::below(jitterRng_, 0xFFFFFFFEu, std::uint32_t(std::min<SimTime>(link_.jitter, 0xFFFFFFFE)) + 1));
+    arrival += SimTime(BlockRng::below(jitterRng_, 0xFFFFFFFEu,
+                                       std::uint32_t(std::min<SimTime>(link_.jitter, 0xFFFFFFFE)) + 1));
     SimTime& last = lastArrival_[std::size_t(from) * std::size_t(faceCount_) + std::size_t(f)];
     if (arrival < last) arrival = last;  // jitter never reorders a link
     last = arrival;

@@ -14,7 +14,6 @@ namespace {
 constexpr std::size_t kPrefetchFar = 12, kPrefetchMid = 6;
 }  // namespace
 
-
 Simulation::Simulation(const TargetSpec& target, GridSize size, const SimulationConfig& config)
     : target_(target),
       config_(config),
@@ -53,8 +52,8 @@ void Simulation::setBlockCode(const vs_blockcode* code) {
 
 void Simulation::checkExternalEvent(BlockId block, SimTime time, const char* what) const {
   if (block >= world_.blockCount())
-    throw std::invalid_argument(std::string(what) + " for block " + std::to_string(block) + ", but the world has " +
-                                std::to_string(world_.blockCount()) + " blocks");
+    throw std::invalid_argument(std::string(what) + " for block " + std::to_string(block) +
+                                ", but the world has " + std::to_string(world_.blockCount()) + " blocks");
   if (time < queue_.now())
     throw std::invalid_argument(std::string(what) + " at " + formatTime(time) + ", before the current time " +
                                 formatTime(queue_.now()));
@@ -121,12 +120,15 @@ const Statistics& Simulation::statistics() const {
   world_.prefetchAlive(id);
   if (stateSize_) __builtin_prefetch(stateBase_ + std::size_t(id) * stateSize_);
   const std::uint32_t slot = std::uint32_t(e.arg);
-  if (e.kind == EventKind::Timer && e.face == kTimerHasSlot && slot < timers_.size()) __builtin_prefetch(&timers_[slot]);
+  if (e.kind == EventKind::Timer && e.face == kTimerHasSlot && slot < timers_.size())
+    __builtin_prefetch(&timers_[slot]);
   if (e.kind == EventKind::Message && slot < messages_.size()) __builtin_prefetch(&messages_[slot]);
   if (e.kind == EventKind::MotionEnd && slot < motions_.size()) __builtin_prefetch(&motions_[slot]);
 }
 
-[[gnu::always_inline]] inline void Simulation::prefetchCells(const Event& e) const { world_.prefetchAround(world_.block(e.block).cell); }
+[[gnu::always_inline]] inline void Simulation::prefetchCells(const Event& e) const {
+  world_.prefetchAround(world_.block(e.block).cell);
+}
 
 RunStatus Simulation::run(SimTime until, std::uint64_t maxEvents) {
   startIfNeeded();

@@ -15,7 +15,8 @@ void printStatistics(std::ostream& out, const Statistics& s, std::uint64_t finge
   row("events processed", s.eventsProcessed);
   for (std::size_t k = 0; k < s.eventsByKind.size(); ++k)
     if (s.eventsByKind[k]) {
-      std::snprintf(line, sizeof line, "    %-20s %" PRIu64 "\n", eventKindName(EventKind(k)), s.eventsByKind[k]);
+      std::snprintf(line, sizeof line, "    %-20s %" PRIu64 "\n", eventKindName(EventKind(k)),
+                    s.eventsByKind[k]);
       out << line;
     }
   row("messages sent", s.messagesSent);

@@ -15,13 +15,20 @@ std::optional<SimTime> parseDuration(std::string_view text) {
   if (end == s.c_str() || !std::isfinite(value) || value < 0) return std::nullopt;
   const std::string unit(end);
   double scale;
-  if (unit.empty() || unit == "s") scale = 1e9;
-  else if (unit == "ms") scale = 1e6;
-  else if (unit == "us") scale = 1e3;
-  else if (unit == "ns") scale = 1;
-  else if (unit == "min") scale = 60e9;
-  else if (unit == "h") scale = 3600e9;
-  else return std::nullopt;
+  if (unit.empty() || unit == "s")
+    scale = 1e9;
+  else if (unit == "ms")
+    scale = 1e6;
+  else if (unit == "us")
+    scale = 1e3;
+  else if (unit == "ns")
+    scale = 1;
+  else if (unit == "min")
+    scale = 60e9;
+  else if (unit == "h")
+    scale = 3600e9;
+  else
+    return std::nullopt;
   const double ns = value * scale;
   if (ns >= 9.2e18) return std::nullopt;
   return SimTime(std::llround(ns));

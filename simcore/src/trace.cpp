@@ -18,12 +18,18 @@ namespace {
 const char* traceKindName(int kind) {
   if (kind < int(EventKind::Count)) return eventKindName(EventKind(kind));
   switch (TraceKind(kind)) {
-    case TraceKind::Send: return "send";
-    case TraceKind::Drop: return "drop";
-    case TraceKind::Color: return "color";
-    case TraceKind::Motion: return "motion";
-    case TraceKind::Text: return "trace";
-    case TraceKind::Count: break;
+    case TraceKind::Send:
+      return "send";
+    case TraceKind::Drop:
+      return "drop";
+    case TraceKind::Color:
+      return "color";
+    case TraceKind::Motion:
+      return "motion";
+    case TraceKind::Text:
+      return "trace";
+    case TraceKind::Count:
+      break;
   }
   return "?";
 }
@@ -55,9 +61,9 @@ const char* colorName(std::uint32_t rgb) {
   };
   // The palette of the example programs and the targets' default colors.
   static constexpr Named kColors[] = {
-      {0x000000, "black"},  {0xFFFFFF, "white"},     {0xFF0000, "red"},       {0x00FF00, "green"},
-      {0x0000FF, "blue"},   {0xFFFF00, "yellow"},    {0x00FFFF, "cyan"},      {0xFF00FF, "magenta"},
-      {0xFFA500, "orange"}, {0x800080, "purple"},    {0xFFC0CB, "pink"},      {0x808080, "grey"},
+      {0x000000, "black"},  {0xFFFFFF, "white"},     {0xFF0000, "red"},        {0x00FF00, "green"},
+      {0x0000FF, "blue"},   {0xFFFF00, "yellow"},    {0x00FFFF, "cyan"},       {0xFF00FF, "magenta"},
+      {0xFFA500, "orange"}, {0x800080, "purple"},    {0xFFC0CB, "pink"},       {0x808080, "grey"},
       {0xC0C0C0, "silver"}, {0x404040, "dark-grey"}, {0x4080FF, "light-blue"}, {0x008000, "dark-green"},
       {0x000080, "navy"},   {0xA52A2A, "brown"},     {0xFFD700, "gold"},
   };
@@ -71,11 +77,21 @@ void writeJsonString(std::ostream& out, std::string_view text) {
   for (const char ch : text) {
     const auto c = static_cast<unsigned char>(ch);
     switch (c) {
-      case '"': out << "\\\""; break;
-      case '\\': out << "\\\\"; break;
-      case '\n': out << "\\n"; break;
-      case '\t': out << "\\t"; break;
-      case '\r': out << "\\r"; break;
+      case '"':
+        out << "\\\"";
+        break;
+      case '\\':
+        out << "\\\\";
+        break;
+      case '\n':
+        out << "\\n";
+        break;
+      case '\t':
+        out << "\\t";
+        break;
+      case '\r':
+        out << "\\r";
+        break;
       default:
         if (c < 0x20) {
           char esc[8];
@@ -161,8 +177,7 @@ class FilterParser {
       const auto dash = item.find('-');
       const auto lo = parseId(trim(item.substr(0, dash)));
       const auto hi = dash == std::string_view::npos ? lo : parseId(trim(item.substr(dash + 1)));
-      if (!lo || !hi)
-        fail("blocks: '" + std::string(item) + "' is not a block id or a range like 5-9");
+      if (!lo || !hi) fail("blocks: '" + std::string(item) + "' is not a block id or a range like 5-9");
       if (*lo > *hi) fail("blocks: range '" + std::string(item) + "' is empty (from > to)");
       filter_.blocks.emplace_back(*lo, *hi);
     }
@@ -188,7 +203,8 @@ class FilterParser {
       for (int k = 0; k < kTraceKindCount; ++k)
         if (item == names[std::size_t(k)]) found = k;
       if (found < 0)
-        fail("unknown kind '" + std::string(item) + "' (kinds: " + joined(names) + "; groups: all, events, neighbor)");
+        fail("unknown kind '" + std::string(item) + "' (kinds: " + joined(names) +
+             "; groups: all, events, neighbor)");
       mask |= 1u << unsigned(found);
     }
     filter_.kinds = mask;
@@ -222,8 +238,8 @@ class Trace::Line {
     char head[96];
     const SimTime t = sim.now();
     if (json_)
-      std::snprintf(head, sizeof head, "{\"t_ns\":%" PRId64 ",\"block\":%" PRIu32 ",\"kind\":\"%s\"", t, block,
-                    traceKindName(kind));
+      std::snprintf(head, sizeof head, "{\"t_ns\":%" PRId64 ",\"block\":%" PRIu32 ",\"kind\":\"%s\"", t,
+                    block, traceKindName(kind));
     else
       std::snprintf(head, sizeof head, "%16s  #%-6" PRIu32 " %-15s", formatTime(t).c_str(), block,
                     traceKindName(kind));
@@ -249,9 +265,7 @@ class Trace::Line {
     if (f < 0 || std::size_t(f) >= names.size()) return num(key, f);
     return raw(key, json_ ? "\"" + names[std::size_t(f)] + "\"" : names[std::size_t(f)]);
   }
-  Line& time(const char* key, SimTime t) {
-    return raw(key, json_ ? std::to_string(t) : formatTime(t));
-  }
+  Line& time(const char* key, SimTime t) { return raw(key, json_ ? std::to_string(t) : formatTime(t)); }
   Line& cell(const char* key, const Cell& c) {
     char s[64];
     std::snprintf(s, sizeof s, json_ ? "[%d,%d,%d]" : "(%d,%d,%d)", c.x, c.y, c.z);
@@ -273,8 +287,10 @@ class Trace::Line {
     // Keep one record per line: a program's newlines are shown escaped.
     buf_ += ' ';
     for (const char ch : t) {
-      if (ch == '\n') buf_ += "\\n";
-      else buf_ += ch;
+      if (ch == '\n')
+        buf_ += "\\n";
+      else
+        buf_ += ch;
     }
     return *this;
   }
@@ -331,7 +347,11 @@ void Trace::onEvent(const Simulation& sim, const Event& e) {
 void Trace::onMessageSent(const Simulation& sim, std::uint32_t from, int face, std::uint32_t to,
                           std::uint32_t size, SimTime arrival) {
   if (!selected(sim, int(TraceKind::Send), from, to)) return;
-  Line(*this, sim, from, int(TraceKind::Send)).face("face", face).block("to", to).num("size", size).time("arrival", arrival);
+  Line(*this, sim, from, int(TraceKind::Send))
+      .face("face", face)
+      .block("to", to)
+      .num("size", size)
+      .time("arrival", arrival);
 }
 
 void Trace::onMessageDropped(const Simulation& sim, std::uint32_t from, int face, std::uint32_t to) {

@@ -13,10 +13,9 @@
 #include <filesystem>
 #include <fstream>
 #include <initializer_list>
+#include <pugixml.hpp>
 #include <sstream>
 #include <unordered_map>
-
-#include <pugixml.hpp>
 
 namespace simcore {
 
@@ -24,7 +23,10 @@ XmlWorldError::XmlWorldError(std::string file, int line, int column, std::string
     : std::runtime_error(line > 0 ? file + ":" + std::to_string(line) + ":" + std::to_string(column) +
                                         ": error: " + message
                                   : file + ": error: " + message),
-      file_(std::move(file)), line_(line), column_(column), message_(std::move(message)) {}
+      file_(std::move(file)),
+      line_(line),
+      column_(column),
+      message_(std::move(message)) {}
 
 namespace {
 
@@ -40,8 +42,8 @@ class SourceMap {
   }
   SourcePos at(std::size_t offset) const {
     offset = std::min(offset, text_.size());
-    std::size_t line = std::size_t(std::upper_bound(lineStarts_.begin(), lineStarts_.end(), offset) -
-                                   lineStarts_.begin());
+    std::size_t line =
+        std::size_t(std::upper_bound(lineStarts_.begin(), lineStarts_.end(), offset) - lineStarts_.begin());
     int column = 1;
     for (std::size_t i = lineStarts_[line - 1]; i < offset; ++i)
       if ((static_cast<unsigned char>(text_[i]) & 0xC0) != 0x80) ++column;
@@ -124,8 +126,8 @@ class Loader {
     throw XmlWorldError(path_, p.line, p.column, message);
   }
   [[noreturn]] void badAttribute(Node n, Attr a, const std::string& problem) const {
-    fail(posOf(a), "attribute '" + std::string(a.name()) + "' of <" + n.name() + ">: \"" + a.value() +
-                       "\" " + problem);
+    fail(posOf(a),
+         "attribute '" + std::string(a.name()) + "' of <" + n.name() + ">: \"" + a.value() + "\" " + problem);
   }
   void warn(SourcePos p, const std::string& message) {
     world_.warnings.push_back(path_ + ":" + std::to_string(p.line) + ":" + std::to_string(p.column) +
@@ -170,7 +172,7 @@ class Loader {
   std::string buffer_;  // parsed in place, so names and values point into it
   std::string path_;
   WorldDescription world_;
-  std::unordered_map<std::uint64_t, std::size_t> occupied_;  // cell index -> block index
+  std::unordered_map<std::uint64_t, std::size_t> occupied_;     // cell index -> block index
   std::vector<std::pair<BlockId, SourcePos>> scheduledBlocks_;  // block attribute of each tap/accel
   bool sawBlockList_ = false;
 };
@@ -213,8 +215,9 @@ Cell Loader::checkedCell(Node n, Attr a) const {
   const Cell c = cellAttribute(n, a);
   const GridSize& g = world_.grid;
   if (c.x < 0 || c.y < 0 || c.z < 0 || c.x >= g.x || c.y >= g.y || c.z >= g.z)
-    badAttribute(n, a, "is outside the grid " + std::to_string(g.x) + "x" + std::to_string(g.y) + "x" +
-                           std::to_string(g.z));
+    badAttribute(
+        n, a,
+        "is outside the grid " + std::to_string(g.x) + "x" + std::to_string(g.y) + "x" + std::to_string(g.z));
   return c;
 }
 
@@ -231,7 +234,8 @@ std::uint32_t Loader::colorAttribute(Node n, Attr a) const {
 
 long long Loader::positiveInt(Node n, Attr a) const {
   const auto v = parseIntList(a.value());
-  if (!v || v->size() != 1 || (*v)[0] <= 0 || (*v)[0] > INT32_MAX) badAttribute(n, a, "is not a positive integer");
+  if (!v || v->size() != 1 || (*v)[0] <= 0 || (*v)[0] > INT32_MAX)
+    badAttribute(n, a, "is not a positive integer");
   return (*v)[0];
 }
 
@@ -239,8 +243,11 @@ WorldDescription Loader::run() {
   pugi::xml_document doc;
   const pugi::xml_parse_result r =
       doc.load_buffer_inplace(buffer_.data(), buffer_.size(), pugi::parse_default, pugi::encoding_utf8);
-  if (r.status == pugi::status_no_document_element) fail(SourcePos{1, 1}, "no root element: expected <world>");
-  if (!r) fail(map_.at(std::size_t(std::max<std::ptrdiff_t>(r.offset, 0))), std::string("malformed XML: ") + r.description());
+  if (r.status == pugi::status_no_document_element)
+    fail(SourcePos{1, 1}, "no root element: expected <world>");
+  if (!r)
+    fail(map_.at(std::size_t(std::max<std::ptrdiff_t>(r.offset, 0))),
+         std::string("malformed XML: ") + r.description());
   Node root = doc.document_element();
   if (std::string_view(root.name()) != "world")
     fail(posOf(root), "the root element is <" + std::string(root.name()) + ">, expected <world>");
@@ -255,10 +262,14 @@ void Loader::readWorld(Node world) {
   readWorldAttributes(world);
   forChildren(world, {"camera", "spotlight", "blockList", "schedule"}, [&](Node child) {
     const std::string_view name = child.name();
-    if (name == "camera") readKept(child, world_.camera);
-    else if (name == "spotlight") readKept(child, world_.spotlight);
-    else if (name == "blockList") readBlockList(child);
-    else readSchedule(child);
+    if (name == "camera")
+      readKept(child, world_.camera);
+    else if (name == "spotlight")
+      readKept(child, world_.spotlight);
+    else if (name == "blockList")
+      readBlockList(child);
+    else
+      readSchedule(child);
   });
   // Checked last: a <schedule> may come before the blocks it names.
   checkScheduledBlocks();
@@ -295,7 +306,8 @@ void Loader::readGridSize(Node world, Attr a) {
     cells *= std::uint64_t(c);
     if (cells > kMaxCells) badAttribute(world, a, "has more than 2^31 cells");
   }
-  world_.grid = GridSize{std::int32_t((*v)[0]), std::int32_t((*v)[1]), v->size() == 3 ? std::int32_t((*v)[2]) : 1};
+  world_.grid =
+      GridSize{std::int32_t((*v)[0]), std::int32_t((*v)[1]), v->size() == 3 ? std::int32_t((*v)[2]) : 1};
 }
 
 void Loader::readKept(Node n, KeptElement& into) {
@@ -303,7 +315,8 @@ void Loader::readKept(Node n, KeptElement& into) {
     warn(posOf(n), "second <" + std::string(n.name()) + "> ignored");
     return;
   }
-  const std::initializer_list<std::string_view> kKnown = {"target", "directionSpherical", "angle", "near", "far"};
+  const std::initializer_list<std::string_view> kKnown = {"target", "directionSpherical", "angle", "near",
+                                                          "far"};
   warnUnknownAttributes(n, kKnown);
   into.present = true;
   for (Attr a : n.attributes())
@@ -328,16 +341,20 @@ void Loader::readBlockList(Node list) {
   }
   forChildren(list, {"block", "blocksBox", "blocksLine"}, [&](Node child) {
     const std::string_view name = child.name();
-    if (name == "block") readBlock(child, color);
-    else if (name == "blocksBox") readBox(child, color);
-    else readLine(child, color);
+    if (name == "block")
+      readBlock(child, color);
+    else if (name == "blocksBox")
+      readBox(child, color);
+    else
+      readLine(child, color);
   });
 }
 
 void Loader::addBlock(Node n, Attr where, const Cell& c, std::optional<std::uint32_t> color) {
   const GridSize& g = world_.grid;
   const std::uint64_t key =
-      std::uint64_t(c.x) + std::uint64_t(g.x) * (std::uint64_t(c.y) + std::uint64_t(g.y) * std::uint64_t(c.z));
+      std::uint64_t(c.x) +
+      std::uint64_t(g.x) * (std::uint64_t(c.y) + std::uint64_t(g.y) * std::uint64_t(c.z));
   const auto [it, inserted] = occupied_.emplace(key, world_.blocks.size());
   if (!inserted) {
     const BlockDescription& other = world_.blocks[it->second];
@@ -373,7 +390,8 @@ void Loader::readBox(Node n, std::optional<std::uint32_t> listColor) {
 
 void Loader::readLine(Node n, std::optional<std::uint32_t> listColor) {
   warnUnknownAttributes(n, {"origin", "direction", "length", "color"});
-  Attr originAttr = required(n, "origin"), dirAttr = required(n, "direction"), lenAttr = required(n, "length");
+  Attr originAttr = required(n, "origin"), dirAttr = required(n, "direction"),
+       lenAttr = required(n, "length");
   const Cell origin = checkedCell(n, originAttr);
   std::string_view dir = trim(dirAttr.value());
   const int sign = dir.starts_with('-') ? -1 : 1;
@@ -429,8 +447,8 @@ void Loader::readSchedule(Node schedule) {
     if (!v || v->size() != 3) badAttribute(n, value, "is not three integers");
     for (long long c : *v)
       if (c < INT32_MIN || c > INT32_MAX) badAttribute(n, value, "is not three integers");
-    world_.accels.push_back(
-        ScheduledAccel{id, t, {std::int32_t((*v)[0]), std::int32_t((*v)[1]), std::int32_t((*v)[2])}, posOf(n)});
+    world_.accels.push_back(ScheduledAccel{
+        id, t, {std::int32_t((*v)[0]), std::int32_t((*v)[1]), std::int32_t((*v)[2])}, posOf(n)});
   });
 }
 
@@ -450,9 +468,11 @@ WorldDescription parseWorldXml(std::string_view text, const std::string& pathFor
 
 WorldDescription loadWorldXml(const std::string& path) {
   std::error_code ec;
-  if (std::filesystem::is_directory(path, ec)) throw XmlWorldError(path, 0, 0, "is a directory, not a world file");
+  if (std::filesystem::is_directory(path, ec))
+    throw XmlWorldError(path, 0, 0, "is a directory, not a world file");
   std::ifstream in(path, std::ios::binary);
-  if (!in) throw XmlWorldError(path, 0, 0, "cannot open the world file: " + std::string(std::strerror(errno)));
+  if (!in)
+    throw XmlWorldError(path, 0, 0, "cannot open the world file: " + std::string(std::strerror(errno)));
   std::ostringstream text;
   text << in.rdbuf();
   if (in.bad()) throw XmlWorldError(path, 0, 0, "cannot read the world file");

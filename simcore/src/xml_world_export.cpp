@@ -1,7 +1,6 @@
 // From a world description to a running Simulation, and from a Simulation back to a world file.
 #include <filesystem>
 #include <ostream>
-
 #include <pugixml.hpp>
 
 #include "simcore/simulation.hpp"
@@ -24,12 +23,13 @@ std::string cellText(const Cell& c) {
 // but the simulation may have been built with another grid or a lattice with parity rules).
 std::string refusal(const World& w, const Cell& c) {
   if (!w.inBounds(c)) return "cell (" + cellText(c) + ") is outside the simulation's grid";
-  if (!w.lattice().isValidCell(c)) return "cell (" + cellText(c) + ") is not a cell of the " + w.lattice().name() + " lattice";
+  if (!w.lattice().isValidCell(c))
+    return "cell (" + cellText(c) + ") is not a cell of the " + w.lattice().name() + " lattice";
   return "cell (" + cellText(c) + ") is already taken";
 }
 
-void checkScheduled(const WorldDescription& d, const Simulation& sim, BlockId block, SourcePos pos, bool supported,
-                    const char* what) {
+void checkScheduled(const WorldDescription& d, const Simulation& sim, BlockId block, SourcePos pos,
+                    bool supported, const char* what) {
   // Descriptions can be built or edited by code, so the loader's check is repeated here.
   if (block >= sim.world().blockCount())
     throw XmlWorldError(d.path, pos.line, pos.column, "block " + std::to_string(block) + " does not exist");
@@ -60,7 +60,8 @@ namespace {
 
 void writeWorldAttributes(pugi::xml_node world, const Simulation& sim, const WorldDescription& original) {
   const GridSize g = sim.world().size();
-  world.append_attribute("gridSize") = (std::to_string(g.x) + "," + std::to_string(g.y) + "," + std::to_string(g.z)).c_str();
+  world.append_attribute("gridSize") =
+      (std::to_string(g.x) + "," + std::to_string(g.y) + "," + std::to_string(g.z)).c_str();
   // The target that actually ran, whatever the original said (it may have come from the command line).
   world.append_attribute("target") = sim.target().name.c_str();
   if (original.seed) world.append_attribute("seed") = std::to_string(*original.seed).c_str();
@@ -68,7 +69,8 @@ void writeWorldAttributes(pugi::xml_node world, const Simulation& sim, const Wor
   if (!original.code.empty())
     world.append_attribute("code") = std::filesystem::absolute(original.code).lexically_normal().c_str();
   if (!original.program.empty())
-    world.append_attribute("program") = std::filesystem::absolute(original.program).lexically_normal().c_str();
+    world.append_attribute("program") =
+        std::filesystem::absolute(original.program).lexically_normal().c_str();
 }
 
 void writeKept(pugi::xml_node world, const char* name, const KeptElement& kept) {
@@ -84,8 +86,10 @@ void exportWorldXml(const Simulation& sim, const WorldDescription& original, std
   pugi::xml_node decl = doc.append_child(pugi::node_declaration);
   decl.append_attribute("version") = "1.0";
   decl.append_attribute("encoding") = "UTF-8";
-  std::string note = " configuration at t = " + formatTime(sim.now()) + ", exported from " + original.path + " ";
-  for (std::size_t i; (i = note.find("--")) != std::string::npos;) note.replace(i, 2, "- -");  // invalid in comments
+  std::string note =
+      " configuration at t = " + formatTime(sim.now()) + ", exported from " + original.path + " ";
+  for (std::size_t i; (i = note.find("--")) != std::string::npos;)
+    note.replace(i, 2, "- -");  // invalid in comments
   doc.append_child(pugi::node_comment).set_value(note.c_str());
   pugi::xml_node world = doc.append_child("world");
   writeWorldAttributes(world, sim, original);

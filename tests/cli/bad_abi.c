@@ -3,4 +3,4 @@
 
 static const vs_blockcode bad_abi_code = {999, "bad-abi", 0, NULL, NULL, NULL};
 
-const vs_blockcode *vs_blockcode_entry(void) { return &bad_abi_code; }
+const vs_blockcode* vs_blockcode_entry(void) { return &bad_abi_code; }

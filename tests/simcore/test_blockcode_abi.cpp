@@ -1,9 +1,8 @@
 #define BOOST_TEST_MODULE simcore_blockcode_abi
-#include <boost/test/unit_test.hpp>
-
 #include <dlfcn.h>
 
 #include <algorithm>
+#include <boost/test/unit_test.hpp>
 #include <cstdint>
 #include <cstring>
 #include <stdexcept>
@@ -86,7 +85,7 @@ BOOST_AUTO_TEST_CASE(every_host_service_round_trips_through_the_c_table) {
     BOOST_CHECK_EQUAL(api->set_color(c, 0x123456), VS_OK);
     BOOST_CHECK_EQUAL(api->color(c), 0x123456u);
     BOOST_CHECK_EQUAL(api->set_color(c, 0xFF00FF00u), VS_OK);
-    BOOST_CHECK_EQUAL(api->color(c), 0x00FF00u);  // only 0xRRGGBB is kept
+    BOOST_CHECK_EQUAL(api->color(c), 0x00FF00u);                  // only 0xRRGGBB is kept
     BOOST_CHECK_EQUAL(api->set_value(c, 5), VS_ERR_UNSUPPORTED);  // no display on Blinky Blocks
 
     std::int32_t acc[3] = {7, 7, 7};
@@ -113,7 +112,8 @@ BOOST_AUTO_TEST_CASE(every_host_service_round_trips_through_the_c_table) {
   };
   s.onEvent = [&](vs_ctx* c, const vs_event& ev) {
     BOOST_CHECK_EQUAL(static_cast<AbiState*>(c->state)->marker, 1000 + c->block);  // kept, per block
-    if (ev.kind == VS_EV_TIMER && ev.tag == 7) BOOST_CHECK_EQUAL(c->api->cancel_timer(c, id1), VS_ERR_NOT_FOUND);
+    if (ev.kind == VS_EV_TIMER && ev.tag == 7)
+      BOOST_CHECK_EQUAL(c->api->cancel_timer(c, id1), VS_ERR_NOT_FOUND);
     if (ev.kind == VS_EV_SENSOR) {
       std::int32_t acc[3] = {0, 0, 0};
       BOOST_CHECK_EQUAL(c->api->read_sensor(c, VS_SENSOR_ACCEL, acc), VS_OK);
@@ -185,7 +185,8 @@ BOOST_AUTO_TEST_CASE(smart_blocks_services_value_and_sensor) {
     std::int32_t acc[3];
     BOOST_CHECK_EQUAL(c->api->read_sensor(c, VS_SENSOR_ACCEL, acc), VS_ERR_UNSUPPORTED);
     BOOST_CHECK_EQUAL(c->api->color(c), 0x4080FFu);
-    BOOST_CHECK_EQUAL(c->api->neighbor(c, c->block == 0 ? targets::kSBNorth : targets::kSBSouth), 1u - c->block);
+    BOOST_CHECK_EQUAL(c->api->neighbor(c, c->block == 0 ? targets::kSBNorth : targets::kSBSouth),
+                      1u - c->block);
   };
   sim->runUntilEmpty();
   BOOST_CHECK_EQUAL(testsupport::shownValue(*sim, 0), 40);
@@ -245,7 +246,8 @@ BOOST_AUTO_TEST_CASE(block_info_comes_from_the_info_callback) {
   Script s(*sim, sizeof(std::uint32_t));
   s.onStart = [&](vs_ctx* c) { *static_cast<std::uint32_t*>(c->state) = 10 + c->block; };
   s.onInfo = [&](vs_ctx* c, char* text, size_t capacity) -> int {
-    std::string t = "block " + std::to_string(c->block) + " state " + std::to_string(*static_cast<std::uint32_t*>(c->state));
+    std::string t = "block " + std::to_string(c->block) + " state " +
+                    std::to_string(*static_cast<std::uint32_t*>(c->state));
     if (c->block == 1) t += std::string(300, '.');  // longer than a first guess of the host
     if (capacity) {
       const std::size_t n = std::min(capacity - 1, t.size());
@@ -275,7 +277,8 @@ BOOST_AUTO_TEST_CASE(c_blockcode_loaded_with_dlopen_runs) {
   const std::string path = std::string(MELD_BINARY_DIR) + "/blockcodes/brownian_flood.so";
   Library lib;
   lib.handle = dlopen(path.c_str(), RTLD_NOW | RTLD_LOCAL);
-  BOOST_REQUIRE_MESSAGE(lib.handle, "cannot load " << path << " (build the brownian_flood target): " << dlerror());
+  BOOST_REQUIRE_MESSAGE(lib.handle,
+                        "cannot load " << path << " (build the brownian_flood target): " << dlerror());
   auto entry = reinterpret_cast<vs_blockcode_entry_fn>(dlsym(lib.handle, VS_BLOCKCODE_ENTRY_SYMBOL));
   BOOST_REQUIRE(entry != nullptr);
   const vs_blockcode* code = entry();

@@ -1,6 +1,5 @@
 #define BOOST_TEST_MODULE simcore_disconnect
 #include <boost/test/unit_test.hpp>
-
 #include <cstdint>
 #include <vector>
 
@@ -73,7 +72,8 @@ BOOST_AUTO_TEST_CASE(moving_away_drops_messages_in_flight_both_ways) {
       const std::uint8_t hello[4] = {1, 2, 3, 4};
       BOOST_CHECK_EQUAL(ctx->api->send(ctx, ev.face, hello, 4, 0), VS_OK);
     }
-    if (ctx->block == 1 && ev.kind == VS_EV_MESSAGE && ev.size == 4) BOOST_CHECK_EQUAL(ctx->api->move(ctx, kNorth), VS_OK);
+    if (ctx->block == 1 && ev.kind == VS_EV_MESSAGE && ev.size == 4)
+      BOOST_CHECK_EQUAL(ctx->api->move(ctx, kNorth), VS_OK);
   };
   sim->runUntilEmpty();
 

@@ -1,9 +1,8 @@
 #define BOOST_TEST_MODULE simcore_event_queue
-#include <boost/test/unit_test.hpp>
-
 #include <algorithm>
-#include <iterator>
+#include <boost/test/unit_test.hpp>
 #include <cstdint>
+#include <iterator>
 #include <set>
 #include <utility>
 #include <vector>
@@ -44,10 +43,14 @@ Key keyOf(const Event& e) { return {e.time, e.order}; }
 // Times with many ties: a few distinct values, sometimes far ahead.
 SimTime tiedTime(Rand& r, SimTime base) {
   switch (r.below(4)) {
-    case 0: return base;
-    case 1: return base + SimTime(r.below(8)) * 1000;
-    case 2: return base + SimTime(r.below(64)) * 250;
-    default: return base + SimTime(r.below(1000)) * 1000003;
+    case 0:
+      return base;
+    case 1:
+      return base + SimTime(r.below(8)) * 1000;
+    case 2:
+      return base + SimTime(r.below(64)) * 250;
+    default:
+      return base + SimTime(r.below(1000)) * 1000003;
   }
 }
 
@@ -57,15 +60,16 @@ std::vector<Key> drain(FutureEventSet& fes, std::set<Key>& ref) {
   while (const Event* e = fes.peek()) {
     BOOST_REQUIRE(!ref.empty());
     BOOST_REQUIRE_MESSAGE(keyOf(*e) == *ref.begin(), fes.name() << ": popped (" << e->time << ", " << e->order
-                                                                << ") but expected (" << ref.begin()->first << ", "
-                                                                << ref.begin()->second << ")");
+                                                                << ") but expected (" << ref.begin()->first
+                                                                << ", " << ref.begin()->second << ")");
     out.push_back(keyOf(*e));
     // peekAhead is only a hint, but when it answers it must be the k-th next event.
     if (out.size() % 97 == 1) {
       for (std::size_t k : {0u, 1u, 3u, 9u}) {
         const Event* a = fes.peekAhead(k);
         if (!a || k >= ref.size()) continue;
-        BOOST_REQUIRE_MESSAGE(keyOf(*a) == *std::next(ref.begin(), long(k)), fes.name() << ": peekAhead(" << k << ")");
+        BOOST_REQUIRE_MESSAGE(keyOf(*a) == *std::next(ref.begin(), long(k)),
+                              fes.name() << ": peekAhead(" << k << ")");
       }
     }
     ref.erase(ref.begin());
@@ -243,9 +247,9 @@ BOOST_AUTO_TEST_CASE(event_queue_matches_reference_with_now_events) {
       SimTime last = 0;
       while (q.popUntil(kTimeInfinity, e)) {
         BOOST_REQUIRE(!ref.empty());
-        BOOST_REQUIRE_MESSAGE(keyOf(e) == *ref.begin(), "popped (" << e.time << ", " << e.order << ") expected ("
-                                                                    << ref.begin()->first << ", "
-                                                                    << ref.begin()->second << ")");
+        BOOST_REQUIRE_MESSAGE(keyOf(e) == *ref.begin(), "popped (" << e.time << ", " << e.order
+                                                                   << ") expected (" << ref.begin()->first
+                                                                   << ", " << ref.begin()->second << ")");
         ref.erase(ref.begin());
         BOOST_REQUIRE_EQUAL(q.now(), e.time);
         BOOST_REQUIRE_GE(e.time, last);
@@ -254,7 +258,8 @@ BOOST_AUTO_TEST_CASE(event_queue_matches_reference_with_now_events) {
         if (popped.size() < 80000) {
           // Handlers schedule at the current time (FIFO) and later, in every class.
           const unsigned n = r.below(3) + (q.size() < 200 ? 1 : 0);
-          for (unsigned k = 0; k < n; ++k) schedule(r.below(3) == 0 ? q.now() : tiedTime(r, q.now()), r.below(4));
+          for (unsigned k = 0; k < n; ++k)
+            schedule(r.below(3) == 0 ? q.now() : tiedTime(r, q.now()), r.below(4));
         }
         BOOST_REQUIRE_EQUAL(q.size(), ref.size());
       }
@@ -272,18 +277,18 @@ BOOST_AUTO_TEST_CASE(event_queue_now_fifo_interleaves_with_future_events_by_clas
     BOOST_TEST_CONTEXT("fes " << fesKindName(kind)) {
       EventQueue q(makeFutureEventSet(kind));
       // Future events at t = 10, scheduled at time 0 (they sit in the future-event set).
-      q.schedule(10, PriorityClass::Program, 1, EventKind::Timer, 0, 0);            // A
-      q.schedule(10, PriorityClass::Topology, 2, EventKind::NeighborAdded, 0, 0);   // B
-      q.schedule(10, PriorityClass::Message, 3, EventKind::Message, 0, 0);          // C
-      q.schedule(20, PriorityClass::World, 9, EventKind::MotionEnd, 0, 0);          // later
+      q.schedule(10, PriorityClass::Program, 1, EventKind::Timer, 0, 0);           // A
+      q.schedule(10, PriorityClass::Topology, 2, EventKind::NeighborAdded, 0, 0);  // B
+      q.schedule(10, PriorityClass::Message, 3, EventKind::Message, 0, 0);         // C
+      q.schedule(20, PriorityClass::World, 9, EventKind::MotionEnd, 0, 0);         // later
       Event e;
       BOOST_REQUIRE(q.popUntil(kTimeInfinity, e));
       BOOST_CHECK_EQUAL(e.block, 2u);  // B: Topology first
       BOOST_CHECK_EQUAL(q.now(), 10);
       // While handling B at t = 10, events "now" in every class go to the current-time FIFO.
-      q.schedule(10, PriorityClass::Program, 4, EventKind::Timer, 0, 0);      // D (after A: later sequence)
-      q.schedule(10, PriorityClass::World, 5, EventKind::MotionEnd, 0, 0);    // E (first: World)
-      q.schedule(10, PriorityClass::Message, 6, EventKind::Message, 0, 0);    // F (after C)
+      q.schedule(10, PriorityClass::Program, 4, EventKind::Timer, 0, 0);    // D (after A: later sequence)
+      q.schedule(10, PriorityClass::World, 5, EventKind::MotionEnd, 0, 0);  // E (first: World)
+      q.schedule(10, PriorityClass::Message, 6, EventKind::Message, 0, 0);  // F (after C)
       q.schedule(10, PriorityClass::Topology, 7, EventKind::NeighborAdded, 0, 0);  // G
       std::vector<std::uint32_t> order;
       while (q.popUntil(kTimeInfinity, e)) order.push_back(e.block);
@@ -299,8 +304,10 @@ BOOST_AUTO_TEST_CASE(event_queue_fifo_at_equal_time_and_class_and_limit) {
   for (FesKind kind : kKinds) {
     BOOST_TEST_CONTEXT("fes " << fesKindName(kind)) {
       EventQueue q(makeFutureEventSet(kind));
-      for (std::uint32_t i = 0; i < 300; ++i) q.schedule(0, PriorityClass::Program, i, EventKind::Start, 0, 0);
-      for (std::uint32_t i = 300; i < 600; ++i) q.schedule(50, PriorityClass::Message, i, EventKind::Message, 0, 0);
+      for (std::uint32_t i = 0; i < 300; ++i)
+        q.schedule(0, PriorityClass::Program, i, EventKind::Start, 0, 0);
+      for (std::uint32_t i = 300; i < 600; ++i)
+        q.schedule(50, PriorityClass::Message, i, EventKind::Message, 0, 0);
       Event e;
       std::uint32_t expect = 0;
       while (q.popUntil(49, e)) BOOST_REQUIRE_EQUAL(e.block, expect++);

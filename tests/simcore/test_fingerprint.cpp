@@ -1,6 +1,5 @@
 #define BOOST_TEST_MODULE simcore_fingerprint
 #include <boost/test/unit_test.hpp>
-
 #include <cstdint>
 #include <vector>
 
@@ -32,8 +31,13 @@ struct Outcome {
 };
 
 Outcome outcome(const Simulation& sim) {
-  Outcome o{sim.fingerprint(), sim.statistics().eventsProcessed, sim.statistics().messagesSent,
-            sim.statistics().motionsStarted, sim.now(), {}, {}};
+  Outcome o{sim.fingerprint(),
+            sim.statistics().eventsProcessed,
+            sim.statistics().messagesSent,
+            sim.statistics().motionsStarted,
+            sim.now(),
+            {},
+            {}};
   for (const Block& b : sim.world().blocks()) {
     o.cells.push_back(b.cell);
     o.colors.push_back(b.color);

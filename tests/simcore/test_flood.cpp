@@ -1,6 +1,5 @@
 #define BOOST_TEST_MODULE simcore_flood
 #include <boost/test/unit_test.hpp>
-
 #include <cstdint>
 #include <cstdlib>
 #include <deque>
@@ -54,7 +53,8 @@ std::set<std::size_t> componentOf(const std::vector<Cell>& cells, std::size_t st
 
 // Runs the flood on `cells` and checks that exactly block 0's component turned red.
 // Returns the size of the component.
-std::size_t checkFlood(const TargetSpec& target, GridSize size, const std::vector<Cell>& cells, std::size_t expectedSize) {
+std::size_t checkFlood(const TargetSpec& target, GridSize size, const std::vector<Cell>& cells,
+                       std::size_t expectedSize) {
   auto sim = testsupport::makeSim(target, size, cells);
   sim->setBlockCode(&kFlood);
   const std::uint32_t before = sim->world().block(0).color;
@@ -66,8 +66,9 @@ std::size_t checkFlood(const TargetSpec& target, GridSize size, const std::vecto
   for (std::size_t i = 0; i < cells.size(); ++i) {
     const bool isRed = sim->world().block(BlockId(i)).color == kRed;
     red += isRed;
-    BOOST_CHECK_MESSAGE(isRed == (comp.count(i) > 0), "block " << i << " at (" << cells[i].x << "," << cells[i].y
-                                                               << "," << cells[i].z << ") red=" << isRed);
+    BOOST_CHECK_MESSAGE(isRed == (comp.count(i) > 0), "block " << i << " at (" << cells[i].x << ","
+                                                               << cells[i].y << "," << cells[i].z
+                                                               << ") red=" << isRed);
     BOOST_CHECK_EQUAL(static_cast<FloodState*>(sim->blockState(BlockId(i)))->reached, comp.count(i) ? 1 : 0);
   }
   BOOST_CHECK_EQUAL(red, comp.size());
@@ -119,7 +120,8 @@ BOOST_AUTO_TEST_CASE(flood_on_random_worlds_matches_breadth_first_search) {
         const std::uint32_t want = n * 45 / 100;  // near the percolation threshold: several components
         while (cells.size() < want) {
           const std::uint32_t c = BlockRng::below(st, 4242, n);
-          const Cell cell{std::int32_t(c % std::uint32_t(size.x)), std::int32_t((c / std::uint32_t(size.x)) % std::uint32_t(size.y)),
+          const Cell cell{std::int32_t(c % std::uint32_t(size.x)),
+                          std::int32_t((c / std::uint32_t(size.x)) % std::uint32_t(size.y)),
                           std::int32_t(c / std::uint32_t(size.x * size.y))};
           if (used.insert({cell.x, cell.y, cell.z}).second) cells.push_back(cell);
         }

@@ -1,6 +1,5 @@
 #define BOOST_TEST_MODULE simcore_links
 #include <boost/test/unit_test.hpp>
-
 #include <cstdint>
 #include <vector>
 
@@ -81,7 +80,8 @@ BOOST_AUTO_TEST_CASE(back_to_back_sends_on_one_face_queue_fifo) {
     if (ev.kind != VS_EV_TIMER) return;
     // Three 100-byte messages (800 us each), then a 50-byte one (400 us) handed over 5 ms later,
     // when the link is idle again, then an empty one right behind it.
-    for (std::uint16_t i = 0; i < 3; ++i) BOOST_CHECK_EQUAL(ctx->api->send(ctx, kEast, payload(100, i).data(), 100, 0), VS_OK);
+    for (std::uint16_t i = 0; i < 3; ++i)
+      BOOST_CHECK_EQUAL(ctx->api->send(ctx, kEast, payload(100, i).data(), 100, 0), VS_OK);
     BOOST_CHECK_EQUAL(ctx->api->send(ctx, kEast, payload(50, 3).data(), 50, 5 * kMillisecond), VS_OK);
     BOOST_CHECK_EQUAL(ctx->api->send(ctx, kEast, nullptr, 0, 5 * kMillisecond), VS_OK);
   };
@@ -89,7 +89,8 @@ BOOST_AUTO_TEST_CASE(back_to_back_sends_on_one_face_queue_fifo) {
   const auto got = s.of(1, VS_EV_MESSAGE);
   BOOST_REQUIRE_EQUAL(got.size(), 5u);
   const SimTime expected[] = {t0 + 800 * kMicrosecond, t0 + 1600 * kMicrosecond, t0 + 2400 * kMicrosecond,
-                              t0 + 5 * kMillisecond + 400 * kMicrosecond, t0 + 5 * kMillisecond + 400 * kMicrosecond};
+                              t0 + 5 * kMillisecond + 400 * kMicrosecond,
+                              t0 + 5 * kMillisecond + 400 * kMicrosecond};
   for (std::size_t i = 0; i < 5; ++i) {
     BOOST_TEST_CONTEXT("message " << i) {
       BOOST_CHECK_EQUAL(got[i].time, expected[i]);
@@ -180,7 +181,8 @@ BOOST_AUTO_TEST_CASE(blinky_blocks_use_their_default_serial_rate) {
   s.onStart = [&](vs_ctx* ctx) {
     if (ctx->block != 0) return;
     BOOST_CHECK_EQUAL(ctx->api->send(ctx, targets::kBBRight, payload(6, 0).data(), 6, 0), VS_OK);  // 1.25 ms
-    BOOST_CHECK_EQUAL(ctx->api->send(ctx, targets::kBBRight, payload(2, 1).data(), 2, 0), VS_OK);  // +416.67 us
+    BOOST_CHECK_EQUAL(ctx->api->send(ctx, targets::kBBRight, payload(2, 1).data(), 2, 0),
+                      VS_OK);  // +416.67 us
   };
   sim->runUntilEmpty();
   const auto got = s.of(1, VS_EV_MESSAGE);
@@ -204,7 +206,8 @@ BOOST_AUTO_TEST_CASE(send_errors) {
       BOOST_CHECK_EQUAL(ctx->api->send(ctx, 4, &x, 1, 0), VS_ERR_BAD_FACE);
       BOOST_CHECK_EQUAL(ctx->api->send(ctx, kEast, &x, 1, -1), VS_ERR_BAD_ARGUMENT);
       BOOST_CHECK_EQUAL(ctx->api->send(ctx, kEast, nullptr, 1, 0), VS_ERR_BAD_ARGUMENT);
-      BOOST_CHECK_EQUAL(ctx->api->send(ctx, kEast, big.data(), std::uint32_t(big.size()), 0), VS_ERR_TOO_LARGE);
+      BOOST_CHECK_EQUAL(ctx->api->send(ctx, kEast, big.data(), std::uint32_t(big.size()), 0),
+                        VS_ERR_TOO_LARGE);
       // The largest message is fine: 65536 bytes take 524.288 ms.
       BOOST_CHECK_EQUAL(ctx->api->send(ctx, kEast, big.data(), VS_MAX_MESSAGE_SIZE, 0), VS_OK);
     } else if (ctx->block == 2) {

@@ -1,6 +1,5 @@
 #define BOOST_TEST_MODULE simcore_motion
 #include <boost/test/unit_test.hpp>
-
 #include <cmath>
 #include <cstdint>
 #include <vector>
@@ -68,14 +67,15 @@ BOOST_AUTO_TEST_CASE(move_errors_busy_out_of_world_bad_face_occupied) {
     }
   };
   s.onEvent = [&](vs_ctx* ctx, const vs_event& ev) {
-    if (ev.kind == VS_EV_TIMER) codes.push_back(ctx->api->move(ctx, kNorth));        // still busy mid-motion
-    if (ev.kind == VS_EV_MOTION_END) codes.push_back(ctx->api->move(ctx, kNorth));   // free again
+    if (ev.kind == VS_EV_TIMER) codes.push_back(ctx->api->move(ctx, kNorth));       // still busy mid-motion
+    if (ev.kind == VS_EV_MOTION_END) codes.push_back(ctx->api->move(ctx, kNorth));  // free again
   };
   sim->runUntilEmpty();
   // Block 0: (0,0) -> (1,0) at 1 s -> (1,1) at 2 s, then (1,2) is block 2's cell.
-  const std::vector<int> expected = {VS_ERR_OUT_OF_WORLD, VS_ERR_OUT_OF_WORLD, VS_ERR_BAD_FACE, VS_ERR_BAD_FACE,
-                                     VS_OK,  VS_ERR_BUSY, VS_ERR_OUT_OF_WORLD, VS_ERR_CELL_OCCUPIED,
-                                     VS_ERR_BUSY, VS_OK,  VS_ERR_CELL_OCCUPIED};
+  const std::vector<int> expected = {
+      VS_ERR_OUT_OF_WORLD, VS_ERR_OUT_OF_WORLD, VS_ERR_BAD_FACE,      VS_ERR_BAD_FACE, VS_OK,
+      VS_ERR_BUSY,         VS_ERR_OUT_OF_WORLD, VS_ERR_CELL_OCCUPIED, VS_ERR_BUSY,     VS_OK,
+      VS_ERR_CELL_OCCUPIED};
   BOOST_CHECK_EQUAL_COLLECTIONS(codes.begin(), codes.end(), expected.begin(), expected.end());
   BOOST_CHECK(sim->world().block(0).cell == (Cell{1, 1, 0}));
   BOOST_CHECK_EQUAL(sim->world().neighbor(0, kNorth), 2u);
@@ -151,7 +151,8 @@ BOOST_AUTO_TEST_CASE(position_interpolates_mid_motion) {
       struct Started : Recorder {
         std::vector<std::pair<Cell, Cell>> moves;
         std::vector<SimTime> ends;
-        void onMotionStarted(const Simulation&, std::uint32_t, const Cell& from, const Cell& to, SimTime end) override {
+        void onMotionStarted(const Simulation&, std::uint32_t, const Cell& from, const Cell& to,
+                             SimTime end) override {
           moves.emplace_back(from, to);
           ends.push_back(end);
         }

@@ -1,7 +1,6 @@
 #define BOOST_TEST_MODULE simcore_rng
-#include <boost/test/unit_test.hpp>
-
 #include <array>
+#include <boost/test/unit_test.hpp>
 #include <cmath>
 #include <cstdint>
 #include <map>
@@ -23,7 +22,8 @@ std::vector<std::uint32_t> draws(std::uint64_t seed, std::uint32_t id, std::size
   return v;
 }
 
-double correlation(const std::vector<std::uint32_t>& a, const std::vector<std::uint32_t>& b, std::size_t lag) {
+double correlation(const std::vector<std::uint32_t>& a, const std::vector<std::uint32_t>& b,
+                   std::size_t lag) {
   const std::size_t n = std::min(a.size(), b.size() - lag);
   double sa = 0, sb = 0, saa = 0, sbb = 0, sab = 0;
   for (std::size_t i = 0; i < n; ++i) {

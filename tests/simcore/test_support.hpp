@@ -119,7 +119,9 @@ class Script {
     r.kind = ev->kind;
     r.face = ev->face;
     r.other = ev->other;
-    if (ev->size) r.data.assign(static_cast<const std::uint8_t*>(ev->data), static_cast<const std::uint8_t*>(ev->data) + ev->size);
+    if (ev->size)
+      r.data.assign(static_cast<const std::uint8_t*>(ev->data),
+                    static_cast<const std::uint8_t*>(ev->data) + ev->size);
     r.timerId = ev->timer_id;
     r.tag = ev->tag;
     r.sensor = ev->sensor;
@@ -150,10 +152,12 @@ struct Recorder : simcore::SimulationObserver {
   std::vector<simcore::Event> events;
   std::uint64_t sent = 0;
   void onEvent(const simcore::Simulation&, const simcore::Event& e) override { events.push_back(e); }
-  void onMessageSent(const simcore::Simulation&, std::uint32_t, int, std::uint32_t, std::uint32_t, SimTime) override {
+  void onMessageSent(const simcore::Simulation&, std::uint32_t, int, std::uint32_t, std::uint32_t,
+                     SimTime) override {
     ++sent;
   }
-  void onMessageDropped(const simcore::Simulation& s, std::uint32_t from, int face, std::uint32_t to) override {
+  void onMessageDropped(const simcore::Simulation& s, std::uint32_t from, int face,
+                        std::uint32_t to) override {
     drops.push_back({from, face, to, s.now()});
   }
   void onColorChanged(const simcore::Simulation&, std::uint32_t block, std::uint32_t rgb) override {
@@ -193,7 +197,9 @@ inline void event(vs_ctx* c, const vs_event* ev) {
     case VS_EV_TIMER:
       if (vs_move(c, int(vs_random_below(c, std::uint32_t(c->api->face_count(c))))) != VS_OK) waitThenTry(c);
       break;
-    case VS_EV_MOTION_END: waitThenTry(c); break;
+    case VS_EV_MOTION_END:
+      waitThenTry(c);
+      break;
     case VS_EV_NEIGHBOR_ADDED:
       // A flooded block tells newcomers, so the flood keeps spreading through motion.
       if (s->flooded) {
@@ -208,18 +214,20 @@ inline void event(vs_ctx* c, const vs_event* ev) {
         flood(c, hops);
       }
       break;
-    default: break;
+    default:
+      break;
   }
 }
 }  // namespace walk_detail
-inline const vs_blockcode kRandomWalk = {VS_ABI_VERSION, "random-walk", sizeof(WalkState), &walk_detail::start,
-                                         &walk_detail::event, nullptr};
+inline const vs_blockcode kRandomWalk = {VS_ABI_VERSION,      "random-walk",       sizeof(WalkState),
+                                         &walk_detail::start, &walk_detail::event, nullptr};
 
 // `n` Smart Blocks on distinct cells of an L x L grid, placed from (seed) with the kernel's RNG.
 inline std::unique_ptr<simcore::Simulation> makeWalkWorld(std::uint32_t n, std::int32_t L,
                                                           const simcore::SimulationConfig& cfg,
                                                           std::uint64_t placementSeed = 7) {
-  auto sim = std::make_unique<simcore::Simulation>(targets::smartBlocksTarget(), simcore::GridSize{L, L, 1}, cfg);
+  auto sim =
+      std::make_unique<simcore::Simulation>(targets::smartBlocksTarget(), simcore::GridSize{L, L, 1}, cfg);
   std::uint64_t st = simcore::BlockRng::initialState(placementSeed, 12345);
   while (sim->world().blockCount() < n) {
     const std::uint32_t c = simcore::BlockRng::below(st, 12345, std::uint32_t(L * L));

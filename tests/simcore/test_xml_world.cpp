@@ -1,6 +1,5 @@
 #define BOOST_TEST_MODULE xml_world
 #include <boost/test/unit_test.hpp>
-
 #include <sstream>
 #include <string>
 
@@ -55,7 +54,8 @@ std::unique_ptr<simcore::Simulation> simulationFor(const simcore::WorldDescripti
 // --- Examples and the format ---
 
 BOOST_AUTO_TEST_CASE(examples_load_without_warnings) {
-  for (const char* name : {"blinky-box.xml", "blinky-tower.xml", "smartblocks-line.xml", "smartblocks-flood.xml"}) {
+  for (const char* name :
+       {"blinky-box.xml", "blinky-tower.xml", "smartblocks-line.xml", "smartblocks-flood.xml"}) {
     BOOST_TEST_CONTEXT(name) {
       const simcore::WorldDescription d = simcore::loadWorldXml(kExamples + name);
       BOOST_TEST(d.warnings.empty());
@@ -116,8 +116,8 @@ BOOST_AUTO_TEST_CASE(line_directions_and_planar_forms) {
 }
 
 BOOST_AUTO_TEST_CASE(relative_code_and_program_paths_follow_the_file) {
-  const auto d = simcore::parseWorldXml(world("", "gridSize=\"2,2,2\" code=\"lib/c.so\" program=\"../p.meld\""),
-                                        "worlds/sub/w.xml");
+  const auto d = simcore::parseWorldXml(
+      world("", "gridSize=\"2,2,2\" code=\"lib/c.so\" program=\"../p.meld\""), "worlds/sub/w.xml");
   BOOST_TEST(d.code == "worlds/sub/lib/c.so");
   BOOST_TEST(d.program == "worlds/p.meld");
   const auto abs = simcore::parseWorldXml(world("", "gridSize=\"2,2,2\" code=\"/opt/c.so\""), "worlds/w.xml");
@@ -148,9 +148,11 @@ BOOST_AUTO_TEST_CASE(stray_text_is_a_warning) {
 
 BOOST_AUTO_TEST_CASE(columns_count_characters_and_crlf_is_fine) {
   // "é" is two bytes; the column is in characters.
-  BOOST_TEST(parseError("<!-- é -->\r\n<world gridSize=\"4,4,4\">\r\n<blockList><!-- é --><block position=\"9,0,0\"/>"
-                        "</blockList></world>") ==
-             "w.xml:3:29: error: attribute 'position' of <block>: \"9,0,0\" is outside the grid 4x4x4");
+  BOOST_TEST(
+      parseError(
+          "<!-- é -->\r\n<world gridSize=\"4,4,4\">\r\n<blockList><!-- é --><block position=\"9,0,0\"/>"
+          "</blockList></world>") ==
+      "w.xml:3:29: error: attribute 'position' of <block>: \"9,0,0\" is outside the grid 4x4x4");
 }
 
 // --- Errors: one test per class ---
@@ -162,8 +164,10 @@ BOOST_AUTO_TEST_CASE(error_missing_file) {
 }
 
 BOOST_AUTO_TEST_CASE(error_malformed_xml) {
-  BOOST_TEST(loadError("malformed.xml") == kData + "malformed.xml:5:5: error: malformed XML: Start-end tags mismatch");
-  BOOST_TEST(parseError("<world gridSize=\"1,1,1\"") == "w.xml:1:18: error: malformed XML: Error parsing element attribute");
+  BOOST_TEST(loadError("malformed.xml") ==
+             kData + "malformed.xml:5:5: error: malformed XML: Start-end tags mismatch");
+  BOOST_TEST(parseError("<world gridSize=\"1,1,1\"") ==
+             "w.xml:1:18: error: malformed XML: Error parsing element attribute");
 }
 
 BOOST_AUTO_TEST_CASE(error_missing_world_root) {
@@ -174,8 +178,9 @@ BOOST_AUTO_TEST_CASE(error_missing_world_root) {
 }
 
 BOOST_AUTO_TEST_CASE(error_bad_grid_size) {
-  BOOST_TEST(loadError("bad-gridsize.xml") ==
-             kData + "bad-gridsize.xml:2:8: error: attribute 'gridSize' of <world>: \"4,0,4\" is not three positive integers");
+  BOOST_TEST(loadError("bad-gridsize.xml") == kData +
+                                                  "bad-gridsize.xml:2:8: error: attribute 'gridSize' of "
+                                                  "<world>: \"4,0,4\" is not three positive integers");
   BOOST_TEST(parseError("<world/>") == "w.xml:1:1: error: <world> needs attribute 'gridSize'");
   BOOST_TEST(parseError(world("", "gridSize=\"a,b,c\"")) ==
              "w.xml:1:8: error: attribute 'gridSize' of <world>: \"a,b,c\" is not three positive integers");
@@ -183,39 +188,53 @@ BOOST_AUTO_TEST_CASE(error_bad_grid_size) {
              "w.xml:1:8: error: attribute 'gridSize' of <world>: \"1,2,3,4\" is not three positive integers");
   BOOST_TEST(parseError(world("", "gridSize=\"65536,65536,2\"")) ==
              "w.xml:1:8: error: attribute 'gridSize' of <world>: \"65536,65536,2\" has more than 2^31 cells");
-  BOOST_TEST(parseError(world("", "gridSize=\"4294967296,1,1\"")) ==
-             "w.xml:1:8: error: attribute 'gridSize' of <world>: \"4294967296,1,1\" is not three positive integers");
+  BOOST_TEST(
+      parseError(world("", "gridSize=\"4294967296,1,1\"")) ==
+      "w.xml:1:8: error: attribute 'gridSize' of <world>: \"4294967296,1,1\" is not three positive integers");
   // Exactly 2^31 cells is allowed.
   BOOST_TEST(simcore::parseWorldXml(world("", "gridSize=\"65536,32768,1\""), "w.xml").grid.y == 32768);
 }
 
 BOOST_AUTO_TEST_CASE(error_bad_numbers) {
-  BOOST_TEST(loadError("bad-position.xml") ==
-             kData + "bad-position.xml:5:12: error: attribute 'position' of <block>: \"1,x,3\" is not three integers");
-  BOOST_TEST(loadError("bad-color.xml") ==
-             kData + "bad-color.xml:4:29: error: attribute 'color' of <block>: \"255,256,0\" has a component outside 0..255");
-  BOOST_TEST(parseError(world("<blockList color=\"1,2\"/>\n")) ==
-             "w.xml:2:12: error: attribute 'color' of <blockList>: \"1,2\" is not three integers r,g,b in 0..255");
-  BOOST_TEST(parseError(world("<blockList blockSize=\"40,-1,40\"/>\n")) ==
-             "w.xml:2:12: error: attribute 'blockSize' of <blockList>: \"40,-1,40\" is not three positive numbers");
+  BOOST_TEST(
+      loadError("bad-position.xml") ==
+      kData +
+          "bad-position.xml:5:12: error: attribute 'position' of <block>: \"1,x,3\" is not three integers");
+  BOOST_TEST(loadError("bad-color.xml") == kData +
+                                               "bad-color.xml:4:29: error: attribute 'color' of <block>: "
+                                               "\"255,256,0\" has a component outside 0..255");
+  BOOST_TEST(
+      parseError(world("<blockList color=\"1,2\"/>\n")) ==
+      "w.xml:2:12: error: attribute 'color' of <blockList>: \"1,2\" is not three integers r,g,b in 0..255");
+  BOOST_TEST(
+      parseError(world("<blockList blockSize=\"40,-1,40\"/>\n")) ==
+      "w.xml:2:12: error: attribute 'blockSize' of <blockList>: \"40,-1,40\" is not three positive numbers");
   BOOST_TEST(parseError(world("", "gridSize=\"4,4,4\" seed=\"-3\"")) ==
              "w.xml:1:25: error: attribute 'seed' of <world>: \"-3\" is not a non-negative integer");
-  BOOST_TEST(parseError(world("<blockList><blocksLine origin=\"0,0,0\" direction=\"w\" length=\"2\"/></blockList>\n")) ==
-             "w.xml:2:39: error: attribute 'direction' of <blocksLine>: \"w\" is not one of x, y, z, -x, -y, -z");
-  BOOST_TEST(parseError(world("<blockList><blocksLine origin=\"0,0,0\" direction=\"x\" length=\"0\"/></blockList>\n")) ==
+  BOOST_TEST(
+      parseError(
+          world("<blockList><blocksLine origin=\"0,0,0\" direction=\"w\" length=\"2\"/></blockList>\n")) ==
+      "w.xml:2:39: error: attribute 'direction' of <blocksLine>: \"w\" is not one of x, y, z, -x, -y, -z");
+  BOOST_TEST(parseError(world(
+                 "<blockList><blocksLine origin=\"0,0,0\" direction=\"x\" length=\"0\"/></blockList>\n")) ==
              "w.xml:2:53: error: attribute 'length' of <blocksLine>: \"0\" is not a positive integer");
   BOOST_TEST(parseError(world("<schedule><accel block=\"0\" time=\"1s\" value=\"1,2\"/></schedule>\n")) ==
              "w.xml:2:38: error: attribute 'value' of <accel>: \"1,2\" is not three integers");
-  BOOST_TEST(parseError(world("<blockList><block/></blockList>\n")) == "w.xml:2:12: error: <block> needs attribute 'position'");
+  BOOST_TEST(parseError(world("<blockList><block/></blockList>\n")) ==
+             "w.xml:2:12: error: <block> needs attribute 'position'");
 }
 
 BOOST_AUTO_TEST_CASE(error_position_outside_the_grid) {
-  BOOST_TEST(loadError("outside-grid.xml") ==
-             kData + "outside-grid.xml:4:12: error: attribute 'position' of <block>: \"0,0,4\" is outside the grid 4x4x4");
+  BOOST_TEST(loadError("outside-grid.xml") == kData +
+                                                  "outside-grid.xml:4:12: error: attribute 'position' of "
+                                                  "<block>: \"0,0,4\" is outside the grid 4x4x4");
   BOOST_TEST(parseError(world("<blockList><blocksBox origin=\"2,2,2\" size=\"3,1,1\"/></blockList>\n")) ==
-             "w.xml:2:38: error: attribute 'size' of <blocksBox>: \"3,1,1\" makes the box from (2,2,2) leave the grid");
-  BOOST_TEST(parseError(world("<blockList><blocksLine origin=\"1,0,0\" direction=\"-x\" length=\"3\"/></blockList>\n")) ==
-             "w.xml:2:54: error: attribute 'length' of <blocksLine>: \"3\" makes the line from (1,0,0) leave the grid");
+             "w.xml:2:38: error: attribute 'size' of <blocksBox>: \"3,1,1\" makes the box from (2,2,2) leave "
+             "the grid");
+  BOOST_TEST(parseError(world(
+                 "<blockList><blocksLine origin=\"1,0,0\" direction=\"-x\" length=\"3\"/></blockList>\n")) ==
+             "w.xml:2:54: error: attribute 'length' of <blocksLine>: \"3\" makes the line from (1,0,0) leave "
+             "the grid");
 }
 
 BOOST_AUTO_TEST_CASE(error_two_blocks_in_one_cell) {
@@ -224,18 +243,22 @@ BOOST_AUTO_TEST_CASE(error_two_blocks_in_one_cell) {
 }
 
 BOOST_AUTO_TEST_CASE(error_bad_time) {
-  BOOST_TEST(loadError("bad-time.xml") ==
-             kData + "bad-time.xml:7:20: error: attribute 'time' of <tap>: \"soon\" is not a duration (like 1.5s, 250ms, 10us, 42ns)");
+  BOOST_TEST(loadError("bad-time.xml") == kData +
+                                              "bad-time.xml:7:20: error: attribute 'time' of <tap>: \"soon\" "
+                                              "is not a duration (like 1.5s, 250ms, 10us, 42ns)");
   BOOST_TEST(parseError(world("<schedule><tap block=\"0\" time=\"-1s\"/></schedule>\n")) ==
-             "w.xml:2:26: error: attribute 'time' of <tap>: \"-1s\" is not a duration (like 1.5s, 250ms, 10us, 42ns)");
+             "w.xml:2:26: error: attribute 'time' of <tap>: \"-1s\" is not a duration (like 1.5s, 250ms, "
+             "10us, 42ns)");
 }
 
 BOOST_AUTO_TEST_CASE(error_tap_on_unknown_block) {
   // The schedule comes before the blocks in this file: ids are checked once all blocks are known.
-  BOOST_TEST(loadError("tap-unknown-block.xml") ==
-             kData + "tap-unknown-block.xml:5:10: error: block 2 does not exist: the world has 2 blocks (ids 0..1)");
-  BOOST_TEST(parseError(world("<schedule><tap block=\"x\" time=\"1s\"/></schedule>\n")) ==
-             "w.xml:2:16: error: attribute 'block' of <tap>: \"x\" is not a block id (a non-negative integer)");
+  BOOST_TEST(
+      loadError("tap-unknown-block.xml") ==
+      kData + "tap-unknown-block.xml:5:10: error: block 2 does not exist: the world has 2 blocks (ids 0..1)");
+  BOOST_TEST(
+      parseError(world("<schedule><tap block=\"x\" time=\"1s\"/></schedule>\n")) ==
+      "w.xml:2:16: error: attribute 'block' of <tap>: \"x\" is not a block id (a non-negative integer)");
 }
 
 // --- Building a simulation ---
@@ -279,15 +302,17 @@ BOOST_AUTO_TEST_CASE(populate_errors_point_at_the_element) {
     BOOST_TEST(e.line() == 15);
   }
   // A tap on a target without a tap sensor.
-  auto tapped = simcore::parseWorldXml(
-      world("<blockList><block position=\"0,0,0\"/></blockList>\n<schedule><tap block=\"0\" time=\"1s\"/></schedule>\n",
-            "gridSize=\"2,2,1\" target=\"smartblocks\""),
-      "w.xml");
+  auto tapped =
+      simcore::parseWorldXml(world("<blockList><block position=\"0,0,0\"/></blockList>\n<schedule><tap "
+                                   "block=\"0\" time=\"1s\"/></schedule>\n",
+                                   "gridSize=\"2,2,1\" target=\"smartblocks\""),
+                             "w.xml");
   BOOST_CHECK_EXCEPTION(simulationFor(tapped), XmlWorldError, [](const XmlWorldError& e) {
     return std::string(e.what()) == "w.xml:3:11: error: target 'smartblocks' has no tap sensor";
   });
   // A simulation whose grid is smaller than the file's.
-  const auto big = simcore::parseWorldXml(world("<blockList><block position=\"3,3,3\"/></blockList>\n"), "w.xml");
+  const auto big =
+      simcore::parseWorldXml(world("<blockList><block position=\"3,3,3\"/></blockList>\n"), "w.xml");
   simcore::Simulation small(*target, simcore::GridSize{2, 2, 2});
   BOOST_CHECK_EXCEPTION(simcore::populateSimulation(big, small), XmlWorldError, [](const XmlWorldError& e) {
     return std::string(e.what()) == "w.xml:2:12: error: cell (3,3,3) is outside the simulation's grid";
@@ -327,10 +352,10 @@ BOOST_AUTO_TEST_CASE(export_round_trip_after_changes) {
 
 BOOST_AUTO_TEST_CASE(export_writes_the_final_configuration_of_a_run) {
   // Smart Blocks that wander and flood: cells and colors change during the run.
-  const auto d = simcore::parseWorldXml(
-      world("<blockList><blocksBox origin=\"6,6,0\" size=\"4,4,1\"/></blockList>\n",
-            "gridSize=\"16,16,1\" target=\"smartblocks\" seed=\"3\""),
-      "walk.xml");
+  const auto d =
+      simcore::parseWorldXml(world("<blockList><blocksBox origin=\"6,6,0\" size=\"4,4,1\"/></blockList>\n",
+                                   "gridSize=\"16,16,1\" target=\"smartblocks\" seed=\"3\""),
+                             "walk.xml");
   auto sim = simulationFor(d);
   sim->setBlockCode(&testsupport::kRandomWalk);
   sim->runUntilEmpty();
@@ -351,7 +376,8 @@ BOOST_AUTO_TEST_CASE(export_writes_the_final_configuration_of_a_run) {
   simcore::exportWorldXml(*again, back, second);
   const auto twice = simcore::parseWorldXml(second.str(), "exported.xml");
   BOOST_REQUIRE(twice.blocks.size() == back.blocks.size());
-  for (std::size_t i = 0; i < back.blocks.size(); ++i) BOOST_TEST((twice.blocks[i].cell == back.blocks[i].cell));
+  for (std::size_t i = 0; i < back.blocks.size(); ++i)
+    BOOST_TEST((twice.blocks[i].cell == back.blocks[i].cell));
 }
 
 BOOST_AUTO_TEST_CASE(export_makes_code_paths_absolute) {

@@ -27,7 +27,7 @@ extern "C" {
 
 #define VS_ABI_VERSION 1
 
-typedef int64_t vs_time;     /* simulated nanoseconds */
+typedef int64_t vs_time; /* simulated nanoseconds */
 typedef uint32_t vs_block_id;
 
 #define VS_NS ((vs_time)1)
@@ -69,7 +69,7 @@ typedef struct vs_event {
   int kind;          /* enum vs_event_kind */
   int face;          /* MESSAGE, NEIGHBOR_*: the local face; otherwise -1 */
   vs_block_id other; /* MESSAGE: the sender; NEIGHBOR_*: the neighbor; otherwise VS_NO_BLOCK */
-  const void *data;  /* MESSAGE: payload (valid during the callback only) */
+  const void* data;  /* MESSAGE: payload (valid during the callback only) */
   uint32_t size;     /* MESSAGE: payload size in bytes */
   uint64_t timer_id; /* TIMER: the id set_timer returned, or 0 if none was asked for */
   uint64_t tag;      /* TIMER: the tag given to set_timer */
@@ -82,90 +82,88 @@ typedef struct vs_host_api vs_host_api;
 
 /* What a callback receives: the host services, the block it runs on and that block's state. */
 struct vs_ctx {
-  const vs_host_api *api;
-  void *host;        /* opaque to the block program */
+  const vs_host_api* api;
+  void* host;        /* opaque to the block program */
   vs_block_id block; /* the block this callback runs on */
-  void *state;       /* this block's `state_size` bytes, zeroed before `start` */
+  void* state;       /* this block's `state_size` bytes, zeroed before `start` */
 };
 
 /* Host services. Every function is always present (never NULL). */
 struct vs_host_api {
   uint32_t abi_version;
   /* Current simulated time. */
-  vs_time (*now)(vs_ctx *ctx);
+  vs_time (*now)(vs_ctx* ctx);
   /* Number of faces (interfaces) of this target: 4 Smart Blocks, 6 Blinky Blocks, ... */
-  int (*face_count)(vs_ctx *ctx);
+  int (*face_count)(vs_ctx* ctx);
   /* Queue a message on `face`, handed to the link after `delay` ns. Each face is a FIFO: the
    * message is transmitted after the ones queued before it, taking size*8/rate seconds, then
    * arrives after the link latency. The payload is copied. VS_ERR_NO_NEIGHBOR if the face is free.
    * A message in flight when the link breaks is dropped (and counted by the host). */
-  int (*send)(vs_ctx *ctx, int face, const void *data, uint32_t size, vs_time delay);
+  int (*send)(vs_ctx* ctx, int face, const void* data, uint32_t size, vs_time delay);
   /* `send` on every face that has a neighbor; returns the number of messages queued (>= 0). */
-  int (*send_all)(vs_ctx *ctx, const void *data, uint32_t size, vs_time delay);
+  int (*send_all)(vs_ctx* ctx, const void* data, uint32_t size, vs_time delay);
   /* Fire a VS_EV_TIMER event after `delay` ns carrying `tag`. If `timer_id` is not NULL, it receives
    * a non-zero id usable with cancel_timer; ask for one only when you may cancel: timers without an
    * id cost the host no bookkeeping (their event reports timer_id 0). */
-  int (*set_timer)(vs_ctx *ctx, vs_time delay, uint64_t tag, uint64_t *timer_id);
+  int (*set_timer)(vs_ctx* ctx, vs_time delay, uint64_t tag, uint64_t* timer_id);
   /* Cancel a pending timer. VS_ERR_NOT_FOUND if it already fired or was cancelled. */
-  int (*cancel_timer)(vs_ctx *ctx, uint64_t timer_id);
+  int (*cancel_timer)(vs_ctx* ctx, uint64_t timer_id);
   /* Set the block's color as 0xRRGGBB. */
-  int (*set_color)(vs_ctx *ctx, uint32_t rgb);
-  uint32_t (*color)(vs_ctx *ctx);
+  int (*set_color)(vs_ctx* ctx, uint32_t rgb);
+  uint32_t (*color)(vs_ctx* ctx);
   /* Set the value the block displays (Smart Blocks). */
-  int (*set_value)(vs_ctx *ctx, int32_t value);
+  int (*set_value)(vs_ctx* ctx, int32_t value);
   /* Start a translation through `face` to the adjacent cell. The destination is reserved at once;
    * links break now and form again when VS_EV_MOTION_END arrives. Errors: VS_ERR_UNSUPPORTED,
    * VS_ERR_BUSY, VS_ERR_CELL_OCCUPIED, VS_ERR_OUT_OF_WORLD, VS_ERR_BAD_FACE. */
-  int (*move)(vs_ctx *ctx, int face);
+  int (*move)(vs_ctx* ctx, int face);
   /* The block attached on `face`, or VS_NO_BLOCK. */
-  vs_block_id (*neighbor)(vs_ctx *ctx, int face);
-  int (*neighbor_count)(vs_ctx *ctx);
+  vs_block_id (*neighbor)(vs_ctx* ctx, int face);
+  int (*neighbor_count)(vs_ctx* ctx);
   /* Lattice cell of the block (the destination cell while moving). */
-  void (*position)(vs_ctx *ctx, int32_t xyz[3]);
+  void (*position)(vs_ctx* ctx, int32_t xyz[3]);
   /* Latest reading of a sensor into values[0..2]; VS_ERR_UNSUPPORTED if the target has none. */
-  int (*read_sensor)(vs_ctx *ctx, int sensor, int32_t values[3]);
+  int (*read_sensor)(vs_ctx* ctx, int sensor, int32_t values[3]);
   /* Random numbers from this block's own stream, derived from (seed, block id). */
-  uint32_t (*random_u32)(vs_ctx *ctx);
+  uint32_t (*random_u32)(vs_ctx* ctx);
   /* Uniform in [0, bound) without bias; bound > 0. */
-  uint32_t (*random_below)(vs_ctx *ctx, uint32_t bound);
+  uint32_t (*random_below)(vs_ctx* ctx, uint32_t bound);
   /* Append a line to the run's trace (shown when the trace filter selects this block). */
-  void (*trace)(vs_ctx *ctx, const char *text);
+  void (*trace)(vs_ctx* ctx, const char* text);
   /* Number of blocks in the world. */
-  uint32_t (*block_count)(vs_ctx *ctx);
+  uint32_t (*block_count)(vs_ctx* ctx);
 };
 
 /* The table a block program exports. Callbacks may be NULL where the program has nothing to do. */
 typedef struct vs_blockcode {
   uint32_t abi_version; /* VS_ABI_VERSION */
-  const char *name;     /* short name for logs */
+  const char* name;     /* short name for logs */
   uint32_t state_size;  /* bytes of per-block state allocated by the host */
-  void (*start)(vs_ctx *ctx);
-  void (*event)(vs_ctx *ctx, const vs_event *event);
+  void (*start)(vs_ctx* ctx);
+  void (*event)(vs_ctx* ctx, const vs_event* event);
   /* Write a one-line description of the block's state for the IDE (NUL-terminated, truncated to
    * `capacity`). Returns the length it would have written. */
-  int (*info)(vs_ctx *ctx, char *text, size_t capacity);
+  int (*info)(vs_ctx* ctx, char* text, size_t capacity);
 } vs_blockcode;
 
 /* Symbol a block program shared object exports. */
 #define VS_BLOCKCODE_ENTRY_SYMBOL "vs_blockcode_entry"
-typedef const vs_blockcode *(*vs_blockcode_entry_fn)(void);
+typedef const vs_blockcode* (*vs_blockcode_entry_fn)(void);
 
 /* Convenience wrappers, so block programs read naturally. */
-static inline vs_time vs_now(vs_ctx *c) { return c->api->now(c); }
-static inline int vs_send(vs_ctx *c, int face, const void *d, uint32_t n, vs_time delay) {
+static inline vs_time vs_now(vs_ctx* c) { return c->api->now(c); }
+static inline int vs_send(vs_ctx* c, int face, const void* d, uint32_t n, vs_time delay) {
   return c->api->send(c, face, d, n, delay);
 }
-static inline int vs_send_all(vs_ctx *c, const void *d, uint32_t n, vs_time delay) {
+static inline int vs_send_all(vs_ctx* c, const void* d, uint32_t n, vs_time delay) {
   return c->api->send_all(c, d, n, delay);
 }
-static inline int vs_set_timer(vs_ctx *c, vs_time delay, uint64_t tag) {
+static inline int vs_set_timer(vs_ctx* c, vs_time delay, uint64_t tag) {
   return c->api->set_timer(c, delay, tag, NULL);
 }
-static inline int vs_set_color(vs_ctx *c, uint32_t rgb) { return c->api->set_color(c, rgb); }
-static inline int vs_move(vs_ctx *c, int face) { return c->api->move(c, face); }
-static inline uint32_t vs_random_below(vs_ctx *c, uint32_t bound) {
-  return c->api->random_below(c, bound);
-}
+static inline int vs_set_color(vs_ctx* c, uint32_t rgb) { return c->api->set_color(c, rgb); }
+static inline int vs_move(vs_ctx* c, int face) { return c->api->move(c, face); }
+static inline uint32_t vs_random_below(vs_ctx* c, uint32_t bound) { return c->api->random_below(c, bound); }
 
 #ifdef __cplusplus
 }

@@ -42,10 +42,10 @@ class CalendarFes final : public FutureEventSet {
   std::vector<std::uint32_t> buckets_;
   SimTime width_ = 1000;
   std::size_t size_ = 0;
-  std::uint32_t current_ = 0;      // bucket of the last located event
-  SimTime currentTop_ = 0;         // end (exclusive) of the current bucket's window in this year
-  std::uint32_t located_ = kNil;   // bucket whose head is the earliest event (valid after peek)
-  std::vector<SimTime> sample_;    // scratch for width estimation
+  std::uint32_t current_ = 0;                // bucket of the last located event
+  SimTime currentTop_ = 0;                   // end (exclusive) of the current bucket's window in this year
+  std::uint32_t located_ = kNil;             // bucket whose head is the earliest event (valid after peek)
+  std::vector<SimTime> sample_;              // scratch for width estimation
   std::vector<std::uint32_t> scratchNodes_;  // scratch for resizing
 };
 

@@ -49,8 +49,8 @@ class EventQueue {
 
   // Schedules an event; `time` must not be earlier than now(). `bypassFifo` sends an event due now
   // to the future-event set anyway (for bulk scheduling, so the FIFO does not grow to hold them all).
-  void schedule(SimTime time, PriorityClass cls, std::uint32_t block, EventKind kind,
-                std::uint8_t face, std::uint64_t arg, bool bypassFifo = false) {
+  void schedule(SimTime time, PriorityClass cls, std::uint32_t block, EventKind kind, std::uint8_t face,
+                std::uint64_t arg, bool bypassFifo = false) {
     Event e;
     e.time = time;
     e.order = (std::uint64_t(cls) << Event::kSequenceBits) | sequence_++;

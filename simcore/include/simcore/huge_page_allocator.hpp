@@ -43,7 +43,9 @@ struct HugePageAllocator {
   T* allocate(std::size_t n) { return static_cast<T*>(allocateLarge(n * sizeof(T))); }
   void deallocate(T* p, std::size_t n) { deallocateLarge(p, n * sizeof(T)); }
   template <class U>
-  bool operator==(const HugePageAllocator<U>&) const { return true; }
+  bool operator==(const HugePageAllocator<U>&) const {
+    return true;
+  }
 };
 
 }  // namespace simcore

@@ -20,10 +20,11 @@ class SimulationObserver {
   virtual void onMessageSent(const Simulation&, std::uint32_t /*from*/, int /*face*/, std::uint32_t /*to*/,
                              std::uint32_t /*size*/, SimTime /*arrival*/) {}
   // A message in flight was lost because its link broke.
-  virtual void onMessageDropped(const Simulation&, std::uint32_t /*from*/, int /*face*/, std::uint32_t /*to*/) {}
+  virtual void onMessageDropped(const Simulation&, std::uint32_t /*from*/, int /*face*/,
+                                std::uint32_t /*to*/) {}
   virtual void onColorChanged(const Simulation&, std::uint32_t /*block*/, std::uint32_t /*rgb*/) {}
-  virtual void onMotionStarted(const Simulation&, std::uint32_t /*block*/, const Cell& /*from*/, const Cell& /*to*/,
-                               SimTime /*end*/) {}
+  virtual void onMotionStarted(const Simulation&, std::uint32_t /*block*/, const Cell& /*from*/,
+                               const Cell& /*to*/, SimTime /*end*/) {}
   // Text from the block program's trace service.
   virtual void onBlockTrace(const Simulation&, std::uint32_t /*block*/, std::string_view /*text*/) {}
 };

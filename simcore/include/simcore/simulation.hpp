@@ -132,7 +132,9 @@ class Simulation {
   void prefetchCells(const Event& e) const;
   // A block's face states exist from its first send on (most blocks of a large world may never
   // send); faceGroup_[b] is the index of its group of faceCount_ states, or kNoBlock.
-  FaceState& face(BlockId b, int f) { return faces_[std::size_t(faceGroup_[b]) * std::size_t(faceCount_) + std::size_t(f)]; }
+  FaceState& face(BlockId b, int f) {
+    return faces_[std::size_t(faceGroup_[b]) * std::size_t(faceCount_) + std::size_t(f)];
+  }
   FaceState& faceForSending(BlockId b, int f);
   SimTime transmissionTime(std::uint32_t size) const;
   void releaseMessage(std::uint32_t slot);
@@ -155,7 +157,7 @@ class Simulation {
   EventQueue queue_;
   std::vector<FaceState, HugePageAllocator<FaceState>> faces_;
   std::vector<std::uint32_t> faceGroup_;
-  std::uint64_t messagesInFlight_ = 0;  // sent, not yet delivered nor dropped
+  std::uint64_t messagesInFlight_ = 0;        // sent, not yet delivered nor dropped
   std::vector<std::uint16_t> facesInFlight_;  // per block: bit f set while face f has messages in flight
   std::vector<MessageSlot> messages_;
   std::uint32_t freeMessage_ = kNoBlock;
@@ -163,8 +165,8 @@ class Simulation {
   std::uint32_t freeMotion_ = kNoBlock;
   std::vector<TimerSlot, HugePageAllocator<TimerSlot>> timers_;
   std::uint32_t freeTimer_ = kNoBlock;
-  std::vector<std::int32_t> displayValues_;              // per block (targets with a display)
-  std::vector<std::array<std::int32_t, 3>> accel_;     // latest reading per block (targets with one)
+  std::vector<std::int32_t> displayValues_;         // per block (targets with a display)
+  std::vector<std::array<std::int32_t, 3>> accel_;  // latest reading per block (targets with one)
   struct SensorSlot {
     std::array<std::int32_t, 3> values{};
     std::uint32_t nextFree = kNoBlock;

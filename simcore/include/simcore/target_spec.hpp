@@ -19,11 +19,11 @@ struct LinkModel {
 };
 
 struct TargetSpec {
-  std::string name;                                      // "blinkyblocks", "smartblocks"
+  std::string name;  // "blinkyblocks", "smartblocks"
   std::function<std::unique_ptr<Lattice>()> makeLattice;
-  std::vector<std::string> faceNames;                    // index = face number
+  std::vector<std::string> faceNames;  // index = face number
   LinkModel link;
-  bool canTranslate = false;     // translation to an adjacent free cell through a face
+  bool canTranslate = false;  // translation to an adjacent free cell through a face
   SimTime motionDuration = kSecond;
   bool hasTap = false;
   bool hasAccelerometer = false;

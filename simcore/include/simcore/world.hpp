@@ -21,11 +21,11 @@ struct GridSize {
 
 // Kept to 32 bytes: a million of them are touched in random order every simulated second.
 struct Block {
-  std::uint64_t rng = 0;             // PCG32 state (stream = block id)
-  Cell cell;                         // destination cell while moving
-  std::uint32_t color = 0;           // 0xRRGGBB
-  std::uint32_t motion = kNoBlock;   // motion slot while moving
-  bool alive = true;                 // mirrored in World's compact alive array for the hot path
+  std::uint64_t rng = 0;            // PCG32 state (stream = block id)
+  Cell cell;                        // destination cell while moving
+  std::uint32_t color = 0;          // 0xRRGGBB
+  std::uint32_t motion = kNoBlock;  // motion slot while moving
+  bool alive = true;                // mirrored in World's compact alive array for the hot path
 };
 static_assert(sizeof(Block) == 32);
 
@@ -43,7 +43,8 @@ class World {
     return c.x >= 0 && c.y >= 0 && c.z >= 0 && c.x < size_.x && c.y < size_.y && c.z < size_.z;
   }
   std::size_t cellIndex(const Cell& c) const {
-    return std::size_t(c.x) + std::size_t(size_.x) * (std::size_t(c.y) + std::size_t(size_.y) * std::size_t(c.z));
+    return std::size_t(c.x) +
+           std::size_t(size_.x) * (std::size_t(c.y) + std::size_t(size_.y) * std::size_t(c.z));
   }
 
   // Adds a block; returns its id, or kNoBlock if the cell is outside, invalid or taken.

@@ -49,7 +49,7 @@ struct SourcePos {
 struct BlockDescription {
   Cell cell;
   std::optional<std::uint32_t> color;  // 0xRRGGBB; nullopt = the target's default color
-  SourcePos pos;                        // the <block>, <blocksBox> or <blocksLine> that made it
+  SourcePos pos;                       // the <block>, <blocksBox> or <blocksLine> that made it
 };
 
 struct ScheduledTap {
@@ -72,11 +72,11 @@ struct KeptElement {
 };
 
 struct WorldDescription {
-  std::string path;                      // the file read (or the name given to parseWorldXml)
-  std::string target;                    // as written ("" if absent); not validated here
+  std::string path;    // the file read (or the name given to parseWorldXml)
+  std::string target;  // as written ("" if absent); not validated here
   GridSize grid;
   std::optional<std::uint32_t> listColor;  // color="..." of the first <blockList>
-  std::string blockSize;                 // blockSize="..." of the first <blockList>, validated
+  std::string blockSize;                   // blockSize="..." of the first <blockList>, validated
   KeptElement camera, spotlight;
   std::vector<BlockDescription> blocks;  // in document order = dense block ids
   std::optional<std::uint64_t> seed;
@@ -84,7 +84,7 @@ struct WorldDescription {
   std::string program;  // Meld program; resolved likewise
   std::vector<ScheduledTap> taps;
   std::vector<ScheduledAccel> accels;
-  std::vector<std::string> warnings;     // "file:line:col: warning: ..." (unknown elements, ...)
+  std::vector<std::string> warnings;  // "file:line:col: warning: ..." (unknown elements, ...)
 };
 
 // Reads and validates a world file. Throws XmlWorldError.
