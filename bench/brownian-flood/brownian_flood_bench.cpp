@@ -39,6 +39,33 @@ void usage(std::FILE* out) {
       out);
 }
 
+// One option's value into `o`; false (after a message) when it is malformed.
+bool parseValue(const std::string& name, const char* v, Options& o) {
+  char* end = nullptr;
+  const char* expected = nullptr;
+  if (name == "--blocks") {
+    o.blocks = std::strtoull(v, &end, 10);
+    if (*end || o.blocks == 0 || o.blocks > 100000000ull) expected = "a count in [1, 1e8]";
+  } else if (name == "--seed") {
+    o.seed = std::strtoull(v, &end, 10);
+    if (*end || !*v) expected = "an integer";
+  } else if (name == "--until") {
+    const auto t = simcore::parseDuration(v);
+    if (t)
+      o.until = *t;
+    else
+      expected = "a duration like 600s or 10min";
+  } else {
+    const auto k = simcore::parseFesKind(v);
+    if (k)
+      o.fes = *k;
+    else
+      expected = "heap, calendar or ladder";
+  }
+  if (expected) std::fprintf(stderr, "brownian-flood: %s wants %s, got '%s'\n", name.c_str(), expected, v);
+  return expected == nullptr;
+}
+
 bool parse(int argc, char** argv, Options& o) {
   for (int i = 1; i < argc; ++i) {
     const std::string a = argv[i];
@@ -52,42 +79,9 @@ bool parse(int argc, char** argv, Options& o) {
     if (a == "--help" || a == "-h") {
       usage(stdout);
       std::exit(0);
-    } else if (a == "--blocks") {
-      const char* v = value("--blocks");
-      char* end = nullptr;
-      if (!v) return false;
-      o.blocks = std::strtoull(v, &end, 10);
-      if (*end || o.blocks == 0 || o.blocks > 100000000ull) {
-        std::fprintf(stderr, "brownian-flood: --blocks wants a count in [1, 1e8], got '%s'\n", v);
-        return false;
-      }
-    } else if (a == "--until") {
-      const char* v = value("--until");
-      if (!v) return false;
-      auto t = simcore::parseDuration(v);
-      if (!t) {
-        std::fprintf(stderr, "brownian-flood: --until wants a duration like 600s or 10min, got '%s'\n", v);
-        return false;
-      }
-      o.until = *t;
-    } else if (a == "--seed") {
-      const char* v = value("--seed");
-      char* end = nullptr;
-      if (!v) return false;
-      o.seed = std::strtoull(v, &end, 10);
-      if (*end) {
-        std::fprintf(stderr, "brownian-flood: --seed wants an integer, got '%s'\n", v);
-        return false;
-      }
-    } else if (a == "--fes") {
-      const char* v = value("--fes");
-      if (!v) return false;
-      auto k = simcore::parseFesKind(v);
-      if (!k) {
-        std::fprintf(stderr, "brownian-flood: --fes is heap, calendar or ladder, got '%s'\n", v);
-        return false;
-      }
-      o.fes = *k;
+    } else if (a == "--blocks" || a == "--seed" || a == "--until" || a == "--fes") {
+      const char* v = value(a.c_str());
+      if (!v || !parseValue(a, v, o)) return false;
     } else if (a == "--json") {
       o.json = true;
     } else if (a == "--no-progress") {
