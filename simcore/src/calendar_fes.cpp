@@ -5,16 +5,21 @@
 namespace simcore {
 
 namespace {
+constexpr std::uint64_t kReviewPeriod = 4096, kMaxWorkPerOperation = 8;
 constexpr std::size_t kMinBuckets = 16;
 constexpr std::size_t kWidthSample = 64;
 }  // namespace
 
-CalendarFes::CalendarFes() { buckets_.assign(kMinBuckets, kNil); }
+CalendarFes::CalendarFes() {
+  buckets_.assign(kMinBuckets, kNil);
+  tails_.assign(kMinBuckets, kNil);
+}
 
 void CalendarFes::clear() {
   pool_.clear();
   freeList_ = kNil;
   buckets_.assign(kMinBuckets, kNil);
+  tails_.assign(kMinBuckets, kNil);
   width_ = 1000;
   size_ = 0;
   current_ = 0;
@@ -24,8 +29,20 @@ void CalendarFes::clear() {
 
 void CalendarFes::insertNode(std::uint32_t node) {
   const Event& e = pool_[node].event;
-  std::uint32_t* link = &buckets_[bucketOf(e.time)];
-  while (*link != kNil && earlier(pool_[*link].event, e)) link = &pool_[*link].next;
+  const std::uint32_t b = bucketOf(e.time);
+  // Appending is the common case (equal times in sequence order, like a burst scheduled at once):
+  // the tail makes it O(1) instead of a walk through the whole list.
+  if (buckets_[b] == kNil || !earlier(e, pool_[tails_[b]].event)) {
+    pool_[node].next = kNil;
+    (buckets_[b] == kNil ? buckets_[b] : pool_[tails_[b]].next) = node;
+    tails_[b] = node;
+    return;
+  }
+  std::uint32_t* link = &buckets_[b];
+  while (*link != kNil && earlier(pool_[*link].event, e)) {
+    link = &pool_[*link].next;
+    ++work_;
+  }
   pool_[node].next = *link;
   *link = node;
 }
@@ -50,7 +67,15 @@ void CalendarFes::push(const Event& event) {
   insertNode(node);
   ++size_;
   if (located_ != kNil && earlier(event, pool_[buckets_[located_]].event)) located_ = kNil;
-  if (size_ > 2 * buckets_.size()) resize(buckets_.size() * 2);
+  if (size_ > 2 * buckets_.size()) {
+    resize(buckets_.size() * 2);
+  } else if (++operations_ == kReviewPeriod) {
+    // Brown's calendar only re-sizes when the number of events changes, so a width estimated once
+    // (say from the events at start-up) can stay wrong forever, leaving long lists or long runs of
+    // empty buckets. Re-estimate when the average work per operation shows it.
+    if (work_ > kReviewPeriod * kMaxWorkPerOperation) resize(buckets_.size());
+    operations_ = work_ = 0;
+  }
 }
 
 bool CalendarFes::locateEarliest() {
@@ -67,6 +92,7 @@ bool CalendarFes::locateEarliest() {
     }
     i = std::uint32_t((i + 1) & (nb - 1));
     top += width_;
+    ++work_;
   }
   // A whole year without an event in its window: jump straight to the earliest head.
   std::uint32_t best = kNil;
@@ -91,6 +117,7 @@ const Event* CalendarFes::peek() {
 void CalendarFes::pop() {
   const std::uint32_t node = buckets_[located_];
   buckets_[located_] = pool_[node].next;
+  if (buckets_[located_] == kNil) tails_[located_] = kNil;
   pool_[node].next = freeList_;
   freeList_ = node;
   located_ = kNil;
@@ -125,6 +152,7 @@ void CalendarFes::resize(std::size_t bucketCount) {
   for (std::uint32_t n : nodes) earliest = std::min(earliest, pool_[n].event.time);
   width_ = newWidth;
   buckets_.assign(bucketCount, kNil);
+  tails_.assign(bucketCount, kNil);
   // Inserting in descending order makes every sorted insert hit the list head.
   std::sort(nodes.begin(), nodes.end(),
             [this](std::uint32_t a, std::uint32_t b) { return earlier(pool_[b].event, pool_[a].event); });

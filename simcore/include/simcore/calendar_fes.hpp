@@ -39,12 +39,14 @@ class CalendarFes final : public FutureEventSet {
 
   std::vector<Node, HugePageAllocator<Node>> pool_;
   std::uint32_t freeList_ = kNil;
+  std::vector<std::uint32_t> tails_;  // last node of each bucket's list
   std::vector<std::uint32_t> buckets_;
   SimTime width_ = 1000;
   std::size_t size_ = 0;
   std::uint32_t current_ = 0;                // bucket of the last located event
   SimTime currentTop_ = 0;                   // end (exclusive) of the current bucket's window in this year
   std::uint32_t located_ = kNil;             // bucket whose head is the earliest event (valid after peek)
+  std::uint64_t operations_ = 0, work_ = 0;  // list steps and empty buckets seen since the last review
   std::vector<SimTime> sample_;              // scratch for width estimation
   std::vector<std::uint32_t> scratchNodes_;  // scratch for resizing
 };
