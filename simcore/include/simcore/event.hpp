@@ -27,7 +27,24 @@ const char* eventKindName(EventKind kind);
 enum class PriorityClass : std::uint8_t { World = 0, Topology = 1, Message = 2, Program = 3 };
 inline constexpr int kPriorityClassCount = 4;
 
-PriorityClass priorityClassOf(EventKind kind);
+// Inline: it is asked for every scheduled event.
+inline PriorityClass priorityClassOf(EventKind kind) {
+  switch (kind) {
+    // Start is in the first class so that at t = 0 every block starts before anything that other
+    // blocks' start callbacks (or scheduleTap/removeBlock before the run) cause at the same time:
+    // the block ABI promises `start` before any `event`.
+    case EventKind::Start:
+    case EventKind::MotionEnd:
+      return PriorityClass::World;
+    case EventKind::NeighborAdded:
+    case EventKind::NeighborRemoved:
+      return PriorityClass::Topology;
+    case EventKind::Message:
+      return PriorityClass::Message;
+    default:
+      return PriorityClass::Program;
+  }
+}
 
 struct Event {
   SimTime time = 0;

@@ -1,0 +1,235 @@
+// The per-node fact store (spec §6.3): linear facts in insertion order, consumption, in-place
+// updates (§6.4.5), persistent facts with counts and retraction, compact predicates, node removal,
+// and reference counts of the boxed values that facts hold.
+#define BOOST_TEST_MODULE vm_store
+#include <boost/test/unit_test.hpp>
+
+#include "vm_fixture.hpp"
+
+using namespace vmtest;
+
+BOOST_AUTO_TEST_CASE(linear_facts_keep_insertion_order_per_node_and_predicate) {
+  Store s;
+  const PredId a = s.linear("a", {TypeTable::kInt});
+  const PredId b = s.linear("b", {TypeTable::kInt, TypeTable::kNode});
+  Database& db = s.open(3);
+  for (int i = 1; i <= 4; ++i) db.addLinear(0, a, std::vector<Value>{I(i)}.data());
+  db.addLinear(1, a, std::vector<Value>{I(7)}.data());
+  db.addLinear(0, b, std::vector<Value>{I(5), N(2)}.data());
+  BOOST_TEST(s.facts(0, a) == S({"a(1)", "a(2)", "a(3)", "a(4)"}), boost::test_tools::per_element());
+  BOOST_TEST(s.facts(1, a) == S({"a(7)"}), boost::test_tools::per_element());
+  BOOST_TEST(s.facts(2, a).empty());
+  BOOST_TEST(s.facts(0, b) == S({"b(5, @2)"}), boost::test_tools::per_element());
+  BOOST_TEST(db.factCount(0, a) == 4u);
+  BOOST_TEST(db.factCount(2, b) == 0u);
+
+  // Identical linear facts are distinct resources.
+  db.addLinear(2, a, std::vector<Value>{I(9)}.data());
+  db.addLinear(2, a, std::vector<Value>{I(9)}.data());
+  BOOST_TEST(db.factCount(2, a) == 2u);
+}
+
+BOOST_AUTO_TEST_CASE(consuming_keeps_the_order_of_the_rest) {
+  Store s;
+  const PredId a = s.linear("a", {TypeTable::kInt});
+  Database& db = s.open(1);
+  std::vector<FactRef> refs;
+  for (int i = 1; i <= 5; ++i) refs.push_back(db.addLinear(0, a, std::vector<Value>{I(i)}.data()));
+  db.consume(0, a, refs[2]);  // middle
+  db.consume(0, a, refs[0]);  // first
+  db.consume(0, a, refs[4]);  // last
+  BOOST_TEST(s.facts(0, a) == S({"a(2)", "a(4)"}), boost::test_tools::per_element());
+  BOOST_TEST(db.factCount(0, a) == 2u);
+  // New facts go to the end even though they reuse freed slots.
+  db.addLinear(0, a, std::vector<Value>{I(6)}.data());
+  db.addLinear(0, a, std::vector<Value>{I(7)}.data());
+  BOOST_TEST(s.facts(0, a) == S({"a(2)", "a(4)", "a(6)", "a(7)"}), boost::test_tools::per_element());
+  // Consume while iterating: read next first.
+  for (FactRef f = db.first(0, a); f != kNoFact;) {
+    const FactRef nx = db.next(a, f);
+    if (db.args(a, f)[0].asInt() % 2 == 0) db.consume(0, a, f);
+    f = nx;
+  }
+  BOOST_TEST(s.facts(0, a) == S({"a(7)"}), boost::test_tools::per_element());
+  db.consume(0, a, db.first(0, a));
+  BOOST_TEST(db.first(0, a) == kNoFact);
+  BOOST_TEST(db.factCount(0, a) == 0u);
+}
+
+// §6.4.5: "go(A), a(A,2) -o a(A,20)" leaves 1, 3, 20 (moved to the end); with the updated fact
+// bound by the outermost loop it keeps its place: 1, 20, 3.
+BOOST_AUTO_TEST_CASE(in_place_update_keeps_or_moves_the_fact) {
+  Store s;
+  const PredId a = s.linear("a", {TypeTable::kInt});
+  Database& db = s.open(2);
+  FactRef two[2];
+  for (NodeId n = 0; n < 2; ++n)
+    for (int i = 1; i <= 3; ++i) {
+      const FactRef f = db.addLinear(n, a, std::vector<Value>{I(i)}.data());
+      if (i == 2) two[n] = f;
+    }
+  db.updateLinear(0, a, two[0], std::vector<Value>{I(20)}.data(), true);
+  db.updateLinear(1, a, two[1], std::vector<Value>{I(20)}.data(), false);
+  BOOST_TEST(s.facts(0, a) == S({"a(1)", "a(3)", "a(20)"}), boost::test_tools::per_element());
+  BOOST_TEST(s.facts(1, a) == S({"a(1)", "a(20)", "a(3)"}), boost::test_tools::per_element());
+  // Moving the last fact to the back changes nothing.
+  db.updateLinear(0, a, two[0], std::vector<Value>{I(21)}.data(), true);
+  BOOST_TEST(s.facts(0, a) == S({"a(1)", "a(3)", "a(21)"}), boost::test_tools::per_element());
+}
+
+BOOST_AUTO_TEST_CASE(persistent_facts_count_copies_and_retract) {
+  Store s;
+  const PredId e = s.persistent("edge", {TypeTable::kNode, TypeTable::kInt});
+  Database& db = s.open(2);
+  const std::vector<Value> x{N(1), I(5)}, y{N(1), I(6)};
+  Change c = db.derive(0, e, x.data());
+  BOOST_TEST(c.added);
+  BOOST_TEST(c.count == 1u);
+  BOOST_TEST(c.addedArgs.size() == 2u);
+  BOOST_TEST(c.addedArgs[1].asInt() == 5);
+  c = db.derive(0, e, x.data());  // a copy: counted, not new (only the first copy triggers rules)
+  BOOST_TEST(!c.added);
+  BOOST_TEST(c.count == 2u);
+  c = db.derive(0, e, y.data(), 3);
+  BOOST_TEST(c.added);
+  BOOST_TEST(c.count == 3u);
+  db.derive(1, e, x.data());  // another node: a separate fact
+  BOOST_TEST(s.facts(0, e) == S({"!edge(@1, 5) x2", "!edge(@1, 6) x3"}), boost::test_tools::per_element());
+  BOOST_TEST(s.facts(1, e) == S({"!edge(@1, 5)"}), boost::test_tools::per_element());
+  BOOST_TEST(db.find(0, e, y.data()) != kNoFact);
+
+  c = db.retract(0, e, x.data());
+  BOOST_TEST(c.found);
+  BOOST_TEST(!c.removed);
+  BOOST_TEST(c.count == 1u);
+  c = db.retract(0, e, x.data());
+  BOOST_TEST(c.removed);
+  BOOST_TEST(c.count == 0u);
+  BOOST_TEST(c.removedArgs[0].asNode() == 1u);
+  BOOST_TEST(c.removedArgs[1].asInt() == 5);
+  c = db.retract(0, e, x.data());
+  BOOST_TEST(!c.found);
+  BOOST_TEST(!c.removed);
+  c = db.retract(0, e, y.data(), 5);  // more than stored: the fact goes
+  BOOST_TEST(c.removed);
+  BOOST_TEST(db.factCount(0, e) == 0u);
+  BOOST_TEST(db.find(0, e, y.data()) == kNoFact);
+  BOOST_TEST(s.facts(1, e) == S({"!edge(@1, 5)"}), boost::test_tools::per_element());
+  // Re-deriving after removal is a new first copy.
+  BOOST_TEST(db.derive(0, e, x.data()).added);
+}
+
+BOOST_AUTO_TEST_CASE(compact_predicates_append_every_derivation) {
+  Store s;
+  const PredId c = s.persistent("axiom", {TypeTable::kInt}, true);
+  Database& db = s.open(1);
+  for (int v : {3, 1, 3}) BOOST_TEST(db.derive(0, c, std::vector<Value>{I(v)}.data()).added);
+  BOOST_TEST(s.facts(0, c) == S({"!axiom(3)", "!axiom(1)", "!axiom(3)"}), boost::test_tools::per_element());
+  BOOST_TEST(db.retract(0, c, std::vector<Value>{I(3)}.data()).removed);
+  BOOST_TEST(s.facts(0, c) == S({"!axiom(1)", "!axiom(3)"}), boost::test_tools::per_element());
+}
+
+BOOST_AUTO_TEST_CASE(misuse_is_refused) {
+  Store s;
+  const PredId l = s.linear("l", {TypeTable::kInt});
+  const PredId p = s.persistent("p", {TypeTable::kInt});
+  PredicateDesc act;
+  act.name = "setcolor";
+  act.fields = {TypeTable::kInt, TypeTable::kInt, TypeTable::kInt};
+  act.linear = true;
+  act.action = true;
+  const PredId a = s.preds.add(act);
+  BOOST_CHECK_THROW(s.persistent("P", {TypeTable::kInt}), std::invalid_argument);  // names ignore case
+  BOOST_CHECK_THROW(s.aggregate("bad", {TypeTable::kString}, AggregateKind::Min, 0), std::invalid_argument);
+  BOOST_CHECK_THROW(s.aggregate("bad2", {TypeTable::kInt}, AggregateKind::Min, 1), std::invalid_argument);
+  BOOST_TEST(s.preds.find("SETCOLOR") == a);
+  BOOST_TEST(s.preds.find("nothing") == s.preds.size());
+  Database& db = s.open(1);
+  const Value v[3] = {I(1), I(2), I(3)};
+  BOOST_CHECK_THROW(db.derive(0, l, v), std::logic_error);
+  BOOST_CHECK_THROW(db.addLinear(0, p, v), std::logic_error);
+  BOOST_CHECK_THROW(db.addLinear(0, a, v), std::logic_error);
+  BOOST_CHECK_THROW(db.addLinear(1, l, v), std::out_of_range);
+  db.addLinear(0, l, v);
+  BOOST_CHECK_THROW(db.requestIndex(l, 0), std::logic_error);  // after facts exist
+}
+
+BOOST_AUTO_TEST_CASE(facts_hold_references_to_boxed_values) {
+  Store s;
+  const TypeId li = s.types.list(TypeTable::kInt);
+  const PredId m = s.linear("msg", {TypeTable::kString, li});
+  const PredId p = s.persistent("seen", {TypeTable::kString});
+  Database& db = s.open(1);
+  {
+    Value str = s.heap.makeString("hello");
+    Value list = s.heap.makeList(li, std::vector<Value>{I(1), I(2), I(3)});
+    const Value args[2] = {str, list};
+    db.addLinear(0, m, args);
+    db.derive(0, p, args);
+    db.derive(0, p, args);
+    s.heap.release(TypeTable::kString, str);  // the facts keep them alive
+    s.heap.release(li, list);
+  }
+  BOOST_TEST(s.heap.liveObjects() == 4u);
+  BOOST_TEST(s.facts(0, m) == S({"msg(\"hello\", [1,2,3])"}), boost::test_tools::per_element());
+  db.consume(0, m, db.first(0, m));
+  BOOST_TEST(s.heap.liveObjects() == 1u);  // the string is still held by !seen
+  // A retracted fact's values stay readable until the next change.
+  Value key = s.heap.makeString("hello");
+  db.retract(0, p, &key);
+  const Change c = db.retract(0, p, &key);
+  s.heap.release(TypeTable::kString, key);
+  BOOST_TEST(c.removed);
+  BOOST_TEST(std::string(stringOf(c.removedArgs[0])) == "hello");
+  BOOST_TEST(s.heap.liveObjects() == 1u);
+  db.addLinear(0, m, std::vector<Value>{s.heap.makeString("x"), Value::nil()}.data());
+  BOOST_TEST(s.heap.liveObjects() == 1u);  // "hello" released, "x" (leaked ref + fact) live
+}
+
+BOOST_AUTO_TEST_CASE(removed_nodes_lose_their_facts) {
+  Store s;
+  const PredId a = s.linear("a", {TypeTable::kString});
+  const PredId p = s.persistent("p", {TypeTable::kInt});
+  Database& db = s.open(2);
+  Value str = s.heap.makeString("gone");
+  db.addLinear(1, a, &str);
+  s.heap.release(TypeTable::kString, str);
+  db.derive(1, p, std::vector<Value>{I(1)}.data());
+  db.derive(0, p, std::vector<Value>{I(1)}.data());
+  const NodeId created = db.addNodes(1);
+  BOOST_TEST(created == 2u);
+  BOOST_TEST(db.nodeCount() == 3u);
+  db.removeNode(1);
+  BOOST_TEST(!db.alive(1));
+  BOOST_TEST(db.alive(2));
+  BOOST_TEST(s.heap.liveObjects() == 0u);
+  BOOST_TEST(db.factCount(0, p) == 1u);
+  BOOST_CHECK_THROW(db.derive(1, p, std::vector<Value>{I(1)}.data()), std::out_of_range);
+}
+
+// §11: persistent facts come out grouped by their first field (the first level of the established
+// VM's trie), groups in order of first appearance; linear facts stay in plain insertion order.
+BOOST_AUTO_TEST_CASE(persistent_facts_group_by_first_field) {
+  Store s;
+  const PredId e = s.persistent("edge", {TypeTable::kNode, TypeTable::kInt});
+  const PredId l = s.linear("link", {TypeTable::kNode, TypeTable::kInt});
+  Database& db = s.open(1);
+  const int order[][2] = {{1, 5}, {2, 6}, {1, 7}, {3, 8}, {2, 9}};
+  for (const auto& o : order) {
+    const Value args[2] = {N(NodeId(o[0])), I(o[1])};
+    db.derive(0, e, args);
+    db.addLinear(0, l, args);
+  }
+  BOOST_TEST(
+      s.facts(0, e) == S({"!edge(@1, 5)", "!edge(@1, 7)", "!edge(@2, 6)", "!edge(@2, 9)", "!edge(@3, 8)"}),
+      boost::test_tools::per_element());
+  BOOST_TEST(s.facts(0, l) == S({"link(@1, 5)", "link(@2, 6)", "link(@1, 7)", "link(@3, 8)", "link(@2, 9)"}),
+             boost::test_tools::per_element());
+  // A group emptied and refilled joins the end.
+  const Value one[2] = {N(1), I(5)}, seven[2] = {N(1), I(7)}, again[2] = {N(1), I(4)};
+  db.retract(0, e, one);
+  db.retract(0, e, seven);
+  db.derive(0, e, again);
+  BOOST_TEST(s.facts(0, e) == S({"!edge(@2, 6)", "!edge(@2, 9)", "!edge(@3, 8)", "!edge(@1, 4)"}),
+             boost::test_tools::per_element());
+}

@@ -1,0 +1,120 @@
+// The databases of all nodes (spec §6.3): per node and predicate, linear facts in insertion order,
+// persistent facts with counts, aggregated persistent predicates kept eagerly with retraction
+// (§6.8), and optional per-field indexes. Storage is one FactTable per relation shared by all nodes
+// (fact_table.hpp); per node there is only one ListHead per relation, kept node-major.
+//
+// The Database stores and reports; it does not run rules. derive/retract return a Change saying
+// which visible fact appeared or disappeared, so that the rule engine can run the persistent
+// processes in positive or negative mode (§6.5, §6.8).
+//
+// Lifetime: the Heap and the PredicateTable must outlive the Database. Argument pointers returned
+// by args() stay valid until the next insertion into the same predicate.
+#pragma once
+
+#include <cstdint>
+#include <span>
+#include <vector>
+
+#include "meldvm/fact_table.hpp"
+#include "meldvm/heap.hpp"
+#include "meldvm/predicate.hpp"
+
+namespace meldvm {
+
+struct Change {
+  bool found = true;        // retract: the fact (or aggregate input) was stored
+  bool added = false;       // a visible fact appeared: count 0 -> 1, or a new aggregate value
+  bool removed = false;     // a visible fact disappeared: count -> 0, or an aggregate value replaced
+  std::uint32_t count = 0;  // copies of the derived/retracted fact (or aggregate input) afterwards
+  // Arguments of the appeared / disappeared visible fact; valid until the next change of the
+  // database (the disappeared fact's boxed values are kept alive until then).
+  std::span<const Value> addedArgs, removedArgs;
+};
+
+class Database {
+ public:
+  Database(const PredicateTable& preds, Heap& heap);
+  Database(const Database&) = delete;
+  Database& operator=(const Database&) = delete;
+  ~Database();
+
+  // Nodes are numbered densely from 0. addNodes returns the first new id.
+  NodeId addNodes(NodeId count);
+  NodeId nodeCount() const { return NodeId(alive_.size()); }
+  bool alive(NodeId n) const { return alive_[n] != 0; }
+  // Drops every fact of the node (created nodes collected by the GC, §6.10); the dump skips it.
+  void removeNode(NodeId n);
+
+  // An index on one field (home excluded), for `index p/N` or wherever match plans look facts up
+  // by a bound field. Must be requested before any fact of the predicate is stored. Idempotent;
+  // returns the index handle for firstWithKey.
+  std::uint32_t requestIndex(PredId p, std::uint32_t field);
+
+  // Linear predicates.
+  FactRef addLinear(NodeId n, PredId p, const Value* args);
+  void consume(NodeId n, PredId p, FactRef f);  // read next(p, f) first when iterating
+  // In-place update (§6.4.5): new arguments; the fact keeps its list position unless moveToBack.
+  void updateLinear(NodeId n, PredId p, FactRef f, const Value* args, bool moveToBack);
+
+  // Persistent predicates, aggregated ones included (then args is an aggregate input).
+  Change derive(NodeId n, PredId p, const Value* args, std::uint32_t copies = 1);
+  Change retract(NodeId n, PredId p, const Value* args, std::uint32_t copies = 1);
+
+  // Reading the visible facts of a node, in store order: linear facts in insertion order;
+  // persistent facts grouped by their first field (groups in order of first appearance, facts in
+  // insertion order inside a group) like the established VM's trie at its first level (§11).
+  // Aggregate values: one per group, a changed value moves to the end; compact: insertion order.
+  FactRef first(NodeId n, PredId p) const { return head(n, p).first; }
+  FactRef next(PredId p, FactRef f) const { return tables_[p].next(f); }
+  const Value* args(PredId p, FactRef f) const { return tables_[p].args(f); }
+  std::uint32_t copies(PredId p, FactRef f) const { return tables_[p].count(f); }
+  std::uint32_t factCount(NodeId n, PredId p) const { return head(n, p).size; }  // distinct facts
+  // The visible persistent fact with exactly these arguments, or kNoFact.
+  FactRef find(NodeId n, PredId p, const Value* args) const;
+  // Facts of the node whose indexed field equals key, in insertion order.
+  FactRef firstWithKey(NodeId n, PredId p, std::uint32_t index, Value key) const {
+    return tables_[p].firstWithKey(n, index, &key);
+  }
+  FactRef nextWithKey(PredId p, std::uint32_t index, FactRef f) const {
+    return tables_[p].nextWithKey(index, f);
+  }
+  // Distinct inputs stored for an aggregated predicate at a node.
+  std::uint32_t aggregateInputs(NodeId n, PredId p) const;
+
+  const PredicateTable& predicates() const { return preds_; }
+  const TypeTable& types() const { return heap_.types(); }
+  Heap& heap() const { return heap_; }
+
+ private:
+  static constexpr std::uint32_t kNoTable = 0xFFFFFFFFu;
+
+  const ListHead& head(NodeId n, std::uint32_t table) const {
+    return heads_[std::size_t(n) * tables_.size() + table];
+  }
+  ListHead& head(NodeId n, std::uint32_t table) { return heads_[std::size_t(n) * tables_.size() + table]; }
+  const PredicateDesc& storedPredicate(PredId p, bool linear) const;
+  void checkNode(NodeId n) const;
+  // Releases what the previous Change kept alive.
+  void clearScratch();
+  void keepRemoved(PredId p, FactRef f);  // copies a visible fact into removed_ before erasing it
+  Change aggregateChange(NodeId n, PredId p, const Value* args, std::uint32_t copies, bool add);
+  bool computeAggregate(NodeId n, PredId p);  // fills next_ from the group of input_; false if empty
+
+  const PredicateTable& preds_;
+  Heap& heap_;
+  std::vector<FactTable> tables_;          // one per predicate, then one per aggregated predicate
+  std::vector<std::uint32_t> inputTable_;  // per predicate: its aggregate input table, or kNoTable
+  std::vector<ListHead> heads_;            // node-major: heads_[node * tables + table]
+  std::vector<std::uint8_t> alive_;
+  std::vector<std::uint8_t> grouped_;  // per predicate: new persistent facts join their first-field group
+
+  // Scratch of the last change (reserved once, so changes allocate nothing).
+  std::vector<Value> added_, removed_, input_, next_;
+  PredId removedPred_ = 0, inputPred_ = 0;
+  bool holdsRemoved_ = false, holdsInput_ = false;
+  Value sumList_;  // a `sum list float` result built by the last change (owned reference)
+  std::vector<double> sums_;
+  std::vector<Value> sumItems_;
+};
+
+}  // namespace meldvm

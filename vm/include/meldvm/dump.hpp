@@ -1,0 +1,21 @@
+// The database dump of spec §8 (the established VM's `meld -d`), byte for byte: for each live node
+// in increasing id, its id on a line, then for each predicate in byte-wise name order one line per
+// fact (a persistent fact once per copy), the lines of one predicate sorted byte-wise.
+#pragma once
+
+#include <ostream>
+#include <string>
+
+#include "meldvm/database.hpp"
+
+namespace meldvm {
+
+// One fact as printed: "!" for persistent predicates, the name, "(", the arguments without the
+// home separated by ", ", ")". The home argument is not printed.
+void appendFact(std::string& out, const Database& db, PredId p, const Value* args);
+
+void dumpDatabase(std::string& out, const Database& db);
+std::string dumpDatabase(const Database& db);
+void dumpDatabase(std::ostream& os, const Database& db);
+
+}  // namespace meldvm

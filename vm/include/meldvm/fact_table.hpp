@@ -1,0 +1,120 @@
+// The storage of one relation for all nodes: a predicate's visible facts, or the inputs of an
+// aggregated predicate. Facts live in one growing array of fixed-size slots (recycled through a
+// free list, so the steady state allocates nothing), and each node's facts form a doubly-linked
+// list through their slots, in insertion order. The list heads are kept by the caller (the
+// Database keeps them node-major, so one node's heads share cache lines).
+//
+// Slot layout, in 8-byte words: [prev | next] [node | count] then one [prev | next] word per index
+// chain, then the arguments (home excluded). A free slot has count 0 and links through `next`.
+//
+// Optional de-duplication table (persistent facts: node + all arguments -> slot) and optional
+// indexes: an index on a key (a run of fields) keeps, per (node, key value), a chain of the facts
+// with that key in insertion order; the hash table maps the key to the chain head, whose `prev`
+// link points at the chain tail.
+#pragma once
+
+#include <cstdint>
+#include <vector>
+
+#include "meldvm/heap.hpp"
+#include "meldvm/slot_hash.hpp"
+#include "meldvm/types.hpp"
+#include "meldvm/value.hpp"
+
+namespace meldvm {
+
+using FactRef = std::uint32_t;
+inline constexpr FactRef kNoFact = 0xFFFFFFFFu;
+
+struct ListHead {
+  FactRef first = kNoFact;
+  FactRef last = kNoFact;
+  std::uint32_t size = 0;  // number of slots (distinct facts) in the list
+};
+
+class FactTable {
+ public:
+  struct KeySpec {
+    std::uint32_t first, count;  // key = fields [first, first + count); count may be 0 (node only)
+  };
+
+  FactTable(const TypeTable& types, Heap& heap, std::vector<TypeId> fields, bool dedup);
+  ~FactTable();  // releases the boxed arguments of the facts still stored
+  FactTable(FactTable&&) = default;
+
+  // Indexes must be added while the table is empty (the slot layout depends on their number).
+  std::uint32_t addIndex(KeySpec key);
+  std::uint32_t indexCount() const { return std::uint32_t(indexes_.size()); }
+  KeySpec indexKey(std::uint32_t index) const { return indexes_[index].key; }
+
+  // Adds a fact to the node's list (at the end, or right after `after`) and at the end of its index
+  // chains; the boxed arguments are retained.
+  FactRef insert(ListHead& list, NodeId node, const Value* args, std::uint32_t count,
+                 FactRef after = kNoFact);
+  // Removes a fact; its boxed arguments are released. Read next(f) before erasing f.
+  void erase(ListHead& list, FactRef f);
+  void moveToBack(ListHead& list, FactRef f);
+  // New arguments for a stored fact (in-place update); it moves to the end of its index chains.
+  void replaceArgs(FactRef f, const Value* args);
+  void setCount(FactRef f, std::uint32_t count) { setHi(base(f) + 1, count); }
+
+  // De-duplicating tables only: the fact of this node with exactly these arguments, or kNoFact.
+  FactRef find(NodeId node, const Value* args) const;
+  FactRef firstWithKey(NodeId node, std::uint32_t index, const Value* key) const;
+  FactRef nextWithKey(std::uint32_t index, FactRef f) const { return hi(base(f) + 2 + index); }
+  FactRef lastWithKey(NodeId node, std::uint32_t index, const Value* key) const {
+    const FactRef head = firstWithKey(node, index, key);
+    return head == kNoFact ? kNoFact : lo(base(head) + 2 + index);  // the head's prev is the tail
+  }
+
+  FactRef next(FactRef f) const { return hi(base(f)); }
+  NodeId node(FactRef f) const { return lo(base(f) + 1); }
+  std::uint32_t count(FactRef f) const { return hi(base(f) + 1); }
+  // Valid until the next insertion into this table (the slot array may move).
+  const Value* args(FactRef f) const { return words_.data() + base(f) + argOffset_; }
+
+  std::uint32_t arity() const { return std::uint32_t(fields_.size()); }
+  const std::vector<TypeId>& fields() const { return fields_; }
+  std::uint32_t liveFacts() const { return live_; }
+  std::size_t bytesReserved() const { return words_.capacity() * sizeof(Value); }
+
+  // Hash of a node and `count` key values with the types of fields [first, first + count).
+  std::uint64_t hashKey(NodeId node, const Value* key, KeySpec spec) const;
+  bool keyEqual(FactRef f, const Value* key, KeySpec spec) const;
+
+ private:
+  struct Index {
+    KeySpec key;
+    SlotHash heads;
+  };
+
+  std::size_t base(FactRef f) const { return std::size_t(f) * stride_; }
+  std::uint32_t lo(std::size_t w) const { return std::uint32_t(words_[w].bits()); }
+  std::uint32_t hi(std::size_t w) const { return std::uint32_t(words_[w].bits() >> 32); }
+  void setLo(std::size_t w, std::uint32_t v) {
+    words_[w] = Value::fromBits((words_[w].bits() & 0xFFFFFFFF00000000ull) | v);
+  }
+  void setHi(std::size_t w, std::uint32_t v) {
+    words_[w] = Value::fromBits((words_[w].bits() & 0xFFFFFFFFull) | (std::uint64_t(v) << 32));
+  }
+  FactRef prevOf(FactRef f) const { return lo(base(f)); }
+
+  void linkIndexes(FactRef f);
+  void unlinkIndexes(FactRef f);
+  void retainArgs(const Value* args);
+  void releaseArgs(FactRef f);
+
+  const TypeTable& types_;
+  Heap& heap_;
+  std::vector<TypeId> fields_;
+  std::vector<std::uint32_t> boxedFields_;  // positions to retain/release
+  std::vector<Index> indexes_;
+  bool dedup_;
+  SlotHash facts_;  // de-duplication: node + all arguments
+  std::uint32_t stride_ = 0, argOffset_ = 0;
+  std::vector<Value> words_;
+  FactRef freeList_ = kNoFact;
+  std::uint32_t live_ = 0;
+};
+
+}  // namespace meldvm

@@ -1,0 +1,37 @@
+// Operations on typed values: equality and hashing (fact identity in the store), a total order
+// (aggregates, sorting built-ins) and the text form of the database dump (spec §8).
+#pragma once
+
+#include <cstdint>
+#include <string>
+
+#include "meldvm/types.hpp"
+#include "meldvm/value.hpp"
+
+namespace meldvm {
+
+// Structural equality. Floats compare as numbers (0.0 == -0.0), except that a NaN equals a NaN with
+// the same bits, so that a fact holding a NaN is still one fact in a persistent store.
+bool valuesEqual(const TypeTable& types, TypeId t, Value a, Value b);
+
+// Consistent with valuesEqual.
+std::uint64_t hashValue(const TypeTable& types, TypeId t, Value v);
+
+// Negative, zero or positive. Numbers by value (NaN after everything), bool false < true, nodes and
+// threads by id, strings byte-wise, lists/structs/arrays/sets lexicographically by item.
+int compareValues(const TypeTable& types, TypeId t, Value a, Value b);
+
+// Appends the dump form of a value (§8): int decimal, float as printf("%.5g"), true/false, @N, #TN,
+// "raw string", [a,b] (no spaces, every element), :(a, b), #[a, b], {a, b}.
+void appendValue(std::string& out, const TypeTable& types, TypeId t, Value v);
+void appendFloat(std::string& out, double d);
+
+// 64-bit mixing step shared by the store's hash tables.
+inline std::uint64_t mixHash(std::uint64_t h, std::uint64_t v) {
+  h ^= v + 0x9e3779b97f4a7c15ull + (h << 6) + (h >> 2);
+  h ^= h >> 31;
+  h *= 0xbf58476d1ce4e5b9ull;
+  return h ^ (h >> 29);
+}
+
+}  // namespace meldvm

@@ -1,0 +1,195 @@
+#include "meldvm/database.hpp"
+
+#include <algorithm>
+#include <stdexcept>
+#include <string>
+
+#include "meldvm/value_ops.hpp"
+
+namespace meldvm {
+
+Database::Database(const PredicateTable& preds, Heap& heap) : preds_(preds), heap_(heap) {
+  const TypeTable& types = heap.types();
+  std::size_t aggregated = 0, maxArity = 0;
+  for (PredId p = 0; p < preds.size(); ++p) {
+    aggregated += preds[p].aggregated() ? 1 : 0;
+    maxArity = std::max<std::size_t>(maxArity, preds[p].arity());
+  }
+  // Reserved up front: FactTables never move once facts exist.
+  tables_.reserve(preds.size() + aggregated);
+  inputTable_.assign(preds.size(), kNoTable);
+  for (PredId p = 0; p < preds.size(); ++p) {
+    const PredicateDesc& d = preds[p];
+    const bool dedup = d.persistent() && !d.compact && !d.aggregated();
+    tables_.emplace_back(types, heap, d.fields, dedup);
+    // The first-field grouping of persistent facts uses an index on field 0 (also what a rule
+    // asking for an index on field 0 gets).
+    grouped_.push_back(dedup && d.arity() > 0);
+    if (grouped_.back()) tables_.back().addIndex({0, 1});
+    // Aggregated: the visible facts keep one fact per group, found through index 0 on the group.
+    if (d.aggregated()) tables_.back().addIndex({0, d.aggregateField});
+  }
+  for (PredId p = 0; p < preds.size(); ++p) {
+    const PredicateDesc& d = preds[p];
+    if (!d.aggregated()) continue;
+    inputTable_[p] = std::uint32_t(tables_.size());
+    tables_.emplace_back(types, heap, d.fields, true);  // inputs: a multiset, grouped by index 0
+    tables_.back().addIndex({0, d.aggregateField});
+  }
+  for (auto* v : {&added_, &removed_, &input_, &next_}) v->reserve(maxArity);
+}
+
+Database::~Database() { clearScratch(); }
+
+void Database::checkNode(NodeId n) const {
+  if (n >= alive_.size() || !alive_[n]) throw std::out_of_range("meldvm: no node " + std::to_string(n));
+}
+
+const PredicateDesc& Database::storedPredicate(PredId p, bool linear) const {
+  if (p >= preds_.size()) throw std::out_of_range("meldvm: no predicate " + std::to_string(p));
+  const PredicateDesc& d = preds_[p];
+  if (d.action) throw std::logic_error("meldvm: action '" + d.name + "' is executed, not stored");
+  if (d.linear != linear)
+    throw std::logic_error("meldvm: '" + d.name + "' is " + (d.linear ? "linear" : "persistent"));
+  return d;
+}
+
+NodeId Database::addNodes(NodeId count) {
+  const NodeId firstNew = nodeCount();
+  alive_.resize(alive_.size() + count, 1);
+  heads_.resize(alive_.size() * tables_.size());
+  return firstNew;
+}
+
+void Database::removeNode(NodeId n) {
+  checkNode(n);
+  clearScratch();
+  for (std::uint32_t t = 0; t < tables_.size(); ++t) {
+    ListHead& h = head(n, t);
+    while (h.first != kNoFact) tables_[t].erase(h, h.first);
+  }
+  alive_[n] = 0;
+}
+
+std::uint32_t Database::requestIndex(PredId p, std::uint32_t field) {
+  if (p >= preds_.size()) throw std::out_of_range("meldvm: no predicate " + std::to_string(p));
+  FactTable& t = tables_[p];
+  for (std::uint32_t x = 0; x < t.indexCount(); ++x)
+    if (t.indexKey(x).first == field && t.indexKey(x).count == 1) return x;
+  return t.addIndex({field, 1});
+}
+
+FactRef Database::addLinear(NodeId n, PredId p, const Value* args) {
+  storedPredicate(p, true);
+  checkNode(n);
+  clearScratch();
+  return tables_[p].insert(head(n, p), n, args, 1);
+}
+
+void Database::consume(NodeId n, PredId p, FactRef f) {
+  storedPredicate(p, true);
+  clearScratch();
+  tables_[p].erase(head(n, p), f);
+}
+
+void Database::updateLinear(NodeId n, PredId p, FactRef f, const Value* args, bool moveToBack) {
+  storedPredicate(p, true);
+  clearScratch();
+  tables_[p].replaceArgs(f, args);
+  if (moveToBack) tables_[p].moveToBack(head(n, p), f);
+}
+
+void Database::clearScratch() {
+  if (holdsRemoved_) {
+    const auto& fields = preds_[removedPred_].fields;
+    for (std::size_t i = 0; i < removed_.size(); ++i) heap_.release(fields[i], removed_[i]);
+    holdsRemoved_ = false;
+  }
+  if (holdsInput_) {
+    const auto& fields = preds_[inputPred_].fields;
+    for (std::size_t i = 0; i < input_.size(); ++i) heap_.release(fields[i], input_[i]);
+    holdsInput_ = false;
+  }
+  if (!sumList_.isNil()) {
+    // Only `sum list float` builds values; its field type is a list of floats.
+    heap_.release(sumList_.asObject()->type, sumList_);
+    sumList_ = Value::nil();
+  }
+  removed_.clear();
+  added_.clear();
+}
+
+void Database::keepRemoved(PredId p, FactRef f) {
+  const Value* a = tables_[p].args(f);
+  removed_.assign(a, a + preds_[p].arity());
+  for (std::size_t i = 0; i < removed_.size(); ++i) heap_.retain(preds_[p].fields[i], removed_[i]);
+  removedPred_ = p;
+  holdsRemoved_ = true;
+}
+
+FactRef Database::find(NodeId n, PredId p, const Value* args) const {
+  const PredicateDesc& d = preds_[p];
+  const FactTable& t = tables_[p];
+  if (d.persistent() && !d.compact && !d.aggregated()) return t.find(n, args);
+  const TypeTable& types = heap_.types();
+  for (FactRef f = head(n, p).first; f != kNoFact; f = t.next(f)) {
+    bool same = true;
+    for (std::uint32_t i = 0; i < d.arity() && same; ++i)
+      same = valuesEqual(types, d.fields[i], t.args(f)[i], args[i]);
+    if (same) return f;
+  }
+  return kNoFact;
+}
+
+std::uint32_t Database::aggregateInputs(NodeId n, PredId p) const {
+  return inputTable_[p] == kNoTable ? 0 : head(n, inputTable_[p]).size;
+}
+
+Change Database::derive(NodeId n, PredId p, const Value* args, std::uint32_t copies) {
+  const PredicateDesc& d = storedPredicate(p, false);
+  checkNode(n);
+  clearScratch();
+  if (d.aggregated()) return aggregateChange(n, p, args, copies, true);
+  FactTable& t = tables_[p];
+  Change c;
+  if (!d.compact) {  // compact predicates append every derivation (§4.4)
+    if (const FactRef f = t.find(n, args); f != kNoFact) {
+      t.setCount(f, t.count(f) + copies);
+      c.count = t.count(f);
+      return c;
+    }
+  }
+  const FactRef after = grouped_[p] ? t.lastWithKey(n, 0, args) : kNoFact;
+  const FactRef f = t.insert(head(n, p), n, args, copies, after);
+  added_.assign(t.args(f), t.args(f) + d.arity());
+  c.added = true;
+  c.count = copies;
+  c.addedArgs = added_;
+  return c;
+}
+
+Change Database::retract(NodeId n, PredId p, const Value* args, std::uint32_t copies) {
+  const PredicateDesc& d = storedPredicate(p, false);
+  checkNode(n);
+  clearScratch();
+  if (d.aggregated()) return aggregateChange(n, p, args, copies, false);
+  FactTable& t = tables_[p];
+  Change c;
+  const FactRef f = find(n, p, args);
+  if (f == kNoFact) {
+    c.found = false;
+    return c;
+  }
+  if (t.count(f) > copies) {
+    t.setCount(f, t.count(f) - copies);
+    c.count = t.count(f);
+    return c;
+  }
+  keepRemoved(p, f);
+  t.erase(head(n, p), f);
+  c.removed = true;
+  c.removedArgs = removed_;
+  return c;
+}
+
+}  // namespace meldvm

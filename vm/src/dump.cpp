@@ -1,0 +1,64 @@
+#include "meldvm/dump.hpp"
+
+#include <algorithm>
+#include <numeric>
+#include <vector>
+
+#include "meldvm/value_ops.hpp"
+
+namespace meldvm {
+
+void appendFact(std::string& out, const Database& db, PredId p, const Value* args) {
+  const PredicateDesc& d = db.predicates()[p];
+  if (d.persistent()) out += '!';
+  out += d.name;
+  out += '(';
+  for (std::uint32_t i = 0; i < d.arity(); ++i) {
+    if (i) out += ", ";
+    appendValue(out, db.types(), d.fields[i], args[i]);
+  }
+  out += ')';
+}
+
+void dumpDatabase(std::string& out, const Database& db) {
+  const PredicateTable& preds = db.predicates();
+  // By name only (the "!" prefix plays no part), byte-wise like std::string's operator<.
+  std::vector<PredId> order(preds.size());
+  std::iota(order.begin(), order.end(), PredId(0));
+  std::stable_sort(order.begin(), order.end(),
+                   [&](PredId a, PredId b) { return preds[a].name < preds[b].name; });
+
+  std::vector<std::string> lines;
+  for (NodeId n = 0; n < db.nodeCount(); ++n) {
+    if (!db.alive(n)) continue;  // created nodes deleted by the GC (§6.10)
+    out += std::to_string(n);
+    out += '\n';
+    for (PredId p : order) {
+      if (preds[p].action) continue;
+      lines.clear();
+      for (FactRef f = db.first(n, p); f != kNoFact; f = db.next(p, f)) {
+        std::string line;
+        appendFact(line, db, p, db.args(p, f));
+        // Aggregated predicates show each current value once; other persistent facts per copy.
+        const std::uint32_t copies = preds[p].aggregated() ? 1 : db.copies(p, f);
+        for (std::uint32_t c = 1; c < copies; ++c) lines.push_back(line);
+        lines.push_back(std::move(line));
+      }
+      std::sort(lines.begin(), lines.end());
+      for (const std::string& l : lines) {
+        out += l;
+        out += '\n';
+      }
+    }
+  }
+}
+
+std::string dumpDatabase(const Database& db) {
+  std::string out;
+  dumpDatabase(out, db);
+  return out;
+}
+
+void dumpDatabase(std::ostream& os, const Database& db) { os << dumpDatabase(db); }
+
+}  // namespace meldvm

@@ -1,0 +1,202 @@
+#include "meldvm/fact_table.hpp"
+
+#include <functional>
+#include <stdexcept>
+
+#include "meldvm/value_ops.hpp"
+
+namespace meldvm {
+
+FactTable::FactTable(const TypeTable& types, Heap& heap, std::vector<TypeId> fields, bool dedup)
+    : types_(types), heap_(heap), fields_(std::move(fields)), dedup_(dedup) {
+  for (std::uint32_t i = 0; i < fields_.size(); ++i)
+    if (types_.boxed(fields_[i])) boxedFields_.push_back(i);
+  argOffset_ = 2;
+  stride_ = argOffset_ + arity();
+}
+
+FactTable::~FactTable() {
+  if (boxedFields_.empty()) return;
+  for (FactRef f = 0; std::size_t(f) * stride_ < words_.size(); ++f)
+    if (count(f) != 0) releaseArgs(f);
+}
+
+std::uint32_t FactTable::addIndex(KeySpec key) {
+  if (!words_.empty()) throw std::logic_error("meldvm: index added to a table that already holds facts");
+  if (key.first + key.count > arity()) throw std::out_of_range("meldvm: index key beyond the arity");
+  indexes_.push_back(Index{key, {}});
+  argOffset_ = 2 + indexCount();
+  stride_ = argOffset_ + arity();
+  return indexCount() - 1;
+}
+
+std::uint64_t FactTable::hashKey(NodeId node, const Value* key, KeySpec spec) const {
+  std::uint64_t h = mixHash(0x6d656c64, node);
+  for (std::uint32_t i = 0; i < spec.count; ++i)
+    h = mixHash(h, hashValue(types_, fields_[spec.first + i], key[i]));
+  return h;
+}
+
+bool FactTable::keyEqual(FactRef f, const Value* key, KeySpec spec) const {
+  const Value* a = args(f) + spec.first;
+  for (std::uint32_t i = 0; i < spec.count; ++i)
+    if (!valuesEqual(types_, fields_[spec.first + i], a[i], key[i])) return false;
+  return true;
+}
+
+FactRef FactTable::find(NodeId n, const Value* a) const {
+  const KeySpec all{0, arity()};
+  return facts_.find(hashKey(n, a, all),
+                     [&](std::uint32_t f) { return node(f) == n && keyEqual(f, a, all); });
+}
+
+FactRef FactTable::firstWithKey(NodeId n, std::uint32_t index, const Value* key) const {
+  const KeySpec spec = indexes_[index].key;
+  return indexes_[index].heads.find(hashKey(n, key, spec),
+                                    [&](std::uint32_t f) { return node(f) == n && keyEqual(f, key, spec); });
+}
+
+void FactTable::retainArgs(const Value* a) {
+  for (std::uint32_t i : boxedFields_) heap_.retain(fields_[i], a[i]);
+}
+
+void FactTable::releaseArgs(FactRef f) {
+  const Value* a = args(f);
+  for (std::uint32_t i : boxedFields_) heap_.release(fields_[i], a[i]);
+}
+
+void FactTable::linkIndexes(FactRef f) {
+  const NodeId n = node(f);
+  for (std::uint32_t x = 0; x < indexCount(); ++x) {
+    const std::size_t w = base(f) + 2 + x;
+    const KeySpec spec = indexes_[x].key;
+    const Value* key = args(f) + spec.first;
+    const std::uint64_t h = hashKey(n, key, spec);
+    const FactRef head =
+        indexes_[x].heads.find(h, [&](std::uint32_t g) { return node(g) == n && keyEqual(g, key, spec); });
+    setHi(w, kNoFact);
+    if (head == kNoFact) {
+      setLo(w, f);  // a one-fact chain: the head is its own tail
+      indexes_[x].heads.insert(h, f);
+    } else {
+      const std::size_t hw = base(head) + 2 + x;
+      const FactRef tail = lo(hw);
+      setHi(base(tail) + 2 + x, f);
+      setLo(w, tail);
+      setLo(hw, f);
+    }
+  }
+}
+
+void FactTable::unlinkIndexes(FactRef f) {
+  const NodeId n = node(f);
+  for (std::uint32_t x = 0; x < indexCount(); ++x) {
+    const std::size_t w = base(f) + 2 + x;
+    const KeySpec spec = indexes_[x].key;
+    const Value* key = args(f) + spec.first;
+    const std::uint64_t h = hashKey(n, key, spec);
+    const FactRef head =
+        indexes_[x].heads.find(h, [&](std::uint32_t g) { return node(g) == n && keyEqual(g, key, spec); });
+    const FactRef p = lo(w), nx = hi(w);
+    if (head == f) {
+      if (nx == kNoFact) {
+        indexes_[x].heads.erase(h, f);
+      } else {
+        setLo(base(nx) + 2 + x, p);  // the new head points at the tail
+        indexes_[x].heads.replace(h, f, nx);
+      }
+    } else {
+      setHi(base(p) + 2 + x, nx);
+      setLo(base(nx == kNoFact ? head : nx) + 2 + x, p);
+    }
+  }
+}
+
+FactRef FactTable::insert(ListHead& list, NodeId n, const Value* a, std::uint32_t cnt, FactRef after) {
+  if (cnt == 0) throw std::invalid_argument("meldvm: a stored fact has a count of at least 1");
+  retainArgs(a);
+  FactRef f;
+  if (freeList_ != kNoFact) {
+    f = freeList_;
+    freeList_ = next(f);
+  } else {
+    if (words_.size() / stride_ >= kNoFact - 1) throw std::length_error("meldvm: too many facts");
+    f = FactRef(words_.size() / stride_);
+    // `a` may point into words_ (arguments read from this very table), which the resize may move:
+    // re-point it into the new array then.
+    const Value* begin = words_.data();
+    if (std::greater_equal<const Value*>()(a, begin) && std::less<const Value*>()(a, begin + words_.size())) {
+      const std::size_t off = std::size_t(a - begin);
+      words_.resize(words_.size() + stride_);
+      a = words_.data() + off;
+    } else {
+      words_.resize(words_.size() + stride_);
+    }
+  }
+  const std::size_t b = base(f);
+  for (std::uint32_t i = 0; i < arity(); ++i) words_[b + argOffset_ + i] = a[i];
+  words_[b + 1] = Value::fromBits((std::uint64_t(cnt) << 32) | n);
+  const FactRef p = after == kNoFact ? list.last : after;
+  const FactRef nx = after == kNoFact ? kNoFact : next(after);
+  words_[b] = Value::fromBits((std::uint64_t(nx) << 32) | p);
+  if (p == kNoFact)
+    list.first = f;
+  else
+    setHi(base(p), f);
+  if (nx == kNoFact)
+    list.last = f;
+  else
+    setLo(base(nx), f);
+  ++list.size;
+  linkIndexes(f);
+  if (dedup_) facts_.insert(hashKey(n, args(f), KeySpec{0, arity()}), f);
+  ++live_;
+  return f;
+}
+
+void FactTable::erase(ListHead& list, FactRef f) {
+  unlinkIndexes(f);
+  if (dedup_) facts_.erase(hashKey(node(f), args(f), KeySpec{0, arity()}), f);
+  const FactRef p = prevOf(f), nx = next(f);
+  if (p == kNoFact)
+    list.first = nx;
+  else
+    setHi(base(p), nx);
+  if (nx == kNoFact)
+    list.last = p;
+  else
+    setLo(base(nx), p);
+  --list.size;
+  releaseArgs(f);
+  words_[base(f) + 1] = Value::fromBits(0);  // count 0 marks the slot free
+  setHi(base(f), freeList_);
+  freeList_ = f;
+  --live_;
+}
+
+void FactTable::moveToBack(ListHead& list, FactRef f) {
+  if (list.last == f) return;
+  const FactRef p = prevOf(f), nx = next(f);
+  if (p == kNoFact)
+    list.first = nx;
+  else
+    setHi(base(p), nx);
+  setLo(base(nx), p);
+  setLo(base(f), list.last);
+  setHi(base(f), kNoFact);
+  setHi(base(list.last), f);
+  list.last = f;
+}
+
+void FactTable::replaceArgs(FactRef f, const Value* a) {
+  unlinkIndexes(f);
+  const KeySpec all{0, arity()};
+  if (dedup_) facts_.erase(hashKey(node(f), args(f), all), f);
+  retainArgs(a);  // before releasing: the new values may be the old ones
+  releaseArgs(f);
+  for (std::uint32_t i = 0; i < arity(); ++i) words_[base(f) + argOffset_ + i] = a[i];
+  linkIndexes(f);
+  if (dedup_) facts_.insert(hashKey(node(f), args(f), all), f);
+}
+
+}  // namespace meldvm

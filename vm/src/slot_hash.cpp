@@ -1,0 +1,60 @@
+#include "meldvm/slot_hash.hpp"
+
+namespace meldvm {
+
+void SlotHash::grow() {
+  std::vector<Entry> old = std::move(entries_);
+  entries_.assign(old.empty() ? 16 : old.size() * 2, Entry{0, kNone});
+  mask_ = std::uint32_t(entries_.size() - 1);
+  for (const Entry& e : old) {
+    if (e.slot == kNone) continue;
+    std::uint32_t i = e.hash & mask_;
+    while (entries_[i].slot != kNone) i = (i + 1) & mask_;
+    entries_[i] = e;
+  }
+}
+
+void SlotHash::insert(std::uint64_t hash, std::uint32_t slot) {
+  if ((size_ + 1) * 2 > entries_.size()) grow();  // load factor at most 1/2
+  const std::uint32_t h = fold(hash);
+  std::uint32_t i = h & mask_;
+  while (entries_[i].slot != kNone) i = (i + 1) & mask_;
+  entries_[i] = Entry{h, slot};
+  ++size_;
+}
+
+std::uint32_t SlotHash::indexOf(std::uint32_t h, std::uint32_t slot) const {
+  if (size_ == 0) return kNone;
+  for (std::uint32_t i = h & mask_;; i = (i + 1) & mask_) {
+    const Entry& e = entries_[i];
+    if (e.slot == kNone) return kNone;
+    if (e.slot == slot) return i;
+  }
+}
+
+bool SlotHash::replace(std::uint64_t hash, std::uint32_t oldSlot, std::uint32_t newSlot) {
+  const std::uint32_t i = indexOf(fold(hash), oldSlot);
+  if (i == kNone) return false;
+  entries_[i].slot = newSlot;
+  return true;
+}
+
+bool SlotHash::erase(std::uint64_t hash, std::uint32_t slot) {
+  std::uint32_t i = indexOf(fold(hash), slot);
+  if (i == kNone) return false;
+  // Backward shift: pull later entries of the probe run into the hole when their home position
+  // does not lie cyclically in (hole, their position].
+  for (std::uint32_t j = (i + 1) & mask_; entries_[j].slot != kNone; j = (j + 1) & mask_) {
+    const std::uint32_t home = entries_[j].hash & mask_;
+    const bool stays = i <= j ? (i < home && home <= j) : (i < home || home <= j);
+    if (!stays) {
+      entries_[i] = entries_[j];
+      i = j;
+    }
+  }
+  entries_[i] = Entry{0, kNone};
+  --size_;
+  return true;
+}
+
+}  // namespace meldvm
