@@ -1,0 +1,26 @@
+// The front-end pipeline of the driver: load (parse + include merging), apply -D definitions,
+// resolve names. One function so that tests run exactly what `meldc --check` runs.
+#pragma once
+
+#include <optional>
+#include <string>
+#include <utility>
+#include <vector>
+
+#include "meldc/ast/program.hpp"
+#include "meldc/diagnostics.hpp"
+#include "meldc/source.hpp"
+
+namespace meldc {
+
+struct FrontEndInput {
+  std::string path;
+  std::vector<std::string> includeDirs;
+  std::vector<std::pair<std::string, std::string>> defines;  // NAME, VALUE (a Meld expression)
+};
+
+// Returns the checked program, or nullopt when there were errors (all reported to `diag`).
+std::optional<ast::Program> runFrontEnd(const FrontEndInput& input, SourceManager& sources,
+                                        Diagnostics& diag);
+
+}  // namespace meldc

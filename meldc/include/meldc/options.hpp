@@ -1,0 +1,33 @@
+// Command line of the `meldc` driver.
+#pragma once
+
+#include <optional>
+#include <string>
+#include <utility>
+#include <vector>
+
+namespace meldc {
+
+enum class EmitKind { Bytecode, Asm, Ast, Check };
+
+// Exit codes of meldc.
+inline constexpr int kExitOk = 0;
+inline constexpr int kExitProgramErrors = 1;  // the Meld program has errors
+inline constexpr int kExitUsage = 2;          // bad command line, or output not implemented yet
+
+struct Options {
+  std::string input;
+  std::string output;  // -o; empty = stdout
+  std::vector<std::string> includeDirs;
+  std::vector<std::pair<std::string, std::string>> defines;  // -DNAME=VALUE
+  EmitKind emit = EmitKind::Bytecode;
+  bool help = false;
+  bool version = false;
+};
+
+// Parses argv; on a usage error returns nullopt and sets `error`.
+std::optional<Options> parseOptions(const std::vector<std::string>& args, std::string& error);
+
+const char* usageText();
+
+}  // namespace meldc

@@ -1,0 +1,60 @@
+#include "meldc/frontend.hpp"
+
+#include <cctype>
+
+#include "meldc/includes.hpp"
+#include "meldc/names.hpp"
+#include "meldc/parser.hpp"
+
+namespace meldc {
+
+namespace {
+
+bool sameName(const std::string& a, const std::string& b) {
+  if (a.size() != b.size()) return false;
+  for (size_t i = 0; i < a.size(); ++i)
+    if (std::tolower(static_cast<unsigned char>(a[i])) != std::tolower(static_cast<unsigned char>(b[i])))
+      return false;
+  return true;
+}
+
+// -DNAME=VALUE: VALUE is parsed as an expression (diagnostics name the source "-DNAME").
+void applyDefines(const FrontEndInput& input, ast::Program& program, SourceManager& sources,
+                  Diagnostics& diag) {
+  for (const auto& [name, value] : input.defines) {
+    uint32_t file = sources.add("-D" + name, value);
+    std::optional<ast::Expr> expr = parseExpression(file, sources, diag);
+    if (!expr) continue;
+    bool replaced = false;
+    for (ast::ConstDecl& c : program.consts) {
+      if (sameName(c.name, name)) {
+        c.value = *expr;
+        c.fromCommandLine = true;
+        replaced = true;
+      }
+    }
+    if (!replaced) {
+      ast::ConstDecl c;
+      c.loc = SourceLoc{file, 1, 1};
+      c.name = name;
+      c.value = std::move(*expr);
+      c.fromCommandLine = true;
+      program.consts.push_back(std::move(c));
+    }
+  }
+}
+
+}  // namespace
+
+std::optional<ast::Program> runFrontEnd(const FrontEndInput& input, SourceManager& sources,
+                                        Diagnostics& diag) {
+  std::optional<ast::Program> program = loadProgram(input.path, input.includeDirs, sources, diag);
+  if (!program) return std::nullopt;
+  applyDefines(input, *program, sources, diag);
+  if (diag.hasErrors()) return std::nullopt;  // names would only repeat what is already broken
+  resolveNames(*program, diag);
+  if (diag.hasErrors()) return std::nullopt;
+  return program;
+}
+
+}  // namespace meldc

@@ -1,0 +1,120 @@
+#include "meldc/includes.hpp"
+
+#include <filesystem>
+#include <set>
+#include <system_error>
+
+#include "meldc/parser.hpp"
+
+namespace meldc {
+
+namespace fs = std::filesystem;
+
+namespace {
+
+class IncludeLoader {
+ public:
+  IncludeLoader(const std::vector<std::string>& dirs, SourceManager& sources, Diagnostics& diag)
+      : dirs_(dirs), sources_(sources), diag_(diag) {}
+
+  // Loads and merges one file; `from` is the include that names it (invalid for the main file).
+  std::optional<ast::Program> load(const std::string& path, SourceLoc from) {
+    uint32_t file = 0;
+    readOk_ = false;
+    if (!sources_.load(path, file)) {
+      if (from.valid())
+        diag_.error(from, "cannot read included file '" + path + "'");
+      else
+        diag_.errorNoLoc("cannot read '" + path + "'");
+      return std::nullopt;
+    }
+    std::string key = canonical(path);
+    active_.insert(key);
+    seen_.insert(key);
+    readOk_ = true;
+    std::optional<ast::Program> program = parseFile(file, sources_, diag_);
+    if (!program) {
+      active_.erase(key);
+      return std::nullopt;
+    }
+    std::vector<ast::Program> included;
+    for (const ast::IncludeDecl& inc : program->includes) {
+      std::string resolved;
+      if (!resolve(path, inc.path, resolved)) {
+        diag_.error(inc.loc, "cannot find included file '" + inc.path + "'" + searched(path));
+        continue;
+      }
+      std::string incKey = canonical(resolved);
+      if (active_.count(incKey)) {
+        diag_.error(inc.loc, "include cycle: '" + resolved + "' is already being included");
+        continue;
+      }
+      if (seen_.count(incKey)) continue;  // included once already
+      if (auto sub = load(resolved, inc.loc))
+        included.push_back(std::move(*sub));
+      else if (readOk_)
+        diag_.note(inc.loc, "in the file included here");
+    }
+    active_.erase(key);
+    for (auto it = included.rbegin(); it != included.rend(); ++it) program->append(std::move(*it));
+    return program;
+  }
+
+ private:
+  static std::string canonical(const std::string& path) {
+    std::error_code ec;
+    fs::path p = fs::weakly_canonical(fs::path(path), ec);
+    return ec ? fs::path(path).lexically_normal().string() : p.string();
+  }
+
+  static bool isFile(const fs::path& p) {
+    std::error_code ec;
+    return fs::is_regular_file(p, ec);
+  }
+
+  bool resolve(const std::string& includer, const std::string& name, std::string& out) const {
+    fs::path rel(name);
+    if (rel.is_absolute()) {
+      out = rel.lexically_normal().string();
+      return isFile(rel);
+    }
+    fs::path first = (fs::path(includer).parent_path() / rel).lexically_normal();
+    if (isFile(first)) {
+      out = first.string();
+      return true;
+    }
+    for (const std::string& dir : dirs_) {
+      fs::path candidate = (fs::path(dir) / rel).lexically_normal();
+      if (isFile(candidate)) {
+        out = candidate.string();
+        return true;
+      }
+    }
+    return false;
+  }
+
+  std::string searched(const std::string& includer) const {
+    std::string dir = fs::path(includer).parent_path().string();
+    std::string out = " (searched " + (dir.empty() ? std::string(".") : dir);
+    for (const std::string& d : dirs_) out += ", " + d;
+    return out + ")";
+  }
+
+  const std::vector<std::string>& dirs_;
+  SourceManager& sources_;
+  Diagnostics& diag_;
+  std::set<std::string> active_;  // files on the current include chain
+  std::set<std::string> seen_;    // every file loaded so far
+  bool readOk_ = false;           // the last load() could read its file (errors were in its text)
+};
+
+}  // namespace
+
+std::optional<ast::Program> loadProgram(const std::string& mainPath,
+                                        const std::vector<std::string>& includeDirs, SourceManager& sources,
+                                        Diagnostics& diag) {
+  IncludeLoader loader(includeDirs, sources, diag);
+  return loader.load(mainPath, SourceLoc{});
+}
+
+}  // namespace meldc

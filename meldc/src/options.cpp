@@ -1,0 +1,105 @@
+#include "meldc/options.hpp"
+
+namespace meldc {
+
+namespace {
+
+bool validConstName(const std::string& name) {
+  if (name.empty() || name[0] < 'a' || name[0] > 'z') return false;
+  for (char c : name)
+    if (!((c >= 'a' && c <= 'z') || (c >= 'A' && c <= 'Z') || (c >= '0' && c <= '9') || c == '_' ||
+          c == '?' || c == '-'))
+      return false;
+  return true;
+}
+
+}  // namespace
+
+const char* usageText() {
+  return "usage: meldc FILE.meld [-o OUT] [-I DIR]... [-DNAME=VALUE]... [--check | --emit=KIND]\n"
+         "\n"
+         "Compiles a Linear Meld program. This version is the compiler's FRONT END ONLY: it parses\n"
+         "the program, merges its includes and resolves names. Bytecode output (.mbc, --emit=bytecode,\n"
+         "the default) and disassembly (--emit=asm) are NOT IMPLEMENTED YET: asking for them is an\n"
+         "error (exit code 2). Use --check or --emit=ast.\n"
+         "\n"
+         "options:\n"
+         "  --check          parse and check the program; print diagnostics only\n"
+         "  --emit=ast       print the parsed program (declarations, rules with body and head)\n"
+         "  --emit=bytecode  write bytecode (default) -- not implemented yet\n"
+         "  --emit=asm       print a bytecode disassembly -- not implemented yet\n"
+         "  -o OUT           write the --emit output to OUT instead of standard output\n"
+         "  -I DIR           search DIR for included files, after the including file's folder\n"
+         "  -DNAME=VALUE     define the constant NAME as the Meld expression VALUE (replaces a\n"
+         "                   'const NAME = ...' of the program, or adds one)\n"
+         "  --help           print this help\n"
+         "  --version        print the version\n"
+         "\n"
+         "Diagnostics go to standard error as FILE:LINE:COL: error: MESSAGE with the source line.\n"
+         "exit codes: 0 success, 1 errors in the Meld program, 2 bad command line or output not\n"
+         "implemented yet.\n";
+}
+
+std::optional<Options> parseOptions(const std::vector<std::string>& args, std::string& error) {
+  Options o;
+  auto needValue = [&](size_t& i, const std::string& flag, std::string& out) {
+    if (i + 1 >= args.size()) {
+      error = "option '" + flag + "' needs a value";
+      return false;
+    }
+    out = args[++i];
+    return true;
+  };
+  for (size_t i = 0; i < args.size(); ++i) {
+    const std::string& a = args[i];
+    if (a == "--help" || a == "-h") {
+      o.help = true;
+    } else if (a == "--version") {
+      o.version = true;
+    } else if (a == "--check") {
+      o.emit = EmitKind::Check;
+    } else if (a.rfind("--emit=", 0) == 0) {
+      std::string kind = a.substr(7);
+      if (kind == "ast")
+        o.emit = EmitKind::Ast;
+      else if (kind == "bytecode")
+        o.emit = EmitKind::Bytecode;
+      else if (kind == "asm")
+        o.emit = EmitKind::Asm;
+      else {
+        error = "unknown --emit kind '" + kind + "' (expected ast, bytecode or asm)";
+        return std::nullopt;
+      }
+    } else if (a == "-o") {
+      if (!needValue(i, a, o.output)) return std::nullopt;
+    } else if (a == "-I" || (a.rfind("-I", 0) == 0 && a.size() > 2)) {
+      std::string dir = a.substr(2);
+      if (dir.empty() && !needValue(i, a, dir)) return std::nullopt;
+      o.includeDirs.push_back(dir);
+    } else if (a == "-D" || (a.rfind("-D", 0) == 0 && a.size() > 2)) {
+      std::string def = a.substr(2);
+      if (def.empty() && !needValue(i, a, def)) return std::nullopt;
+      size_t eq = def.find('=');
+      if (eq == std::string::npos || !validConstName(def.substr(0, eq)) || eq + 1 == def.size()) {
+        error = "bad definition '" + def + "' (expected -DNAME=VALUE with a lower-case NAME)";
+        return std::nullopt;
+      }
+      o.defines.emplace_back(def.substr(0, eq), def.substr(eq + 1));
+    } else if (a.size() > 1 && a[0] == '-') {
+      error = "unknown option '" + a + "'";
+      return std::nullopt;
+    } else if (o.input.empty()) {
+      o.input = a;
+    } else {
+      error = "more than one input file ('" + o.input + "' and '" + a + "')";
+      return std::nullopt;
+    }
+  }
+  if (o.input.empty() && !o.help && !o.version) {
+    error = "no input file";
+    return std::nullopt;
+  }
+  return o;
+}
+
+}  // namespace meldc

@@ -1,0 +1,115 @@
+#include "meldc/parser.hpp"
+
+#include "MeldLexer.h"
+#include "MeldParser.h"
+#include "antlr4-runtime.h"
+#include "ast_builder.hpp"
+#include "syntax_errors.hpp"
+
+namespace meldc {
+
+namespace {
+
+using meldgen::MeldLexer;
+using meldgen::MeldParser;
+
+// Everything one parse needs, in destruction-safe order.
+struct ParseSession {
+  ParseSession(uint32_t file, const SourceManager& sources, Diagnostics& diag)
+      : input(sources.file(file).text),
+        lexer(&input),
+        tokens(&lexer),
+        parser(&tokens),
+        lexErrors(diag, file),
+        strategy(std::make_shared<MeldErrorStrategy>(diag, file)) {
+    lexer.removeErrorListeners();
+    lexer.addErrorListener(&lexErrors);
+    parser.removeErrorListeners();
+    parser.addErrorListener(&lexErrors);
+    parser.setErrorHandler(strategy);
+  }
+
+  // Reports the tokens the lexer sets aside: stray characters (warning, skipped like cl-meld
+  // does), unterminated strings and comments (errors). Returns false on errors.
+  bool checkTokens(uint32_t file, Diagnostics& diag) {
+    tokens.fill();
+    bool ok = lexErrors.errors() == 0;
+    for (antlr4::Token* t : tokens.getTokens()) {
+      SourceLoc loc{file, static_cast<uint32_t>(t->getLine()),
+                    static_cast<uint32_t>(t->getCharPositionInLine()) + 1};
+      switch (t->getType()) {
+        case MeldLexer::STRAY:
+          diag.warning(loc, "ignoring stray character '" + t->getText() + "'");
+          break;
+        case MeldLexer::BAD_STRING:
+          diag.error(loc, "unterminated string (a string ends with '\"' on the same line)");
+          ok = false;
+          break;
+        case MeldLexer::UNTERMINATED_COMMENT:
+          diag.error(loc, "unterminated comment: '/*' without '*/'");
+          ok = false;
+          break;
+        default:
+          break;
+      }
+    }
+    return ok;
+  }
+
+  bool syntaxOk() const { return strategy->errors() == 0 && lexErrors.errors() == 0; }
+
+  antlr4::ANTLRInputStream input;
+  MeldLexer lexer;
+  antlr4::CommonTokenStream tokens;
+  MeldParser parser;
+  DiagnosticsListener lexErrors;
+  std::shared_ptr<MeldErrorStrategy> strategy;
+};
+
+// The ANTLR input stream throws on malformed UTF-8: report the first bad byte instead.
+bool validUtf8(uint32_t file, const SourceManager& sources, Diagnostics& diag) {
+  const std::string& text = sources.file(file).text;
+  uint32_t line = 1, col = 1;
+  for (size_t i = 0; i < text.size();) {
+    unsigned char c = static_cast<unsigned char>(text[i]);
+    size_t len = c < 0x80 ? 1 : (c >> 5) == 0x6 ? 2 : (c >> 4) == 0xE ? 3 : (c >> 3) == 0x1E ? 4 : 0;
+    bool ok = len != 0 && i + len <= text.size();
+    for (size_t k = 1; ok && k < len; ++k) ok = (static_cast<unsigned char>(text[i + k]) & 0xC0) == 0x80;
+    if (!ok) {
+      diag.error(SourceLoc{file, line, col}, "the file is not valid UTF-8 text (bad byte here)");
+      return false;
+    }
+    if (c == '\n') {
+      ++line;
+      col = 1;
+    } else {
+      ++col;
+    }
+    i += len;
+  }
+  return true;
+}
+
+}  // namespace
+
+std::optional<ast::Program> parseFile(uint32_t file, const SourceManager& sources, Diagnostics& diag) {
+  if (!validUtf8(file, sources, diag)) return std::nullopt;
+  ParseSession session(file, sources, diag);
+  if (!session.checkTokens(file, diag)) return std::nullopt;
+  MeldParser::ProgramContext* tree = session.parser.program();
+  if (!session.syntaxOk()) return std::nullopt;
+  AstBuilder builder(diag, file);
+  return builder.buildProgram(tree);
+}
+
+std::optional<ast::Expr> parseExpression(uint32_t file, const SourceManager& sources, Diagnostics& diag) {
+  if (!validUtf8(file, sources, diag)) return std::nullopt;
+  ParseSession session(file, sources, diag);
+  if (!session.checkTokens(file, diag)) return std::nullopt;
+  MeldParser::StandaloneExprContext* tree = session.parser.standaloneExpr();
+  if (!session.syntaxOk()) return std::nullopt;
+  AstBuilder builder(diag, file);
+  return builder.buildExpr(tree->expr());
+}
+
+}  // namespace meldc

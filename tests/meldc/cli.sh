@@ -1,0 +1,84 @@
+#!/bin/sh
+# meldc command-line cases, one function each: cli.sh MELDC CASE (run from tests/meldc).
+set -u
+MELDC=$1
+CASE=$2
+WORK=$(mktemp -d)
+trap 'rm -rf "$WORK"' EXIT
+OUT="$WORK/stdout"
+ERR="$WORK/stderr"
+
+fail() {
+  echo "FAIL: $*"
+  echo "--- stdout"; cat "$OUT"
+  echo "--- stderr"; cat "$ERR"
+  exit 1
+}
+run() {
+  want=$1
+  shift
+  "$MELDC" "$@" >"$OUT" 2>"$ERR" </dev/null
+  rc=$?
+  [ "$rc" -eq "$want" ] || fail "meldc $*: exit code $rc, expected $want"
+}
+has() { grep -F -q -e "$2" "$1" || fail "$(basename "$1") lacks '$2'"; }
+
+case_help() {
+  run 0 --help
+  has "$OUT" "usage: meldc FILE.meld"
+  has "$OUT" "NOT IMPLEMENTED YET"
+  has "$OUT" "exit codes:"
+}
+case_version() {
+  run 0 --version
+  has "$OUT" "meldc "
+}
+case_no_input() {
+  run 2
+  has "$ERR" "meldc: error: no input file"
+}
+case_unknown_option() {
+  run 2 valid/gradient.meld --frobnicate
+  has "$ERR" "unknown option '--frobnicate'"
+}
+case_bad_define() {
+  run 2 valid/gradient.meld -DX=1
+  has "$ERR" "bad definition 'X=1'"
+}
+case_bytecode_not_implemented() {
+  run 2 valid/gradient.meld
+  has "$ERR" "bytecode output is not implemented yet"
+  [ -s "$OUT" ] && fail "no output expected"
+  run 2 valid/gradient.meld --emit=asm
+  has "$ERR" "bytecode output is not implemented yet"
+}
+case_missing_file() {
+  run 1 --check no/such/file.meld
+  has "$ERR" "meldc: error: cannot read 'no/such/file.meld'"
+}
+case_emit_ast_to_file() {
+  run 0 --emit=ast valid/gradient.meld -o "$WORK/ast.txt"
+  [ -s "$OUT" ] && fail "the dump belongs in the -o file"
+  has "$WORK/ast.txt" "type route neighbor(node, node, int)"
+}
+case_define_replaces_const() {
+  run 0 --emit=ast valid/header.meld -Dlimit=42 -D newconst=@3
+  has "$OUT" "const limit = 42 (from -D)"
+  has "$OUT" "const newconst = @3 (from -D)"
+}
+case_define_bad_value() {
+  run 1 --check valid/header.meld "-Dlimit=1 +"
+  has "$ERR" "-Dlimit:1:4: error: unexpected end of file"
+}
+case_include_dir() {
+  run 1 --check cli/uses_stdlib.meld
+  has "$ERR" "cannot find included file 'robot.meld'"
+  run 0 --check cli/uses_stdlib.meld -I cli/stdlib
+  run 0 --check cli/uses_stdlib.meld -Icli/stdlib
+}
+case_warnings_keep_exit_zero() {
+  run 0 --check cli/warning.meld
+  has "$ERR" "warning: persistent predicate 'edge' should be written '!edge(...)'"
+}
+
+"case_$CASE"

@@ -1,0 +1,43 @@
+#define BOOST_TEST_MODULE meldc_options
+#include <boost/test/unit_test.hpp>
+
+#include "meldc/options.hpp"
+
+using namespace meldc;
+
+BOOST_AUTO_TEST_CASE(all_options) {
+  std::string error;
+  auto o = parseOptions(
+      {"prog.meld", "-o", "out.txt", "-I", "a", "-Ib", "-Dx=1", "-D", "y-z=@3", "--emit=ast"}, error);
+  BOOST_REQUIRE_MESSAGE(o, error);
+  BOOST_TEST(o->input == "prog.meld");
+  BOOST_TEST(o->output == "out.txt");
+  BOOST_TEST(o->includeDirs.size() == 2u);
+  BOOST_TEST(o->includeDirs[1] == "b");
+  BOOST_TEST(o->defines.size() == 2u);
+  BOOST_TEST(o->defines[1].first == "y-z");
+  BOOST_TEST(o->defines[1].second == "@3");
+  BOOST_TEST((o->emit == EmitKind::Ast));
+}
+
+BOOST_AUTO_TEST_CASE(default_is_bytecode) {
+  std::string error;
+  auto o = parseOptions({"prog.meld"}, error);
+  BOOST_REQUIRE(o);
+  BOOST_TEST((o->emit == EmitKind::Bytecode));
+  auto c = parseOptions({"--check", "prog.meld"}, error);
+  BOOST_TEST((c->emit == EmitKind::Check));
+}
+
+BOOST_AUTO_TEST_CASE(usage_errors) {
+  std::string error;
+  BOOST_TEST(!parseOptions({}, error));
+  BOOST_TEST(error == "no input file");
+  BOOST_TEST(!parseOptions({"a.meld", "b.meld"}, error));
+  BOOST_TEST(!parseOptions({"a.meld", "--emit=llvm"}, error));
+  BOOST_TEST(!parseOptions({"a.meld", "-DX=1"}, error));
+  BOOST_TEST(!parseOptions({"a.meld", "-Dx"}, error));
+  BOOST_TEST(!parseOptions({"a.meld", "-o"}, error));
+  BOOST_TEST(error == "option '-o' needs a value");
+  BOOST_TEST(parseOptions({"--help"}, error).has_value());
+}
