@@ -7,21 +7,10 @@
 #include <cstdlib>
 #include <new>
 
+#include "../common/counting_new.hpp"
 #include "simcore/blockcode.h"
 #include "simcore/simulation.hpp"
 #include "smartblocks/smartblocks.hpp"
-
-namespace {
-std::atomic<std::uint64_t> allocations{0};
-}
-
-void* operator new(std::size_t n) {
-  allocations.fetch_add(1, std::memory_order_relaxed);
-  if (void* p = std::malloc(n ? n : 1)) return p;
-  throw std::bad_alloc();
-}
-void operator delete(void* p) noexcept { std::free(p); }
-void operator delete(void* p, std::size_t) noexcept { std::free(p); }
 
 namespace {
 
@@ -53,9 +42,9 @@ void checkSteadyStateAllocations(simcore::FesKind fes) {
 
   sim.runUntil(60 * simcore::kSecond);  // warm-up: pools and queues reach their working sizes
   const std::uint64_t eventsBefore = sim.statistics().eventsProcessed;
-  const std::uint64_t before = allocations.load();
+  const std::uint64_t before = testcommon::allocations();
   sim.runUntil(120 * simcore::kSecond);
-  const std::uint64_t during = allocations.load() - before;
+  const std::uint64_t during = testcommon::allocations() - before;
   const std::uint64_t events = sim.statistics().eventsProcessed - eventsBefore;
 
   BOOST_TEST_MESSAGE(simcore::fesKindName(fes) << ": " << events << " events, " << during << " allocations");

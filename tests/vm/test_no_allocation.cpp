@@ -8,28 +8,8 @@
 #include <cstdlib>
 #include <new>
 
+#include "../common/counting_new.hpp"
 #include "vm_fixture.hpp"
-
-namespace {
-std::atomic<std::uint64_t> allocations{0};
-}
-
-void* operator new(std::size_t n) {
-  allocations.fetch_add(1, std::memory_order_relaxed);
-  if (void* p = std::malloc(n ? n : 1)) return p;
-  throw std::bad_alloc();
-}
-// These replace the global operators, so free() is the right partner of the malloc() above; GCC's
-// -Wmismatched-new-delete cannot see that once the replacement is inlined.
-#if defined(__GNUC__) && !defined(__clang__)
-#pragma GCC diagnostic push
-#pragma GCC diagnostic ignored "-Wmismatched-new-delete"
-#endif
-void operator delete(void* p) noexcept { std::free(p); }
-void operator delete(void* p, std::size_t) noexcept { std::free(p); }
-#if defined(__GNUC__) && !defined(__clang__)
-#pragma GCC diagnostic pop
-#endif
 
 using namespace vmtest;
 
@@ -100,9 +80,9 @@ BOOST_AUTO_TEST_CASE(steady_state_store_allocates_nothing) {
   Workload w;
   for (int r = 0; r < 5; ++r) w.round(r);  // warm-up: pools, free lists and hash tables grow here
   const std::size_t live = w.s.heap.liveObjects();
-  const std::uint64_t before = allocations.load();
+  const std::uint64_t before = testcommon::allocations();
   for (int r = 0; r < 50; ++r) w.round(r);
-  const std::uint64_t during = allocations.load() - before;
+  const std::uint64_t during = testcommon::allocations() - before;
   BOOST_TEST_MESSAGE("allocations during 50 rounds: " << during << ", checksum " << w.checksum);
   BOOST_TEST(during == 0u);
   BOOST_TEST(w.checksum > 0u);
@@ -116,8 +96,8 @@ BOOST_AUTO_TEST_CASE(steady_state_store_allocates_nothing) {
 
 // The counter works: a fresh database does allocate.
 BOOST_AUTO_TEST_CASE(the_counter_sees_allocations) {
-  const std::uint64_t before = allocations.load();
+  const std::uint64_t before = testcommon::allocations();
   Workload w;
   w.round(0);
-  BOOST_TEST(allocations.load() > before);
+  BOOST_TEST(testcommon::allocations() > before);
 }
