@@ -2,9 +2,12 @@
 
 #include <cctype>
 
+#include "meldc/bindings.hpp"
+#include "meldc/homes.hpp"
 #include "meldc/includes.hpp"
 #include "meldc/names.hpp"
 #include "meldc/parser.hpp"
+#include "meldc/types.hpp"
 
 namespace meldc {
 
@@ -53,6 +56,10 @@ std::optional<ast::Program> runFrontEnd(const FrontEndInput& input, SourceManage
   applyDefines(input, *program, sources, diag);
   if (diag.hasErrors()) return std::nullopt;  // names would only repeat what is already broken
   resolveNames(*program, diag);
+  if (diag.hasErrors()) return std::nullopt;  // the checks below assume resolved names
+  checkBindings(*program, diag);
+  checkHomes(*program, diag);
+  checkTypes(*program, diag);
   if (diag.hasErrors()) return std::nullopt;
   return program;
 }

@@ -8,18 +8,13 @@
 #include <vector>
 
 #include "meldc/builtins.hpp"
+#include "meldc/case_folding.hpp"
 
 namespace meldc {
 
 using namespace meldc::ast;
 
 namespace {
-
-std::string lower(std::string_view s) {
-  std::string out(s);
-  for (char& c : out) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
-  return out;
-}
 
 size_t editDistance(const std::string& a, const std::string& b) {
   std::vector<size_t> prev(b.size() + 1), cur(b.size() + 1);

@@ -1,5 +1,6 @@
 // The front-end pipeline of the driver: load (parse + include merging), apply -D definitions,
-// resolve names. One function so that tests run exactly what `meldc --check` runs.
+// resolve names, then the semantic checks (bindings, homes, types). One function so that tests
+// run exactly what `meldc --check` runs.
 #pragma once
 
 #include <optional>

@@ -1,0 +1,719 @@
+#include "meldc/types.hpp"
+
+#include <cctype>
+#include <map>
+#include <string>
+#include <string_view>
+#include <vector>
+
+#include "meldc/builtins.hpp"
+#include "meldc/case_folding.hpp"
+
+namespace meldc {
+
+using namespace meldc::ast;
+
+namespace {
+
+// Types are nodes of a union-find forest; a Var is unknown (Num: an integer literal, int or float).
+enum class K { Var, Num, Int, Float, Bool, String, Node, Thread, List, Set, Array, Struct, AnyStruct };
+
+struct TypeNode {
+  K kind = K::Var;
+  int parent = -1;
+  std::vector<int> args;
+};
+
+// Signatures of §5.6 / §4.1.3 in a small notation: i f b s n t, T (the polymorphic element),
+// R (any struct), L/A/S + element (list/array/set); parameters separated by ',', '>' the result.
+const std::map<std::string_view, std::string_view>& builtinFunctionSignatures() {
+  static const std::map<std::string_view, std::string_view> table = {
+      {"sigmoid", "f>f"},
+      {"randint", "i>i"},
+      {"normalize", "Lf>Lf"},
+      {"damp", "Lf,Lf,f>Lf"},
+      {"divide", "Lf,Lf>Lf"},
+      {"convolve", "Lf,Lf>Lf"},
+      {"addfloatlists", "Lf,Lf>Lf"},
+      {"intlistdiff", "Li,Li>Li"},
+      {"lnth", "LT,i>T"},
+      {"concatenate", "s,s>s"},
+      {"str2float", "s>f"},
+      {"str2int", "s>i"},
+      {"lremove", "LT,T>LT"},
+      {"wastetime", "i>i"},
+      {"truncate", "f,i>f"},
+      {"float2int", "f>i"},
+      {"int2str", "i>s"},
+      {"float2str", "f>s"},
+      {"intlistsub", "Li,i,i>Li"},
+      {"str2intlist", "s>Li"},
+      {"filecountwords", "s,i>i"},
+      {"residual", "Lf,Lf>f"},
+      {"llength", "LT>i"},
+      {"lappend", "LT,LT>LT"},
+      {"priority", "n>f"},
+      {"lreverse", "LT>LT"},
+      {"llast", "LT>T"},
+      {"cpu-id", "n>t"},
+      {"node2int", "n>i"},
+      {"intpower", "i,i>i"},
+      {"lsort", "LT>LT"},
+      {"lremoveduplicates", "LT>LT"},
+      {"degeneratevector", "i,i>Li"},
+      {"demergemessages", "Li,Li>Li"},
+      {"intlistequal", "Li,Li>i"},
+      {"addfloatstructs", "R,R>R"},
+      {"normalizestruct", "R>R"},
+      {"dampstruct", "R,R,f>R"},
+      {"residualstruct", "R,R>f"},
+      {"dividestruct", "R,R>R"},
+      {"convolvestruct", "R,R>R"},
+      {"cpu-static", "n>i"},
+      {"is-moving", "n>b"},
+      {"is-static", "n>b"},
+      {"partition_vertical", "i,i,i,i>t"},
+      {"partition_horizontal", "i,i,i,i>t"},
+      {"partition_grid", "i,i,i,i>t"},
+      {"queue-size", "n>i"},
+      {"facts-proved", "n>i"},
+      {"facts-consumed", "n>i"},
+      {"lcount", "LT,T>i"},
+      {"lexists", "LT,T>b"},
+      {"lexistss", "LT,LT>b"},
+      {"queens_violation", "i,Li>b"},
+      {"minimax_score", "Li,i,i>i"},
+      {"minimax_points", "Li,i>i"},
+      {"array_init", "i,T>AT"},
+      {"array_get", "AT,i>T"},
+      {"array_set", "AT,i,T>AT"},
+      {"array_add", "AT,T>AT"},
+      {"array_from_list", "LT>AT"},
+      {"array_size", "AT>i"},
+      {"minimax_score2", "Ai,i,i>i"},
+      {"minimax_points2", "Ai,i>i"},
+      {"fabs", "f>f"},
+      {"set_size", "ST>i"},
+      {"set_exists", "ST,T>b"},
+      {"set_add", "ST,T>ST"},
+      {"set_from_list", "LT>ST"},
+      {"array_exists", "AT,T>b"},
+      {"ltake", "LT,i>LT"},
+  };
+  return table;
+}
+
+const std::map<std::string_view, std::string_view>& builtinPredicateSignatures() {
+  static const std::map<std::string_view, std::string_view> table = {
+      {"_init", "n"},
+      {"_init_thread", "t"},
+      {"setcolor", "n,i,i,i"},
+      {"setedgelabel", "n,n,s"},
+      {"write-string", "n,s"},
+      {"setcolor2", "n,i"},
+      {"stop-program", "n"},
+      {"set-priority", "n,f"},
+      {"add-priority", "n,f"},
+      {"remove-priority", "n"},
+      {"schedule-next", "n"},
+      {"set-default-priority", "n,f"},
+      {"set-static", "n"},
+      {"set-moving", "n"},
+      {"set-affinity", "n,n"},
+      {"set-cpu", "n,t"},
+      {"just-moved", "n"},
+      {"thread-list", "t,Lt"},
+      {"other-thread", "t,t,i"},
+      {"leader-thread", "t,t"},
+  };
+  return table;
+}
+
+struct Signature {
+  std::vector<int> params;
+  int result = -1;
+};
+
+class Checker {
+ public:
+  Checker(const Program& p, Diagnostics& diag) : p_(p), diag_(diag) {}
+
+  void run() {
+    for (const TypeAliasDecl& a : p_.typeAliases) aliases_[lower(a.name)] = &a.type;
+    for (const PredicateDecl& d : p_.predicates) preds_[lower(d.name)] = &d;
+    for (const FunDecl& f : p_.funs) funs_[lower(f.name)] = &f;
+    for (const ExternDecl& e : p_.externs) externs_[lower(e.name)] = &e;
+    for (const ConstDecl& c : p_.consts) constDecls_[lower(c.name)] = &c;
+    for (const ConstDecl& c : p_.consts) constType(c);
+    for (const FunDecl& f : p_.funs) fun(f);
+    for (const Rule& r : p_.rules) rule(r);
+  }
+
+ private:
+  // --- the type store ------------------------------------------------------------------------
+
+  int make(K kind, std::vector<int> args = {}) {
+    types_.push_back(TypeNode{kind, -1, std::move(args)});
+    return static_cast<int>(types_.size()) - 1;
+  }
+  int fresh() { return make(K::Var); }
+
+  int find(int t) {
+    while (types_[static_cast<size_t>(t)].parent >= 0) t = types_[static_cast<size_t>(t)].parent;
+    return t;
+  }
+  TypeNode& node(int t) { return types_[static_cast<size_t>(find(t))]; }
+
+  bool occurs(int var, int t) {
+    t = find(t);
+    if (t == var) return true;
+    for (int a : types_[static_cast<size_t>(t)].args)
+      if (occurs(var, a)) return true;
+    return false;
+  }
+
+  bool unify(int a, int b) {
+    a = find(a);
+    b = find(b);
+    if (a == b) return true;
+    TypeNode& x = types_[static_cast<size_t>(a)];
+    TypeNode& y = types_[static_cast<size_t>(b)];
+    if (x.kind == K::Var) {
+      if (occurs(a, b)) return false;
+      x.parent = b;
+      return true;
+    }
+    if (y.kind == K::Var) return unify(b, a);
+    if (x.kind == K::Num) {
+      if (y.kind != K::Num && y.kind != K::Int && y.kind != K::Float) return false;
+      x.parent = b;
+      return true;
+    }
+    if (y.kind == K::Num) return unify(b, a);
+    if (x.kind == K::AnyStruct && (y.kind == K::Struct || y.kind == K::AnyStruct)) {
+      x.parent = b;
+      return true;
+    }
+    if (y.kind == K::AnyStruct && x.kind == K::Struct) return unify(b, a);
+    if (x.kind != y.kind || x.args.size() != y.args.size()) return false;
+    std::vector<int> xa = x.args, ya = y.args;  // copies: unify may grow the store
+    for (size_t i = 0; i < xa.size(); ++i)
+      if (!unify(xa[i], ya[i])) return false;
+    return true;
+  }
+
+  std::string text(int t) {
+    TypeNode n = node(t);
+    switch (n.kind) {
+      case K::Var:
+        return "any";
+      case K::Num:
+        return "int";
+      case K::Int:
+        return "int";
+      case K::Float:
+        return "float";
+      case K::Bool:
+        return "bool";
+      case K::String:
+        return "string";
+      case K::Node:
+        return "node";
+      case K::Thread:
+        return "thread";
+      case K::List:
+        return "list " + text(n.args[0]);
+      case K::Set:
+        return "set " + text(n.args[0]);
+      case K::Array:
+        return "array " + text(n.args[0]);
+      case K::AnyStruct:
+        return "struct";
+      case K::Struct: {
+        std::string s = ":(";
+        for (size_t i = 0; i < n.args.size(); ++i) s += (i ? ", " : "") + text(n.args[i]);
+        return s + ")";
+      }
+    }
+    return "?";
+  }
+
+  K kindOf(int t) { return node(t).kind; }
+  bool isNumeric(int t) {
+    K k = kindOf(t);
+    return k == K::Num || k == K::Int || k == K::Float;
+  }
+
+  // Declared types (aliases followed, node subtypes are nodes).
+  int fromDecl(const TypeExpr& t, int depth = 0) {
+    switch (t.kind) {
+      case TypeKind::Int:
+        return make(K::Int);
+      case TypeKind::Float:
+        return make(K::Float);
+      case TypeKind::Bool:
+        return make(K::Bool);
+      case TypeKind::String:
+        return make(K::String);
+      case TypeKind::Node:
+        return make(K::Node);
+      case TypeKind::Thread:
+        return make(K::Thread);
+      case TypeKind::Named: {
+        auto it = aliases_.find(lower(t.name));
+        if (it == aliases_.end() || depth > 64) return make(K::Node);  // a node subtype
+        return fromDecl(*it->second, depth + 1);
+      }
+      case TypeKind::List:
+        return make(K::List, {fromDecl(t.args.at(0), depth)});
+      case TypeKind::Set:
+        return make(K::Set, {fromDecl(t.args.at(0), depth)});
+      case TypeKind::Array:
+        return make(K::Array, {fromDecl(t.args.at(0), depth)});
+      case TypeKind::Struct: {
+        std::vector<int> args;
+        for (const TypeExpr& a : t.args) args.push_back(fromDecl(a, depth));
+        return make(K::Struct, std::move(args));
+      }
+    }
+    return fresh();
+  }
+
+  int parseSig(std::string_view& s, int elem) {
+    char c = s.front();
+    s.remove_prefix(1);
+    switch (c) {
+      case 'i':
+        return make(K::Int);
+      case 'f':
+        return make(K::Float);
+      case 'b':
+        return make(K::Bool);
+      case 's':
+        return make(K::String);
+      case 'n':
+        return make(K::Node);
+      case 't':
+        return make(K::Thread);
+      case 'T':
+        return elem;
+      case 'R':
+        return make(K::AnyStruct);
+      case 'L':
+        return make(K::List, {parseSig(s, elem)});
+      case 'A':
+        return make(K::Array, {parseSig(s, elem)});
+      case 'S':
+        return make(K::Set, {parseSig(s, elem)});
+      default:
+        return fresh();
+    }
+  }
+
+  Signature signature(std::string_view spec) {
+    Signature sig;
+    int elem = fresh();
+    while (!spec.empty()) {
+      if (spec.front() == ',') {
+        spec.remove_prefix(1);
+        continue;
+      }
+      if (spec.front() == '>') {
+        spec.remove_prefix(1);
+        sig.result = parseSig(spec, elem);
+        break;
+      }
+      sig.params.push_back(parseSig(spec, elem));
+    }
+    return sig;
+  }
+
+  // The signature of a function call: user function, built-in, extern (§5.5); nullopt if unknown.
+  std::optional<Signature> functionSignature(const std::string& name) {
+    std::string key = lower(name);
+    if (auto it = funs_.find(key); it != funs_.end()) {
+      Signature sig;
+      for (const FunParam& param : it->second->params) sig.params.push_back(fromDecl(param.type));
+      sig.result = fromDecl(it->second->result);
+      return sig;
+    }
+    if (auto it = builtinFunctionSignatures().find(key); it != builtinFunctionSignatures().end())
+      return signature(it->second);
+    if (auto it = externs_.find(key); it != externs_.end()) {
+      Signature sig;
+      for (const FieldDecl& f : it->second->params) sig.params.push_back(fromDecl(f.type));
+      sig.result = fromDecl(it->second->result);
+      return sig;
+    }
+    return std::nullopt;
+  }
+
+  // Field types of a predicate; nullopt if unknown (instruction or undeclared).
+  std::optional<std::vector<int>> predicateFields(const std::string& name) {
+    std::string key = lower(name);
+    if (auto it = preds_.find(key); it != preds_.end()) {
+      std::vector<int> fields;
+      for (const FieldDecl& f : it->second->fields) fields.push_back(fromDecl(f.type));
+      return fields;
+    }
+    if (auto it = builtinPredicateSignatures().find(key); it != builtinPredicateSignatures().end())
+      return signature(it->second).params;
+    return std::nullopt;
+  }
+
+  // --- diagnostics ---------------------------------------------------------------------------
+
+  // Unifies the type of `e` with `expected`, reporting a mismatch at `e`.
+  void expect(const Expr& e, int actual, int expected, const std::string& where) {
+    if (unify(actual, expected)) return;
+    std::string what =
+        e.kind == ExprKind::Var ? "variable '" + e.name + "' has type '" : "expression has type '";
+    diag_.error(e.loc, "type mismatch: " + what + text(actual) + "' but " + where + " expects '" +
+                           text(expected) + "'");
+  }
+
+  // --- expressions ---------------------------------------------------------------------------
+
+  using Scope = std::map<std::string, int>;
+
+  int var(const std::string& name, Scope& scope) {
+    auto it = scope.find(name);
+    if (it != scope.end()) return it->second;
+    int t = fresh();
+    scope[name] = t;
+    return t;
+  }
+
+  int constType(const ConstDecl& c) {
+    std::string key = lower(c.name);
+    if (auto it = constTypes_.find(key); it != constTypes_.end()) return it->second;
+    int t = fresh();
+    constTypes_[key] = t;  // a cycle sees an unknown type
+    Scope scope;
+    int v = expr(c.value, scope);
+    if (!unify(t, v)) diag_.error(c.value.loc, "constant '" + c.name + "' has conflicting types");
+    if (kindOf(t) == K::Num) unify(t, make(K::Int));  // int when both are possible (§3.2)
+    return t;
+  }
+
+  void requireNumeric(const Expr& e, int t, const std::string& what) {
+    if (isNumeric(t) || kindOf(t) == K::Var) {
+      if (kindOf(t) == K::Var) node(t).kind = K::Num;
+      return;
+    }
+    diag_.error(e.loc, what + " needs int or float operands, not '" + text(t) + "'");
+  }
+
+  int condition(const Expr& e, Scope& scope, const std::string& where) {
+    int t = expr(e, scope);
+    if (!unify(t, make(K::Bool))) diag_.error(e.loc, where + " must be a bool, not '" + text(t) + "'");
+    return t;
+  }
+
+  void call(const Expr& e, const std::vector<Expr>& args, const std::string& name, Scope& scope,
+            int& result) {
+    std::optional<Signature> sig = functionSignature(name);
+    std::vector<int> argTypes;
+    for (const Expr& a : args) argTypes.push_back(expr(a, scope));
+    if (!sig || sig->params.size() != args.size()) {
+      result = fresh();
+      return;
+    }
+    for (size_t i = 0; i < args.size(); ++i)
+      expect(args[i], argTypes[i], sig->params[i],
+             "argument " + std::to_string(i + 1) + " of function '" + name + "'");
+    result = sig->result >= 0 ? sig->result : fresh();
+    (void)e;
+  }
+
+  bool isEmptyList(const Expr& e) { return e.kind == ExprKind::List && e.args.empty(); }
+
+  int expr(const Expr& e, Scope& scope) {
+    switch (e.kind) {
+      case ExprKind::Var:
+        return var(e.name, scope);
+      case ExprKind::Anon:
+        return fresh();
+      case ExprKind::Int:
+        return make(K::Num);
+      case ExprKind::Float:
+        return make(K::Float);
+      case ExprKind::Bool:
+        return make(K::Bool);
+      case ExprKind::String:
+      case ExprKind::Arg:
+        return make(K::String);
+      case ExprKind::Node:
+      case ExprKind::Host:
+        return make(K::Node);
+      case ExprKind::World:
+      case ExprKind::Cpus:
+        return make(K::Int);
+      case ExprKind::Thread:
+        return make(K::Thread);
+      case ExprKind::Const: {
+        auto it = constDecls_.find(lower(e.name));
+        return it == constDecls_.end() ? fresh() : constType(*it->second);
+      }
+      case ExprKind::Call: {
+        int result = -1;
+        call(e, e.args, e.name, scope, result);
+        return result;
+      }
+      case ExprKind::Convert: {
+        int a = expr(e.args.at(0), scope);
+        expect(e.args[0], a, make(K::Int), "float()");
+        return make(K::Float);
+      }
+      case ExprKind::Binary: {
+        int a = expr(e.args.at(0), scope), b = expr(e.args.at(1), scope);
+        if (e.op == BinOp::Append) {
+          int list = make(K::List, {fresh()});
+          expect(e.args[0], a, list, "'++'");
+          expect(e.args[1], b, list, "'++'");
+          return list;
+        }
+        std::string op = std::string("'") + binOpSpelling(e.op) + "'";
+        if (e.op == BinOp::Mod) {
+          bool ok = unify(a, make(K::Int)) && unify(b, make(K::Int));
+          if (!ok)
+            diag_.error(e.loc, "'%' works on int only, not on '" + text(kindOf(a) == K::Int ? b : a) + "'");
+          return ok ? a : fresh();
+        }
+        if (!unify(a, b)) {
+          diag_.error(e.loc, "operands of " + op + " have different types: '" + text(a) + "' and '" +
+                                 text(b) + "' (use float() to convert an int)");
+          return fresh();
+        }
+        requireNumeric(e, a, op);
+        return a;
+      }
+      case ExprKind::Compare:
+        compare(e, scope);
+        return make(K::Bool);
+      case ExprKind::In: {
+        int x = expr(e.args.at(0), scope), l = expr(e.args.at(1), scope);
+        expect(e.args[1], l, make(K::List, {x}), "'in'");
+        return make(K::Bool);
+      }
+      case ExprKind::Ins: {
+        int a = expr(e.args.at(0), scope), b = expr(e.args.at(1), scope);
+        int list = make(K::List, {fresh()});
+        expect(e.args[0], a, list, "'ins'");
+        expect(e.args[1], b, list, "'ins'");
+        return make(K::Bool);
+      }
+      case ExprKind::Not:
+        condition(e.args.at(0), scope, "the operand of '~'");
+        return make(K::Bool);
+      case ExprKind::And:
+      case ExprKind::Or: {
+        const char* op = e.kind == ExprKind::And ? "'&&'" : "'||'";
+        condition(e.args.at(0), scope, std::string("the left operand of ") + op);
+        condition(e.args.at(1), scope, std::string("the right operand of ") + op);
+        return make(K::Bool);
+      }
+      case ExprKind::If: {
+        condition(e.args.at(0), scope, "the condition of 'if'");
+        int a = expr(e.args.at(1), scope), b = expr(e.args.at(2), scope);
+        if (!unify(a, b)) {
+          diag_.error(e.loc,
+                      "the branches of 'if' have different types: '" + text(a) + "' and '" + text(b) + "'");
+          return fresh();
+        }
+        return a;
+      }
+      case ExprKind::Let: {
+        int v = expr(e.args.at(0), scope);
+        auto saved = scope.find(e.name) == scope.end() ? std::optional<int>() : scope[e.name];
+        scope[e.name] = v;
+        int body = expr(e.args.at(1), scope);
+        if (saved)
+          scope[e.name] = *saved;
+        else
+          scope.erase(e.name);
+        return body;
+      }
+      case ExprKind::Struct: {
+        std::vector<int> args;
+        for (const Expr& a : e.args) args.push_back(expr(a, scope));
+        return make(K::Struct, std::move(args));
+      }
+      case ExprKind::List: {
+        int elem = fresh();
+        int list = make(K::List, {elem});
+        size_t n = e.args.size() - (e.hasTail ? 1 : 0);
+        for (size_t i = 0; i < n; ++i) expect(e.args[i], expr(e.args[i], scope), elem, "a list element");
+        if (e.hasTail) expect(e.args.back(), expr(e.args.back(), scope), list, "the tail of a list");
+        return list;
+      }
+    }
+    return fresh();
+  }
+
+  void compare(const Expr& e, Scope& scope) {
+    const Expr& l = e.args.at(0);
+    const Expr& r = e.args.at(1);
+    int a = expr(l, scope), b = expr(r, scope);
+    std::string op = std::string("'") + binOpSpelling(e.op) + "'";
+    if (!unify(a, b)) {
+      diag_.error(e.loc, "cannot compare '" + text(a) + "' with '" + text(b) + "' using " + op +
+                             (isNumeric(a) && isNumeric(b) ? " (use float() to convert an int)" : ""));
+      return;
+    }
+    K k = kindOf(a);
+    if (e.op == BinOp::Eq || e.op == BinOp::Ne) {
+      if (k == K::List && (isEmptyList(l) || isEmptyList(r))) return;  // nil test
+      // `X = expr` with X unbound is an assignment: any type.
+      if (e.op == BinOp::Eq && (l.kind == ExprKind::Var || r.kind == ExprKind::Var)) return;
+      bool ok = k == K::Var || k == K::Num || k == K::Int || k == K::Float || k == K::Node ||
+                k == K::Thread || (k == K::Bool && e.op == BinOp::Eq);
+      if (!ok) diag_.error(e.loc, "values of type '" + text(a) + "' cannot be compared with " + op);
+      return;
+    }
+    if (kindOf(a) == K::Var) node(a).kind = K::Num;
+    if (!isNumeric(a)) diag_.error(e.loc, op + " compares int or float values, not '" + text(a) + "'");
+  }
+
+  // --- functions, rules ----------------------------------------------------------------------
+
+  void fun(const FunDecl& f) {
+    Scope scope;
+    for (const FunParam& param : f.params) scope[param.name] = fromDecl(param.type);
+    int body = expr(f.body, scope);
+    expect(f.body, body, fromDecl(f.result), "the result of function '" + f.name + "'");
+  }
+
+  void subgoal(const Term& t, Scope& scope, bool inBody) {
+    std::optional<std::vector<int>> fields = predicateFields(t.name);
+    if (!fields) {
+      // A body subgoal that is a function call: a boolean constraint.
+      if (inBody && functionSignature(t.name)) {
+        int result = -1;
+        Expr dummy;
+        dummy.loc = t.loc;
+        call(dummy, t.args, t.name, scope, result);
+        if (!unify(result, make(K::Bool)))
+          diag_.error(t.loc,
+                      "a condition must be a bool, but '" + t.name + "' returns '" + text(result) + "'");
+        return;
+      }
+      for (const Expr& a : t.args) expr(a, scope);
+      return;
+    }
+    for (size_t i = 0; i < t.args.size(); ++i) {
+      int a = expr(t.args[i], scope);
+      if (i < fields->size())
+        expect(t.args[i], a, (*fields)[i],
+               i == 0 ? "the home argument of '" + t.name + "'"
+                      : "argument " + std::to_string(i + 1) + " of '" + t.name + "'");
+    }
+  }
+
+  void terms(const std::vector<Term>& ts, Scope& scope, bool inBody) {
+    for (const Term& t : ts) term(t, scope, inBody);
+  }
+
+  void term(const Term& t, Scope& scope, bool inBody) {
+    switch (t.kind) {
+      case TermKind::Subgoal:
+        subgoal(t, scope, inBody);
+        break;
+      case TermKind::Constraint:
+        condition(t.cond, scope, "a condition");
+        break;
+      case TermKind::Exists:
+        for (const VarDecl& v : t.vars)
+          if (!unify(var(v.name, scope), make(K::Node)))
+            diag_.error(v.loc, "variable '" + v.name + "' of 'exists' is a node, not '" +
+                                   text(var(v.name, scope)) + "'");
+        terms(t.head, scope, false);
+        break;
+      case TermKind::Comprehension:
+        terms(t.body, scope, true);
+        terms(t.head, scope, false);
+        break;
+      case TermKind::Aggregate:
+        aggregate(t, scope);
+        break;
+      case TermKind::Conditional:
+        condition(t.cond, scope, "the condition of 'if'");
+        terms(t.head, scope, false);
+        terms(t.elseHead, scope, false);
+        break;
+    }
+  }
+
+  void aggregate(const Term& t, Scope& scope) {
+    // Inside Body/Head0 a spec variable is one value; in Head it is the aggregated value.
+    std::vector<std::pair<const AggSpec*, int>> items;
+    for (const AggSpec& s : t.specs) {
+      if (s.op == AggOp::Count) continue;  // not bound in the body
+      items.emplace_back(&s, var(s.var, scope));
+    }
+    terms(t.body, scope, true);
+    terms(t.perMatch, scope, false);
+    for (const AggSpec& s : t.specs) {
+      int item = -1;
+      for (auto& [spec, ty] : items)
+        if (spec == &s) item = ty;
+      int result = -1;
+      switch (s.op) {
+        case AggOp::Count:
+          result = make(K::Int);
+          break;
+        case AggOp::Collect:
+          result = make(K::List, {item});
+          break;
+        case AggOp::Sum:
+          if (kindOf(item) == K::Var) node(item).kind = K::Num;
+          if (!isNumeric(item))
+            diag_.error(s.loc, "'sum' adds int or float values, but '" + s.var + "' is '" + text(item) + "'");
+          result = item;
+          break;
+        case AggOp::Min:
+          if (!unify(item, make(K::Int)))
+            diag_.error(s.loc,
+                        "'min' aggregates int values only, but '" + s.var + "' is '" + text(item) + "'");
+          result = item;
+          break;
+        case AggOp::Custom: {
+          std::optional<Signature> sig = functionSignature(s.function);
+          int start = expr(s.start, scope);
+          if (sig && sig->params.size() == 2) {
+            if (!unify(sig->params[0], item) || !unify(sig->params[1], item) || !unify(sig->result, item))
+              diag_.error(s.loc, "custom aggregate function '" + s.function +
+                                     "' must take two values of the type of '" + s.var + "' and return it");
+            expect(s.start, start, item, "the start value of the custom aggregate");
+          }
+          result = item;
+          break;
+        }
+      }
+      scope[s.var] = result;
+    }
+    terms(t.head, scope, false);
+  }
+
+  void rule(const Rule& r) {
+    Scope scope;
+    terms(r.body, scope, true);
+    terms(r.head, scope, false);
+  }
+
+  const Program& p_;
+  Diagnostics& diag_;
+  std::vector<TypeNode> types_;
+  std::map<std::string, const TypeExpr*> aliases_;
+  std::map<std::string, const PredicateDecl*> preds_;
+  std::map<std::string, const FunDecl*> funs_;
+  std::map<std::string, const ExternDecl*> externs_;
+  std::map<std::string, const ConstDecl*> constDecls_;
+  std::map<std::string, int> constTypes_;
+};
+
+}  // namespace
+
+void checkTypes(const Program& program, Diagnostics& diag) { Checker(program, diag).run(); }
+
+}  // namespace meldc
