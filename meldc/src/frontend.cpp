@@ -7,6 +7,7 @@
 #include "meldc/includes.hpp"
 #include "meldc/names.hpp"
 #include "meldc/parser.hpp"
+#include "meldc/renumber.hpp"
 #include "meldc/types.hpp"
 
 namespace meldc {
@@ -61,6 +62,7 @@ std::optional<ast::Program> runFrontEnd(const FrontEndInput& input, SourceManage
   checkHomes(*program, diag);
   checkTypes(*program, diag);
   if (diag.hasErrors()) return std::nullopt;
+  if (!renumberNodes(*program, diag)) return std::nullopt;
   return program;
 }
 

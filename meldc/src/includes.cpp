@@ -37,8 +37,9 @@ class IncludeLoader {
       active_.erase(key);
       return std::nullopt;
     }
+    program->mainFile = file;
     std::vector<ast::Program> included;
-    for (const ast::IncludeDecl& inc : program->includes) {
+    for (ast::IncludeDecl& inc : program->includes) {
       std::string resolved;
       if (!resolve(path, inc.path, resolved)) {
         diag_.error(inc.loc, "cannot find included file '" + inc.path + "'" + searched(path));
@@ -50,9 +51,10 @@ class IncludeLoader {
         continue;
       }
       if (seen_.count(incKey)) continue;  // included once already
-      if (auto sub = load(resolved, inc.loc))
+      if (auto sub = load(resolved, inc.loc)) {
+        inc.file = sub->mainFile;
         included.push_back(std::move(*sub));
-      else if (readOk_)
+      } else if (readOk_)
         diag_.note(inc.loc, "in the file included here");
     }
     active_.erase(key);

@@ -30,7 +30,7 @@ int main(int argc, char** argv) {
   }
   if (options->emit == EmitKind::Bytecode || options->emit == EmitKind::Asm) {
     std::cerr << "meldc: error: bytecode output is not implemented yet (this meldc is the front end only; "
-                 "use --check or --emit=ast)\n";
+                 "use --check, --emit=ast or --emit=nodes)\n";
     return kExitUsage;
   }
 
@@ -40,12 +40,18 @@ int main(int argc, char** argv) {
   std::optional<ast::Program> program = runFrontEnd(input, sources, diag);
   if (!program) return kExitProgramErrors;
 
-  if (options->emit == EmitKind::Ast) {
+  if (options->emit == EmitKind::Ast || options->emit == EmitKind::Nodes) {
+    auto write = [&](std::ostream& out) {
+      if (options->emit == EmitKind::Ast)
+        dumpProgram(*program, sources, out);
+      else
+        for (const ast::NodeId& n : program->nodeTable) out << n.internal << ' ' << n.source << '\n';
+    };
     if (options->output.empty()) {
-      dumpProgram(*program, sources, std::cout);
+      write(std::cout);
     } else {
       std::ofstream out(options->output, std::ios::binary);
-      if (out) dumpProgram(*program, sources, out);
+      if (out) write(out);
       if (!out || (out.close(), !out)) {
         std::cerr << "meldc: error: cannot write '" << options->output << "'\n";
         return kExitProgramErrors;

@@ -19,13 +19,17 @@ const char* usageText() {
   return "usage: meldc FILE.meld [-o OUT] [-I DIR]... [-DNAME=VALUE]... [--check | --emit=KIND]\n"
          "\n"
          "Compiles a Linear Meld program. This version is the compiler's FRONT END ONLY: it parses\n"
-         "the program, merges its includes and resolves names. Bytecode output (.mbc, --emit=bytecode,\n"
-         "the default) and disassembly (--emit=asm) are NOT IMPLEMENTED YET: asking for them is an\n"
-         "error (exit code 2). Use --check or --emit=ast.\n"
+         "the program, merges its includes, resolves names, checks it and renumbers its nodes.\n"
+         "Bytecode output (.mbc, --emit=bytecode, the default) and disassembly (--emit=asm) are\n"
+         "NOT IMPLEMENTED YET: asking for them is an error (exit code 2). Use --check, --emit=ast\n"
+         "or --emit=nodes.\n"
          "\n"
          "options:\n"
          "  --check          parse and check the program; print diagnostics only\n"
-         "  --emit=ast       print the parsed program (declarations, rules with body and head)\n"
+         "  --emit=ast       print the parsed program (declarations, rules with body and head);\n"
+         "                   node literals show their internal ids (after renumbering)\n"
+         "  --emit=nodes     print the node table: one line 'INTERNAL SOURCE' per initial node,\n"
+         "                   ordered by internal id (renumbering of the language reference §6.1)\n"
          "  --emit=bytecode  write bytecode (default) -- not implemented yet\n"
          "  --emit=asm       print a bytecode disassembly -- not implemented yet\n"
          "  -o OUT           write the --emit output to OUT instead of standard output\n"
@@ -62,12 +66,14 @@ std::optional<Options> parseOptions(const std::vector<std::string>& args, std::s
       std::string kind = a.substr(7);
       if (kind == "ast")
         o.emit = EmitKind::Ast;
+      else if (kind == "nodes")
+        o.emit = EmitKind::Nodes;
       else if (kind == "bytecode")
         o.emit = EmitKind::Bytecode;
       else if (kind == "asm")
         o.emit = EmitKind::Asm;
       else {
-        error = "unknown --emit kind '" + kind + "' (expected ast, bytecode or asm)";
+        error = "unknown --emit kind '" + kind + "' (expected ast, nodes, bytecode or asm)";
         return std::nullopt;
       }
     } else if (a == "-o") {

@@ -64,7 +64,8 @@ case_emit_ast_to_file() {
 case_define_replaces_const() {
   run 0 --emit=ast valid/header.meld -Dlimit=42 -D newconst=@3
   has "$OUT" "const limit = 42 (from -D)"
-  has "$OUT" "const newconst = @3 (from -D)"
+  # source node 3 has internal id 1 (see case_emit_nodes_header)
+  has "$OUT" "const newconst = @1 (from -D)"
 }
 case_define_bad_value() {
   run 1 --check valid/header.meld "-Dlimit=1 +"
@@ -75,6 +76,32 @@ case_include_dir() {
   has "$ERR" "cannot find included file 'robot.meld'"
   run 0 --check cli/uses_stdlib.meld -I cli/stdlib
   run 0 --check cli/uses_stdlib.meld -Icli/stdlib
+}
+case_emit_nodes_header() {
+  # literals of header.meld: @2 @1 @3; union with the (literal-free) include reverses them:
+  # P = [2, 1, 3]; route link: 1->2, 2->3; breadth-first from 2.
+  run 0 --emit=nodes valid/header.meld
+  printf '0 2\n1 3\n2 1\n' >"$WORK/want"
+  diff -u "$WORK/want" "$OUT" || fail "node table differs"
+  [ -s "$ERR" ] && fail "unexpected diagnostics"
+  run 0 --emit=nodes valid/header.meld -o "$WORK/nodes.txt"
+  diff -u "$WORK/want" "$WORK/nodes.txt" || fail "node table in -o file differs"
+}
+case_emit_nodes_define() {
+  # a -D literal not in the program joins the end of nodes(main) = [3, 1, 2, 7]: P = [7, 2, 1, 3]
+  run 0 --emit=nodes valid/header.meld -Dnewconst=@7
+  printf '0 7\n1 2\n2 3\n3 1\n' >"$WORK/want"
+  diff -u "$WORK/want" "$OUT" || fail "node table differs"
+}
+case_emit_nodes_cluster_random() {
+  printf 'type linear a(node).\npriority @cluster @random.\na(@1).\n' >"$WORK/r.meld"
+  run 1 --emit=nodes "$WORK/r.meld"
+  has "$ERR" "'priority @cluster @random' is not supported"
+  if [ -s "$OUT" ]; then fail "no output expected"; fi
+}
+case_help_mentions_nodes() {
+  run 0 --help
+  has "$OUT" "--emit=nodes"
 }
 case_warnings_keep_exit_zero() {
   run 0 --check cli/warning.meld

@@ -27,6 +27,9 @@ BOOST_AUTO_TEST_CASE(default_is_bytecode) {
   BOOST_TEST((o->emit == EmitKind::Bytecode));
   auto c = parseOptions({"--check", "prog.meld"}, error);
   BOOST_TEST((c->emit == EmitKind::Check));
+  auto n = parseOptions({"prog.meld", "--emit=nodes"}, error);
+  BOOST_REQUIRE(n);
+  BOOST_TEST((n->emit == EmitKind::Nodes));
 }
 
 BOOST_AUTO_TEST_CASE(usage_errors) {

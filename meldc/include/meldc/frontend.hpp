@@ -1,5 +1,6 @@
 // The front-end pipeline of the driver: load (parse + include merging), apply -D definitions,
-// resolve names, then the semantic checks (bindings, homes, types). One function so that tests
+// resolve names, the semantic checks (bindings, homes, types), then node renumbering (§6.1: node
+// literals hold internal ids afterwards, Program::nodeTable has the pairs). One function so that tests
 // run exactly what `meldc --check` runs.
 #pragma once
 

@@ -2,6 +2,8 @@
 // merged in the order of §4.8 (main file first, then included files in reverse order).
 #pragma once
 
+#include <cstdint>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -13,6 +15,14 @@ namespace meldc::ast {
 struct IncludeDecl {  // include #path
   SourceLoc loc;
   std::string path;  // as written, blanks and a trailing // comment removed
+  std::optional<uint32_t> file;  // the SourceManager file it loaded (unset: skipped or failed)
+};
+
+// One node of the initial node set after renumbering (§6.1): internal id, id in the source.
+struct NodeId {
+  int64_t internal = 0;
+  int64_t source = 0;
+  friend bool operator==(const NodeId&, const NodeId&) = default;
 };
 
 struct Program {
@@ -27,7 +37,13 @@ struct Program {
   std::vector<FunDecl> funs;
   std::vector<Rule> rules;  // rules and facts in source order
 
-  // Appends everything of `other` after the items already here.
+  uint32_t mainFile = 0;  // SourceManager index of the main file (set by include merging)
+  // Set by node renumbering (renumber.hpp): the initial nodes ordered by internal id. Node
+  // literals in the AST hold internal ids from then on.
+  bool renumbered = false;
+  std::vector<NodeId> nodeTable;
+
+  // Appends everything of `other` after the items already here (not mainFile / nodeTable).
   void append(Program&& other);
 };
 

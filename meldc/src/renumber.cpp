@@ -1,0 +1,217 @@
+#include "meldc/renumber.hpp"
+
+#include <algorithm>
+#include <deque>
+#include <set>
+#include <string>
+#include <tuple>
+#include <unordered_map>
+#include <unordered_set>
+
+#include "meldc/case_folding.hpp"
+
+namespace meldc {
+
+namespace {
+
+// Every node literal of the program, with a pointer for the rewrite.
+class LiteralCollector {
+ public:
+  std::vector<ast::Expr*> literals;
+
+  void program(ast::Program& p) {
+    for (ast::ConstDecl& c : p.consts) expr(c.value);
+    for (ast::FunDecl& f : p.funs) expr(f.body);
+    for (ast::Rule& r : p.rules) {
+      terms(r.body);
+      terms(r.head);
+    }
+  }
+
+ private:
+  void expr(ast::Expr& e) {
+    if (e.kind == ast::ExprKind::Node) literals.push_back(&e);
+    for (ast::Expr& a : e.args) expr(a);
+  }
+  void terms(std::vector<ast::Term>& ts) {
+    for (ast::Term& t : ts) term(t);
+  }
+  void term(ast::Term& t) {
+    for (ast::Expr& a : t.args) expr(a);
+    expr(t.cond);
+    for (ast::AggSpec& s : t.specs) expr(s.start);
+    terms(t.body);
+    terms(t.perMatch);
+    terms(t.head);
+    terms(t.elseHead);
+  }
+};
+
+bool contains(const std::vector<int64_t>& v, int64_t x) {
+  return std::find(v.begin(), v.end(), x) != v.end();
+}
+
+// §6.1 step 1: per file, the distinct literal values in order of first textual occurrence.
+std::map<uint32_t, std::vector<int64_t>> literalsPerFile(const std::vector<ast::Expr*>& literals) {
+  std::vector<const ast::Expr*> sorted(literals.begin(), literals.end());
+  std::stable_sort(sorted.begin(), sorted.end(), [](const ast::Expr* a, const ast::Expr* b) {
+    return std::tie(a->loc.file, a->loc.line, a->loc.col) < std::tie(b->loc.file, b->loc.line, b->loc.col);
+  });
+  std::map<uint32_t, std::vector<int64_t>> out;
+  for (const ast::Expr* e : sorted) {
+    std::vector<int64_t>& list = out[e->loc.file];
+    if (!contains(list, e->intValue)) list.push_back(e->intValue);
+  }
+  return out;
+}
+
+// §6.1 step 2, recursively over the include tree.
+class NodeMerger {
+ public:
+  NodeMerger(const ast::Program& p, const std::map<uint32_t, std::vector<int64_t>>& literals)
+      : literals_(literals) {
+    for (const ast::IncludeDecl& inc : p.includes)
+      if (inc.file) includes_[inc.loc.file].push_back(*inc.file);
+  }
+
+  std::vector<int64_t> nodes(uint32_t file) {
+    visited_.insert(file);
+    std::vector<int64_t> out;
+    if (auto it = literals_.find(file); it != literals_.end()) out = it->second;
+    if (auto it = includes_.find(file); it != includes_.end())
+      for (auto inc = it->second.rbegin(); inc != it->second.rend(); ++inc)
+        if (!visited_.count(*inc)) out = sbclUnion(out, nodes(*inc));
+    return out;
+  }
+  bool visited(uint32_t file) const { return visited_.count(file) != 0; }
+
+ private:
+  const std::map<uint32_t, std::vector<int64_t>>& literals_;
+  std::map<uint32_t, std::vector<uint32_t>> includes_;  // file -> included files, in line order
+  std::set<uint32_t> visited_;
+};
+
+// §6.1 step 4: E from the constant axioms of route predicates, in merged program order.
+std::map<int64_t, std::vector<int64_t>> routeEdges(const ast::Program& p) {
+  std::unordered_set<std::string> routes;
+  for (const ast::PredicateDecl& d : p.predicates)
+    if (d.route) routes.insert(lower(d.name));
+  std::map<int64_t, std::deque<int64_t>> edges;
+  for (const ast::Rule& r : p.rules) {
+    if (r.kind != ast::RuleKind::Fact || !r.body.empty()) continue;
+    bool constant = !r.head.empty() && std::all_of(r.head.begin(), r.head.end(), [](const ast::Term& t) {
+      return t.kind == ast::TermKind::Subgoal && !t.args.empty() && t.args[0].kind == ast::ExprKind::Node;
+    });
+    if (!constant) continue;
+    for (const ast::Term& t : r.head) {
+      if (!routes.count(lower(t.name))) continue;
+      for (size_t i = 1; i < t.args.size(); ++i) {
+        if (t.args[i].kind != ast::ExprKind::Node) continue;
+        edges[t.args[0].intValue].push_front(t.args[i].intValue);
+        break;
+      }
+    }
+  }
+  std::map<int64_t, std::vector<int64_t>> out;
+  for (auto& [from, to] : edges) out[from].assign(to.begin(), to.end());
+  return out;
+}
+
+}  // namespace
+
+std::vector<int64_t> sbclUnion(const std::vector<int64_t>& x, const std::vector<int64_t>& y) {
+  const std::vector<int64_t>& shorter = x.size() < y.size() ? x : y;
+  const std::vector<int64_t>& longer = x.size() < y.size() ? y : x;
+  std::deque<int64_t> result(shorter.begin(), shorter.end());
+  for (int64_t e : longer)
+    if (!contains(shorter, e)) result.push_front(e);
+  return {result.begin(), result.end()};
+}
+
+std::vector<int64_t> numberBreadthFirst(const std::vector<int64_t>& order,
+                                        std::map<int64_t, std::vector<int64_t>> edges) {
+  std::vector<int64_t> out;
+  std::unordered_set<int64_t> inP(order.begin(), order.end());
+  size_t first = 0;  // P = the elements of `order` from `first` on that are still in inP
+  auto advance = [&] {
+    while (first < order.size() && !inP.count(order[first])) ++first;
+  };
+  std::deque<int64_t> queue;
+  for (;;) {
+    advance();
+    if (edges.empty()) {
+      for (size_t i = first; i < order.size(); ++i)
+        if (inP.erase(order[i])) out.push_back(order[i]);
+      break;
+    }
+    std::erase_if(queue, [&](int64_t n) { return !inP.count(n); });
+    if (queue.empty() && first < order.size()) queue.push_back(order[first]);
+    if (queue.empty()) break;
+    int64_t n = queue.front();
+    queue.pop_front();
+    out.push_back(n);
+    inP.erase(n);
+    if (auto it = edges.find(n); it != edges.end()) {
+      queue.insert(queue.end(), it->second.begin(), it->second.end());
+      edges.erase(it);
+    }
+  }
+  return out;
+}
+
+bool renumberNodes(ast::Program& program, Diagnostics& diag) {
+  bool clusterStatic = false;
+  bool ok = true;
+  for (const ast::Directive& d : program.directives) {
+    if (d.kind == ast::DirectiveKind::Data) {
+      diag.error(d.loc,
+                 "'data' directives are not supported yet: the node set of a data file cannot be "
+                 "numbered (§6.1)");
+      ok = false;
+    } else if (d.kind == ast::DirectiveKind::Priority && d.priority == ast::PriorityKind::ClusterRandom) {
+      diag.error(d.loc,
+                 "'priority @cluster @random' is not supported: it numbers nodes with a random, "
+                 "non-reproducible permutation; use the default breadth-first numbering or "
+                 "'priority @cluster @static'");
+      ok = false;
+    } else if (d.kind == ast::DirectiveKind::Priority && d.priority == ast::PriorityKind::ClusterStatic) {
+      clusterStatic = true;
+    }
+  }
+  if (!ok) return false;
+
+  LiteralCollector collector;
+  collector.program(program);
+  std::map<uint32_t, std::vector<int64_t>> perFile = literalsPerFile(collector.literals);
+
+  program.nodeTable.clear();
+  if (clusterStatic) {
+    int64_t max = -1;
+    for (const ast::Expr* e : collector.literals) max = std::max(max, e->intValue);
+    for (int64_t i = 0; i <= max; ++i) program.nodeTable.push_back({i, i});
+    program.renumbered = true;
+    return true;
+  }
+
+  NodeMerger merger(program, perFile);
+  std::vector<int64_t> mainNodes = merger.nodes(program.mainFile);
+  // Literals outside the include tree (-D definitions) are added at the end of nodes(main).
+  for (const auto& [file, list] : perFile) {
+    if (merger.visited(file)) continue;
+    for (int64_t n : list)
+      if (!contains(mainNodes, n)) mainNodes.push_back(n);
+  }
+  std::vector<int64_t> order(mainNodes.rbegin(), mainNodes.rend());
+  std::vector<int64_t> numbered = numberBreadthFirst(order, routeEdges(program));
+
+  std::unordered_map<int64_t, int64_t> internal;
+  for (size_t i = 0; i < numbered.size(); ++i) {
+    internal[numbered[i]] = static_cast<int64_t>(i);
+    program.nodeTable.push_back({static_cast<int64_t>(i), numbered[i]});
+  }
+  for (ast::Expr* e : collector.literals) e->intValue = internal.at(e->intValue);
+  program.renumbered = true;
+  return true;
+}
+
+}  // namespace meldc
