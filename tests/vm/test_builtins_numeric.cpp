@@ -1,0 +1,121 @@
+#define BOOST_TEST_MODULE vm_builtins_numeric
+#include <boost/test/unit_test.hpp>
+#include <cmath>
+#include <limits>
+
+#include "builtins_fixture.hpp"
+
+using namespace bitest;
+
+BOOST_FIXTURE_TEST_SUITE(numeric, Fix)
+
+BOOST_AUTO_TEST_CASE(sigmoid_values) {
+  BOOST_CHECK_EQUAL(call("sigmoid", {F(0)}, tFloat).asFloat(), 0.5);
+  BOOST_CHECK_EQUAL(show("sigmoid", {F(2)}, tFloat), "0.8808");
+  BOOST_CHECK_EQUAL(show("sigmoid", {F(-2)}, tFloat), "0.1192");
+  BOOST_CHECK_CLOSE(call("sigmoid", {F(2)}, tFloat).asFloat(), 0.8807970779778823, 1e-12);
+}
+
+BOOST_AUTO_TEST_CASE(randint_is_reproducible_and_in_range) {
+  Rng r{0};
+  ctx.rng = &r;
+  // splitmix64 from state 0 gives 0xe220a8397b1dcdaf first; mod 10 = 5.
+  BOOST_CHECK_EQUAL(call("randint", {I(10)}, tInt).asInt(), 5);
+  BOOST_CHECK_EQUAL(Rng{0}.next(), 0xe220a8397b1dcdafull);
+  BOOST_CHECK_EQUAL(call("randint", {I(1)}, tInt).asInt(), 0);
+  Rng a = Rng::forThread(3), b = Rng::forThread(3), c = Rng::forThread(4);
+  BOOST_CHECK_EQUAL(a.next(), b.next());
+  BOOST_CHECK_NE(Rng::forThread(3).next(), c.next());
+  ctx.rng = &a;
+  for (int i = 0; i < 200; ++i) {
+    const std::int32_t x = call("randint", {I(7)}, tInt).asInt();
+    BOOST_REQUIRE(x >= 0 && x < 7);
+  }
+  BOOST_CHECK_THROW(call("randint", {I(0)}, tInt), RuntimeError);
+  BOOST_CHECK_THROW(call("randint", {I(-4)}, tInt), RuntimeError);
+  ctx.rng = nullptr;
+  BOOST_CHECK_THROW(call("randint", {I(4)}, tInt), RuntimeError);
+}
+
+BOOST_AUTO_TEST_CASE(normalize_in_log_space) {
+  // max 3, log(e^-2 + e^-1 + 1) = 0.4076060
+  BOOST_CHECK_EQUAL(show("normalize", {floats({1, 2, 3})}, tLF), "[-2.4076,-1.4076,-0.40761]");
+  BOOST_CHECK_EQUAL(show("normalize", {floats({0, 0})}, tLF), "[-0.69315,-0.69315]");
+  BOOST_CHECK_EQUAL(show("normalize", {floats({-5})}, tLF), "[0]");
+  BOOST_CHECK_EQUAL(show("normalize", {Value::nil()}, tLF), "[]");
+}
+
+BOOST_AUTO_TEST_CASE(damp_divide_addfloatlists) {
+  // log(0.25 e^1 + 0.75 e^0) = 0.357374, log(0.25 e^0 + 0.75 e^1) = 0.827989
+  BOOST_CHECK_EQUAL(show("damp", {floats({0, 1}), floats({1, 0}), F(0.25)}, tLF), "[0.35737,0.82799]");
+  BOOST_CHECK_EQUAL(show("damp", {floats({0, 2}), floats({0}), F(0.5)}, tLF), "[0]");
+  BOOST_CHECK_EQUAL(show("damp", {Value::nil(), floats({1}), F(0.5)}, tLF), "[]");
+  BOOST_CHECK_EQUAL(show("divide", {floats({3, 1}), floats({1, 1.5})}, tLF), "[2,-0.5]");
+  BOOST_CHECK_EQUAL(show("divide", {floats({1, 2, 3}), floats({1})}, tLF), "[0]");
+  BOOST_CHECK_EQUAL(show("addfloatlists", {floats({1.5, 2}), floats({0.25, 1, 7})}, tLF), "[1.75,3]");
+  BOOST_CHECK_EQUAL(show("addfloatlists", {floats({-1}), floats({1})}, tLF), "[0]");
+  BOOST_CHECK_EQUAL(show("addfloatlists", {Value::nil(), Value::nil()}, tLF), "[]");
+}
+
+BOOST_AUTO_TEST_CASE(convolve_is_a_log_space_matrix_vector_product) {
+  // out0 = log(e^(1+0) + e^(2+1)) = 3.12693, out1 = log(e^(3+0) + e^(4+1)) = 5.12693
+  BOOST_CHECK_EQUAL(show("convolve", {floats({1, 2, 3, 4}), floats({0, 1})}, tLF), "[3.1269,5.1269]");
+  BOOST_CHECK_EQUAL(show("convolve", {floats({0}), floats({0})}, tLF), "[0]");
+  BOOST_CHECK_EQUAL(show("convolve", {Value::nil(), Value::nil()}, tLF), "[]");
+  BOOST_CHECK_THROW(call("convolve", {floats({1, 2, 3}), floats({0, 1})}, tLF), RuntimeError);
+}
+
+BOOST_AUTO_TEST_CASE(residual_is_the_mean_absolute_difference_of_exponentials) {
+  // (|e^0 - e^0| + |e^0 - e^log3|) / 2 = 1
+  BOOST_CHECK_CLOSE(call("residual", {floats({0, 0}), floats({0, std::log(3.0)})}, tFloat).asFloat(), 1.0,
+                    1e-12);
+  BOOST_CHECK_EQUAL(show("residual", {floats({std::log(2.0)}), floats({0})}, tFloat), "1");
+  BOOST_CHECK_EQUAL(call("residual", {Value::nil(), Value::nil()}, tFloat).asFloat(), 0.0);
+}
+
+BOOST_AUTO_TEST_CASE(truncate_in_single_precision) {
+  // floor(314.159) / 100 computed in float: 3.14f = 3.1400001049041748
+  BOOST_CHECK_EQUAL(call("truncate", {F(3.14159), I(2)}, tFloat).asFloat(), double(3.14f));
+  BOOST_CHECK_EQUAL(show("truncate", {F(3.14159), I(2)}, tFloat), "3.14");
+  // floor(-12.5) = -13 -> -1.3f
+  BOOST_CHECK_EQUAL(call("truncate", {F(-1.25), I(1)}, tFloat).asFloat(), double(-1.3f));
+  BOOST_CHECK_EQUAL(show("truncate", {F(2.5), I(0)}, tFloat), "2");
+  BOOST_CHECK_EQUAL(show("truncate", {F(1234.5), I(-2)}, tFloat), "1200");
+}
+
+BOOST_AUTO_TEST_CASE(float2int_intpower_fabs) {
+  BOOST_CHECK_EQUAL(call("float2int", {F(3.9)}, tInt).asInt(), 3);
+  BOOST_CHECK_EQUAL(call("float2int", {F(-3.9)}, tInt).asInt(), -3);
+  BOOST_CHECK_EQUAL(call("float2int", {F(1e20)}, tInt).asInt(), std::numeric_limits<std::int32_t>::max());
+  BOOST_CHECK_EQUAL(call("intpower", {I(2), I(10)}, tInt).asInt(), 1024);
+  BOOST_CHECK_EQUAL(call("intpower", {I(-3), I(3)}, tInt).asInt(), -27);
+  BOOST_CHECK_EQUAL(call("intpower", {I(5), I(0)}, tInt).asInt(), 1);
+  BOOST_CHECK_EQUAL(call("intpower", {I(7), I(-1)}, tInt).asInt(), 1);
+  BOOST_CHECK_EQUAL(call("intpower", {I(2), I(31)}, tInt).asInt(), std::numeric_limits<std::int32_t>::min());
+  BOOST_CHECK_EQUAL(call("intpower", {I(2), I(32)}, tInt).asInt(), 0);
+  BOOST_CHECK_EQUAL(call("fabs", {F(-2.5)}, tFloat).asFloat(), 2.5);
+  BOOST_CHECK_EQUAL(call("fabs", {F(0.75)}, tFloat).asFloat(), 0.75);
+}
+
+BOOST_AUTO_TEST_CASE(float_struct_variants) {
+  const TypeId s2 = floatStruct(2);
+  BOOST_CHECK_EQUAL(show("addfloatstructs", {fstruct({1, 2}), fstruct({0.5, 0.25})}, s2), ":(1.5, 2.25)");
+  BOOST_CHECK_EQUAL(show("dividestruct", {fstruct({1, 2}), fstruct({0.5, 0.25})}, s2), ":(0.5, 1.75)");
+  BOOST_CHECK_EQUAL(show("normalizestruct", {fstruct({0, 0})}, s2), ":(-0.69315, -0.69315)");
+  BOOST_CHECK_EQUAL(show("dampstruct", {fstruct({0, 1}), fstruct({1, 0}), F(0.25)}, s2),
+                    ":(0.35737, 0.82799)");
+  BOOST_CHECK_CLOSE(call("residualstruct", {fstruct({0, 0}), fstruct({0, std::log(3.0)})}, tFloat).asFloat(),
+                    1.0, 1e-12);
+  BOOST_CHECK_EQUAL(show("convolvestruct", {fstruct({1, 2, 3, 4}), fstruct({0, 1})}, s2),
+                    ":(3.1269, 5.1269)");
+  // The result of convolvestruct has the vector's type: a 25-float matrix times 5 floats.
+  std::vector<Value> m(25, F(0));
+  const Value mat = tuple(floatStruct(25), m);
+  const TypeId s5 = floatStruct(5);
+  BOOST_CHECK_EQUAL(show("convolvestruct", {mat, fstruct({0, 0, 0, 0, 0})}, s5),
+                    ":(1.6094, 1.6094, 1.6094, 1.6094, 1.6094)");  // log 5
+  BOOST_CHECK_THROW(call("addfloatstructs", {fstruct({1, 2}), fstruct({1})}, s2), RuntimeError);
+  BOOST_CHECK_THROW(call("convolvestruct", {fstruct({1, 2, 3}), fstruct({0, 1})}, s2), RuntimeError);
+}
+
+BOOST_AUTO_TEST_SUITE_END()

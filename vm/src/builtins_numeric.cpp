@@ -1,0 +1,199 @@
+// Numeric built-ins of §5.6: sigmoid, randint, the log-space belief-propagation helpers on float
+// lists and float structs, truncate, float2int, intpower, fabs.
+#include <algorithm>
+#include <cmath>
+#include <limits>
+
+#include "builtins_util.hpp"
+
+namespace meldvm::builtins {
+
+namespace {
+
+// Reads a float list into ctx-owned storage `out` (cleared first).
+void readFloats(Value list, std::vector<double>& out) {
+  out.clear();
+  for (; !list.isNil(); list = listTail(list)) out.push_back(listHead(list).asFloat());
+}
+
+Value floatList(BuiltinContext& ctx, TypeId listType, std::span<const double> xs) {
+  ListBuilder lb(ctx.heap, listType);
+  for (double x : xs) lb.push(Value::fromFloat(x));
+  return lb.finish();
+}
+
+// a (x) b element-wise over two float lists, stopping at the shorter one.
+template <class Op>
+Value zipFloats(BuiltinContext& ctx, Value a, Value b, TypeId listType, Op op) {
+  ListBuilder lb(ctx.heap, listType);
+  for (; !a.isNil() && !b.isNil(); a = listTail(a), b = listTail(b))
+    lb.push(Value::fromFloat(op(listHead(a).asFloat(), listHead(b).asFloat())));
+  return lb.finish();
+}
+
+template <class Op>
+Value zipStructs(BuiltinContext& ctx, std::string_view fn, Value a, Value b, Op op) {
+  const auto x = tupleItems(a), y = tupleItems(b);
+  if (x.size() != y.size()) throw error(fn, "structs of different sizes");
+  ctx.scratch.clear();
+  for (std::size_t i = 0; i < x.size(); ++i)
+    ctx.scratch.push_back(Value::fromFloat(op(x[i].asFloat(), y[i].asFloat())));
+  return ctx.heap.makeTuple(objectType(a), ctx.scratch);
+}
+
+// xi - max - log(sum exp(xj - max)), in place.
+void normalizeInPlace(std::span<double> xs) {
+  if (xs.empty()) return;
+  const double mx = *std::max_element(xs.begin(), xs.end());
+  double sum = 0;
+  for (double x : xs) sum += std::exp(x - mx);
+  const double lsum = std::log(sum);
+  for (double& x : xs) x = x - mx - lsum;
+}
+
+double dampOne(double a, double b, double f) { return std::log(f * std::exp(b) + (1.0 - f) * std::exp(a)); }
+
+// out_i = log sum_j exp(M[i*n + j] + v_j), n = |v|, M has n*n entries; pushed onto `out`.
+void convolveInto(std::string_view fn, std::span<const double> m, std::span<const double> v,
+                  std::vector<Value>& out) {
+  const std::size_t n = v.size();
+  if (m.size() != n * n)
+    throw error(fn, "matrix has " + std::to_string(m.size()) + " entries, expected " + std::to_string(n * n));
+  out.clear();
+  for (std::size_t i = 0; i < n; ++i) {
+    double sum = 0;
+    for (std::size_t j = 0; j < n; ++j) sum += std::exp(m[i * n + j] + v[j]);
+    out.push_back(Value::fromFloat(std::log(sum)));
+  }
+}
+
+double residualOf(std::span<const double> a, std::span<const double> b) {
+  const std::size_t n = std::min(a.size(), b.size());
+  if (n == 0) return 0.0;
+  double sum = 0;
+  for (std::size_t i = 0; i < n; ++i) sum += std::fabs(std::exp(a[i]) - std::exp(b[i]));
+  return sum / double(n);
+}
+
+void structFloats(Value s, std::vector<double>& out) {
+  out.clear();
+  for (Value v : tupleItems(s)) out.push_back(v.asFloat());
+}
+
+}  // namespace
+
+Value sigmoid(BuiltinContext&, std::span<const Value> a, TypeId) {
+  return Value::fromFloat(1.0 / (1.0 + std::exp(-a[0].asFloat())));
+}
+
+Value randint(BuiltinContext& ctx, std::span<const Value> a, TypeId) {
+  const std::int32_t n = a[0].asInt();
+  if (n <= 0) throw error("randint", "bound must be positive, got " + std::to_string(n));
+  if (!ctx.rng) throw error("randint", "no random stream in the context");
+  return Value::fromInt(std::int32_t(ctx.rng->next() % std::uint64_t(n)));
+}
+
+Value normalize(BuiltinContext& ctx, std::span<const Value> a, TypeId result) {
+  readFloats(a[0], ctx.numbers);
+  normalizeInPlace(ctx.numbers);
+  return floatList(ctx, result, ctx.numbers);
+}
+
+Value damp(BuiltinContext& ctx, std::span<const Value> a, TypeId result) {
+  const double f = a[2].asFloat();
+  return zipFloats(ctx, a[0], a[1], result, [f](double x, double y) { return dampOne(x, y, f); });
+}
+
+Value divide(BuiltinContext& ctx, std::span<const Value> a, TypeId result) {
+  return zipFloats(ctx, a[0], a[1], result, [](double x, double y) { return x - y; });
+}
+
+Value addfloatlists(BuiltinContext& ctx, std::span<const Value> a, TypeId result) {
+  return zipFloats(ctx, a[0], a[1], result, [](double x, double y) { return x + y; });
+}
+
+Value convolve(BuiltinContext& ctx, std::span<const Value> a, TypeId result) {
+  std::vector<double>& buf = ctx.numbers;  // [M..., v...]
+  readFloats(a[0], buf);
+  const std::size_t mn = buf.size();
+  for (Value l = a[1]; !l.isNil(); l = listTail(l)) buf.push_back(listHead(l).asFloat());
+  const std::span<const double> all(buf);
+  convolveInto("convolve", all.first(mn), all.subspan(mn), ctx.scratch);
+  return ctx.heap.makeList(result, ctx.scratch);
+}
+
+Value residual(BuiltinContext&, std::span<const Value> a, TypeId) {
+  double sum = 0;
+  std::size_t n = 0;
+  for (Value x = a[0], y = a[1]; !x.isNil() && !y.isNil(); x = listTail(x), y = listTail(y), ++n)
+    sum += std::fabs(std::exp(listHead(x).asFloat()) - std::exp(listHead(y).asFloat()));
+  return Value::fromFloat(n == 0 ? 0.0 : sum / double(n));
+}
+
+Value truncate(BuiltinContext&, std::span<const Value> a, TypeId) {
+  // floor(x * 10^n) / 10^n in single precision, widened back to double.
+  const float p = std::pow(10.0f, float(a[1].asInt()));
+  const float r = std::floor(float(a[0].asFloat()) * p) / p;
+  return Value::fromFloat(double(r));
+}
+
+Value float2int(BuiltinContext&, std::span<const Value> a, TypeId) {
+  return Value::fromInt(floatToInt(a[0].asFloat()));
+}
+
+Value intpower(BuiltinContext&, std::span<const Value> a, TypeId) {
+  // Repeated multiplication with 32-bit wrap-around; a non-positive exponent gives 1.
+  std::int32_t r = 1;
+  for (std::int32_t i = 0; i < a[1].asInt(); ++i) r = intMul(r, a[0].asInt());
+  return Value::fromInt(r);
+}
+
+Value fabs(BuiltinContext&, std::span<const Value> a, TypeId) {
+  return Value::fromFloat(std::fabs(a[0].asFloat()));
+}
+
+Value addfloatstructs(BuiltinContext& ctx, std::span<const Value> a, TypeId) {
+  return zipStructs(ctx, "addfloatstructs", a[0], a[1], [](double x, double y) { return x + y; });
+}
+
+Value dividestruct(BuiltinContext& ctx, std::span<const Value> a, TypeId) {
+  return zipStructs(ctx, "dividestruct", a[0], a[1], [](double x, double y) { return x - y; });
+}
+
+Value dampstruct(BuiltinContext& ctx, std::span<const Value> a, TypeId) {
+  const double f = a[2].asFloat();
+  return zipStructs(ctx, "dampstruct", a[0], a[1], [f](double x, double y) { return dampOne(x, y, f); });
+}
+
+Value normalizestruct(BuiltinContext& ctx, std::span<const Value> a, TypeId) {
+  structFloats(a[0], ctx.numbers);
+  normalizeInPlace(ctx.numbers);
+  ctx.scratch.clear();
+  for (double x : ctx.numbers) ctx.scratch.push_back(Value::fromFloat(x));
+  return ctx.heap.makeTuple(objectType(a[0]), ctx.scratch);
+}
+
+Value residualstruct(BuiltinContext& ctx, std::span<const Value> a, TypeId) {
+  const auto x = tupleItems(a[0]), y = tupleItems(a[1]);
+  if (x.size() != y.size()) throw error("residualstruct", "structs of different sizes");
+  ctx.numbers.clear();
+  for (Value v : x) ctx.numbers.push_back(v.asFloat());
+  for (Value v : y) ctx.numbers.push_back(v.asFloat());
+  const std::span<const double> all(ctx.numbers);
+  return Value::fromFloat(residualOf(all.first(x.size()), all.subspan(x.size())));
+}
+
+Value convolvestruct(BuiltinContext& ctx, std::span<const Value> a, TypeId) {
+  // M: a struct of n*n floats (25 in the belief-propagation programs), v: a struct of n floats;
+  // the result has v's struct type.
+  std::vector<double>& buf = ctx.numbers;
+  buf.clear();
+  for (Value v : tupleItems(a[0])) buf.push_back(v.asFloat());
+  const std::size_t mn = buf.size();
+  for (Value v : tupleItems(a[1])) buf.push_back(v.asFloat());
+  const std::span<const double> all(buf);
+  convolveInto("convolvestruct", all.first(mn), all.subspan(mn), ctx.scratch);
+  return ctx.heap.makeTuple(objectType(a[1]), ctx.scratch);
+}
+
+}  // namespace meldvm::builtins
