@@ -67,8 +67,8 @@ void jsonField(std::ostream& out, const char* key, std::string_view value, bool 
 
 std::vector<ColorCount> colorHistogram(const simcore::World& world) {
   std::unordered_map<std::uint32_t, std::uint64_t> counts;
-  for (const simcore::Block& b : world.blocks())
-    if (b.alive) ++counts[b.color];
+  for (simcore::BlockId id = 0; id < world.blockCount(); ++id)
+    if (world.isAlive(id)) ++counts[world.block(id).color];
   std::vector<ColorCount> histogram;
   histogram.reserve(counts.size());
   for (const auto& [rgb, n] : counts) histogram.push_back({rgb, n});
@@ -81,8 +81,7 @@ std::vector<ColorCount> colorHistogram(const simcore::World& world) {
 void printSummary(std::ostream& out, const simcore::Simulation& sim, const RunInfo& info) {
   const simcore::Statistics& s = sim.statistics();
   const simcore::World& world = sim.world();
-  std::size_t alive = 0;
-  for (const simcore::Block& b : world.blocks()) alive += b.alive;
+  const std::size_t alive = world.aliveCount();
 
   row(out, "world", info.world);
   row(out, "block code", info.codeName + " (" + info.code + ")");
@@ -113,7 +112,7 @@ void printSummary(std::ostream& out, const simcore::Simulation& sim, const RunIn
   out << (values ? "  final blocks (id, cell, color, value)\n" : "  final blocks (id, cell, color)\n");
   for (simcore::BlockId id = 0; id < world.blockCount(); ++id) {
     const simcore::Block& b = world.block(id);
-    if (!b.alive) continue;
+    if (!world.isAlive(id)) continue;
     const char* name = simcore::colorName(b.color);
     std::string line = format("    #%-3u %-12s %s %s", unsigned(id),
                               format("(%d,%d,%d)", b.cell.x, b.cell.y, b.cell.z).c_str(),
@@ -127,8 +126,7 @@ void printSummary(std::ostream& out, const simcore::Simulation& sim, const RunIn
 void writeJsonReport(std::ostream& out, const simcore::Simulation& sim, const RunInfo& info) {
   const simcore::Statistics& s = sim.statistics();
   const simcore::World& world = sim.world();
-  std::size_t alive = 0;
-  for (const simcore::Block& b : world.blocks()) alive += b.alive;
+  const std::size_t alive = world.aliveCount();
 
   out << '{';
   jsonField(out, "world", info.world, false);
@@ -162,7 +160,7 @@ void writeJsonReport(std::ostream& out, const simcore::Simulation& sim, const Ru
     bool first = true;
     for (simcore::BlockId id = 0; id < world.blockCount(); ++id) {
       const simcore::Block& b = world.block(id);
-      if (!b.alive) continue;
+      if (!world.isAlive(id)) continue;
       out << (first ? "" : ",")
           << format("{\"id\":%u,\"cell\":[%d,%d,%d],\"rgb\":\"%s\"", unsigned(id), b.cell.x, b.cell.y,
                     b.cell.z, rgbText(b.color).c_str());

@@ -117,6 +117,7 @@ int main(int argc, char** argv) {
   std::uint64_t placement = simcore::BlockRng::initialState(o.seed, 0xFFFFFFF0u);
   const std::uint64_t cells = std::uint64_t(L) * std::uint64_t(L);
   std::uint64_t needed = o.blocks;
+  sim.world().reserveBlocks(o.blocks);
   for (std::uint64_t c = 0; c < cells && needed > 0; ++c) {
     const std::uint64_t remaining = cells - c;
     const double u = double(simcore::BlockRng::next(placement, 0xFFFFFFF0u)) / 4294967296.0;

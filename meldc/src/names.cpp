@@ -7,6 +7,7 @@
 #include <string>
 #include <vector>
 
+#include "meldc/ast_dump.hpp"
 #include "meldc/builtins.hpp"
 #include "meldc/case_folding.hpp"
 
@@ -159,7 +160,7 @@ class Resolver {
     if (!homeOk && (home.kind != TypeKind::Named || typeNames_.count(lower(home.name))))
       diag_.error(d.fields[0].loc, "the first argument of '" + d.name +
                                        "' is its home and must be a node, a node type or a thread, not '" +
-                                       toText(d.fields[0].type) + "'");
+                                       toString(d.fields[0].type) + "'");
     int aggregates = 0;
     for (size_t i = 0; i < d.fields.size(); ++i) {
       const FieldDecl& f = d.fields[i];
@@ -173,40 +174,12 @@ class Resolver {
       const TypeExpr& t = resolveAlias(f.type);
       if ((f.agg == FieldAgg::Min || f.agg == FieldAgg::Max) && !isNumeric(f.type))
         diag_.error(f.type.loc, std::string(f.agg == FieldAgg::Min ? "min" : "max") +
-                                    " aggregates int or float fields, not '" + toText(f.type) + "'");
+                                    " aggregates int or float fields, not '" + toString(f.type) + "'");
       if (f.agg == FieldAgg::Sum && !isNumeric(f.type) &&
           !(t.kind == TypeKind::List && !t.args.empty() && resolveAlias(t.args[0]).kind == TypeKind::Float))
         diag_.error(f.type.loc,
-                    "sum aggregates int, float or list float fields, not '" + toText(f.type) + "'");
+                    "sum aggregates int, float or list float fields, not '" + toString(f.type) + "'");
     }
-  }
-
-  static std::string toText(const TypeExpr& t) {
-    switch (t.kind) {
-      case TypeKind::Int:
-        return "int";
-      case TypeKind::Float:
-        return "float";
-      case TypeKind::Bool:
-        return "bool";
-      case TypeKind::String:
-        return "string";
-      case TypeKind::Node:
-        return "node";
-      case TypeKind::Thread:
-        return "thread";
-      case TypeKind::Named:
-        return t.name;
-      case TypeKind::List:
-        return "list " + toText(t.args.at(0));
-      case TypeKind::Set:
-        return "set " + toText(t.args.at(0));
-      case TypeKind::Array:
-        return "array " + toText(t.args.at(0));
-      case TypeKind::Struct:
-        return "struct";
-    }
-    return "?";
   }
 
   void declareFunctions() {

@@ -162,10 +162,6 @@ RunStatus Simulation::run(SimTime until, std::uint64_t maxEvents) {
   return status;
 }
 
-std::size_t Simulation::bytesPerBlockEstimate() const {
-  return sizeof(Block) + std::size_t(faceCount_) * sizeof(FaceState) + stateSize_;
-}
-
 Vec3 Simulation::position(BlockId id) const {
   const Block& b = world_.block(id);
   const Lattice& lat = world_.lattice();

@@ -43,6 +43,7 @@ void populateSimulation(const WorldDescription& d, Simulation& sim) {
   // Ids in the schedule are indices in d.blocks; they stay valid only if we number from 0.
   if (sim.world().blockCount() != 0)
     throw XmlWorldError(d.path, 0, 0, "the simulation already has blocks; a world file needs an empty one");
+  sim.world().reserveBlocks(d.blocks.size());
   for (const BlockDescription& b : d.blocks)
     if (sim.addBlock(b.cell, b.color.value_or(sim.target().defaultColor)) == kNoBlock)
       throw XmlWorldError(d.path, b.pos.line, b.pos.column, refusal(sim.world(), b.cell));
@@ -99,8 +100,9 @@ void exportWorldXml(const Simulation& sim, const WorldDescription& original, std
   if (original.listColor) list.append_attribute("color") = colorText(*original.listColor).c_str();
   if (!original.blockSize.empty()) list.append_attribute("blockSize") = original.blockSize.c_str();
   // Every block carries its own color: colors change during a run.
-  for (const Block& b : sim.world().blocks()) {
-    if (!b.alive) continue;
+  for (BlockId id = 0; id < sim.world().blockCount(); ++id) {
+    if (!sim.world().isAlive(id)) continue;
+    const Block& b = sim.world().block(id);
     pugi::xml_node n = list.append_child("block");
     n.append_attribute("position") = cellText(b.cell).c_str();
     n.append_attribute("color") = colorText(b.color).c_str();

@@ -7,33 +7,13 @@
 
 #include "meldc/frontend.hpp"
 #include "meldc/includes.hpp"
+#include "temp_dir.hpp"
 #include "test_support.hpp"
 
 using namespace meldc;
 namespace fs = std::filesystem;
 
 namespace {
-
-// A scratch folder removed at the end of the test.
-struct TempDir {
-  fs::path path;
-  TempDir() {
-    path = fs::temp_directory_path() /
-           ("meldc-test-" + std::to_string(::getpid()) + "-" + std::to_string(counter++));
-    fs::create_directories(path);
-  }
-  ~TempDir() {
-    std::error_code ec;
-    fs::remove_all(path, ec);
-  }
-  std::string write(const std::string& name, const std::string& text) const {
-    fs::path p = path / name;
-    fs::create_directories(p.parent_path());
-    std::ofstream(p) << text;
-    return p.string();
-  }
-  static inline int counter = 0;
-};
 
 // The predicate names of the facts, in merged order.
 std::string factOrder(const ast::Program& p) {

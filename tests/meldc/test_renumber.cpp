@@ -8,32 +8,12 @@
 
 #include "meldc/frontend.hpp"
 #include "meldc/renumber.hpp"
+#include "temp_dir.hpp"
 
 using namespace meldc;
 namespace fs = std::filesystem;
 
 namespace {
-
-// A scratch folder of Meld files, removed at the end of the test.
-struct Files {
-  fs::path path;
-  Files() {
-    path = fs::temp_directory_path() /
-           ("meldc-renumber-" + std::to_string(::getpid()) + "-" + std::to_string(counter++));
-    fs::create_directories(path);
-  }
-  ~Files() {
-    std::error_code ec;
-    fs::remove_all(path, ec);
-  }
-  std::string write(const std::string& name, const std::string& text) const {
-    fs::path p = path / name;
-    fs::create_directories(p.parent_path());
-    std::ofstream(p) << text;
-    return p.string();
-  }
-  static inline int counter = 0;
-};
 
 // Runs the whole front end (as `meldc --check` does) on `main` of `files`.
 struct Compiled {
@@ -42,7 +22,7 @@ struct Compiled {
   Diagnostics diag{sources, messages};
   std::optional<ast::Program> program;
 
-  Compiled(const Files& files, const std::string& main) {
+  Compiled(const TempDir& files, const std::string& main) {
     program = runFrontEnd(FrontEndInput{(files.path / main).string(), {}, {}}, sources, diag);
   }
   bool ok() const { return program.has_value() && !diag.hasErrors(); }
@@ -60,9 +40,9 @@ struct Compiled {
 };
 
 // One file programs.
-struct Single : Files, Compiled {
-  explicit Single(const std::string& text) : Files(), Compiled(init(text), "main.meld") {}
-  const Files& init(const std::string& text) {
+struct Single : TempDir, Compiled {
+  explicit Single(const std::string& text) : TempDir(), Compiled(init(text), "main.meld") {}
+  const TempDir& init(const std::string& text) {
     write("main.meld", text);
     return *this;
   }
@@ -116,7 +96,7 @@ BOOST_AUTO_TEST_CASE(two_edge_example_with_a_route) {
 }
 
 BOOST_AUTO_TEST_CASE(main_file_with_only_includes_reverses_the_included_literals) {
-  Files f;
+  TempDir f;
   f.write("lib.meld", "type linear p(node).\np(@5).\np(@7).\np(@6).\np(@5).\n");
   f.write("main.meld", "include #lib.meld\n");
   Compiled p(f, "main.meld");
@@ -126,7 +106,7 @@ BOOST_AUTO_TEST_CASE(main_file_with_only_includes_reverses_the_included_literals
 }
 
 BOOST_AUTO_TEST_CASE(nested_includes_merge_in_reverse_include_order) {
-  Files f;
+  TempDir f;
   f.write("c.meld", "p(@5).\n");
   f.write("a.meld", "include #c.meld\np(@2).\n");
   f.write("b.meld", "p(@3).\np(@4).\n");
@@ -140,7 +120,7 @@ BOOST_AUTO_TEST_CASE(nested_includes_merge_in_reverse_include_order) {
 }
 
 BOOST_AUTO_TEST_CASE(union_with_a_longer_included_list) {
-  Files f;
+  TempDir f;
   f.write("lib.meld", "p(@2).\np(@3).\np(@1).\n");
   f.write("main.meld", "include #lib.meld\ntype linear p(node).\np(@1).\n");
   Compiled p(f, "main.meld");
@@ -150,7 +130,7 @@ BOOST_AUTO_TEST_CASE(union_with_a_longer_included_list) {
 }
 
 BOOST_AUTO_TEST_CASE(union_with_a_shorter_included_list) {
-  Files f;
+  TempDir f;
   f.write("lib.meld", "p(@9).\n");
   f.write("main.meld", "include #lib.meld\ntype linear p(node).\np(@1).\np(@2).\np(@9).\n");
   Compiled p(f, "main.meld");

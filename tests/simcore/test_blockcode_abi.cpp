@@ -189,8 +189,8 @@ BOOST_AUTO_TEST_CASE(smart_blocks_services_value_and_sensor) {
                       1u - c->block);
   };
   sim->runUntilEmpty();
-  BOOST_CHECK_EQUAL(testsupport::shownValue(*sim, 0), 40);
-  BOOST_CHECK_EQUAL(testsupport::shownValue(*sim, 1), 41);
+  BOOST_CHECK_EQUAL(sim->displayValue(0), 40);
+  BOOST_CHECK_EQUAL(sim->displayValue(1), 41);
 }
 
 BOOST_AUTO_TEST_CASE(start_comes_before_every_other_event_of_a_block) {

@@ -115,7 +115,7 @@ BOOST_AUTO_TEST_CASE(removing_a_block_drops_its_messages_and_silences_it) {
   BOOST_CHECK_EQUAL(sim->now(), 10 * kMillisecond);
   BOOST_CHECK_EQUAL(s.of(1, VS_EV_MESSAGE).size(), 1u);
   sim->removeBlock(1);
-  BOOST_CHECK(!sim->world().block(1).alive);
+  BOOST_CHECK(!sim->world().isAlive(1));
   BOOST_CHECK(sim->world().isFree(Cell{1, 0, 0}));
   sim->removeBlock(1);  // twice is harmless
   const std::size_t logged = s.log.size();

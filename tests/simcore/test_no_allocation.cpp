@@ -2,10 +2,7 @@
 // stretch of a busy run (motions, timers, messages, neighbor changes) performs no heap allocation,
 // whichever future-event set is used. Counted by replacing the global operator new in this test.
 #define BOOST_TEST_MODULE no_allocation
-#include <atomic>
 #include <boost/test/unit_test.hpp>
-#include <cstdlib>
-#include <new>
 
 #include "../common/counting_new.hpp"
 #include "simcore/blockcode.h"

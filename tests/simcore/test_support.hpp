@@ -41,15 +41,6 @@ inline std::unique_ptr<simcore::Simulation> makeBlinky(simcore::GridSize size, c
   return makeSim(targets::blinkyBlocksTarget(), size, cells, cfg);
 }
 
-// The value a block displays (set_value), whichever way the kernel stores it.
-template <class Sim>
-std::int32_t shownValue(Sim& sim, BlockId id) {
-  if constexpr (requires { sim.displayValue(id); })
-    return sim.displayValue(id);
-  else
-    return sim.world().block(id).value;
-}
-
 // One callback as the block program saw it. kind 0 stands for `start`.
 struct Rec {
   SimTime time = 0;

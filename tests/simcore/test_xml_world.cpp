@@ -342,7 +342,7 @@ BOOST_AUTO_TEST_CASE(export_round_trip_after_changes) {
   std::size_t i = 0;
   for (simcore::BlockId id = 0; id < sim->world().blockCount(); ++id) {
     const simcore::Block& b = sim->world().block(id);
-    if (!b.alive) continue;
+    if (!sim->world().isAlive(id)) continue;
     BOOST_TEST((back.blocks[i].cell == b.cell));
     BOOST_TEST(back.blocks[i].color.value() == b.color);
     ++i;

@@ -76,10 +76,12 @@ const BuiltinInfo kTable[] = {
     E(60, "array_from_list", {ListT}, ArrayT, true, b::array_from_list),
     E(61, "array_size", {ArrayT}, Int, false, b::array_size),
     E(64, "fabs", {Float}, Float, false, b::fabs),
-    E(65, "set_size", {SetT}, Int, false, b::set_size),
-    E(66, "set_exists", {SetT, T}, Bool, true, b::set_exists),
-    E(67, "set_add", {SetT, T}, SetT, true, b::set_add),
-    E(68, "set_from_list", {ListT}, SetT, true, b::set_from_list),
+    // Sets and arrays share the tuple representation (the heap keeps a set's items unique), so the
+    // set functions are the array ones.
+    E(65, "set_size", {SetT}, Int, false, b::array_size),
+    E(66, "set_exists", {SetT, T}, Bool, true, b::array_exists),
+    E(67, "set_add", {SetT, T}, SetT, true, b::array_add),
+    E(68, "set_from_list", {ListT}, SetT, true, b::array_from_list),
     E(69, "array_exists", {ArrayT, T}, Bool, true, b::array_exists),
     E(70, "ltake", {ListT, Int}, ListT, false, b::ltake),
 };

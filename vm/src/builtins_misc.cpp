@@ -109,27 +109,4 @@ Value array_exists(BuiltinContext& ctx, std::span<const Value> a, TypeId) {
   return Value::fromBool(tupleContains(ctx.heap.types(), a[0], a[1]));
 }
 
-Value set_size(BuiltinContext&, std::span<const Value> a, TypeId) {
-  return Value::fromInt(std::int32_t(tupleItems(a[0]).size()));
-}
-
-Value set_exists(BuiltinContext& ctx, std::span<const Value> a, TypeId) {
-  return Value::fromBool(tupleContains(ctx.heap.types(), a[0], a[1]));
-}
-
-Value set_add(BuiltinContext& ctx, std::span<const Value> a, TypeId result) {
-  // A new set; adding a present item gives an equal copy.
-  const auto items = tupleItems(a[0]);
-  ctx.scratch.assign(items.begin(), items.end());
-  ctx.scratch.push_back(a[1]);
-  return ctx.heap.makeTuple(result, ctx.scratch);
-}
-
-Value set_from_list(BuiltinContext& ctx, std::span<const Value> a, TypeId result) {
-  // Items in order of first occurrence in the list (the heap's set keeps the first copy).
-  ctx.scratch.clear();
-  for (Value l = a[0]; !l.isNil(); l = listTail(l)) ctx.scratch.push_back(listHead(l));
-  return ctx.heap.makeTuple(result, ctx.scratch);
-}
-
 }  // namespace meldvm::builtins

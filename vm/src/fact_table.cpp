@@ -65,15 +65,21 @@ void FactTable::releaseArgs(FactRef f) {
   for (std::uint32_t i : boxedFields_) heap_.release(fields_[i], a[i]);
 }
 
-void FactTable::linkIndexes(FactRef f) {
+// The first fact of f's chain in index x (kNoFact if none), and the key's hash in `hash`.
+FactRef FactTable::chainHead(FactRef f, std::uint32_t x, std::uint64_t& hash) const {
   const NodeId n = node(f);
+  const KeySpec spec = indexes_[x].key;
+  const Value* key = args(f) + spec.first;
+  hash = hashKey(n, key, spec);
+  return indexes_[x].heads.find(hash,
+                                [&](std::uint32_t g) { return node(g) == n && keyEqual(g, key, spec); });
+}
+
+void FactTable::linkIndexes(FactRef f) {
   for (std::uint32_t x = 0; x < indexCount(); ++x) {
     const std::size_t w = base(f) + 2 + x;
-    const KeySpec spec = indexes_[x].key;
-    const Value* key = args(f) + spec.first;
-    const std::uint64_t h = hashKey(n, key, spec);
-    const FactRef head =
-        indexes_[x].heads.find(h, [&](std::uint32_t g) { return node(g) == n && keyEqual(g, key, spec); });
+    std::uint64_t h;
+    const FactRef head = chainHead(f, x, h);
     setHi(w, kNoFact);
     if (head == kNoFact) {
       setLo(w, f);  // a one-fact chain: the head is its own tail
@@ -89,14 +95,10 @@ void FactTable::linkIndexes(FactRef f) {
 }
 
 void FactTable::unlinkIndexes(FactRef f) {
-  const NodeId n = node(f);
   for (std::uint32_t x = 0; x < indexCount(); ++x) {
     const std::size_t w = base(f) + 2 + x;
-    const KeySpec spec = indexes_[x].key;
-    const Value* key = args(f) + spec.first;
-    const std::uint64_t h = hashKey(n, key, spec);
-    const FactRef head =
-        indexes_[x].heads.find(h, [&](std::uint32_t g) { return node(g) == n && keyEqual(g, key, spec); });
+    std::uint64_t h;
+    const FactRef head = chainHead(f, x, h);
     const FactRef p = lo(w), nx = hi(w);
     if (head == f) {
       if (nx == kNoFact) {

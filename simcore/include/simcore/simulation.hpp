@@ -77,8 +77,6 @@ class Simulation {
   // The block program's per-block state (nullptr if none).
   void* blockState(BlockId id) { return stateSize_ ? stateBase_ + std::size_t(id) * stateSize_ : nullptr; }
   std::string blockInfo(BlockId id);
-  // Bytes of kernel memory held per block (for reports), excluding the event queue.
-  std::size_t bytesPerBlockEstimate() const;
 
   // Host services behind the block ABI (blockcode.h). Public for the C trampolines only.
   struct Services;

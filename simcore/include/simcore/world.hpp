@@ -2,6 +2,7 @@
 // dense ids) and the cell -> block index that makes every neighbor lookup O(1).
 #pragma once
 
+#include <algorithm>
 #include <cstdint>
 #include <memory>
 #include <string>
@@ -25,7 +26,6 @@ struct Block {
   Cell cell;                        // destination cell while moving
   std::uint32_t color = 0;          // 0xRRGGBB
   std::uint32_t motion = kNoBlock;  // motion slot while moving
-  bool alive = true;                // mirrored in World's compact alive array for the hot path
 };
 static_assert(sizeof(Block) == 32);
 
@@ -55,11 +55,11 @@ class World {
   }
   // One byte per block, so that checking a block (notifications to neighbors) stays in cache.
   bool isAlive(BlockId id) const { return alive_[id] != 0; }
-  [[gnu::always_inline]] void prefetchAlive(BlockId id) const { __builtin_prefetch(&alive_[id]); }
-  void markRemoved(BlockId id) {
-    alive_[id] = 0;
-    blocks_[id].alive = false;
+  std::size_t aliveCount() const {
+    return std::size_t(std::count(alive_.begin(), alive_.end(), std::uint8_t(1)));
   }
+  [[gnu::always_inline]] void prefetchAlive(BlockId id) const { __builtin_prefetch(&alive_[id]); }
+  void markRemoved(BlockId id) { alive_[id] = 0; }
   std::size_t blockCount() const { return blocks_.size(); }
   Block& block(BlockId id) { return blocks_[id]; }
   const Block& block(BlockId id) const { return blocks_[id]; }

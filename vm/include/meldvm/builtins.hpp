@@ -184,10 +184,6 @@ Value array_add(BuiltinContext&, std::span<const Value>, TypeId);
 Value array_from_list(BuiltinContext&, std::span<const Value>, TypeId);
 Value array_size(BuiltinContext&, std::span<const Value>, TypeId);
 Value array_exists(BuiltinContext&, std::span<const Value>, TypeId);
-Value set_size(BuiltinContext&, std::span<const Value>, TypeId);
-Value set_exists(BuiltinContext&, std::span<const Value>, TypeId);
-Value set_add(BuiltinContext&, std::span<const Value>, TypeId);
-Value set_from_list(BuiltinContext&, std::span<const Value>, TypeId);
 }  // namespace builtins
 
 }  // namespace meldvm

@@ -99,6 +99,7 @@ class FactTable {
   }
   FactRef prevOf(FactRef f) const { return lo(base(f)); }
 
+  FactRef chainHead(FactRef f, std::uint32_t x, std::uint64_t& hash) const;
   void linkIndexes(FactRef f);
   void unlinkIndexes(FactRef f);
   void retainArgs(const Value* args);
