@@ -317,9 +317,11 @@ void dumpProgram(const Program& p, const SourceManager& sources, std::ostream& o
     out << (pd.imported ? "import " : "type ");
     if (pd.linear) out << "linear ";
     if (pd.route) out << "route ";
+    if (pd.reverseRoute) out << "reverse-route ";
     if (pd.action) out << "action ";
     out << pd.name << "(" << fieldList(pd.fields) << ")";
     if (pd.imported) out << " as-imported " << pd.importedName << " from " << pd.importedFrom;
+    if (pd.generated) out << " generated";
     out << " " << at(pd.loc) << '\n';
   }
   for (const auto& e : p.exports) out << "export " << e.name << " " << at(e.loc) << '\n';
@@ -395,7 +397,7 @@ void dumpProgram(const Program& p, const SourceManager& sources, std::ostream& o
   int index = 0;
   for (const auto& r : p.rules) {
     std::string kind = r.kind == RuleKind::Fact ? "fact" : r.kind == RuleKind::Linear ? "rule -o" : "rule :-";
-    out << kind << " #" << index++ << " " << at(r.loc) << '\n';
+    out << kind << " #" << index++ << (r.generated ? " generated " : " ") << at(r.loc) << '\n';
     if (r.selector)
       d.line(1, std::string("selector ") + (r.selector->kind == SelectorKind::Min ? ":min " : ":random ") +
                     r.selector->var);

@@ -5,6 +5,7 @@
 #include "meldc/bindings.hpp"
 #include "meldc/homes.hpp"
 #include "meldc/includes.hpp"
+#include "meldc/localize.hpp"
 #include "meldc/names.hpp"
 #include "meldc/parser.hpp"
 #include "meldc/renumber.hpp"
@@ -63,6 +64,8 @@ std::optional<ast::Program> runFrontEnd(const FrontEndInput& input, SourceManage
   checkTypes(*program, diag);
   if (diag.hasErrors()) return std::nullopt;
   if (!renumberNodes(*program, diag)) return std::nullopt;
+  localizeRules(*program, diag);  // rewrites bodies spanning nodes (§6.7)
+  if (diag.hasErrors()) return std::nullopt;
   return program;
 }
 

@@ -1,15 +1,38 @@
-// meldc: the Meld compiler driver. This slice runs the front end (parse, includes, names) and
-// can print the AST; bytecode output is refused explicitly until the back end exists.
+// meldc: the Meld compiler driver. Runs the front end, then either prints the AST / node table or
+// lowers the program and writes bytecode (.mbc) or its disassembly.
 #include <fstream>
 #include <iostream>
+#include <sstream>
 
 #include "meldc/ast_dump.hpp"
 #include "meldc/frontend.hpp"
+#include "meldc/lower.hpp"
 #include "meldc/options.hpp"
+#include "meldvm/bytecode.hpp"
 
 #ifndef MELDC_VERSION
 #define MELDC_VERSION "unknown"
 #endif
+
+namespace {
+
+// Writes `text` to `path` (binary); false on failure.
+bool writeFile(const std::string& path, const std::string& bytes) {
+  std::ofstream out(path, std::ios::binary);
+  if (out) out.write(bytes.data(), std::streamsize(bytes.size()));
+  return out && (out.close(), bool(out));
+}
+
+// FILE.meld -> FILE.mbc (FILE -> FILE.mbc when there is no extension).
+std::string defaultBytecodePath(const std::string& input) {
+  const size_t slash = input.find_last_of('/');
+  const size_t dot = input.find_last_of('.');
+  if (dot != std::string::npos && (slash == std::string::npos || dot > slash))
+    return input.substr(0, dot) + ".mbc";
+  return input + ".mbc";
+}
+
+}  // namespace
 
 int main(int argc, char** argv) {
   using namespace meldc;
@@ -25,13 +48,8 @@ int main(int argc, char** argv) {
     return kExitOk;
   }
   if (options->version) {
-    std::cout << "meldc " << MELDC_VERSION << " (front end only: bytecode output not implemented yet)\n";
+    std::cout << "meldc " << MELDC_VERSION << " (bytecode version " << meldvm::kBytecodeVersion << ")\n";
     return kExitOk;
-  }
-  if (options->emit == EmitKind::Bytecode || options->emit == EmitKind::Asm) {
-    std::cerr << "meldc: error: bytecode output is not implemented yet (this meldc is the front end only; "
-                 "use --check, --emit=ast or --emit=nodes)\n";
-    return kExitUsage;
   }
 
   SourceManager sources;
@@ -39,24 +57,40 @@ int main(int argc, char** argv) {
   FrontEndInput input{options->input, options->includeDirs, options->defines};
   std::optional<ast::Program> program = runFrontEnd(input, sources, diag);
   if (!program) return kExitProgramErrors;
+  if (options->emit == EmitKind::Check) return kExitOk;
 
-  if (options->emit == EmitKind::Ast || options->emit == EmitKind::Nodes) {
-    auto write = [&](std::ostream& out) {
-      if (options->emit == EmitKind::Ast)
-        dumpProgram(*program, sources, out);
-      else
-        for (const ast::NodeId& n : program->nodeTable) out << n.internal << ' ' << n.source << '\n';
-    };
-    if (options->output.empty()) {
-      write(std::cout);
+  std::ostringstream text;
+  if (options->emit == EmitKind::Ast) {
+    dumpProgram(*program, sources, text);
+  } else if (options->emit == EmitKind::Nodes) {
+    for (const ast::NodeId& n : program->nodeTable) text << n.internal << ' ' << n.source << '\n';
+  } else {
+    std::unique_ptr<meldvm::Program> lowered = lowerProgram(*program, sources, diag);
+    if (!lowered) return kExitProgramErrors;
+    try {
+      meldvm::verifyProgram(*lowered);
+    } catch (const meldvm::BytecodeError& e) {
+      std::cerr << "meldc: internal error: the compiler produced invalid bytecode: " << e.what() << '\n';
+      return kExitInternal;
+    }
+    if (options->emit == EmitKind::Asm) {
+      meldvm::disassemble(*lowered, text);
     } else {
-      std::ofstream out(options->output, std::ios::binary);
-      if (out) write(out);
-      if (!out || (out.close(), !out)) {
-        std::cerr << "meldc: error: cannot write '" << options->output << "'\n";
+      const std::vector<std::uint8_t> bytes = meldvm::writeBytecode(*lowered);
+      const std::string path =
+          options->output.empty() ? defaultBytecodePath(options->input) : options->output;
+      if (!writeFile(path, std::string(bytes.begin(), bytes.end()))) {
+        std::cerr << "meldc: error: cannot write '" << path << "'\n";
         return kExitProgramErrors;
       }
+      return kExitOk;
     }
+  }
+  if (options->output.empty()) {
+    std::cout << text.str();
+  } else if (!writeFile(options->output, text.str())) {
+    std::cerr << "meldc: error: cannot write '" << options->output << "'\n";
+    return kExitProgramErrors;
   }
   return kExitOk;
 }

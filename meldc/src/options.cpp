@@ -18,11 +18,8 @@ bool validConstName(const std::string& name) {
 const char* usageText() {
   return "usage: meldc FILE.meld [-o OUT] [-I DIR]... [-DNAME=VALUE]... [--check | --emit=KIND]\n"
          "\n"
-         "Compiles a Linear Meld program. This version is the compiler's FRONT END ONLY: it parses\n"
-         "the program, merges its includes, resolves names, checks it and renumbers its nodes.\n"
-         "Bytecode output (.mbc, --emit=bytecode, the default) and disassembly (--emit=asm) are\n"
-         "NOT IMPLEMENTED YET: asking for them is an error (exit code 2). Use --check, --emit=ast\n"
-         "or --emit=nodes.\n"
+         "Compiles a Linear Meld program to bytecode for the Meld VM: parses the program, merges its\n"
+         "includes, resolves names, checks it, renumbers its nodes and lowers its rules.\n"
          "\n"
          "options:\n"
          "  --check          parse and check the program; print diagnostics only\n"
@@ -30,9 +27,10 @@ const char* usageText() {
          "                   node literals show their internal ids (after renumbering)\n"
          "  --emit=nodes     print the node table: one line 'INTERNAL SOURCE' per initial node,\n"
          "                   ordered by internal id (renumbering of the language reference §6.1)\n"
-         "  --emit=bytecode  write bytecode (default) -- not implemented yet\n"
-         "  --emit=asm       print a bytecode disassembly -- not implemented yet\n"
-         "  -o OUT           write the --emit output to OUT instead of standard output\n"
+         "  --emit=bytecode  write bytecode (default) to OUT, by default FILE with the extension .mbc\n"
+         "  --emit=asm       print a disassembly of the bytecode\n"
+         "  -o OUT           write the --emit output to OUT instead of standard output (bytecode:\n"
+         "                   instead of FILE.mbc)\n"
          "  -I DIR           search DIR for included files, after the including file's folder\n"
          "  -DNAME=VALUE     define the constant NAME as the Meld expression VALUE (replaces a\n"
          "                   'const NAME = ...' of the program, or adds one)\n"
@@ -40,8 +38,8 @@ const char* usageText() {
          "  --version        print the version\n"
          "\n"
          "Diagnostics go to standard error as FILE:LINE:COL: error: MESSAGE with the source line.\n"
-         "exit codes: 0 success, 1 errors in the Meld program, 2 bad command line or output not\n"
-         "implemented yet.\n";
+         "exit codes: 0 success, 1 errors in the Meld program (including constructs this compiler\n"
+         "does not support), 2 bad command line, 70 internal error (invalid bytecode produced).\n";
 }
 
 std::optional<Options> parseOptions(const std::vector<std::string>& args, std::string& error) {

@@ -4,6 +4,7 @@
 #include <map>
 #include <string>
 #include <string_view>
+#include <unordered_map>
 #include <vector>
 
 #include "meldc/builtins.hpp"
@@ -136,7 +137,7 @@ struct Signature {
 
 class Checker {
  public:
-  Checker(const Program& p, Diagnostics& diag) : p_(p), diag_(diag) {}
+  Checker(const Program& p, Diagnostics& diag, Typing* out = nullptr) : p_(p), diag_(diag), out_(out) {}
 
   void run() {
     for (const TypeAliasDecl& a : p_.typeAliases) aliases_[lower(a.name)] = &a.type;
@@ -147,6 +148,7 @@ class Checker {
     for (const ConstDecl& c : p_.consts) constType(c);
     for (const FunDecl& f : p_.funs) fun(f);
     for (const Rule& r : p_.rules) rule(r);
+    if (out_) record();
   }
 
  private:
@@ -429,6 +431,12 @@ class Checker {
   bool isEmptyList(const Expr& e) { return e.kind == ExprKind::List && e.args.empty(); }
 
   int expr(const Expr& e, Scope& scope) {
+    int t = exprType(e, scope);
+    if (out_) exprTypes_[&e] = t;
+    return t;
+  }
+
+  int exprType(const Expr& e, Scope& scope) {
     switch (e.kind) {
       case ExprKind::Var:
         return var(e.name, scope);
@@ -648,8 +656,12 @@ class Checker {
     // Inside Body/Head0 a spec variable is one value; in Head it is the aggregated value.
     std::vector<std::pair<const AggSpec*, int>> items;
     for (const AggSpec& s : t.specs) {
-      if (s.op == AggOp::Count) continue;  // not bound in the body
+      if (s.op == AggOp::Count) {  // not bound in the body
+        if (out_) aggItemTypes_[&s] = make(K::Int);
+        continue;
+      }
       items.emplace_back(&s, var(s.var, scope));
+      if (out_) aggItemTypes_[&s] = items.back().second;
     }
     terms(t.body, scope, true);
     terms(t.perMatch, scope, false);
@@ -701,8 +713,65 @@ class Checker {
     terms(r.head, scope, false);
   }
 
+  // --- recording (inferTypes) ----------------------------------------------------------------
+
+  TypeExpr resolved(int t, int depth = 0) {
+    TypeExpr out;
+    const TypeNode n = node(t);
+    auto elem = [&](TypeKind kind) {
+      out.kind = kind;
+      out.args.push_back(n.args.empty() || depth > 32 ? TypeExpr{} : resolved(n.args[0], depth + 1));
+    };
+    switch (n.kind) {
+      case K::Var:
+      case K::Num:
+      case K::Int:
+      case K::AnyStruct:  // only reachable through unused polymorphic results
+        out.kind = TypeKind::Int;
+        break;
+      case K::Float:
+        out.kind = TypeKind::Float;
+        break;
+      case K::Bool:
+        out.kind = TypeKind::Bool;
+        break;
+      case K::String:
+        out.kind = TypeKind::String;
+        break;
+      case K::Node:
+        out.kind = TypeKind::Node;
+        break;
+      case K::Thread:
+        out.kind = TypeKind::Thread;
+        break;
+      case K::List:
+        elem(TypeKind::List);
+        break;
+      case K::Set:
+        elem(TypeKind::Set);
+        break;
+      case K::Array:
+        elem(TypeKind::Array);
+        break;
+      case K::Struct:
+        out.kind = TypeKind::Struct;
+        for (int a : n.args) out.args.push_back(depth > 32 ? TypeExpr{} : resolved(a, depth + 1));
+        break;
+    }
+    return out;
+  }
+
+  void record() {
+    for (const auto& [e, t] : exprTypes_) out_->exprs[e] = resolved(t);
+    for (const auto& [s, t] : aggItemTypes_) out_->aggItems[s] = resolved(t);
+    for (const auto& [name, t] : constTypes_) out_->consts[name] = resolved(t);
+  }
+
   const Program& p_;
   Diagnostics& diag_;
+  Typing* out_ = nullptr;
+  std::unordered_map<const Expr*, int> exprTypes_;
+  std::unordered_map<const AggSpec*, int> aggItemTypes_;
   std::vector<TypeNode> types_;
   std::map<std::string, const TypeExpr*> aliases_;
   std::map<std::string, const PredicateDecl*> preds_;
@@ -715,5 +784,11 @@ class Checker {
 }  // namespace
 
 void checkTypes(const Program& program, Diagnostics& diag) { Checker(program, diag).run(); }
+
+Typing inferTypes(const Program& program, Diagnostics& diag) {
+  Typing typing;
+  Checker(program, diag, &typing).run();
+  return typing;
+}
 
 }  // namespace meldc

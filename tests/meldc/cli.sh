@@ -26,7 +26,7 @@ has() { grep -F -q -e "$2" "$1" || fail "$(basename "$1") lacks '$2'"; }
 case_help() {
   run 0 --help
   has "$OUT" "usage: meldc FILE.meld"
-  has "$OUT" "NOT IMPLEMENTED YET"
+  has "$OUT" "--emit=asm"
   has "$OUT" "exit codes:"
 }
 case_version() {
@@ -45,12 +45,26 @@ case_bad_define() {
   run 2 valid/gradient.meld -DX=1
   has "$ERR" "bad definition 'X=1'"
 }
-case_bytecode_not_implemented() {
-  run 2 valid/gradient.meld
-  has "$ERR" "bytecode output is not implemented yet"
-  [ -s "$OUT" ] && fail "no output expected"
-  run 2 valid/gradient.meld --emit=asm
-  has "$ERR" "bytecode output is not implemented yet"
+case_emit_bytecode() {
+  # default: FILE.mbc next to the input
+  cp valid/gradient.meld "$WORK/g.meld"
+  run 0 "$WORK/g.meld"
+  [ -s "$OUT" ] && fail "bytecode belongs in the .mbc file"
+  [ "$(head -c 4 "$WORK/g.mbc")" = "MBC1" ] || fail "g.mbc is not bytecode"
+  run 0 --emit=bytecode valid/gradient.meld -o "$WORK/out.mbc"
+  cmp -s "$WORK/g.mbc" "$WORK/out.mbc" || fail "-o output differs from the default output"
+}
+case_emit_asm() {
+  run 0 --emit=asm valid/gradient.meld
+  has "$OUT" "rule 0"
+  has "$OUT" "AXIOMS"
+}
+case_emit_unsupported() {
+  printf 'type linear w(thread, int).\nw(T, 1).\n' >"$WORK/d.meld"
+  run 1 "$WORK/d.meld"
+  has "$ERR" "d.meld:1:13: error: thread predicate 'w' (§6.12) is not supported"
+  [ -e "$WORK/d.mbc" ] && fail "no bytecode expected"
+  true
 }
 case_missing_file() {
   run 1 --check no/such/file.meld

@@ -2,6 +2,7 @@
 // resolve names, the semantic checks (bindings, homes, types), then node renumbering (§6.1: node
 // literals hold internal ids afterwards, Program::nodeTable has the pairs). One function so that tests
 // run exactly what `meldc --check` runs.
+// Localization (localize.hpp, §6.7) then rewrites the rules whose bodies span several nodes.
 #pragma once
 
 #include <optional>

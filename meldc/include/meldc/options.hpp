@@ -13,7 +13,8 @@ enum class EmitKind { Bytecode, Asm, Ast, Nodes, Check };
 // Exit codes of meldc.
 inline constexpr int kExitOk = 0;
 inline constexpr int kExitProgramErrors = 1;  // the Meld program has errors
-inline constexpr int kExitUsage = 2;          // bad command line, or output not implemented yet
+inline constexpr int kExitUsage = 2;          // bad command line
+inline constexpr int kExitInternal = 70;      // internal error: the compiler produced invalid bytecode
 
 struct Options {
   std::string input;

@@ -53,6 +53,10 @@ class Database {
   // Linear predicates.
   FactRef addLinear(NodeId n, PredId p, const Value* args);
   void consume(NodeId n, PredId p, FactRef f);  // read next(p, f) first when iterating
+  // A consumed fact stays linked until the rule run ends (so that loops can step past it); the
+  // mark (a count of 0) tells iterations to skip it. consume() unlinks it later.
+  void markConsumed(PredId p, FactRef f) { tables_[p].setCount(f, 0); }
+  bool consumedMark(PredId p, FactRef f) const { return tables_[p].count(f) == 0; }
   // In-place update (§6.4.5): new arguments; the fact keeps its list position unless moveToBack.
   void updateLinear(NodeId n, PredId p, FactRef f, const Value* args, bool moveToBack);
 

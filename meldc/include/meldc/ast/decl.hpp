@@ -44,6 +44,9 @@ struct PredicateDecl {
   bool imported = false;
   std::string importedName;  // import: the name in the library (the predicate is called `name`)
   std::string importedFrom;
+  // Made by localization (§6.7): `___` + reversed route name (reverseRoute) or `__mangledname<k>`.
+  bool reverseRoute = false;
+  bool generated = false;
 };
 
 struct ExportDecl {

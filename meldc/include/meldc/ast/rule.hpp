@@ -30,6 +30,7 @@ struct Rule {
   std::optional<Selector> selector;
   std::vector<Term> body;
   std::vector<Term> head;  // empty for `-o 1.`, `-o .` and `:- body.`
+  bool generated = false;  // made by localization (§6.7); loc is that of the rule it comes from
 };
 
 }  // namespace meldc::ast

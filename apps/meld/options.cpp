@@ -1,0 +1,78 @@
+#include "options.hpp"
+
+namespace meldapp {
+
+const char* usageText() {
+  return "usage: meld FILE.meld|FILE.mbc [options] [-- ARGS...]\n"
+         "Runs a Meld program on its own graph of nodes until quiescence (or stop-program).\n"
+         "A .meld file is compiled in memory first; a .mbc file is loaded and verified.\n"
+         "\n"
+         "options:\n"
+         "  --dump          print every node's final facts (the format of the established VM's -d)\n"
+         "  --stats         print facts derived/consumed/sent, rules fired, wall time and peak\n"
+         "                  memory on standard error\n"
+         "  -I DIR          include directory (for .meld input)\n"
+         "  -D NAME=VALUE   define the constant NAME (for .meld input)\n"
+         "  -- ARGS         program arguments, read by @arg1, @arg2, ...\n"
+         "  --help          this text\n"
+         "  --version       print the version\n"
+         "\n"
+         "exit status: 0 done, 1 compile errors, 2 bad command line, 3 bad bytecode,\n"
+         "4 run-time error\n";
+}
+
+std::optional<Options> parseOptions(const std::vector<std::string>& args, std::string& error) {
+  Options o;
+  for (std::size_t i = 0; i < args.size(); ++i) {
+    const std::string& a = args[i];
+    auto value = [&](const char* what) -> std::optional<std::string> {
+      if (a.size() > 2 && a[0] == '-' && a[1] != '-') return a.substr(2);  // -Idir
+      if (i + 1 >= args.size()) {
+        error = std::string("option '") + a + "' needs " + what;
+        return std::nullopt;
+      }
+      return args[++i];
+    };
+    if (a == "--") {
+      o.programArgs.assign(args.begin() + std::ptrdiff_t(i) + 1, args.end());
+      break;
+    } else if (a == "--dump" || a == "-d") {
+      o.dump = true;
+    } else if (a == "--stats") {
+      o.stats = true;
+    } else if (a == "--help" || a == "-h") {
+      o.help = true;
+    } else if (a == "--version") {
+      o.version = true;
+    } else if (a.rfind("-I", 0) == 0) {
+      auto v = value("a directory");
+      if (!v) return std::nullopt;
+      o.includeDirs.push_back(*v);
+    } else if (a.rfind("-D", 0) == 0) {
+      auto v = value("NAME=VALUE");
+      if (!v) return std::nullopt;
+      const std::size_t eq = v->find('=');
+      if (eq == std::string::npos || eq == 0) {
+        error = "-D expects NAME=VALUE, got '" + *v + "'";
+        return std::nullopt;
+      }
+      o.defines.emplace_back(v->substr(0, eq), v->substr(eq + 1));
+    } else if (!a.empty() && a[0] == '-') {
+      error = "unknown option '" + a + "'";
+      return std::nullopt;
+    } else if (o.program.empty()) {
+      o.program = a;
+    } else {
+      error = "more than one program given ('" + o.program + "' and '" + a +
+              "'); program arguments go after `--`";
+      return std::nullopt;
+    }
+  }
+  if (!o.help && !o.version && o.program.empty()) {
+    error = "no program given";
+    return std::nullopt;
+  }
+  return o;
+}
+
+}  // namespace meldapp

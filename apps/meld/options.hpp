@@ -1,0 +1,33 @@
+// Command line of `meld`: run a Meld program on its own graph (spec §6) and print its database.
+#pragma once
+
+#include <optional>
+#include <string>
+#include <utility>
+#include <vector>
+
+namespace meldapp {
+
+enum ExitCode {
+  kExitOk = 0,
+  kExitCompileErrors = 1,
+  kExitUsage = 2,
+  kExitBadBytecode = 3,
+  kExitRuntimeError = 4,
+};
+
+struct Options {
+  std::string program;  // FILE.meld (compiled in memory) or FILE.mbc
+  bool dump = false;
+  bool stats = false;
+  bool help = false;
+  bool version = false;
+  std::vector<std::string> includeDirs;                       // -I (for .meld)
+  std::vector<std::pair<std::string, std::string>> defines;  // -D NAME=VALUE (for .meld)
+  std::vector<std::string> programArgs;                      // after `--`: @arg1 ...
+};
+
+std::optional<Options> parseOptions(const std::vector<std::string>& args, std::string& error);
+const char* usageText();
+
+}  // namespace meldapp

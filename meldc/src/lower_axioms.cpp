@@ -1,0 +1,229 @@
+// Start-up code (§6.2): rule 0 (`_init -o axioms`: the host's constant axioms through AXIOMS, then
+// the variable axioms in program order) and one axiom block per initial node holding its constant
+// axioms: those needing evaluation in reverse source order, then the purely literal facts grouped
+// by predicate (groups in order of first occurrence, source order within a group).
+#include <algorithm>
+#include <functional>
+#include <map>
+#include <set>
+
+#include "lower_rule.hpp"
+#include "meldc/case_folding.hpp"
+
+namespace meldc {
+
+using namespace meldc::ast;
+using meldvm::Opcode;
+
+namespace {
+
+struct Axiom {
+  const Rule* statement;
+  const Term* fact;
+};
+
+bool literal(const Lowering& L, const Expr& e) {
+  switch (e.kind) {
+    case ExprKind::Int:
+    case ExprKind::Float:
+    case ExprKind::Bool:
+    case ExprKind::String:
+    case ExprKind::Node:
+      return true;
+    case ExprKind::Const:
+      return L.folded.count(lower(e.name)) > 0;
+    case ExprKind::List:
+    case ExprKind::Struct:
+      return std::all_of(e.args.begin(), e.args.end(), [&](const Expr& a) { return literal(L, a); });
+    default:
+      return false;
+  }
+}
+
+std::vector<const Term*> conditions(const Rule& r) {
+  std::vector<const Term*> out;
+  for (const std::vector<Term>* items : {&r.body, &r.head})
+    for (const Term& t : *items)
+      if (t.kind == TermKind::Constraint) out.push_back(&t);
+  return out;
+}
+
+// The statement's assignments (in dependency order) and constraints; a false constraint skips to
+// `skip` (this axiom only).
+void evaluateConditions(RuleLowering& rl, CodeBuilder& cb, const Rule& r, CodeBuilder::Label skip) {
+  std::vector<const Term*> todo = conditions(r);
+  for (bool progress = true; progress;) {
+    progress = false;
+    for (auto it = todo.begin(); it != todo.end();) {
+      const Term& t = **it;
+      const Expr& lhs = t.cond.args.empty() ? t.cond : t.cond.args[0];
+      const bool isAssignment = t.cond.kind == ExprKind::Compare && t.cond.op == BinOp::Eq &&
+                                lhs.kind == ExprKind::Var && !rl.ex.env.count(lhs.name);
+      if (isAssignment ? rl.ex.bound(t.cond.args.at(1)) : rl.ex.bound(t.cond)) {
+        if (!isAssignment || !rl.assignment(t)) rl.ex.jumpIfFalse(t.cond, skip);
+        it = todo.erase(it);
+        progress = true;
+      } else {
+        ++it;
+      }
+    }
+  }
+  (void)cb;
+  if (!todo.empty()) throw LowerError(todo.front()->loc, "internal error: axiom condition never bound");
+}
+
+// §3.1: a node literal has the subtype of the places it is used at (the home or a field declared
+// with that subtype). Returns subtype name (lower case) -> internal ids of its nodes.
+std::map<std::string, std::set<std::int64_t>> subtypeNodes(const Lowering& L) {
+  std::map<std::string, std::set<std::int64_t>> out;
+  std::function<void(const std::vector<Term>&)> walk = [&](const std::vector<Term>& terms) {
+    for (const Term& t : terms) {
+      if (t.kind == TermKind::Subgoal)
+        if (const PredInfo* p = L.pred(t.name); p && p->decl)
+          for (size_t i = 0; i < t.args.size() && i < p->decl->fields.size(); ++i) {
+            const TypeExpr& type = p->decl->fields[i].type;
+            if (t.args[i].kind == ExprKind::Node && type.kind == TypeKind::Named)
+              out[lower(type.name)].insert(t.args[i].intValue);
+          }
+      walk(t.body);
+      walk(t.perMatch);
+      walk(t.head);
+      walk(t.elseHead);
+    }
+  };
+  for (const Rule& r : L.ast.rules) {
+    walk(r.body);
+    walk(r.head);
+  }
+  return out;
+}
+
+// Jumps to `skip` unless the host is one of `nodes` (nodes created by `exists` have no subtype).
+void guardSubtype(CodeBuilder& cb, Reg host, const std::set<std::int64_t>& nodes, CodeBuilder::Label skip) {
+  CodeBuilder::Label ok = cb.label();
+  for (std::int64_t n : nodes) {
+    Reg r = cb.reg(meldvm::TypeTable::kNode), b = cb.reg(meldvm::TypeTable::kBool);
+    cb.emit(Opcode::MOVN, {r, std::uint32_t(n)});
+    cb.emit(Opcode::EQ, {b, host, r, meldvm::TypeTable::kNode});
+    cb.op(Opcode::JT).w(b).to(ok);
+  }
+  cb.op(Opcode::JMP).to(skip);
+  cb.place(ok);
+}
+
+bool isAlias(const Lowering& L, const TypeExpr& t) {
+  for (const TypeAliasDecl& a : L.ast.typeAliases)
+    if (lower(a.name) == lower(t.name)) return true;
+  return false;
+}
+
+void checkFactOnly(const Rule& r) {
+  for (const Term& t : r.head)
+    if (t.kind != TermKind::Subgoal && t.kind != TermKind::Constraint)
+      unsupported(t.loc, "this construct in a fact (axiom)");
+}
+
+}  // namespace
+
+void lowerAxioms(Lowering& L) {
+  std::map<std::int64_t, std::vector<Axiom>> constant;  // per node, in source order
+  CodeBuilder cb;
+  const PredInfo* init = L.pred("_init");
+  if (!init) return;
+  CodeBuilder::Label next = cb.label(), end = cb.label();
+  cb.useSlot(0);
+  cb.op(Opcode::ITER)
+      .w(init->id)
+      .w(0)
+      .w(meldvm::kIterLinear | meldvm::kIterConsume | meldvm::kIterConsumableClass)
+      .to(end);
+  cb.op(Opcode::AXIOMS);
+  std::map<std::string, std::set<std::int64_t>> subtypes = subtypeNodes(L);
+  for (const Rule& r : L.ast.rules) {
+    if (!isAxiom(L, r)) continue;
+    try {
+      checkFactOnly(r);
+      std::vector<const Term*> variable;
+      for (const Term& t : r.head) {
+        if (t.kind != TermKind::Subgoal || t.args.empty()) continue;
+        if (t.args[0].kind == ExprKind::Node)
+          constant[t.args[0].intValue].push_back(Axiom{&r, &t});
+        else if (t.args[0].kind == ExprKind::Var)
+          variable.push_back(&t);
+        else
+          unsupported(t.args[0].loc, "this home argument in a fact");
+      }
+      if (variable.empty()) continue;
+      // Every variable home stands for the node running rule 0.
+      RuleLowering rl(L, cb, variable.front()->args[0].name);
+      rl.bindHost();
+      const Reg host = rl.ex.env.at(variable.front()->args[0].name);
+      for (const Term* t : variable) rl.ex.env[t->args[0].name] = host;
+      CodeBuilder::Label skip = cb.label();
+      evaluateConditions(rl, cb, r, skip);
+      for (const Term* t : variable) {
+        // §6.2: only on the nodes of the predicate's subtype, if it has one.
+        const PredInfo* p = L.pred(t->name);
+        const TypeExpr* home = p && p->decl ? &p->decl->fields.at(0).type : nullptr;
+        const bool subtype = home && home->kind == TypeKind::Named &&
+                             L.vmType(*home) == meldvm::TypeTable::kNode && !isAlias(L, *home);
+        CodeBuilder::Label next = cb.label();
+        if (subtype) guardSubtype(cb, host, subtypes[lower(home->name)], next);
+        rl.subgoal(*t);
+        cb.place(next);
+      }
+      cb.place(skip);
+    } catch (const LowerError& e) {
+      L.diag.error(e.loc, e.what());
+    }
+  }
+  cb.emit(Opcode::FIRE, {0});
+  cb.place(next);
+  cb.op(Opcode::NEXT);
+  cb.place(end);
+  cb.op(Opcode::RET);
+  meldvm::Rule rule0;
+  rule0.block = cb.finish("_init -o axioms");
+  rule0.bodyPredicates = {init->id};
+  L.prog.rules.insert(L.prog.rules.begin(), std::move(rule0));
+
+  for (auto& [node, axioms] : constant) {
+    if (node < 0 || size_t(node) >= L.prog.nodeAxioms.size()) continue;
+    std::vector<Axiom> evaluated, literals;
+    for (const Axiom& a : axioms) {
+      const PredInfo* p = L.pred(a.fact->name);
+      bool isLiteral = p && p->instruction == Instruction::None && conditions(*a.statement).empty();
+      for (size_t i = 1; i < a.fact->args.size() && isLiteral; ++i) isLiteral = literal(L, a.fact->args[i]);
+      (isLiteral ? literals : evaluated).push_back(a);
+    }
+    std::reverse(evaluated.begin(), evaluated.end());
+    // Literal facts: grouped by predicate in order of first occurrence (stable within a group).
+    std::vector<std::string> order;
+    for (const Axiom& a : literals)
+      if (std::find(order.begin(), order.end(), lower(a.fact->name)) == order.end())
+        order.push_back(lower(a.fact->name));
+    std::stable_sort(literals.begin(), literals.end(), [&](const Axiom& x, const Axiom& y) {
+      return std::find(order.begin(), order.end(), lower(x.fact->name)) <
+             std::find(order.begin(), order.end(), lower(y.fact->name));
+    });
+    CodeBuilder block;
+    try {
+      for (const std::vector<Axiom>* group : {&evaluated, &literals}) {
+        for (const Axiom& a : *group) {
+          RuleLowering rl(L, block, "");
+          CodeBuilder::Label skip = block.label();
+          evaluateConditions(rl, block, *a.statement, skip);
+          rl.subgoal(*a.fact, node);
+          block.place(skip);
+        }
+      }
+      block.op(Opcode::RET);
+      L.prog.nodeAxioms[size_t(node)] = std::uint32_t(L.prog.axiomBlocks.size());
+      L.prog.axiomBlocks.push_back(block.finish("axioms of node " + std::to_string(node)));
+    } catch (const LowerError& e) {
+      L.diag.error(e.loc, e.what());
+    }
+  }
+}
+
+}  // namespace meldc

@@ -1,0 +1,73 @@
+// Lowering of one rule body and head into a code block (§6.4.3): the match plan (nested loops,
+// tests, constraints as soon as their variables are bound) and the head (derivations, sends,
+// updates, coordination, comprehensions, aggregate constructs, exists, conditionals).
+#pragma once
+
+#include <functional>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "code_builder.hpp"
+#include "lower_context.hpp"
+#include "lower_expr.hpp"
+#include "rule_analysis.hpp"
+
+namespace meldc {
+
+class RuleLowering {
+ public:
+  using Label = CodeBuilder::Label;
+  enum class Mode { Rule, Comprehension };
+
+  RuleLowering(Lowering& L, CodeBuilder& cb, std::string hostVar)
+      : L_(L), cb_(cb), ex(L, cb), hostVar_(std::move(hostVar)) {}
+
+  // HOST r and binds the host variable to it.
+  void bindHost();
+
+  // The loops of `plan` from slot `firstSlot` on; `outerFail` is where a test that fails before
+  // the first loop goes. `prebound`: slot firstSlot is bound by the engine (persistent process).
+  // At the innermost point runs `onMatch` and ends with FIRE (Rule) or CFIRE (Comprehension).
+  void match(const BodyPlan& plan, std::uint32_t firstSlot, Label outerFail, Mode mode, bool prebound,
+             const std::function<void()>& onMatch);
+
+  // Head items; `plan` (may be null) says which items are dropped or become the UPDATE.
+  // `nextSlot`: first free slot for comprehensions and aggregates.
+  void head(const std::vector<ast::Term>& items, const BodyPlan* plan, std::uint32_t nextSlot,
+            std::uint32_t firstSlot = 0);
+  // One derived fact (or action, or instruction). `localNode`: a literal home equal to it is the
+  // host (axiom blocks of that node).
+  void subgoal(const ast::Term& t, std::optional<std::int64_t> localNode = std::nullopt);
+  // `X = e` binding X when unbound; false if the term is not such an assignment.
+  bool assignment(const ast::Term& t);
+
+ private:
+  struct Pending {
+    const ast::Term* term = nullptr;  // a constraint, assignment or boolean call
+    Reg reg = 0;                      // or: reg must equal expr (a deferred pattern test)
+    const ast::Expr* expr = nullptr;
+    bool isAssignment = false;
+    bool done = false;
+  };
+  void flush(Label fail);
+  void pattern(std::uint32_t slot, std::uint32_t field, meldvm::TypeId type, const ast::Expr& arg,
+               Label fail);
+  void destructure(Reg r, const ast::Expr& pat, Label fail);
+  void comprehension(const ast::Term& t, std::uint32_t slot);
+  void aggregate(const ast::Term& t, std::uint32_t slot);
+  void instruction(const ast::Term& t, Instruction which);
+
+  Lowering& L_;
+  CodeBuilder& cb_;
+
+ public:
+  ExprLowerer ex;
+
+ private:
+  std::string hostVar_;
+  Reg host_ = 0;
+  std::vector<Pending> pending_;
+};
+
+}  // namespace meldc

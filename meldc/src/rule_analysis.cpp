@@ -1,0 +1,182 @@
+#include "rule_analysis.hpp"
+
+#include <algorithm>
+
+#include "meldc/case_folding.hpp"
+
+namespace meldc {
+
+using namespace meldc::ast;
+
+namespace {
+
+bool mentions(const Expr& e, const std::string& var) {
+  if (e.kind == ExprKind::Var && e.name == var) return true;
+  for (const Expr& a : e.args)
+    if (mentions(a, var)) return true;
+  return false;
+}
+
+bool hasAggregateOrComprehension(const std::vector<Term>& head) {
+  for (const Term& t : head) {
+    if (t.kind == TermKind::Comprehension || t.kind == TermKind::Aggregate) return true;
+    if (hasAggregateOrComprehension(t.head) || hasAggregateOrComprehension(t.elseHead)) return true;
+  }
+  return false;
+}
+
+// A head item that derives a fact of `pred` at the host without delay.
+bool derivesAtHost(const Term& h, const std::string& pred, const std::string& host) {
+  return h.kind == TermKind::Subgoal && lower(h.name) == pred && !h.delayMs && !h.args.empty() &&
+         h.args[0].kind == ExprKind::Var && h.args[0].name == host;
+}
+
+}  // namespace
+
+bool sameExpr(const Expr& a, const Expr& b) {
+  if (a.kind != b.kind || a.args.size() != b.args.size() || a.hasTail != b.hasTail) return false;
+  switch (a.kind) {
+    case ExprKind::Anon:
+      return false;  // `_` matches anything: never the same value as a head expression
+    case ExprKind::Var:
+    case ExprKind::String:
+      if (a.name != b.name) return false;
+      break;
+    case ExprKind::Const:
+    case ExprKind::Call:
+      if (lower(a.name) != lower(b.name)) return false;
+      break;
+    case ExprKind::Let:
+      if (a.name != b.name) return false;
+      break;
+    case ExprKind::Int:
+    case ExprKind::Node:
+    case ExprKind::Arg:
+      if (a.intValue != b.intValue) return false;
+      break;
+    case ExprKind::Float:
+      if (a.floatValue != b.floatValue) return false;
+      break;
+    case ExprKind::Bool:
+      if (a.boolValue != b.boolValue) return false;
+      break;
+    case ExprKind::Binary:
+    case ExprKind::Compare:
+      if (a.op != b.op) return false;
+      break;
+    default:
+      break;
+  }
+  for (size_t i = 0; i < a.args.size(); ++i)
+    if (!sameExpr(a.args[i], b.args[i])) return false;
+  return true;
+}
+
+bool isPredicateSubgoal(const Lowering& L, const Term& t) {
+  if (t.kind != TermKind::Subgoal) return false;
+  const PredInfo* p = L.pred(t.name);
+  return p && p->id != meldvm::Program::kNoPred;
+}
+
+std::string hostVariable(const Lowering& L, const Rule& rule) {
+  for (const Term& t : rule.body) {
+    if (!isPredicateSubgoal(L, t)) continue;
+    if (t.args.empty() || t.args[0].kind != ExprKind::Var)
+      unsupported(t.loc, "a body fact whose home is not a variable");
+    return t.args[0].name;
+  }
+  throw LowerError(rule.loc, "internal error: rule without body facts");
+}
+
+BodyPlan planBody(const Lowering& L, const std::vector<Term>& body, const std::vector<Term>& head,
+                  const std::string& host, const std::optional<Selector>& selector, bool allowUpdate) {
+  BodyPlan plan;
+  plan.selector = selector ? &*selector : nullptr;
+  std::vector<SubgoalPlan> textual;
+  for (const Term& t : body) {
+    if (!isPredicateSubgoal(L, t)) {
+      if (t.kind == TermKind::Subgoal || t.kind == TermKind::Constraint)
+        plan.conditions.push_back(&t);
+      else
+        unsupported(t.loc, "this construct in a rule body");
+      continue;
+    }
+    SubgoalPlan s;
+    s.term = &t;
+    s.pred = L.pred(t.name);
+    s.linear = L.desc(*s.pred).linear;
+    s.reused = t.mark == Mark::Reuse;
+    if (t.args.empty() || t.args[0].kind != ExprKind::Var || t.args[0].name != host)
+      unsupported(t.args.empty() ? t.loc : t.args[0].loc,
+                  "a body fact at another node than the rule's host (after localization)");
+    textual.push_back(s);
+  }
+
+  // Reuse (§6.4.5): a linear subgoal re-derived identically at the host is not consumed.
+  std::vector<bool> used(head.size(), false);
+  for (SubgoalPlan& s : textual) {
+    if (!s.linear || s.reused) continue;
+    const std::string name = lower(s.term->name);
+    for (size_t h = 0; h < head.size(); ++h) {
+      if (used[h] || !derivesAtHost(head[h], name, host) || head[h].args.size() != s.term->args.size())
+        continue;
+      bool same = true;
+      for (size_t a = 1; a < head[h].args.size() && same; ++a)
+        same = sameExpr(head[h].args[a], s.term->args[a]);
+      if (!same) continue;
+      used[h] = true;
+      s.kept = true;
+      plan.dropped.insert(&head[h]);
+      break;
+    }
+  }
+
+  // Match order (§6.4.3): selector subgoals first, subgoals of indexed predicates last.
+  std::set<meldvm::PredId> indexed;
+  for (const meldvm::IndexRequest& r : L.prog.indexes) indexed.insert(r.predicate);
+  auto rank = [&](const SubgoalPlan& s) {
+    if (selector) {
+      for (size_t a = 1; a < s.term->args.size(); ++a)
+        if (mentions(s.term->args[a], selector->var)) return 0;
+    }
+    return indexed.count(s.pred->id) ? 2 : 1;
+  };
+  plan.subgoals = textual;
+  std::stable_sort(plan.subgoals.begin(), plan.subgoals.end(),
+                   [&](const SubgoalPlan& a, const SubgoalPlan& b) { return rank(a) < rank(b); });
+
+  // In-place update (§6.4.5), only for an unconditional head item outside comprehensions.
+  if (!allowUpdate) return plan;
+  for (size_t h = 0; h < head.size() && !plan.updateHead; ++h) {
+    if (used[h] || head[h].kind != TermKind::Subgoal) continue;
+    const std::string name = lower(head[h].name);
+    if (!derivesAtHost(head[h], name, host)) continue;
+    std::vector<size_t> consumed;
+    for (size_t i = 0; i < plan.subgoals.size(); ++i)
+      if (plan.subgoals[i].consumed() && lower(plan.subgoals[i].term->name) == name) consumed.push_back(i);
+    if (consumed.empty()) continue;
+    plan.updateHead = &head[h];
+    plan.updateIndex = consumed.front();  // the outermost such loop
+    plan.subgoals[consumed.front()].updated = true;
+    plan.moveToBack = consumed.size() == 1 && consumed.front() != 0;
+  }
+  return plan;
+}
+
+bool isPersistentRule(const BodyPlan& plan, const Rule& rule) {
+  bool persistent = false;
+  for (const SubgoalPlan& s : plan.subgoals) {
+    if (s.linear && !s.reused && !s.kept) return false;
+    persistent |= !s.linear;
+  }
+  return persistent && !hasAggregateOrComprehension(rule.head);
+}
+
+std::vector<std::string> bodyPredicateNames(const BodyPlan& plan) {
+  std::vector<std::string> names;
+  for (const SubgoalPlan& s : plan.subgoals) names.push_back(lower(s.term->name));
+  std::sort(names.begin(), names.end());
+  return names;
+}
+
+}  // namespace meldc

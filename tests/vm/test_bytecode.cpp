@@ -1,0 +1,246 @@
+// The `.mbc` writer and reader: exact round trips, the disassembly, and malformed input (every
+// truncation, byte flips, random word changes) ending in BytecodeError rather than a crash.
+#define BOOST_TEST_MODULE vm_bytecode
+#include <boost/test/unit_test.hpp>
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <random>
+#include <sstream>
+
+#include "bytecode_fixture.hpp"
+
+using namespace bctest;
+
+namespace {
+
+std::string listing(const Program& p) {
+  std::ostringstream out;
+  disassemble(p, out);
+  return out.str();
+}
+
+// The reader's message for these bytes, or "" when it accepts them. An accepted input must also
+// write back to the same bytes and disassemble.
+std::string readError(const std::vector<std::uint8_t>& bytes) {
+  try {
+    const auto p = readBytecode(bytes.data(), bytes.size());
+    BOOST_TEST((writeBytecode(*p) == bytes));
+    (void)listing(*p);
+  } catch (const BytecodeError& e) {
+    return e.what();
+  }
+  return "";
+}
+
+bool contains(const std::string& s, const std::string& part) { return s.find(part) != std::string::npos; }
+
+void put(std::vector<std::uint8_t>& bytes, std::size_t at, std::uint32_t w) {
+  for (int i = 0; i < 4; ++i) bytes[at + i] = std::uint8_t(w >> (8 * i));
+}
+
+}  // namespace
+
+BOOST_AUTO_TEST_CASE(round_trip_is_exact) {
+  for (const auto& make : {smallProgram, fullProgram}) {
+    const auto p = make();
+    BOOST_REQUIRE_EQUAL(verifyError(*p), "");
+    const auto bytes = writeBytecode(*p);
+    BOOST_TEST(bytes.size() % 4 == 0);
+    const auto q = readBytecode(bytes.data(), bytes.size());
+    BOOST_TEST((writeBytecode(*q) == bytes));
+    BOOST_TEST(listing(*q) == listing(*p));
+    BOOST_TEST(q->types.size() == p->types.size());
+    BOOST_TEST(q->predicates.size() == p->predicates.size());
+  }
+}
+
+BOOST_AUTO_TEST_CASE(round_trip_keeps_values) {
+  const auto p = fullProgram();
+  const auto bytes = writeBytecode(*p);
+  const auto q = readBytecode(bytes.data(), bytes.size());
+  BOOST_TEST(q->nodeSourceIds == p->nodeSourceIds);
+  BOOST_TEST(q->strings == p->strings);
+  BOOST_TEST(q->scheduling.defaultPriority == 1e-300);
+  BOOST_TEST(q->scheduling.initialPriority == -1.5);
+  BOOST_TEST((q->scheduling.order == PriorityOrder::Asc));
+  BOOST_TEST(q->predicates[q->predicates.find("total")].aggregated());
+  BOOST_TEST(q->predicates[q->predicates.find("edge")].route);
+  BOOST_TEST(q->types.name(7) == ":(int, float)");
+  BOOST_TEST(q->rules[2].block.code == p->rules[2].block.code);
+  BOOST_TEST(q->highestArg == 1u);
+}
+
+BOOST_AUTO_TEST_CASE(file_io) {
+  const auto p = fullProgram();
+  const auto bytes = writeBytecode(*p);
+  const auto path = std::filesystem::path(MELD_BINARY_DIR) / "tests/vm_test_bytecode.mbc";  // per build dir
+  std::ofstream(path, std::ios::binary).write(reinterpret_cast<const char*>(bytes.data()), bytes.size());
+  BOOST_TEST((writeBytecode(*readBytecodeFile(path.string())) == bytes));
+  std::filesystem::remove(path);
+  BOOST_CHECK_EXCEPTION(readBytecodeFile(path.string()), BytecodeError,
+                        [](const BytecodeError& e) { return contains(e.what(), "cannot open"); });
+  BOOST_CHECK_EXCEPTION(readBytecodeFile(std::filesystem::temp_directory_path().string()), BytecodeError,
+                        [](const BytecodeError& e) { return contains(e.what(), "cannot read"); });
+}
+
+BOOST_AUTO_TEST_CASE(every_truncation_is_rejected) {
+  const auto bytes = writeBytecode(*fullProgram());
+  for (std::size_t n = 0; n < bytes.size(); ++n) {
+    const std::string why = readError({bytes.begin(), bytes.begin() + n});
+    BOOST_TEST_REQUIRE(!why.empty(), "prefix of " << n << " bytes accepted");
+    BOOST_TEST(contains(why, "truncated"), n << ": " << why);
+  }
+}
+
+BOOST_AUTO_TEST_CASE(byte_flips_never_crash) {
+  const auto bytes = writeBytecode(*fullProgram());
+  std::size_t rejected = 0;
+  for (std::size_t i = 0; i < bytes.size(); ++i)
+    for (std::uint8_t x : {0x01, 0x02, 0x10, 0x80, 0xff}) {
+      auto changed = bytes;
+      changed[i] ^= x;
+      rejected += !readError(changed).empty();
+    }
+  BOOST_TEST_MESSAGE(rejected << " of " << 5 * bytes.size() << " byte flips rejected");
+  BOOST_TEST(rejected > bytes.size());
+}
+
+BOOST_AUTO_TEST_CASE(random_word_changes_never_crash) {
+  const auto bytes = writeBytecode(*fullProgram());
+  std::mt19937 rng(20261121);
+  const std::uint32_t interesting[] = {0, 1,  2,          3,          4,          5,
+                                       6, 12, 0x7fffffff, 0x80000000, 0xfffffffe, 0xffffffff};
+  for (int i = 0; i < 4000; ++i) {
+    auto changed = bytes;
+    const std::size_t at = (rng() % (bytes.size() / 4)) * 4;
+    put(changed, at, i % 2 ? interesting[rng() % std::size(interesting)] : std::uint32_t(rng()));
+    if (i % 3 == 0) changed[rng() % changed.size()] = std::uint8_t(rng());
+    (void)readError(changed);
+  }
+}
+
+BOOST_AUTO_TEST_CASE(header_errors) {
+  const auto good = writeBytecode(*smallProgram());
+  auto bytes = good;
+  bytes[0] = 'X';
+  BOOST_TEST(contains(readError(bytes), "magic"));
+
+  bytes = good;
+  put(bytes, 4, 2);
+  const std::string version = readError(bytes);
+  BOOST_TEST(contains(version, "version 2"), version);
+  BOOST_TEST(contains(version, "expected version 1"), version);
+
+  bytes = good;
+  put(bytes, 12, 99);  // the first section's tag
+  BOOST_TEST(contains(readError(bytes), "unknown section tag 99"));
+
+  bytes = good;
+  put(bytes, 12, 2);
+  BOOST_TEST(contains(readError(bytes), "out of order"));
+
+  bytes = good;
+  put(bytes, 20, 0x7ffffff0);  // the type count
+  const std::string count = readError(bytes);
+  BOOST_TEST(contains(count, "exceeds"), count);
+
+  bytes = good;
+  bytes.insert(bytes.end(), {0, 0, 0, 0});
+  BOOST_TEST(contains(readError(bytes), "trailing garbage"));
+
+  bytes = good;
+  bytes.resize(30);
+  const std::string truncated = readError(bytes);
+  BOOST_TEST(contains(truncated, "truncated"), truncated);
+  BOOST_TEST(contains(truncated, "at byte"), truncated);
+}
+
+// Verification errors of the file come out of readBytecode as well.
+BOOST_AUTO_TEST_CASE(reader_verifies) {
+  auto p = smallProgram();
+  p->rules[1].block.registerTypes[3] = TypeTable::kFloat;
+  const auto bytes = writeBytecode(*p);
+  BOOST_TEST(contains(readError(bytes), "register 3 has type float, expected int"));
+}
+
+// Keeps vm/fuzz/corpus in step with the format: run with MELD_UPDATE_CORPUS=1 to rewrite it.
+BOOST_AUTO_TEST_CASE(fuzz_corpus_is_current) {
+  const std::filesystem::path dir = std::filesystem::path(MELD_SOURCE_DIR) / "vm/fuzz/corpus";
+  const std::pair<const char*, std::unique_ptr<Program> (*)()> seeds[] = {{"small.mbc", smallProgram},
+                                                                          {"full.mbc", fullProgram}};
+  for (const auto& [name, make] : seeds) {
+    const auto bytes = writeBytecode(*make());
+    if (std::getenv("MELD_UPDATE_CORPUS"))
+      std::ofstream(dir / name, std::ios::binary)
+          .write(reinterpret_cast<const char*>(bytes.data()), bytes.size());
+    std::ifstream in(dir / name, std::ios::binary);
+    const std::vector<std::uint8_t> seed((std::istreambuf_iterator<char>(in)),
+                                         std::istreambuf_iterator<char>());
+    BOOST_TEST((seed == bytes), name << " is stale: rerun with MELD_UPDATE_CORPUS=1");
+  }
+}
+
+BOOST_AUTO_TEST_CASE(disassembly_golden) {
+  const std::string expected = R"(; Meld bytecode version 1
+
+types:
+  0  int
+  1  float
+  2  bool
+  3  node
+  4  thread
+  5  string
+
+predicates:
+  0  _init() linear init
+  1  a(node, int) linear
+  2  b(node, int) linear
+
+nodes:
+  0 -> @0
+
+scheduling: desc
+
+globals
+  registers: none
+  slots: 0
+  0000  RET
+
+rule 0: _init -o axioms
+  body: _init
+  registers: none
+  slots: 1
+  0000  ITER      p=_init(0) s=0 flags=linear|consume j=0009
+  0005  AXIOMS
+  0006  FIRE      s=0
+  0008  NEXT
+  0009  RET
+
+rule 1: a(A, N) -o b(A, N+1)
+  body: a
+  registers: r0 node, r1 int, r2 int, r3 int
+  slots: 1
+  0000  ITER      p=a(2) s=0 flags=linear|consume j=0028
+  0005  LOAD      s=0 f=0 r0
+  0009  LOAD      s=0 f=1 r1
+  0013  MOVI      r2 1
+  0016  ADDI      r3 r1 r2
+  0020  DERIVE    p=b(2) (r0, r3)
+  0025  FIRE      s=0
+  0027  NEXT
+  0028  RET
+)";
+  BOOST_TEST(listing(*smallProgram()) == expected);
+}
+
+BOOST_AUTO_TEST_CASE(disassembly_names_operands) {
+  const std::string text = listing(*fullProgram());
+  for (const char* part :
+       {"p=c(2) s=0 flags=0 f=0 j=", "fn=inc (r0)", "b=llength t=<int> (r5)", "k=\"with \\\"quotes\\\"\\n\"",
+        "g=limit", "MOVF      r2 0.1", "flags=move-to-back", "t=<:(int, float)> (r0, r1)",
+        "process on c: !c(X, Y) -> total(X)", "axioms 0 of nodes 0 2", "3 -> @1099511627776",
+        "scheduling: asc, initial -1.5, default 1e-300, static", "index: c(2) field 1",
+        "7  total(int) persistent aggregate sum field 0", "MOVI      r2 -3"})
+    BOOST_TEST(contains(text, part), part);
+}

@@ -1,0 +1,172 @@
+// The Meld virtual machine on its own graph (the `meld` command): one Program, its nodes, their
+// databases, the rule engine of spec §6.4–6.10 and the serial scheduler of §6.11.
+//
+// A node run (§6.4.6): deliver the facts that arrived for the node, run the persistent processes
+// they trigger (§6.5), then repeatedly run the lowest-numbered candidate rule (§6.4.2); after each
+// rule run the consumed facts are unlinked, the derived linear facts appended (§6.4.4) and the
+// queued persistent facts processed. Linear facts for other nodes are delivered when the node run
+// ends; persistent ones at once.
+#pragma once
+
+#include <cstdint>
+#include <iosfwd>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "meldvm/builtins.hpp"
+#include "meldvm/database.hpp"
+#include "meldvm/heap.hpp"
+#include "meldvm/program.hpp"
+#include "meldvm/serial_scheduler.hpp"
+
+namespace meldvm {
+
+struct MachineOptions {
+  std::vector<std::string> args;  // @arg1.. (program arguments after `--`)
+  std::ostream* output = nullptr;  // write-string output (nullptr: discarded)
+};
+
+struct MachineStats {
+  std::uint64_t factsDerived = 0;   // facts derived by heads (linear and persistent, sent ones included)
+  std::uint64_t factsConsumed = 0;  // linear facts consumed
+  std::uint64_t factsSent = 0;      // facts sent to another node
+  std::uint64_t rulesFired = 0;     // rule firings (a comprehension's matches not counted)
+  std::uint64_t nodeRuns = 0;
+};
+
+class Interpreter;
+
+class Machine : private SchedulerView {
+ public:
+  Machine(const Program& program, MachineOptions options = {});
+  ~Machine() override;
+  Machine(const Machine&) = delete;
+  Machine& operator=(const Machine&) = delete;
+
+  // Runs to global quiescence or stop-program. Throws RuntimeError naming the rule and node.
+  void run();
+  bool stopped() const { return stop_; }
+
+  void dump(std::ostream& out) const;
+  std::string dump() const;
+
+  const MachineStats& stats() const { return stats_; }
+  const Database& database() const { return *db_; }
+  const Program& program() const { return program_; }
+  std::size_t bytesInUse() const;
+
+ private:
+  friend class Interpreter;
+
+  // ---- what the interpreter calls ----
+  void derive(NodeId host, PredId p, const Value* args, bool negative);
+  void send(NodeId host, NodeId dest, PredId p, const Value* args, bool negative);
+  void action(NodeId dest, PredId p, const Value* args);
+  void consumed(NodeId host, PredId p, FactRef f);
+  void updated(NodeId host, PredId p, FactRef f, const Value* args, bool moveToBack);
+  NodeId newNode();
+  void priorityRequest(NodeId n, double p);
+  void coordination(Opcode op, NodeId n, double value);
+  void stopProgram() { stop_ = true; }
+  Value programArg(std::uint32_t k) const;
+
+  // ---- node runs ----
+  void runNode(NodeId n);
+  void runRule(NodeId n, std::uint32_t rule);
+  void finishRuleRun(NodeId n);
+  void deliverIncoming(NodeId n);
+  void processPersistent(NodeId n);
+  void runProcesses(NodeId n, PredId p, const Value* args, bool negative);
+  void flushOutgoing();
+  void applyPriorityRequests();
+  void factAdded(NodeId n, PredId p);    // candidate rules (§6.4.2)
+  void factRemoved(NodeId n, PredId p);  // after the store lost a fact of p
+  bool hasWork(NodeId n) const { return inbox_[n].first != kNoMessage; }
+  void collectGarbageNodes();
+  [[noreturn]] void fail(const std::exception& e, NodeId n, const std::string& where) const;
+
+  // ---- messages: facts waiting to be delivered to a node ----
+  static constexpr std::uint32_t kNoMessage = 0xFFFFFFFFu;
+  struct Message {
+    std::uint32_t next;
+    PredId pred;
+    bool negative;
+  };
+  struct Inbox {
+    std::uint32_t first = kNoMessage, last = kNoMessage;
+  };
+  std::uint32_t newMessage(PredId p, const Value* args, bool negative);  // args retained
+  Value* messageArgs(std::uint32_t m) { return messageArgs_.data() + std::size_t(m) * maxArity_; }
+  void freeMessage(std::uint32_t m);  // releases the arguments
+  void post(NodeId dest, std::uint32_t m);
+
+  struct PendingFact {  // a queued persistent derivation/retraction, or a buffered linear fact
+    NodeId node;
+    PredId pred;
+    bool negative;
+    std::uint32_t args;  // offset in the owning buffer's value array
+  };
+  // Owned copies of argument lists (boxed values retained).
+  void pushArgs(std::vector<Value>& to, PredId p, const Value* args);
+  void releaseArgs(PredId p, const Value* args);
+
+  const Program& program_;
+  MachineOptions options_;
+  Heap heap_;
+  std::unique_ptr<Database> db_;
+  std::unique_ptr<Interpreter> interp_;
+  BuiltinContext builtinCtx_;
+  Rng rng_;
+  SerialScheduler sched_;
+  MachineStats stats_;
+  bool stop_ = false;
+  NodeId running_ = 0;
+  bool inRun_ = false;
+  NodeId initialNodes_ = 0;
+
+  // Per predicate: the rules with it in their body, its processes, flags.
+  std::vector<std::vector<std::uint32_t>> rulesOf_;
+  std::vector<std::vector<std::uint32_t>> processesOf_;
+  std::vector<std::uint8_t> queuedPersistent_;  // has processes or an aggregate: derive via the queue
+  std::vector<std::uint8_t> boxedField_;        // per predicate: some field is boxed
+  std::uint32_t maxArity_ = 1;
+  PredId justMoved_ = Program::kNoPred;
+
+  // Candidate rules per node: a bitset of rulesWords_ words per node.
+  std::uint32_t ruleWords_ = 1;
+  std::vector<std::uint64_t> candidates_;
+
+  std::vector<Inbox> inbox_;
+  std::vector<Message> messages_;
+  std::vector<Value> messageArgs_;
+  std::uint32_t freeMessages_ = kNoMessage;
+
+  // Within a rule run.
+  std::vector<std::pair<PredId, FactRef>> consumed_;
+  std::vector<PendingFact> linearOut_;  // linear facts derived for the host, appended after the run
+  std::vector<Value> linearOutArgs_;
+  std::vector<PendingFact> persistentQueue_;  // FIFO (§6.5)
+  std::size_t persistentHead_ = 0;
+  std::vector<Value> persistentArgs_;
+  std::vector<std::pair<NodeId, std::uint32_t>> outgoing_;  // linear facts sent: delivered at run end
+  std::vector<std::pair<NodeId, double>> priorityRequests_;
+  std::vector<Value> triggerInput_, triggerAdded_, triggerRemoved_;
+
+  std::vector<Value> globals_;
+  std::vector<Value> strings_;  // the string constants as heap strings
+  std::vector<Value> args_;     // program arguments as heap strings
+  std::vector<std::uint8_t> created_;  // per node: created by exists (may be collected)
+
+  // SchedulerView (built-ins priority, cpu-id, ...).
+  double priority(NodeId n) const override { return sched_.priority(n); }
+  ThreadId owner(NodeId) const override { return 0; }
+  std::int32_t staticNodes(ThreadId) const override;
+  bool isStatic(NodeId n) const override { return sched_.isStatic(n); }
+  std::int32_t queueSize(NodeId) const override { return std::int32_t(sched_.waiting()); }
+  std::int32_t factsProved() const override { return std::int32_t(runDerived_); }
+  std::int32_t factsConsumed() const override { return std::int32_t(runConsumed_); }
+  std::uint64_t runDerived_ = 0, runConsumed_ = 0;
+};
+
+}  // namespace meldvm

@@ -1,0 +1,75 @@
+// The serial node scheduler of the established VM (spec §6.11, one thread): nodes wait in a
+// priority heap (when their priority differs from "no priority") or in a FIFO; the heap is served
+// first. The heap is a plain binary heap that never swaps equal keys, which is what makes the
+// start-up order 0, N-1, N-2, ..., 1 when every node has the same initial priority [quirk].
+#pragma once
+
+#include <cfloat>
+#include <cstdint>
+#include <vector>
+
+#include "meldvm/program.hpp"
+#include "meldvm/value.hpp"
+
+namespace meldvm {
+
+class SerialScheduler {
+ public:
+  explicit SerialScheduler(const SchedulingOptions& options);
+
+  // Called once with the initial node count, before any run: every node is queued in id order.
+  void start(NodeId nodes);
+  // A node created at run time (exists): it starts with no priority.
+  void addNode();
+
+  // The next node to run (heap first, then FIFO), or false when none is waiting.
+  bool pop(NodeId& node);
+  // The node received work while not running: queue it unless it already waits.
+  void wake(NodeId n);
+  // The node's run ended: its temporary priority falls back to the default; requeue if it still
+  // has work.
+  void finished(NodeId n, bool hasWork);
+
+  // §5.7 coordination (the running node's own requests are filtered out by the caller).
+  void setPriority(NodeId n, double p);  // raise only if more urgent
+  void addPriority(NodeId n, double delta);
+  void removePriority(NodeId n);
+  void setDefaultPriority(NodeId n, double p);
+  void scheduleNext(NodeId n);
+  void setStatic(NodeId n, bool isStatic) { static_[n] = isStatic; }
+
+  double priority(NodeId n) const { return prio_[n]; }
+  bool isStatic(NodeId n) const { return static_[n] != 0; }
+  std::size_t waiting() const { return heap_.size() + fifoLive_; }
+  // Urgency order: true when a is strictly more urgent than b.
+  bool moreUrgent(double a, double b) const { return desc_ ? a > b : a < b; }
+  double noPriority() const { return noPriority_; }
+
+ private:
+  enum class Where : std::uint8_t { Idle, Fifo, Heap };
+
+  void heapPush(NodeId n);
+  void heapRemove(NodeId n);
+  void siftUp(std::uint32_t i);
+  void siftDown(std::uint32_t i);
+  void changed(NodeId n);  // its priority changed: move between FIFO and heap as needed
+
+  bool desc_;
+  double noPriority_, initial_, default_;
+  std::vector<double> prio_, defaultPrio_;
+  std::vector<std::uint8_t> static_;
+  std::vector<Where> where_;
+  std::vector<std::uint32_t> heapIndex_;
+  std::vector<NodeId> heap_;
+  // A node may leave the FIFO for the heap (a priority was set): its entry then goes stale, which
+  // the ticket detects. Consumed from fifoHead_, compacted when the dead prefix is large.
+  struct FifoEntry {
+    NodeId node;
+    std::uint32_t ticket;
+  };
+  std::vector<FifoEntry> fifo_;
+  std::size_t fifoHead_ = 0, fifoLive_ = 0;
+  std::vector<std::uint32_t> ticket_;
+};
+
+}  // namespace meldvm

@@ -1,0 +1,51 @@
+// Pieces shared by the bytecode writer, reader, verifier and disassembler; not part of the API.
+#pragma once
+
+#include <cstddef>
+#include <cstdint>
+#include <span>
+#include <string>
+
+#include "meldvm/program.hpp"
+
+namespace meldvm::detail {
+
+// Section tags of the `.mbc` layout, in file order (bytecode.hpp). Tag 0 is never used so that a
+// zeroed word is never mistaken for a section.
+enum SectionTag : std::uint32_t {
+  kSecTypes = 1,
+  kSecPredicates,
+  kSecNodes,
+  kSecStrings,
+  kSecGlobals,
+  kSecFunctions,
+  kSecExterns,
+  kSecRules,
+  kSecProcesses,
+  kSecAxioms,
+  kSecScheduling,
+  kSecIndexes,
+};
+inline constexpr std::uint32_t kSectionCount = kSecIndexes;
+const char* sectionName(std::uint32_t tag);  // "?" for unknown tags
+
+inline constexpr char kMagic[4] = {'M', 'B', 'C', '1'};
+
+// PredicateDesc booleans as one word.
+inline constexpr std::uint32_t kPredLinear = 1, kPredRoute = 2, kPredReverseRoute = 4, kPredAction = 8,
+                               kPredThread = 16, kPredCompact = 32;
+inline constexpr std::uint32_t kPredFlagsAll = 63;
+
+// SchedulingOptions booleans as one word.
+inline constexpr std::uint32_t kSchedInitial = 1, kSchedDefault = 2, kSchedNoInitial = 4, kSchedStatic = 8;
+inline constexpr std::uint32_t kSchedFlagsAll = 15;
+
+// Length in words of the instruction at `pos` of `code`, or 0 when it is malformed (unknown opcode,
+// operands running past the end); then `why` says what is wrong.
+std::size_t instructionLength(std::span<const std::uint32_t> code, std::size_t pos, std::string& why);
+
+// TypeTable::name with the nesting depth capped: a file can chain thousands of `list` types, and
+// the unbounded recursion of TypeTable::name would then overflow the stack.
+std::string typeName(const TypeTable& types, TypeId t);
+
+}  // namespace meldvm::detail

@@ -1,0 +1,548 @@
+#include "interpreter.hpp"
+
+#include <algorithm>
+#include <cstring>
+
+#include "meldvm/arith.hpp"
+#include "meldvm/machine.hpp"
+#include "meldvm/value_ops.hpp"
+
+namespace meldvm {
+
+namespace {
+constexpr std::size_t kRegChunk = 1 << 16;
+constexpr std::size_t kSlotChunk = 1 << 12;
+constexpr std::uint32_t kMaxDepth = 10000;  // nested function calls
+
+double immDouble(const std::uint32_t* c) {
+  const std::uint64_t bits = std::uint64_t(c[0]) | (std::uint64_t(c[1]) << 32);
+  double d;
+  std::memcpy(&d, &bits, sizeof d);
+  return d;
+}
+}  // namespace
+
+Interpreter::Interpreter(Machine& machine, const Program& program, Database& db, BuiltinContext& ctx)
+    : machine_(machine), program_(program), db_(db), heap_(db.heap()), ctx_(ctx) {
+  regChunks_.push_back(std::make_unique<Value[]>(kRegChunk));
+  slotChunks_.push_back(std::make_unique<Slot[]>(kSlotChunk));
+  args_.reserve(64);
+}
+
+Interpreter::~Interpreter() = default;
+
+const std::vector<std::uint8_t>& Interpreter::boxedOf(const CodeBlock& b) {
+  auto it = boxed_.find(&b);
+  if (it != boxed_.end()) return it->second;
+  std::vector<std::uint8_t> v(b.registerTypes.size());
+  for (std::size_t r = 0; r < v.size(); ++r) v[r] = program_.types.boxed(b.registerTypes[r]);
+  return boxed_.emplace(&b, std::move(v)).first->second;
+}
+
+Interpreter::Alloc Interpreter::enter(const CodeBlock& b) {
+  const std::size_t regs = b.registerTypes.size(), slots = b.slots;
+  if (regs > kRegChunk || slots > kSlotChunk) throw RuntimeError("code block '" + b.label + "' is too large");
+  Alloc a{nullptr, nullptr, regChunk_ * kRegChunk + regUsed_, slotChunk_ * kSlotChunk + slotUsed_};
+  if (regUsed_ + regs > kRegChunk) {
+    if (++regChunk_ == regChunks_.size()) regChunks_.push_back(std::make_unique<Value[]>(kRegChunk));
+    regUsed_ = 0;
+  }
+  if (slotUsed_ + slots > kSlotChunk) {
+    if (++slotChunk_ == slotChunks_.size()) slotChunks_.push_back(std::make_unique<Slot[]>(kSlotChunk));
+    slotUsed_ = 0;
+  }
+  a.regs = regChunks_[regChunk_].get() + regUsed_;
+  a.slots = slotChunks_[slotChunk_].get() + slotUsed_;
+  regUsed_ += regs;
+  slotUsed_ += slots;
+  std::fill(a.regs, a.regs + regs, Value());
+  for (std::size_t s = 0; s < slots; ++s) a.slots[s] = Slot{0, kNoFact, 0, nullptr};
+  return a;
+}
+
+void Interpreter::leave(const Frame& f, const Alloc& a) {
+  const std::size_t regs = f.block->registerTypes.size();
+  for (std::size_t r = 0; r < regs; ++r)
+    if (f.boxed[r]) heap_.release(f.block->registerTypes[r], f.regs[r]);
+  regChunk_ = a.regMark / kRegChunk;
+  regUsed_ = a.regMark % kRegChunk;
+  slotChunk_ = a.slotMark / kSlotChunk;
+  slotUsed_ = a.slotMark % kSlotChunk;
+}
+
+void Interpreter::run(const CodeBlock& block, NodeId host, bool negative, PredId triggerPred,
+                      const Value* trigger) {
+  const CodeBlock* saved = current_;
+  current_ = &block;
+  const Alloc a = enter(block);
+  Frame f{&block, block.code.data(), a.regs, a.slots, boxedOf(block).data(), host, negative};
+  if (trigger) f.slots[0] = Slot{triggerPred, kNoFact, 0, trigger};
+  try {
+    exec(f, 0);
+  } catch (...) {
+    leave(f, a);
+    throw;
+  }
+  leave(f, a);
+  current_ = saved;
+}
+
+void Interpreter::setReg(Frame& f, std::uint32_t r, Value v) {
+  if (f.boxed[r]) heap_.release(f.block->registerTypes[r], f.regs[r]);
+  f.regs[r] = v;
+}
+
+Value Interpreter::retained(const Frame& f, std::uint32_t r) const {
+  heap_.retain(f.block->registerTypes[r], f.regs[r]);
+  return f.regs[r];
+}
+
+void Interpreter::gatherArgs(const Frame& f, const std::uint32_t* regs, std::uint32_t count) {
+  args_.clear();
+  for (std::uint32_t i = 0; i < count; ++i) args_.push_back(f.regs[regs[i]]);
+}
+
+bool Interpreter::skipFact(const Frame& f, std::uint32_t slot, PredId p, FactRef fact) const {
+  if (db_.consumedMark(p, fact)) return true;
+  for (std::uint32_t s = 0; s < slot; ++s)  // §6.4.3: a fact bound by an enclosing loop
+    if (f.slots[s].fact == fact && f.slots[s].pred == p && !f.slots[s].fixed) return true;
+  return false;
+}
+
+void Interpreter::fire(Frame& f, std::uint32_t firstSlot) {
+  for (std::uint32_t s = firstSlot; s < f.block->slots; ++s) {
+    Slot& sl = f.slots[s];
+    if (sl.fact != kNoFact && !sl.fixed && (sl.flags & kIterConsume) && !db_.consumedMark(sl.pred, sl.fact))
+      machine_.consumed(f.host, sl.pred, sl.fact);
+  }
+}
+
+bool Interpreter::loop(Frame& f, std::uint32_t pc) {
+  const std::uint32_t* c = f.code + pc;
+  const auto op = Opcode(c[0]);
+  const PredId p = c[1];
+  const std::uint32_t s = c[2], flags = c[3];
+  std::uint32_t body;
+  std::uint32_t keyField = 0;
+  Value key;
+  TypeId keyType = 0;
+  if (op == Opcode::ITER) {
+    body = pc + 5;
+  } else if (op == Opcode::ITER_KEY) {
+    keyField = c[4];
+    key = f.regs[c[5]];
+    keyType = program_.predicates[p].fields[keyField];
+    body = pc + 7;
+  } else {
+    keyField = c[4];
+    body = pc + 6;
+  }
+  const bool linear = flags & kIterLinear;
+  const bool returnOnFire = flags & kIterReturnOnFire;
+  bool fired = false;
+  Slot& slot = f.slots[s];
+  slot.pred = p;
+  slot.flags = flags;
+  slot.fixed = nullptr;
+
+  auto visit = [&](FactRef fact) -> bool {  // false: stop the loop
+    if (linear && skipFact(f, s, p, fact)) return true;
+    slot.fact = fact;
+    if (exec(f, body) == Status::Fired) {
+      fired = true;
+      if (returnOnFire) return false;
+    }
+    return !machine_.stopped();
+  };
+
+  if (op != Opcode::ITER_SORTED) {
+    for (FactRef fact = db_.first(f.host, p); fact != kNoFact;) {
+      if (op == Opcode::ITER_KEY && !valuesEqual(program_.types, keyType, db_.args(p, fact)[keyField], key)) {
+        fact = db_.next(p, fact);
+        continue;
+      }
+      if (!visit(fact)) break;
+      fact = db_.next(p, fact);
+    }
+  } else {
+    const std::size_t begin = sorted_.size();
+    for (FactRef fact = db_.first(f.host, p); fact != kNoFact; fact = db_.next(p, fact))
+      if (!linear || !db_.consumedMark(p, fact)) sorted_.push_back(fact);
+    if (flags & kIterRandom) {
+      for (std::size_t i = sorted_.size() - begin; i > 1; --i)
+        std::swap(sorted_[begin + i - 1], sorted_[begin + ctx_.rng->next() % i]);
+    } else {
+      const TypeId t = program_.predicates[p].fields[keyField];
+      std::stable_sort(sorted_.begin() + std::ptrdiff_t(begin), sorted_.end(), [&](FactRef a, FactRef b) {
+        return compareValues(program_.types, t, db_.args(p, a)[keyField], db_.args(p, b)[keyField]) < 0;
+      });
+    }
+    for (std::size_t i = begin; i < sorted_.size(); ++i)
+      if (!visit(sorted_[i])) break;
+    sorted_.resize(begin);
+  }
+  slot.fact = kNoFact;
+  return fired;
+}
+
+Interpreter::Status Interpreter::exec(Frame& f, std::uint32_t pc) {
+  const std::uint32_t* code = f.code;
+  bool lastFired = false;
+  Value* R = f.regs;
+  for (;;) {
+    const std::uint32_t* c = code + pc;
+    switch (Opcode(c[0])) {
+      case Opcode::ITER:
+      case Opcode::ITER_KEY:
+      case Opcode::ITER_SORTED: {
+        lastFired = loop(f, pc);
+        pc = Opcode(c[0]) == Opcode::ITER ? c[4] : Opcode(c[0]) == Opcode::ITER_KEY ? c[6] : c[5];
+        if (machine_.stopped()) return Status::Return;
+        break;
+      }
+      case Opcode::NEXT:
+        return lastFired ? Status::Fired : Status::NotFired;
+      case Opcode::FIRE:
+        fire(f, c[1]);
+        machine_.stats_.rulesFired++;
+        return Status::Fired;
+      case Opcode::CFIRE:
+        fire(f, c[1]);
+        return Status::NotFired;
+      case Opcode::RET:
+        return Status::Return;
+      case Opcode::LOAD: {
+        const Value v = slotArgs(f, c[1])[c[2]];
+        heap_.retain(f.block->registerTypes[c[3]], v);
+        setReg(f, c[3], v);
+        pc += 4;
+        break;
+      }
+      case Opcode::TEST: {
+        const Slot& sl = f.slots[c[1]];
+        const TypeId t = program_.predicates[sl.pred].fields[c[2]];
+        pc = valuesEqual(program_.types, t, slotArgs(f, c[1])[c[2]], R[c[3]]) ? pc + 5 : c[4];
+        break;
+      }
+      case Opcode::JF:
+        pc = R[c[1]].asBool() ? pc + 3 : c[2];
+        break;
+      case Opcode::JT:
+        pc = R[c[1]].asBool() ? c[2] : pc + 3;
+        break;
+      case Opcode::JMP:
+        pc = c[1];
+        break;
+      case Opcode::JNIL:
+        pc = R[c[1]].isNil() ? c[2] : pc + 3;
+        break;
+      case Opcode::JNOTNIL:
+        pc = R[c[1]].isNil() ? pc + 3 : c[2];
+        break;
+      case Opcode::MOV:
+        setReg(f, c[1], retained(f, c[2]));
+        pc += 3;
+        break;
+      case Opcode::MOVI:
+        R[c[1]] = Value::fromInt(std::int32_t(c[2]));
+        pc += 3;
+        break;
+      case Opcode::MOVF:
+        R[c[1]] = Value::fromFloat(immDouble(c + 2));
+        pc += 4;
+        break;
+      case Opcode::MOVB:
+        R[c[1]] = Value::fromBool(c[2] != 0);
+        pc += 3;
+        break;
+      case Opcode::MOVN:
+        R[c[1]] = Value::fromNode(c[2]);
+        pc += 3;
+        break;
+      case Opcode::MOVS: {
+        const Value v = machine_.strings_[c[2]];
+        heap_.retain(TypeTable::kString, v);
+        setReg(f, c[1], v);
+        pc += 3;
+        break;
+      }
+      case Opcode::NIL:
+        setReg(f, c[1], Value::nil());
+        pc += 2;
+        break;
+      case Opcode::GLOBAL: {
+        const Value v = machine_.globals_[c[2]];
+        heap_.retain(f.block->registerTypes[c[1]], v);
+        setReg(f, c[1], v);
+        pc += 3;
+        break;
+      }
+      case Opcode::SETGLOBAL: {
+        Value& g = machine_.globals_[c[1]];
+        const TypeId t = program_.globals[c[1]].type;
+        heap_.release(t, g);
+        g = retained(f, c[2]);
+        pc += 3;
+        break;
+      }
+      case Opcode::HOST:
+        R[c[1]] = Value::fromNode(f.host);
+        pc += 2;
+        break;
+      case Opcode::WORLD:
+        R[c[1]] = Value::fromInt(std::int32_t(db_.nodeCount()));
+        pc += 2;
+        break;
+      case Opcode::CPUS:
+        R[c[1]] = Value::fromInt(1);
+        pc += 2;
+        break;
+      case Opcode::THREAD:
+        R[c[1]] = Value::fromThread(0);
+        pc += 2;
+        break;
+      case Opcode::ARG:
+        setReg(f, c[1], machine_.programArg(c[2]));
+        pc += 3;
+        break;
+      case Opcode::ADDI:
+        R[c[1]] = Value::fromInt(intAdd(R[c[2]].asInt(), R[c[3]].asInt()));
+        pc += 4;
+        break;
+      case Opcode::SUBI:
+        R[c[1]] = Value::fromInt(intSub(R[c[2]].asInt(), R[c[3]].asInt()));
+        pc += 4;
+        break;
+      case Opcode::MULI:
+        R[c[1]] = Value::fromInt(intMul(R[c[2]].asInt(), R[c[3]].asInt()));
+        pc += 4;
+        break;
+      case Opcode::DIVI:
+        R[c[1]] = Value::fromInt(intDiv(R[c[2]].asInt(), R[c[3]].asInt()));
+        pc += 4;
+        break;
+      case Opcode::MODI:
+        R[c[1]] = Value::fromInt(intMod(R[c[2]].asInt(), R[c[3]].asInt()));
+        pc += 4;
+        break;
+      case Opcode::ADDF:
+        R[c[1]] = Value::fromFloat(R[c[2]].asFloat() + R[c[3]].asFloat());
+        pc += 4;
+        break;
+      case Opcode::SUBF:
+        R[c[1]] = Value::fromFloat(R[c[2]].asFloat() - R[c[3]].asFloat());
+        pc += 4;
+        break;
+      case Opcode::MULF:
+        R[c[1]] = Value::fromFloat(R[c[2]].asFloat() * R[c[3]].asFloat());
+        pc += 4;
+        break;
+      case Opcode::DIVF:
+        R[c[1]] = Value::fromFloat(R[c[2]].asFloat() / R[c[3]].asFloat());
+        pc += 4;
+        break;
+      case Opcode::MINI:
+        R[c[1]] = Value::fromInt(std::min(R[c[2]].asInt(), R[c[3]].asInt()));
+        pc += 4;
+        break;
+      case Opcode::I2F:
+        R[c[1]] = Value::fromFloat(intToFloat(R[c[2]].asInt()));
+        pc += 3;
+        break;
+      case Opcode::EQ:
+        R[c[1]] = Value::fromBool(valuesEqual(program_.types, c[4], R[c[2]], R[c[3]]));
+        pc += 5;
+        break;
+      case Opcode::NE:
+        R[c[1]] = Value::fromBool(!valuesEqual(program_.types, c[4], R[c[2]], R[c[3]]));
+        pc += 5;
+        break;
+      case Opcode::LTI:
+        R[c[1]] = Value::fromBool(R[c[2]].asInt() < R[c[3]].asInt());
+        pc += 4;
+        break;
+      case Opcode::LEI:
+        R[c[1]] = Value::fromBool(R[c[2]].asInt() <= R[c[3]].asInt());
+        pc += 4;
+        break;
+      case Opcode::GTI:
+        R[c[1]] = Value::fromBool(R[c[2]].asInt() > R[c[3]].asInt());
+        pc += 4;
+        break;
+      case Opcode::GEI:
+        R[c[1]] = Value::fromBool(R[c[2]].asInt() >= R[c[3]].asInt());
+        pc += 4;
+        break;
+      case Opcode::LTF:
+        R[c[1]] = Value::fromBool(R[c[2]].asFloat() < R[c[3]].asFloat());
+        pc += 4;
+        break;
+      case Opcode::LEF:
+        R[c[1]] = Value::fromBool(R[c[2]].asFloat() <= R[c[3]].asFloat());
+        pc += 4;
+        break;
+      case Opcode::GTF:
+        R[c[1]] = Value::fromBool(R[c[2]].asFloat() > R[c[3]].asFloat());
+        pc += 4;
+        break;
+      case Opcode::GEF:
+        R[c[1]] = Value::fromBool(R[c[2]].asFloat() >= R[c[3]].asFloat());
+        pc += 4;
+        break;
+      case Opcode::NOT:
+        R[c[1]] = Value::fromBool(!R[c[2]].asBool());
+        pc += 3;
+        break;
+      case Opcode::CONS:
+        setReg(f, c[1], heap_.cons(c[4], R[c[2]], R[c[3]]));
+        pc += 5;
+        break;
+      case Opcode::HEAD: {
+        if (R[c[2]].isNil()) throw RuntimeError("head of an empty list");
+        const Value v = listHead(R[c[2]]);
+        heap_.retain(f.block->registerTypes[c[1]], v);
+        setReg(f, c[1], v);
+        pc += 3;
+        break;
+      }
+      case Opcode::TAIL: {
+        if (R[c[2]].isNil()) throw RuntimeError("tail of an empty list");
+        const Value v = listTail(R[c[2]]);
+        heap_.retain(f.block->registerTypes[c[1]], v);
+        setReg(f, c[1], v);
+        pc += 3;
+        break;
+      }
+      case Opcode::STRUCT: {
+        gatherArgs(f, c + 4, c[3]);
+        setReg(f, c[1], heap_.makeTuple(c[2], args_));
+        pc += 4 + c[3];
+        break;
+      }
+      case Opcode::FIELD: {
+        const Value v = tupleItems(R[c[2]])[c[3]];
+        heap_.retain(f.block->registerTypes[c[1]], v);
+        setReg(f, c[1], v);
+        pc += 4;
+        break;
+      }
+      case Opcode::CALL: {
+        const BuiltinInfo* b = findBuiltin(std::uint16_t(c[2]));
+        if (!b) throw RuntimeError("built-in function " + std::to_string(c[2]) + " is not available");
+        gatherArgs(f, c + 5, c[4]);
+        setReg(f, c[1], b->fn(ctx_, args_, c[3]));
+        pc += 5 + c[4];
+        break;
+      }
+      case Opcode::CALLF: {
+        gatherArgs(f, c + 4, c[3]);
+        setReg(f, c[1], callFunction(c[2], args_.data(), f.host));
+        pc += 4 + c[3];
+        break;
+      }
+      case Opcode::CALLX:
+        throw RuntimeError("extern function '" + program_.externs[c[2]].name +
+                           "' is not available: this VM links no external code");
+      case Opcode::DERIVE:
+        gatherArgs(f, c + 3, c[2]);
+        machine_.derive(f.host, c[1], args_.data(), f.negative);
+        pc += 3 + c[2];
+        break;
+      case Opcode::SEND:
+        gatherArgs(f, c + 4, c[3]);
+        machine_.send(f.host, R[c[2]].asNode(), c[1], args_.data(), f.negative);
+        pc += 4 + c[3];
+        break;
+      case Opcode::SEND_DELAY:  // no simulated time on the VM's own graph: delivered at once
+        gatherArgs(f, c + 5, c[4]);
+        machine_.send(f.host, R[c[2]].asNode(), c[1], args_.data(), f.negative);
+        pc += 5 + c[4];
+        break;
+      case Opcode::UPDATE: {
+        gatherArgs(f, c + 4, c[3]);
+        const Slot& sl = f.slots[c[1]];
+        if (!f.negative) machine_.updated(f.host, sl.pred, sl.fact, args_.data(), c[2] & kUpdateMoveToBack);
+        pc += 4 + c[3];
+        break;
+      }
+      case Opcode::ACTION:
+        gatherArgs(f, c + 4, c[3]);
+        if (!f.negative) machine_.action(R[c[2]].asNode(), c[1], args_.data());
+        pc += 4 + c[3];
+        break;
+      case Opcode::AXIOMS: {
+        const std::uint32_t idx =
+            f.host < program_.nodeAxioms.size() ? program_.nodeAxioms[f.host] : Program::kNoAxioms;
+        if (idx != Program::kNoAxioms) {
+          run(program_.axiomBlocks[idx], f.host);
+          current_ = f.block;
+        }
+        pc += 1;
+        break;
+      }
+      case Opcode::NEWNODE:
+        R[c[1]] = Value::fromNode(machine_.newNode());
+        pc += 2;
+        break;
+      case Opcode::SET_PRIORITY:
+        if (!f.negative) machine_.priorityRequest(R[c[1]].asNode(), R[c[2]].asFloat());
+        pc += 3;
+        break;
+      case Opcode::ADD_PRIORITY:
+      case Opcode::SET_DEFAULT_PRIORITY:
+      case Opcode::SET_CPU:
+        if (!f.negative) machine_.coordination(Opcode(c[0]), R[c[1]].asNode(), R[c[2]].asFloat());
+        pc += 3;
+        break;
+      case Opcode::SET_AFFINITY:
+        if (!f.negative) machine_.coordination(Opcode(c[0]), R[c[1]].asNode(), 0.0);
+        pc += 3;
+        break;
+      case Opcode::REMOVE_PRIORITY:
+      case Opcode::SCHEDULE_NEXT:
+      case Opcode::SET_STATIC:
+      case Opcode::SET_MOVING:
+        if (!f.negative) machine_.coordination(Opcode(c[0]), R[c[1]].asNode(), 0.0);
+        pc += 2;
+        break;
+      case Opcode::STOP_PROGRAM:
+        if (!f.negative) machine_.stopProgram();
+        pc += 2;
+        break;
+      default:
+        throw RuntimeError("bad opcode " + std::to_string(c[0]));
+    }
+  }
+}
+
+Value Interpreter::callFunction(std::uint32_t fn, const Value* args, NodeId host) {
+  const Function& func = program_.functions[fn];
+  if (++depth_ > kMaxDepth) {
+    depth_ = 0;
+    throw RuntimeError("function '" + func.name + "' nested deeper than 10000 calls");
+  }
+  const CodeBlock* saved = current_;
+  current_ = &func.block;
+  const Alloc a = enter(func.block);
+  Frame f{&func.block, func.block.code.data(), a.regs, a.slots, boxedOf(func.block).data(), host, false};
+  const std::size_t n = func.params.size();
+  for (std::size_t i = 0; i < n; ++i) {
+    heap_.retain(func.params[i], args[i]);
+    f.regs[i] = args[i];
+  }
+  try {
+    exec(f, 0);
+  } catch (...) {
+    leave(f, a);
+    --depth_;
+    throw;
+  }
+  const Value result = f.regs[n];
+  f.regs[n] = Value();  // ownership moves to the caller
+  leave(f, a);
+  --depth_;
+  current_ = saved;
+  return result;
+}
+
+}  // namespace meldvm

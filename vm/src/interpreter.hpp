@@ -1,0 +1,94 @@
+// The bytecode interpreter: runs one code block (a rule, a persistent process, an axiom block, a
+// function, the globals initialiser) at a node. Loops are run by recursion on ITER so that the
+// nested-loop matching of spec §6.4.3 reads directly: a loop body returns "fired" or "not fired",
+// and a loop flagged kIterReturnOnFire stops after its body fired.
+//
+// Registers live in chunks that never move (a frame keeps a plain pointer to its registers while
+// nested frames are pushed). Consumed linear facts are only marked during a rule run (the Machine
+// unlinks them afterwards), so every loop can step to its successor after its body ran.
+#pragma once
+
+#include <cstdint>
+#include <memory>
+#include <unordered_map>
+#include <vector>
+
+#include "meldvm/builtins.hpp"
+#include "meldvm/database.hpp"
+#include "meldvm/program.hpp"
+
+namespace meldvm {
+
+class Machine;
+
+class Interpreter {
+ public:
+  Interpreter(Machine& machine, const Program& program, Database& db, BuiltinContext& ctx);
+  ~Interpreter();
+
+  // Runs a block at node `host`. `trigger` (process blocks): the arguments slot 0 is bound to.
+  // `negative`: the retraction mode of the persistent processes (§6.8).
+  void run(const CodeBlock& block, NodeId host, bool negative = false, PredId triggerPred = 0,
+           const Value* trigger = nullptr);
+
+  // Label of the block being run (for error messages).
+  const CodeBlock* current() const { return current_; }
+
+ private:
+  struct Slot {
+    PredId pred;
+    FactRef fact;
+    std::uint32_t flags;
+    const Value* fixed;  // pre-bound arguments (process trigger) instead of a stored fact
+  };
+  struct Frame {
+    const CodeBlock* block;
+    const std::uint32_t* code;
+    Value* regs;
+    Slot* slots;
+    const std::uint8_t* boxed;  // per register
+    NodeId host;
+    bool negative;
+  };
+  enum class Status : std::uint8_t { NotFired, Fired, Return };
+
+  Status exec(Frame& f, std::uint32_t pc);
+  bool loop(Frame& f, std::uint32_t pc);
+  bool skipFact(const Frame& f, std::uint32_t slot, PredId p, FactRef fact) const;
+  void fire(Frame& f, std::uint32_t firstSlot);
+  const Value* slotArgs(const Frame& f, std::uint32_t s) const {
+    const Slot& sl = f.slots[s];
+    return sl.fixed ? sl.fixed : db_.args(sl.pred, sl.fact);
+  }
+  void setReg(Frame& f, std::uint32_t r, Value v);  // takes ownership of v
+  Value retained(const Frame& f, std::uint32_t r) const;
+  Value callFunction(std::uint32_t fn, const Value* args, NodeId host);
+  void gatherArgs(const Frame& f, const std::uint32_t* regs, std::uint32_t count);
+
+  // Frames: registers and slots from chunks that never move.
+  struct Alloc {
+    Value* regs;
+    Slot* slots;
+    std::size_t regMark, slotMark;
+  };
+  Alloc enter(const CodeBlock& b);
+  void leave(const Frame& f, const Alloc& a);
+  const std::vector<std::uint8_t>& boxedOf(const CodeBlock& b);
+
+  Machine& machine_;
+  const Program& program_;
+  Database& db_;
+  Heap& heap_;
+  BuiltinContext& ctx_;
+  const CodeBlock* current_ = nullptr;
+  std::uint32_t depth_ = 0;
+
+  std::vector<std::unique_ptr<Value[]>> regChunks_;
+  std::vector<std::unique_ptr<Slot[]>> slotChunks_;
+  std::size_t regChunk_ = 0, regUsed_ = 0, slotChunk_ = 0, slotUsed_ = 0;
+  std::unordered_map<const CodeBlock*, std::vector<std::uint8_t>> boxed_;
+  std::vector<Value> args_;      // arguments gathered for DERIVE/SEND/CALL
+  std::vector<FactRef> sorted_;  // ITER_SORTED candidates (a stack of runs)
+};
+
+}  // namespace meldvm

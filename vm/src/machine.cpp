@@ -1,0 +1,497 @@
+#include "meldvm/machine.hpp"
+
+#include <ostream>
+#include <sstream>
+
+#include "interpreter.hpp"
+#include "meldvm/arith.hpp"
+#include "meldvm/dump.hpp"
+
+namespace meldvm {
+
+namespace {
+const Value kNoArgs[1] = {};  // arguments of _init and just-moved (home only)
+}  // namespace
+
+Machine::Machine(const Program& program, MachineOptions options)
+    : program_(program),
+      options_(std::move(options)),
+      heap_(program.types),
+      db_(std::make_unique<Database>(program.predicates, heap_)),
+      builtinCtx_(heap_),
+      rng_(Rng::forThread(0)),
+      sched_(program.scheduling) {
+  builtinCtx_.rng = &rng_;
+  builtinCtx_.sched = this;
+  const std::size_t preds = program.predicates.size();
+  rulesOf_.resize(preds);
+  processesOf_.resize(preds);
+  queuedPersistent_.assign(preds, 0);
+  for (std::uint32_t r = 0; r < program.rules.size(); ++r)
+    for (PredId p : program.rules[r].bodyPredicates) rulesOf_[p].push_back(r);
+  for (std::uint32_t i = 0; i < program.processes.size(); ++i)
+    processesOf_[program.processes[i].trigger].push_back(i);
+  for (PredId p = 0; p < preds; ++p) {
+    const PredicateDesc& d = program.predicates[p];
+    maxArity_ = std::max(maxArity_, d.arity());
+    queuedPersistent_[p] = !d.linear && (!processesOf_[p].empty() || d.aggregated());
+  }
+  justMoved_ = program.predicates.find("just-moved");
+  if (justMoved_ == program.predicates.size()) justMoved_ = Program::kNoPred;
+  ruleWords_ = std::uint32_t((program.rules.size() + 63) / 64);
+  if (ruleWords_ == 0) ruleWords_ = 1;
+  for (const std::string& s : program.strings) strings_.push_back(heap_.makeString(s));
+  for (const std::string& a : options_.args) args_.push_back(heap_.makeString(a));
+  globals_.assign(program.globals.size(), Value());
+  interp_ = std::make_unique<Interpreter>(*this, program_, *db_, builtinCtx_);
+  linearOutArgs_.reserve(1024);
+  persistentArgs_.reserve(1024);
+}
+
+Machine::~Machine() {
+  // The databases go first (they hold references into the heap), then what the machine owns.
+  for (const PendingFact& e : persistentQueue_) releaseArgs(e.pred, persistentArgs_.data() + e.args);
+  for (std::uint32_t m = 0; m < messages_.size(); ++m)
+    if (messages_[m].pred != Program::kNoPred) releaseArgs(messages_[m].pred, messageArgs(m));
+  for (std::size_t g = 0; g < globals_.size(); ++g) heap_.release(program_.globals[g].type, globals_[g]);
+  for (Value s : strings_) heap_.release(TypeTable::kString, s);
+  for (Value a : args_) heap_.release(TypeTable::kString, a);
+  interp_.reset();
+  db_.reset();
+}
+
+std::size_t Machine::bytesInUse() const { return heap_.bytesReserved() + messageArgs_.capacity() * 8; }
+
+// ---- set-up and the scheduler loop ----
+
+void Machine::run() {
+  const NodeId n = NodeId(program_.nodeSourceIds.size());
+  if (initialNodes_ == 0 && db_->nodeCount() == 0) {
+    initialNodes_ = n;
+    db_->addNodes(n);
+    candidates_.assign(std::size_t(n) * ruleWords_, 0);
+    inbox_.assign(n, Inbox{});
+    created_.assign(n, 0);
+    if (!program_.globalsInit.code.empty()) {
+      try {
+        interp_->run(program_.globalsInit, 0);
+      } catch (const std::exception& e) {
+        fail(e, 0, "the constants");
+      }
+    }
+    if (program_.initPredicate != Program::kNoPred) {
+      for (NodeId i = 0; i < n; ++i) {
+        db_->addLinear(i, program_.initPredicate, kNoArgs);
+        factAdded(i, program_.initPredicate);
+      }
+    }
+    sched_.start(n);
+  }
+  NodeId node;
+  while (!stop_ && sched_.pop(node)) runNode(node);
+  if (!stop_) collectGarbageNodes();
+}
+
+void Machine::runNode(NodeId n) {
+  running_ = n;
+  inRun_ = true;
+  runDerived_ = runConsumed_ = 0;
+  ++stats_.nodeRuns;
+  deliverIncoming(n);
+  processPersistent(n);
+  std::uint64_t* cand = candidates_.data() + std::size_t(n) * ruleWords_;
+  while (!stop_) {
+    std::uint32_t rule = ~0u;
+    for (std::uint32_t w = 0; w < ruleWords_; ++w)
+      if (cand[w]) {
+        rule = w * 64 + std::uint32_t(__builtin_ctzll(cand[w]));
+        break;
+      }
+    if (rule == ~0u) break;
+    cand[rule / 64] &= ~(std::uint64_t(1) << (rule % 64));
+    runRule(n, rule);
+    finishRuleRun(n);
+    cand = candidates_.data() + std::size_t(n) * ruleWords_;  // exists may have grown the array
+  }
+  inRun_ = false;
+  flushOutgoing();
+  applyPriorityRequests();
+  sched_.finished(n, hasWork(n));
+}
+
+void Machine::runRule(NodeId n, std::uint32_t rule) {
+  try {
+    interp_->run(program_.rules[rule].block, n);
+  } catch (const RuntimeError& e) {
+    fail(e, n, "rule " + std::to_string(rule) + " (" + program_.rules[rule].block.label + ")");
+  }
+}
+
+void Machine::finishRuleRun(NodeId n) {
+  for (const auto& [p, f] : consumed_) {
+    db_->consume(n, p, f);
+    factRemoved(n, p);
+  }
+  consumed_.clear();
+  for (const PendingFact& e : linearOut_) {
+    const Value* args = linearOutArgs_.data() + e.args;
+    db_->addLinear(e.node, e.pred, args);
+    releaseArgs(e.pred, args);
+    factAdded(e.node, e.pred);
+  }
+  linearOut_.clear();
+  linearOutArgs_.clear();
+  processPersistent(n);
+}
+
+void Machine::fail(const std::exception& e, NodeId n, const std::string& where) const {
+  throw RuntimeError("runtime error at node @" + std::to_string(n) + " in " + where + ": " + e.what());
+}
+
+// ---- candidate rules (§6.4.2) ----
+
+void Machine::factAdded(NodeId n, PredId p) {
+  std::uint64_t* cand = candidates_.data() + std::size_t(n) * ruleWords_;
+  for (std::uint32_t r : rulesOf_[p]) {
+    bool all = true;
+    for (PredId q : program_.rules[r].bodyPredicates)
+      if (q != p && db_->factCount(n, q) == 0) {
+        all = false;
+        break;
+      }
+    if (all) cand[r / 64] |= std::uint64_t(1) << (r % 64);
+  }
+}
+
+void Machine::factRemoved(NodeId n, PredId p) {
+  if (db_->factCount(n, p) != 0) return;
+  std::uint64_t* cand = candidates_.data() + std::size_t(n) * ruleWords_;
+  for (std::uint32_t r : rulesOf_[p]) cand[r / 64] &= ~(std::uint64_t(1) << (r % 64));
+}
+
+// ---- what the interpreter calls ----
+
+void Machine::pushArgs(std::vector<Value>& to, PredId p, const Value* args) {
+  const PredicateDesc& d = program_.predicates[p];
+  for (std::uint32_t i = 0; i < d.arity(); ++i) {
+    heap_.retain(d.fields[i], args[i]);
+    to.push_back(args[i]);
+  }
+}
+
+void Machine::releaseArgs(PredId p, const Value* args) {
+  const PredicateDesc& d = program_.predicates[p];
+  for (std::uint32_t i = 0; i < d.arity(); ++i) heap_.release(d.fields[i], args[i]);
+}
+
+void Machine::derive(NodeId host, PredId p, const Value* args, bool negative) {
+  const PredicateDesc& d = program_.predicates[p];
+  if (d.action) {
+    if (!negative) action(host, p, args);
+    return;
+  }
+  if (!negative) {
+    ++stats_.factsDerived;
+    ++runDerived_;
+  }
+  if (d.linear) {
+    if (negative) return;  // linear facts are never undone (§6.8)
+    linearOut_.push_back({host, p, false, std::uint32_t(linearOutArgs_.size())});
+    pushArgs(linearOutArgs_, p, args);
+    return;
+  }
+  if (queuedPersistent_[p]) {
+    persistentQueue_.push_back({host, p, negative, std::uint32_t(persistentArgs_.size())});
+    pushArgs(persistentArgs_, p, args);
+    return;
+  }
+  const Change c = negative ? db_->retract(host, p, args) : db_->derive(host, p, args);
+  if (c.added) factAdded(host, p);
+  if (c.removed) factRemoved(host, p);
+}
+
+void Machine::send(NodeId host, NodeId dest, PredId p, const Value* args, bool negative) {
+  if (dest == host) return derive(host, p, args, negative);
+  if (dest >= db_->nodeCount() || !db_->alive(dest))
+    throw RuntimeError("fact " + program_.predicates[p].name + " sent to node @" + std::to_string(dest) +
+                       ", which does not exist");
+  const PredicateDesc& d = program_.predicates[p];
+  if (d.action) {
+    if (!negative) action(dest, p, args);
+    return;
+  }
+  if (d.linear && negative) return;
+  if (!negative) {
+    ++stats_.factsDerived;
+    ++runDerived_;
+  }
+  ++stats_.factsSent;
+  const std::uint32_t m = newMessage(p, args, negative);
+  if (d.linear)
+    outgoing_.emplace_back(dest, m);  // delivered when this node run ends (§6.4.4)
+  else
+    post(dest, m);
+}
+
+void Machine::action(NodeId dest, PredId p, const Value* args) {
+  const PredicateDesc& d = program_.predicates[p];
+  // On the VM's own graph only write-string has a visible effect (§4.1.3); the robot runtime
+  // executes the others (colours, motion).
+  if (d.name == "write-string" && options_.output && d.arity() == 1) {
+    *options_.output << stringOf(args[0]) << '\n';
+  }
+  (void)dest;
+}
+
+void Machine::consumed(NodeId, PredId p, FactRef f) {
+  db_->markConsumed(p, f);
+  consumed_.emplace_back(p, f);
+  ++stats_.factsConsumed;
+  ++runConsumed_;
+}
+
+void Machine::updated(NodeId host, PredId p, FactRef f, const Value* args, bool moveToBack) {
+  db_->updateLinear(host, p, f, args, moveToBack);
+  factAdded(host, p);  // as consume + derive (§6.4.5): the rule may run again
+  ++stats_.factsDerived;
+  ++runDerived_;
+}
+
+NodeId Machine::newNode() {
+  const NodeId id = db_->addNodes(1);
+  candidates_.resize(candidates_.size() + ruleWords_, 0);
+  inbox_.push_back(Inbox{});
+  created_.push_back(1);
+  sched_.addNode();
+  if (program_.initPredicate != Program::kNoPred) {
+    db_->addLinear(id, program_.initPredicate, kNoArgs);
+    factAdded(id, program_.initPredicate);
+  }
+  sched_.wake(id);
+  return id;
+}
+
+void Machine::priorityRequest(NodeId n, double p) {
+  if (n == running_ && inRun_) return;  // §5.7: ignored for the running node
+  priorityRequests_.emplace_back(n, p);
+}
+
+void Machine::applyPriorityRequests() {
+  for (const auto& [n, p] : priorityRequests_) sched_.setPriority(n, p);
+  priorityRequests_.clear();
+}
+
+void Machine::coordination(Opcode op, NodeId n, double value) {
+  if (n >= db_->nodeCount())
+    throw RuntimeError("coordination fact for node @" + std::to_string(n) + ", which does not exist");
+  switch (op) {
+    case Opcode::ADD_PRIORITY:
+      if (!(n == running_ && inRun_)) sched_.addPriority(n, value);
+      break;
+    case Opcode::REMOVE_PRIORITY:
+      sched_.removePriority(n);
+      break;
+    case Opcode::SET_DEFAULT_PRIORITY:
+      sched_.setDefaultPriority(n, value);
+      break;
+    case Opcode::SCHEDULE_NEXT:
+      sched_.scheduleNext(n);
+      break;
+    case Opcode::SET_STATIC:
+      sched_.setStatic(n, true);
+      break;
+    case Opcode::SET_MOVING:
+      sched_.setStatic(n, false);
+      break;
+    case Opcode::SET_AFFINITY:
+    case Opcode::SET_CPU:
+      // One thread: the node stays where it is and is pinned; just-moved arrives at once (§5.7).
+      sched_.setStatic(n, true);
+      if (justMoved_ != Program::kNoPred) send(running_, n, justMoved_, kNoArgs, false);
+      break;
+    default:
+      break;
+  }
+}
+
+Value Machine::programArg(std::uint32_t k) const {
+  if (k == 0 || k > args_.size())
+    throw RuntimeError("program argument @arg" + std::to_string(k) + " was not given (pass it after `--`)");
+  const Value v = args_[k - 1];
+  const_cast<Heap&>(heap_).retain(TypeTable::kString, v);
+  return v;
+}
+
+std::int32_t Machine::staticNodes(ThreadId) const {
+  std::int32_t count = 0;
+  for (NodeId n = 0; n < db_->nodeCount(); ++n) count += sched_.isStatic(n);
+  return count;
+}
+
+// ---- messages between nodes ----
+
+std::uint32_t Machine::newMessage(PredId p, const Value* args, bool negative) {
+  std::uint32_t m;
+  if (freeMessages_ != kNoMessage) {
+    m = freeMessages_;
+    freeMessages_ = messages_[m].next;
+  } else {
+    m = std::uint32_t(messages_.size());
+    messages_.push_back({});
+    messageArgs_.resize(messageArgs_.size() + maxArity_);
+  }
+  messages_[m] = Message{kNoMessage, p, negative};
+  const PredicateDesc& d = program_.predicates[p];
+  Value* to = messageArgs(m);
+  for (std::uint32_t i = 0; i < d.arity(); ++i) {
+    heap_.retain(d.fields[i], args[i]);
+    to[i] = args[i];
+  }
+  return m;
+}
+
+void Machine::freeMessage(std::uint32_t m) {
+  releaseArgs(messages_[m].pred, messageArgs(m));
+  messages_[m].pred = Program::kNoPred;
+  messages_[m].next = freeMessages_;
+  freeMessages_ = m;
+}
+
+void Machine::post(NodeId dest, std::uint32_t m) {
+  Inbox& in = inbox_[dest];
+  if (in.last == kNoMessage)
+    in.first = m;
+  else
+    messages_[in.last].next = m;
+  in.last = m;
+  if (!(inRun_ && dest == running_)) sched_.wake(dest);
+}
+
+void Machine::flushOutgoing() {
+  for (const auto& [dest, m] : outgoing_) post(dest, m);
+  outgoing_.clear();
+}
+
+void Machine::deliverIncoming(NodeId n) {
+  std::uint32_t m = inbox_[n].first;
+  inbox_[n] = Inbox{};
+  while (m != kNoMessage) {
+    const std::uint32_t next = messages_[m].next;
+    const PredId p = messages_[m].pred;
+    const Value* args = messageArgs(m);
+    if (program_.predicates[p].linear) {
+      db_->addLinear(n, p, args);
+      factAdded(n, p);
+    } else {
+      persistentQueue_.push_back({n, p, messages_[m].negative, std::uint32_t(persistentArgs_.size())});
+      pushArgs(persistentArgs_, p, args);
+    }
+    freeMessage(m);
+    m = next;
+  }
+}
+
+// ---- persistent facts (§6.5, §6.8) ----
+
+void Machine::processPersistent(NodeId n) {
+  while (persistentHead_ < persistentQueue_.size()) {
+    const PendingFact e = persistentQueue_[persistentHead_++];
+    // Copy out: running processes appends to persistentArgs_.
+    triggerInput_.assign(persistentArgs_.begin() + e.args,
+                         persistentArgs_.begin() + e.args + program_.predicates[e.pred].arity());
+    const Change c = e.negative ? db_->retract(n, e.pred, triggerInput_.data())
+                                : db_->derive(n, e.pred, triggerInput_.data());
+    releaseArgs(e.pred, triggerInput_.data());  // the queue's references
+    if (c.removed) {
+      triggerRemoved_.assign(c.removedArgs.begin(), c.removedArgs.end());
+      for (std::uint32_t i = 0; i < triggerRemoved_.size(); ++i)
+        heap_.retain(program_.predicates[e.pred].fields[i], triggerRemoved_[i]);
+      std::vector<Value>& added = triggerAdded_;
+      added.clear();
+      if (c.added) added.assign(c.addedArgs.begin(), c.addedArgs.end());
+      for (std::uint32_t i = 0; i < added.size(); ++i)
+        heap_.retain(program_.predicates[e.pred].fields[i], added[i]);
+      factRemoved(n, e.pred);
+      runProcesses(n, e.pred, triggerRemoved_.data(), true);
+      releaseArgs(e.pred, triggerRemoved_.data());
+      if (c.added) {
+        factAdded(n, e.pred);
+        runProcesses(n, e.pred, added.data(), false);
+        releaseArgs(e.pred, added.data());
+      }
+    } else if (c.added) {
+      triggerAdded_.assign(c.addedArgs.begin(), c.addedArgs.end());
+      for (std::uint32_t i = 0; i < triggerAdded_.size(); ++i)
+        heap_.retain(program_.predicates[e.pred].fields[i], triggerAdded_[i]);
+      factAdded(n, e.pred);
+      runProcesses(n, e.pred, triggerAdded_.data(), false);
+      releaseArgs(e.pred, triggerAdded_.data());
+    }
+  }
+  persistentQueue_.clear();
+  persistentArgs_.clear();
+  persistentHead_ = 0;
+}
+
+void Machine::runProcesses(NodeId n, PredId p, const Value* args, bool negative) {
+  for (std::uint32_t i : processesOf_[p]) {
+    try {
+      interp_->run(program_.processes[i].block, n, negative, p, args);
+    } catch (const RuntimeError& e) {
+      fail(e, n, "persistent rule (" + program_.processes[i].block.label + ")");
+    }
+    for (const PendingFact& l : linearOut_) {
+      const Value* a = linearOutArgs_.data() + l.args;
+      db_->addLinear(l.node, l.pred, a);
+      releaseArgs(l.pred, a);
+      factAdded(l.node, l.pred);
+    }
+    linearOut_.clear();
+    linearOutArgs_.clear();
+  }
+}
+
+// ---- end of the run ----
+
+void Machine::collectGarbageNodes() {
+  // §6.10: a created node with no facts that no fact refers to is deleted.
+  std::vector<NodeId> empty;
+  for (NodeId n = initialNodes_; n < db_->nodeCount(); ++n) {
+    if (!created_[n] || !db_->alive(n)) continue;
+    bool hasFacts = false;
+    for (PredId p = 0; p < program_.predicates.size() && !hasFacts; ++p) hasFacts = db_->factCount(n, p) != 0;
+    if (!hasFacts) empty.push_back(n);
+  }
+  if (empty.empty()) return;
+  std::vector<std::uint8_t> referenced(db_->nodeCount(), 0);
+  for (NodeId n = 0; n < db_->nodeCount(); ++n) {
+    if (!db_->alive(n)) continue;
+    for (PredId p = 0; p < program_.predicates.size(); ++p) {
+      const PredicateDesc& d = program_.predicates[p];
+      for (FactRef f = db_->first(n, p); f != kNoFact; f = db_->next(p, f)) {
+        const Value* a = db_->args(p, f);
+        for (std::uint32_t i = 0; i < d.arity(); ++i) {
+          const TypeId t = d.fields[i];
+          if (program_.types.kind(t) == TypeKind::Node) {
+            referenced[a[i].asNode()] = 1;
+          } else if (program_.types.kind(t) == TypeKind::List &&
+                     program_.types.kind(program_.types.element(t)) == TypeKind::Node) {
+            for (Value l = a[i]; !l.isNil(); l = listTail(l)) referenced[listHead(l).asNode()] = 1;
+          }
+        }
+      }
+    }
+  }
+  for (NodeId n : empty)
+    if (!referenced[n]) db_->removeNode(n);
+}
+
+void Machine::dump(std::ostream& out) const { dumpDatabase(out, *db_); }
+
+std::string Machine::dump() const {
+  std::ostringstream s;
+  dump(s);
+  return s.str();
+}
+
+}  // namespace meldvm

@@ -1,0 +1,107 @@
+// The opcode table of opcodes.def, and the decoding and naming helpers the bytecode files share.
+#include <iterator>
+#include <string_view>
+
+#include "bytecode_internal.hpp"
+#include "meldvm/program.hpp"
+
+namespace meldvm {
+
+namespace {
+
+constexpr OpcodeInfo kTable[] = {
+#define OP(name, operands, meaning) {#name, operands, meaning},
+#include "meldvm/opcodes.def"
+#undef OP
+};
+static_assert(std::size(kTable) == kOpcodeCount);
+
+// Every decoder (here, the verifier, the disassembler, the interpreter) relies on these, so a typo
+// in opcodes.def must not compile.
+constexpr bool wellFormed(std::string_view ops) {
+  for (std::size_t i = 0; i < ops.size(); ++i) {
+    if (std::string_view("rifbnlsSPTKGIDFXBUEJ*").find(ops[i]) == std::string_view::npos) return false;
+    if (ops[i] == '*' && i + 1 != ops.size()) return false;
+  }
+  return true;
+}
+constexpr bool allWellFormed() {
+  for (const OpcodeInfo& info : kTable)
+    if (!wellFormed(info.operands)) return false;
+  return true;
+}
+static_assert(allWellFormed(), "opcodes.def: unknown operand letter or '*' not last");
+
+// Returned for values outside the table, so that printing a bad opcode is not undefined.
+constexpr OpcodeInfo kInvalid{"?", "", "not an opcode"};
+
+}  // namespace
+
+const OpcodeInfo& opcodeInfo(Opcode op) {
+  const auto i = std::uint32_t(op);
+  return i < kOpcodeCount ? kTable[i] : kInvalid;
+}
+
+namespace detail {
+
+std::size_t instructionLength(std::span<const std::uint32_t> code, std::size_t pos, std::string& why) {
+  if (code[pos] >= kOpcodeCount) {
+    why = "unknown opcode " + std::to_string(code[pos]);
+    return 0;
+  }
+  const std::string_view ops = kTable[code[pos]].operands;
+  std::size_t p = pos + 1;
+  for (char letter : ops) {
+    const std::size_t words = letter == 'D' ? 2 : 1;
+    if (code.size() - p < words) {
+      why = "operands run past the end of the block";
+      return 0;
+    }
+    if (letter == '*') {
+      const std::uint32_t count = code[p++];
+      if (count > code.size() - p) {
+        why = "register count " + std::to_string(count) + " runs past the end of the block";
+        return 0;
+      }
+      p += count;
+    } else {
+      p += words;
+    }
+  }
+  return p - pos;
+}
+
+std::string typeName(const TypeTable& types, TypeId t) {
+  if (t >= types.size()) return "<unknown type " + std::to_string(t) + ">";
+  // Deep nesting only comes from hostile files: show the outer levels, which is what a message needs.
+  constexpr int kMaxDepth = 8;
+  std::string prefix;
+  for (int depth = 0;; ++depth) {
+    const TypeKind k = types.kind(t);
+    if (k != TypeKind::List && k != TypeKind::Array && k != TypeKind::Set) break;
+    if (depth == kMaxDepth) return prefix + "...";
+    prefix += k == TypeKind::List ? "list " : k == TypeKind::Array ? "array " : "set ";
+    t = types.element(t);
+  }
+  if (types.kind(t) != TypeKind::Struct) return prefix + types.name(t);
+  std::string s = prefix + ":(";
+  bool first = true;
+  for (TypeId f : types.fields(t)) {
+    if (!first) s += ", ";
+    first = false;
+    // Fields are shown one level deep only, for the same reason.
+    s += types.kind(f) == TypeKind::Struct ? ":(...)" : typeName(types, f);
+  }
+  return s + ")";
+}
+
+const char* sectionName(std::uint32_t tag) {
+  static constexpr const char* kNames[] = {"?",       "types",      "predicates", "nodes", "strings",
+                                           "globals", "functions",  "externs",    "rules", "processes",
+                                           "axioms",  "scheduling", "indexes"};
+  return tag <= kSectionCount ? kNames[tag] : "?";
+}
+
+}  // namespace detail
+
+}  // namespace meldvm
