@@ -10,7 +10,8 @@
 
 namespace targets {
 
-// "blinkyblocks" / "BlinkyBlocks" / "bb", "smartblocks" / "SmartBlocks" / "sb" (case-insensitive).
+// "blinkyblocks" / "BlinkyBlocks" / "bb", "smartblocks" / "SmartBlocks" / "sb", "catoms2d" /
+// "Catoms2D" / "c2d", "catoms3d" / "Catoms3D" / "c3d" (case-insensitive).
 std::optional<simcore::TargetSpec> makeTarget(std::string_view name);
 std::vector<std::string> targetNames();
 

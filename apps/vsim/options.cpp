@@ -19,16 +19,17 @@ early and still prints the summary).
 
 options:
   --code LIB.so         block program (C BlockCode .so); overrides the world's code= attribute
-  --target NAME         blinkyblocks or smartblocks; overrides the world's target= attribute
+  --target NAME         blinkyblocks, smartblocks, catoms2d or catoms3d; overrides the world's
+                        target= attribute
                         (default when neither says: blinkyblocks)
   --until T             stop at simulated time T: 10s, 1500ms, 2min, 250us (bare number = s)
   --seed S              seed of the per-block random streams (default: the world's, else 1)
   --fes heap|calendar|ladder
                         future-event set implementation (default heap; same results, speed only)
-  --link-rate BPS       link data rate in bit/s (target default: 38400 Blinky, 1e6 Smart Blocks)
+  --link-rate BPS       link data rate in bit/s (target default: 38400 Blinky, 1e6 the others)
   --link-latency T      extra delay after each transmission (default 0)
   --link-jitter T       random extra delay in [0, T]; never reorders a link (default 0)
-  --motion-time T       duration of one motion (Smart Blocks default 1s)
+  --motion-time T       duration of one motion (Smart Blocks, Catoms 2D; default 1s)
   --tap ID@T            tap block ID at time T (repeatable, or comma-separated: 0@1s,3@2s)
   --stats               print the kernel statistics (events per kind, messages, queue size)
   --json FILE           write the summary and statistics as JSON ("-" = stdout, no text summary)

@@ -147,20 +147,36 @@ int Simulation::send(BlockId from, int f, const void* data, std::uint32_t size, 
 }
 
 int Simulation::move(BlockId id, int f) {
-  if (!target_.canTranslate) return VS_ERR_UNSUPPORTED;
+  if (!motionRule_ && !translates_) return VS_ERR_UNSUPPORTED;
   if (f < 0 || f >= faceCount_) return VS_ERR_BAD_FACE;
   Block& b = world_.block(id);
   if (b.motion != kNoBlock) return VS_ERR_BUSY;
-  const Cell to = world_.lattice().neighborCell(b.cell, f);
-  if (!world_.inBounds(to) || !world_.lattice().isValidCell(to)) return VS_ERR_OUT_OF_WORLD;
-  if (!world_.isFree(to)) return VS_ERR_CELL_OCCUPIED;
+  // The target's rule decides where the block goes and what it needs on the way.
+  MotionPlan plan;
+  if (translates_) {
+    const int rc = TranslationRule::translate(world_, id, f, plan);
+    if (rc != VS_OK) return rc;
+  } else {
+    const int rc = motionRule_->plan(world_, id, f, plan);
+    if (rc != VS_OK) return rc;
+    // A target's rule is checked again (isFree includes the bounds): it may refuse a motion wrongly,
+    // but never corrupt the grid.
+    if (plan.sweptFace >= faceCount_ || plan.pivotFace >= faceCount_) return VS_ERR_BAD_FACE;
+    if (!world_.isFree(plan.to) ||
+        (plan.sweptFace >= 0 && !world_.isFree(world_.lattice().neighborCell(b.cell, plan.sweptFace))))
+      return VS_ERR_CELL_OCCUPIED;
+  }
+  const Cell& to = plan.to;
   breakLinks(id);  // while the block is still settled, so its neighbors are found
   const std::uint32_t slot = allocateSlot(motions_, freeMotion_);
   MotionSlot& m = motions_[slot];
   m.from = b.cell;
   m.end = queue_.now() + motionDuration_;
+  m.sweptFace = std::int8_t(plan.sweptFace);
+  m.pivotFace = std::int8_t(plan.pivotFace);
   world_.reserve(m.from, id);
   world_.reserve(to, id);
+  if (m.sweptFace >= 0) world_.reserve(world_.lattice().neighborCell(m.from, m.sweptFace), id);
   b.cell = to;
   b.motion = slot;
   ++stats_.motionsStarted;

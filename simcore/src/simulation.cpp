@@ -18,6 +18,8 @@ Simulation::Simulation(const TargetSpec& target, GridSize size, const Simulation
     : target_(target),
       config_(config),
       link_(target.link),
+      motionRule_(target.motionRule),
+      translates_(!target.motionRule && target.canTranslate),
       motionDuration_(config.motionDuration >= 0 ? config.motionDuration : target.motionDuration),
       world_(target.makeLattice(), size),
       faceCount_(world_.faceCount()),
@@ -167,11 +169,12 @@ Vec3 Simulation::position(BlockId id) const {
   const Lattice& lat = world_.lattice();
   if (b.motion == kNoBlock) return lat.cellCenter(b.cell);
   const MotionSlot& m = motions_[b.motion];
-  const Vec3 a = lat.cellCenter(m.from), c = lat.cellCenter(b.cell);
   const SimTime start = m.end - motionDuration_;
   double f = m.end > start ? double(queue_.now() - start) / double(m.end - start) : 1.0;
   f = std::clamp(f, 0.0, 1.0);
-  return Vec3{a.x + (c.x - a.x) * f, a.y + (c.y - a.y) * f, a.z + (c.z - a.z) * f};
+  const bool turns = m.pivotFace >= 0;
+  const Vec3 pivot = turns ? lat.cellCenter(lat.neighborCell(m.from, m.pivotFace)) : Vec3{};
+  return motionPoint(lat.cellCenter(m.from), lat.cellCenter(b.cell), turns ? &pivot : nullptr, f);
 }
 
 }  // namespace simcore

@@ -41,9 +41,9 @@ typedef uint32_t vs_block_id;
 /* Return codes of host services. Zero is success; errors are negative. */
 enum vs_status {
   VS_OK = 0,
-  VS_ERR_NO_NEIGHBOR = -1,   /* nothing is attached on that face */
+  VS_ERR_NO_NEIGHBOR = -1,   /* nothing is attached on that face (move: no neighbor to pivot on) */
   VS_ERR_BAD_FACE = -2,      /* face number outside [0, face_count) */
-  VS_ERR_CELL_OCCUPIED = -3, /* motion target cell is occupied or reserved */
+  VS_ERR_CELL_OCCUPIED = -3, /* motion target cell (or a cell it sweeps) is occupied or reserved */
   VS_ERR_OUT_OF_WORLD = -4,  /* motion target cell is outside the grid */
   VS_ERR_UNSUPPORTED = -5,   /* this target cannot do that (e.g. move a Blinky Block) */
   VS_ERR_BUSY = -6,          /* the block is already moving */
@@ -113,9 +113,12 @@ struct vs_host_api {
   uint32_t (*color)(vs_ctx* ctx);
   /* Set the value the block displays (Smart Blocks). */
   int (*set_value)(vs_ctx* ctx, int32_t value);
-  /* Start a translation through `face` to the adjacent cell. The destination is reserved at once;
-   * links break now and form again when VS_EV_MOTION_END arrives. Errors: VS_ERR_UNSUPPORTED,
-   * VS_ERR_BUSY, VS_ERR_CELL_OCCUPIED, VS_ERR_OUT_OF_WORLD, VS_ERR_BAD_FACE. */
+  /* Start a motion into the adjacent cell behind `face`: a translation (Smart Blocks), or whatever
+   * the target's motion rule makes of it (Catoms 2D: a 60-degree roll around a neighbor; see
+   * targets/README.md). The destination, and any cell swept on the way, is reserved at once; links
+   * break now and form again when VS_EV_MOTION_END arrives. Errors: VS_ERR_UNSUPPORTED (the target
+   * cannot move: Blinky Blocks, Catoms 3D), VS_ERR_BUSY, VS_ERR_CELL_OCCUPIED, VS_ERR_OUT_OF_WORLD,
+   * VS_ERR_BAD_FACE, VS_ERR_NO_NEIGHBOR (a roll with no neighbor to pivot on). */
   int (*move)(vs_ctx* ctx, int face);
   /* The block attached on `face`, or VS_NO_BLOCK. */
   vs_block_id (*neighbor)(vs_ctx* ctx, int face);

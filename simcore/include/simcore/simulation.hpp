@@ -9,6 +9,7 @@
 
 #include "simcore/blockcode.h"
 #include "simcore/event_queue.hpp"
+#include "simcore/motion_rule.hpp"
 #include "simcore/observer.hpp"
 #include "simcore/stats.hpp"
 #include "simcore/target_spec.hpp"
@@ -101,12 +102,16 @@ class Simulation {
     std::uint32_t nextFree = kNoBlock;
     std::vector<std::uint8_t> data;  // capacity is kept across reuse
   };
-  // The destination is the block's cell; the start is end - motionDuration_.
+  // The destination is the block's cell; the start is end - motionDuration_. The swept cell (reserved
+  // for the whole motion) and the pivot (for position()) are the cells behind these faces of `from`
+  // (-1: none), as the target's MotionPlan said.
   struct MotionSlot {
     Cell from;
     std::uint32_t nextFree = kNoBlock;
     SimTime end = 0;
+    std::int8_t sweptFace = -1, pivotFace = -1;
   };
+  static_assert(sizeof(MotionSlot) == 32);
   // Timer events carry their tag in `arg`, unless the program asked for an id to cancel them: then
   // `face` is kTimerHasSlot and `arg` is (generation << 32 | slot) of a TimerSlot.
   static constexpr std::uint8_t kTimerHasSlot = 1;
@@ -149,6 +154,8 @@ class Simulation {
   TargetSpec target_;
   SimulationConfig config_;
   LinkModel link_;
+  std::shared_ptr<const MotionRule> motionRule_;  // the target's own rule, if any
+  bool translates_;                               // no rule of its own, but canTranslate
   SimTime motionDuration_;
   World world_;
   int faceCount_;

@@ -12,6 +12,8 @@
 
 namespace simcore {
 
+class MotionRule;  // simcore/motion_rule.hpp
+
 struct LinkModel {
   double rateBitsPerSecond = 1e6;  // transmission time = size * 8 / rate
   SimTime latency = 0;             // added after transmission
@@ -19,17 +21,23 @@ struct LinkModel {
 };
 
 struct TargetSpec {
-  std::string name;  // "blinkyblocks", "smartblocks"
+  std::string name;  // "blinkyblocks", "smartblocks", "catoms2d", "catoms3d"
   std::function<std::unique_ptr<Lattice>()> makeLattice;
   std::vector<std::string> faceNames;  // index = face number
   LinkModel link;
-  bool canTranslate = false;  // translation to an adjacent free cell through a face
+  // How move(face) moves a block: `motionRule` when set (e.g. the Catoms 2D roll around a pivot);
+  // otherwise canTranslate selects a translation to the adjacent free cell through the face;
+  // neither: move() answers VS_ERR_UNSUPPORTED. Rules are stateless, so targets can share one.
+  bool canTranslate = false;
+  std::shared_ptr<const MotionRule> motionRule;
   SimTime motionDuration = kSecond;
   bool hasTap = false;
   bool hasAccelerometer = false;
   bool hasDisplayValue = false;
   double blockSizeMm = 40.0;
   std::uint32_t defaultColor = 0x808080;
+
+  bool canMove() const { return canTranslate || motionRule != nullptr; }
 };
 
 }  // namespace simcore

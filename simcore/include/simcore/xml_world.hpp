@@ -1,4 +1,5 @@
-// XML world files in the VisibleSim format (Blinky Blocks, Smart Blocks) plus our own attributes:
+// XML world files in the VisibleSim format (Blinky Blocks, Smart Blocks, Catoms 2D and 3D: block
+// positions are lattice cells, whatever the lattice) plus our own attributes:
 // reading them into a plain description, building a Simulation from one, and writing the final
 // configuration of a run back in the same format. The format is documented in
 // examples/worlds/README.md.

@@ -1,0 +1,28 @@
+#include "catoms2d/catoms2d.hpp"
+
+#include <memory>
+
+#include "catoms2d/hex_lattice.hpp"
+#include "catoms2d/rotation_rule.hpp"
+
+namespace targets {
+
+simcore::TargetSpec catoms2DTarget() {
+  simcore::TargetSpec t;
+  t.name = "catoms2d";
+  t.makeLattice = [] { return std::make_unique<HexLattice>(); };
+  t.faceNames = {"right", "top-right", "top-left", "left", "bottom-left", "bottom-right"};
+  // Neighboring catoms talk through their contact faces. No measured figure is published for the
+  // prototypes; we use the Smart Blocks' 1 Mbit/s and no extra latency, both overridable per run.
+  t.link.rateBitsPerSecond = 1e6;
+  t.link.latency = 0;
+  t.motionRule = std::make_shared<const HexRotationRule>();
+  t.motionDuration = simcore::kSecond;
+  // VisibleSim lets the user tap any module; there is no accelerometer and no display.
+  t.hasTap = true;
+  t.blockSizeMm = 10.0;
+  t.defaultColor = 0x808080;
+  return t;
+}
+
+}  // namespace targets

@@ -1,0 +1,29 @@
+#include "catoms3d/catoms3d.hpp"
+
+#include <memory>
+
+#include "catoms3d/fcc_lattice.hpp"
+
+namespace targets {
+
+simcore::TargetSpec catoms3DTarget() {
+  simcore::TargetSpec t;
+  t.name = "catoms3d";
+  t.makeLattice = [] { return std::make_unique<FccLattice>(); };
+  t.faceNames = {"side0", "side1", "top2",    "top3",    "top4",     "top5",
+                 "side6", "side7", "bottom8", "bottom9", "bottom10", "bottom11"};
+  // Connectors talk to the module they touch. No measured figure is published for the prototypes;
+  // we use 1 Mbit/s and no extra latency, like Catoms 2D, both overridable per run.
+  t.link.rateBitsPerSecond = 1e6;
+  t.link.latency = 0;
+  // Rotations (the published Catoms 3D motion rules) are a later issue: no rule, so move() is
+  // refused with VS_ERR_UNSUPPORTED.
+  t.canTranslate = false;
+  // VisibleSim lets the user tap any module; there is no accelerometer and no display.
+  t.hasTap = true;
+  t.blockSizeMm = 10.0;  // VisibleSim's Catoms 3D worlds use blockSize="10,10,10"
+  t.defaultColor = 0x808080;
+  return t;
+}
+
+}  // namespace targets
