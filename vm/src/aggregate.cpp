@@ -26,7 +26,7 @@ bool Database::computeAggregate(NodeId n, PredId p) {
   if (d.aggregate == AggregateKind::Min || d.aggregate == AggregateKind::Max) {
     const int better = d.aggregate == AggregateKind::Min ? -1 : 1;
     for (FactRef f = in.nextWithKey(0, firstInput); f != kNoFact; f = in.nextWithKey(0, f))
-      if (compareValues(types, ft, in.args(f)[k], in.args(winner)[k]) * better > 0) winner = f;
+      if (compareValuesFast(types, ft, in.args(f)[k], in.args(winner)[k]) * better > 0) winner = f;
   } else if (d.aggregate == AggregateKind::Sum) {
     // A sum over the multiset: an input stored with count c counts c times.
     if (types.kind(ft) == TypeKind::Int) {
@@ -76,13 +76,32 @@ Change Database::aggregateChange(NodeId n, PredId p, const Value* args, std::uin
 
   Change c;
   const FactRef f = in.find(n, input_.data());
+  FactTable& visible = tables_[p];
+  const FactRef old = visible.firstWithKey(n, 0, input_.data());
+  // min/max/first change the visible fact only when the winner changes, which most inputs do
+  // not do: decide that from the published value instead of rescanning the group. Ties keep the
+  // earliest input, so an input equal to the published value never wins.
+  const bool selects = d.aggregate != AggregateKind::Sum;
+  const std::uint32_t k = d.aggregateField;
+  const int better = d.aggregate == AggregateKind::Max ? 1 : -1;
+  auto rank = [&](const Value* a) {  // > 0: a beats the published value
+    if (d.aggregate == AggregateKind::First) return -1;
+    return compareValuesFast(types, d.fields[k], a[k], visible.args(old)[k]) * better;
+  };
+  bool rescan = true;
   if (add) {
     if (f != kNoFact) {
       in.setCount(f, in.count(f) + copies);
       c.count = in.count(f);
+      if (selects && old != kNoFact) return c;  // one more copy of a stored input: same winner
     } else {
       in.insert(head(n, it), n, input_.data(), copies);
       c.count = copies;
+    }
+    if (selects && old != kNoFact) {
+      if (rank(input_.data()) <= 0) return c;
+      next_.assign(input_.begin(), input_.end());  // the new input is the new winner
+      rescan = false;
     }
   } else {
     if (f == kNoFact) {
@@ -92,18 +111,24 @@ Change Database::aggregateChange(NodeId n, PredId p, const Value* args, std::uin
     if (in.count(f) > copies) {
       in.setCount(f, in.count(f) - copies);
       c.count = in.count(f);
+      if (selects && old != kNoFact) return c;
     } else {
+      // An input worse than the published value was not the winner (for first: one that is
+      // not the first input), so removing it changes nothing.
+      const bool wasWinnerCandidate =
+          old == kNoFact || d.aggregate == AggregateKind::Sum ||
+          (d.aggregate == AggregateKind::First ? in.firstWithKey(n, 0, input_.data()) == f
+                                               : rank(input_.data()) >= 0);
       in.erase(head(n, it), f);
+      if (!wasWinnerCandidate) return c;
     }
   }
 
-  const bool has = computeAggregate(n, p);
-  FactTable& visible = tables_[p];
-  const FactRef old = visible.firstWithKey(n, 0, input_.data());
+  const bool has = rescan ? computeAggregate(n, p) : true;
   if (old != kNoFact && has) {
     bool same = true;
     for (std::uint32_t i = 0; i < d.arity() && same; ++i)
-      same = valuesEqual(types, d.fields[i], visible.args(old)[i], next_[i]);
+      same = valuesEqualFast(types, d.fields[i], visible.args(old)[i], next_[i]);
     if (same) return c;
   }
   if (old != kNoFact) {

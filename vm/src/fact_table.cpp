@@ -33,14 +33,14 @@ std::uint32_t FactTable::addIndex(KeySpec key) {
 std::uint64_t FactTable::hashKey(NodeId node, const Value* key, KeySpec spec) const {
   std::uint64_t h = mixHash(0x6d656c64, node);
   for (std::uint32_t i = 0; i < spec.count; ++i)
-    h = mixHash(h, hashValue(types_, fields_[spec.first + i], key[i]));
+    h = mixHash(h, hashValueFast(types_, fields_[spec.first + i], key[i]));
   return h;
 }
 
 bool FactTable::keyEqual(FactRef f, const Value* key, KeySpec spec) const {
   const Value* a = args(f) + spec.first;
   for (std::uint32_t i = 0; i < spec.count; ++i)
-    if (!valuesEqual(types_, fields_[spec.first + i], a[i], key[i])) return false;
+    if (!valuesEqualFast(types_, fields_[spec.first + i], a[i], key[i])) return false;
   return true;
 }
 

@@ -157,7 +157,7 @@ bool Interpreter::loop(Frame& f, std::uint32_t pc) {
 
   if (op != Opcode::ITER_SORTED) {
     for (FactRef fact = db_.first(f.host, p); fact != kNoFact;) {
-      if (op == Opcode::ITER_KEY && !valuesEqual(program_.types, keyType, db_.args(p, fact)[keyField], key)) {
+      if (op == Opcode::ITER_KEY && !valuesEqualFast(program_.types, keyType, db_.args(p, fact)[keyField], key)) {
         fact = db_.next(p, fact);
         continue;
       }
@@ -174,7 +174,7 @@ bool Interpreter::loop(Frame& f, std::uint32_t pc) {
     } else {
       const TypeId t = program_.predicates[p].fields[keyField];
       std::stable_sort(sorted_.begin() + std::ptrdiff_t(begin), sorted_.end(), [&](FactRef a, FactRef b) {
-        return compareValues(program_.types, t, db_.args(p, a)[keyField], db_.args(p, b)[keyField]) < 0;
+        return compareValuesFast(program_.types, t, db_.args(p, a)[keyField], db_.args(p, b)[keyField]) < 0;
       });
     }
     for (std::size_t i = begin; i < sorted_.size(); ++i)
@@ -221,7 +221,7 @@ Interpreter::Status Interpreter::exec(Frame& f, std::uint32_t pc) {
       case Opcode::TEST: {
         const Slot& sl = f.slots[c[1]];
         const TypeId t = program_.predicates[sl.pred].fields[c[2]];
-        pc = valuesEqual(program_.types, t, slotArgs(f, c[1])[c[2]], R[c[3]]) ? pc + 5 : c[4];
+        pc = valuesEqualFast(program_.types, t, slotArgs(f, c[1])[c[2]], R[c[3]]) ? pc + 5 : c[4];
         break;
       }
       case Opcode::JF:
@@ -350,11 +350,11 @@ Interpreter::Status Interpreter::exec(Frame& f, std::uint32_t pc) {
         pc += 3;
         break;
       case Opcode::EQ:
-        R[c[1]] = Value::fromBool(valuesEqual(program_.types, c[4], R[c[2]], R[c[3]]));
+        R[c[1]] = Value::fromBool(valuesEqualFast(program_.types, c[4], R[c[2]], R[c[3]]));
         pc += 5;
         break;
       case Opcode::NE:
-        R[c[1]] = Value::fromBool(!valuesEqual(program_.types, c[4], R[c[2]], R[c[3]]));
+        R[c[1]] = Value::fromBool(!valuesEqualFast(program_.types, c[4], R[c[2]], R[c[3]]));
         pc += 5;
         break;
       case Opcode::LTI:

@@ -4,6 +4,7 @@
 #include <sstream>
 
 #include "interpreter.hpp"
+#include "mailboxes.hpp"
 #include "meldvm/arith.hpp"
 #include "meldvm/dump.hpp"
 
@@ -35,6 +36,9 @@ Machine::Machine(const Program& program, MachineOptions options)
     const PredicateDesc& d = program.predicates[p];
     maxArity_ = std::max(maxArity_, d.arity());
     queuedPersistent_[p] = !d.linear && (!processesOf_[p].empty() || d.aggregated());
+    bool boxed = false;
+    for (TypeId t : d.fields) boxed = boxed || program.types.boxed(t);
+    boxedField_.push_back(boxed);
   }
   justMoved_ = program.predicates.find("just-moved");
   if (justMoved_ == program.predicates.size()) justMoved_ = Program::kNoPred;
@@ -44,6 +48,7 @@ Machine::Machine(const Program& program, MachineOptions options)
   for (const std::string& a : options_.args) args_.push_back(heap_.makeString(a));
   globals_.assign(program.globals.size(), Value());
   interp_ = std::make_unique<Interpreter>(*this, program_, *db_, builtinCtx_);
+  mail_ = std::make_unique<Mailboxes>(maxArity_);
   linearOutArgs_.reserve(1024);
   persistentArgs_.reserve(1024);
 }
@@ -51,8 +56,9 @@ Machine::Machine(const Program& program, MachineOptions options)
 Machine::~Machine() {
   // The databases go first (they hold references into the heap), then what the machine owns.
   for (const PendingFact& e : persistentQueue_) releaseArgs(e.pred, persistentArgs_.data() + e.args);
-  for (std::uint32_t m = 0; m < messages_.size(); ++m)
-    if (messages_[m].pred != Program::kNoPred) releaseArgs(messages_[m].pred, messageArgs(m));
+  for (const PendingFact& e : sentPersistent_) releaseArgs(e.pred, sentArgs_.data() + e.args);
+  for (const PendingFact& e : sentLinear_) releaseArgs(e.pred, sentArgs_.data() + e.args);
+  mail_->forEachPending([&](PredId p, const Value* args) { releaseArgs(p, args); });
   for (std::size_t g = 0; g < globals_.size(); ++g) heap_.release(program_.globals[g].type, globals_[g]);
   for (Value s : strings_) heap_.release(TypeTable::kString, s);
   for (Value a : args_) heap_.release(TypeTable::kString, a);
@@ -60,7 +66,9 @@ Machine::~Machine() {
   db_.reset();
 }
 
-std::size_t Machine::bytesInUse() const { return heap_.bytesReserved() + messageArgs_.capacity() * 8; }
+std::size_t Machine::bytesInUse() const { return heap_.bytesReserved() + mail_->bytesReserved(); }
+
+bool Machine::hasWork(NodeId n) const { return !mail_->empty(n); }
 
 // ---- set-up and the scheduler loop ----
 
@@ -70,7 +78,7 @@ void Machine::run() {
     initialNodes_ = n;
     db_->addNodes(n);
     candidates_.assign(std::size_t(n) * ruleWords_, 0);
-    inbox_.assign(n, Inbox{});
+    mail_->addNodes(n);
     created_.assign(n, 0);
     if (!program_.globalsInit.code.empty()) {
       try {
@@ -93,6 +101,14 @@ void Machine::run() {
 }
 
 void Machine::runNode(NodeId n) {
+  // The FIFO says which nodes run next: fetch their inboxes two runs ahead and the first message
+  // and list heads one run ahead, so that a run rarely waits for memory when it starts.
+  NodeId ahead;
+  if (sched_.peek(1, ahead)) mail_->prefetchBox(ahead);
+  if (sched_.peek(0, ahead)) {
+    mail_->prefetchMessages(ahead);
+    db_->prefetchNode(ahead);
+  }
   running_ = n;
   inRun_ = true;
   runDerived_ = runConsumed_ = 0;
@@ -173,13 +189,13 @@ void Machine::factRemoved(NodeId n, PredId p) {
 
 void Machine::pushArgs(std::vector<Value>& to, PredId p, const Value* args) {
   const PredicateDesc& d = program_.predicates[p];
-  for (std::uint32_t i = 0; i < d.arity(); ++i) {
-    heap_.retain(d.fields[i], args[i]);
-    to.push_back(args[i]);
-  }
+  to.insert(to.end(), args, args + d.arity());
+  if (boxedField_[p])
+    for (std::uint32_t i = 0; i < d.arity(); ++i) heap_.retain(d.fields[i], args[i]);
 }
 
 void Machine::releaseArgs(PredId p, const Value* args) {
+  if (!boxedField_[p]) return;
   const PredicateDesc& d = program_.predicates[p];
   for (std::uint32_t i = 0; i < d.arity(); ++i) heap_.release(d.fields[i], args[i]);
 }
@@ -226,11 +242,8 @@ void Machine::send(NodeId host, NodeId dest, PredId p, const Value* args, bool n
     ++runDerived_;
   }
   ++stats_.factsSent;
-  const std::uint32_t m = newMessage(p, args, negative);
-  if (d.linear)
-    outgoing_.emplace_back(dest, m);  // delivered when this node run ends (§6.4.4)
-  else
-    post(dest, m);
+  (d.linear ? sentLinear_ : sentPersistent_).push_back({dest, p, negative, std::uint32_t(sentArgs_.size())});
+  pushArgs(sentArgs_, p, args);
 }
 
 void Machine::action(NodeId dest, PredId p, const Value* args) {
@@ -260,7 +273,7 @@ void Machine::updated(NodeId host, PredId p, FactRef f, const Value* args, bool 
 NodeId Machine::newNode() {
   const NodeId id = db_->addNodes(1);
   candidates_.resize(candidates_.size() + ruleWords_, 0);
-  inbox_.push_back(Inbox{});
+  mail_->addNodes(1);
   created_.push_back(1);
   sched_.addNode();
   if (program_.initPredicate != Program::kNoPred) {
@@ -330,65 +343,46 @@ std::int32_t Machine::staticNodes(ThreadId) const {
 
 // ---- messages between nodes ----
 
-std::uint32_t Machine::newMessage(PredId p, const Value* args, bool negative) {
-  std::uint32_t m;
-  if (freeMessages_ != kNoMessage) {
-    m = freeMessages_;
-    freeMessages_ = messages_[m].next;
-  } else {
-    m = std::uint32_t(messages_.size());
-    messages_.push_back({});
-    messageArgs_.resize(messageArgs_.size() + maxArity_);
-  }
-  messages_[m] = Message{kNoMessage, p, negative};
+void Machine::post(NodeId dest, PredId p, const Value* args, bool negative) {
   const PredicateDesc& d = program_.predicates[p];
-  Value* to = messageArgs(m);
-  for (std::uint32_t i = 0; i < d.arity(); ++i) {
-    heap_.retain(d.fields[i], args[i]);
-    to[i] = args[i];
-  }
-  return m;
-}
-
-void Machine::freeMessage(std::uint32_t m) {
-  releaseArgs(messages_[m].pred, messageArgs(m));
-  messages_[m].pred = Program::kNoPred;
-  messages_[m].next = freeMessages_;
-  freeMessages_ = m;
-}
-
-void Machine::post(NodeId dest, std::uint32_t m) {
-  Inbox& in = inbox_[dest];
-  if (in.last == kNoMessage)
-    in.first = m;
-  else
-    messages_[in.last].next = m;
-  in.last = m;
+  if (boxedField_[p])
+    for (std::uint32_t i = 0; i < d.arity(); ++i) heap_.retain(d.fields[i], args[i]);
+  mail_->post(dest, p, negative, args, d.arity());
   if (!(inRun_ && dest == running_)) sched_.wake(dest);
 }
 
 void Machine::flushOutgoing() {
-  for (const auto& [dest, m] : outgoing_) post(dest, m);
-  outgoing_.clear();
+  postAll(sentPersistent_);
+  postAll(sentLinear_);
+  sentPersistent_.clear();
+  sentLinear_.clear();
+  sentArgs_.clear();
+}
+
+void Machine::postAll(const std::vector<PendingFact>& facts) {
+  constexpr std::size_t kBoxAhead = 8, kTailAhead = 4;  // mailbox entry, then its last chunk
+  const std::size_t n = facts.size();
+  for (std::size_t i = 0; i < n; ++i) {
+    if (i + kBoxAhead < n) mail_->prefetchBox(facts[i + kBoxAhead].node);
+    if (i + kTailAhead < n) mail_->prefetchTail(facts[i + kTailAhead].node);
+    const PendingFact& e = facts[i];
+    const Value* args = sentArgs_.data() + e.args;
+    post(e.node, e.pred, args, e.negative);
+    releaseArgs(e.pred, args);
+  }
 }
 
 void Machine::deliverIncoming(NodeId n) {
-  std::uint32_t m = inbox_[n].first;
-  inbox_[n] = Inbox{};
-  while (m != kNoMessage) {
-    const std::uint32_t next = messages_[m].next;
-    const PredId p = messages_[m].pred;
-    const Value* args = messageArgs(m);
+  mail_->drain(n, [&](PredId p, bool negative, const Value* args) {
     if (program_.predicates[p].linear) {
       db_->addLinear(n, p, args);
+      releaseArgs(p, args);
       factAdded(n, p);
-    } else {
-      persistentQueue_.push_back({n, p, messages_[m].negative, std::uint32_t(persistentArgs_.size())});
-      pushArgs(persistentArgs_, p, args);
+    } else {  // the mailbox's references pass to the queue
+      persistentQueue_.push_back({n, p, negative, std::uint32_t(persistentArgs_.size())});
+      persistentArgs_.insert(persistentArgs_.end(), args, args + program_.predicates[p].arity());
     }
-    freeMessage(m);
-    m = next;
-  }
+  });
 }
 
 // ---- persistent facts (§6.5, §6.8) ----
@@ -396,6 +390,10 @@ void Machine::deliverIncoming(NodeId n) {
 void Machine::processPersistent(NodeId n) {
   while (persistentHead_ < persistentQueue_.size()) {
     const PendingFact e = persistentQueue_[persistentHead_++];
+    if (persistentHead_ < persistentQueue_.size()) {  // fetch the buckets the next one needs
+      const PendingFact& next = persistentQueue_[persistentHead_];
+      db_->prefetchDerive(next.node, next.pred, persistentArgs_.data() + next.args);
+    }
     // Copy out: running processes appends to persistentArgs_.
     triggerInput_.assign(persistentArgs_.begin() + e.args,
                          persistentArgs_.begin() + e.args + program_.predicates[e.pred].arity());

@@ -82,6 +82,24 @@ class Database {
   FactRef nextWithKey(PredId p, std::uint32_t index, FactRef f) const {
     return tables_[p].nextWithKey(index, f);
   }
+  // A hint that node n runs soon: fetch its list heads (always inlined: GCC drops calls to
+  // functions whose only effect is a prefetch).
+  [[gnu::always_inline]] void prefetchNode(NodeId n) const {
+    const char* p = reinterpret_cast<const char*>(heads_.data() + std::size_t(n) * tables_.size());
+    const std::size_t bytes = tables_.size() * sizeof(ListHead);
+    for (std::size_t off = 0; off < bytes; off += 64) __builtin_prefetch(p + off);
+  }
+  // A hint that derive/retract(n, p, args) comes soon: fetch the hash buckets it will look at.
+  [[gnu::always_inline]] void prefetchDerive(NodeId n, PredId p, const Value* args) const {
+    const std::uint32_t in = inputTable_[p];
+    if (in == kNoTable) {
+      if (!preds_[p].compact) tables_[p].prefetchFind(n, args);
+      return;
+    }
+    tables_[in].prefetchFind(n, args);
+    tables_[in].prefetchKey(n, 0, args);
+    tables_[p].prefetchKey(n, 0, args);
+  }
   // Distinct inputs stored for an aggregated predicate at a node.
   std::uint32_t aggregateInputs(NodeId n, PredId p) const;
 

@@ -61,6 +61,13 @@ class FactTable {
   // De-duplicating tables only: the fact of this node with exactly these arguments, or kNoFact.
   FactRef find(NodeId node, const Value* args) const;
   FactRef firstWithKey(NodeId node, std::uint32_t index, const Value* key) const;
+  // Hints that find / firstWithKey with these arguments come soon.
+  [[gnu::always_inline]] void prefetchFind(NodeId node, const Value* args) const {
+    facts_.prefetch(hashKey(node, args, KeySpec{0, arity()}));
+  }
+  [[gnu::always_inline]] void prefetchKey(NodeId node, std::uint32_t index, const Value* key) const {
+    indexes_[index].heads.prefetch(hashKey(node, key, indexes_[index].key));
+  }
   FactRef nextWithKey(std::uint32_t index, FactRef f) const { return hi(base(f) + 2 + index); }
   FactRef lastWithKey(NodeId node, std::uint32_t index, const Value* key) const {
     const FactRef head = firstWithKey(node, index, key);

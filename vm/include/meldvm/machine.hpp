@@ -36,6 +36,7 @@ struct MachineStats {
 };
 
 class Interpreter;
+class Mailboxes;
 
 class Machine : private SchedulerView {
  public:
@@ -82,24 +83,12 @@ class Machine : private SchedulerView {
   void applyPriorityRequests();
   void factAdded(NodeId n, PredId p);    // candidate rules (§6.4.2)
   void factRemoved(NodeId n, PredId p);  // after the store lost a fact of p
-  bool hasWork(NodeId n) const { return inbox_[n].first != kNoMessage; }
+  bool hasWork(NodeId n) const;
   void collectGarbageNodes();
   [[noreturn]] void fail(const std::exception& e, NodeId n, const std::string& where) const;
 
-  // ---- messages: facts waiting to be delivered to a node ----
-  static constexpr std::uint32_t kNoMessage = 0xFFFFFFFFu;
-  struct Message {
-    std::uint32_t next;
-    PredId pred;
-    bool negative;
-  };
-  struct Inbox {
-    std::uint32_t first = kNoMessage, last = kNoMessage;
-  };
-  std::uint32_t newMessage(PredId p, const Value* args, bool negative);  // args retained
-  Value* messageArgs(std::uint32_t m) { return messageArgs_.data() + std::size_t(m) * maxArity_; }
-  void freeMessage(std::uint32_t m);  // releases the arguments
-  void post(NodeId dest, std::uint32_t m);
+  // A fact for another node: into its mailbox (arguments retained), waking it up.
+  void post(NodeId dest, PredId p, const Value* args, bool negative);
 
   struct PendingFact {  // a queued persistent derivation/retraction, or a buffered linear fact
     NodeId node;
@@ -137,10 +126,7 @@ class Machine : private SchedulerView {
   std::uint32_t ruleWords_ = 1;
   std::vector<std::uint64_t> candidates_;
 
-  std::vector<Inbox> inbox_;
-  std::vector<Message> messages_;
-  std::vector<Value> messageArgs_;
-  std::uint32_t freeMessages_ = kNoMessage;
+  std::unique_ptr<Mailboxes> mail_;
 
   // Within a rule run.
   std::vector<std::pair<PredId, FactRef>> consumed_;
@@ -149,7 +135,13 @@ class Machine : private SchedulerView {
   std::vector<PendingFact> persistentQueue_;  // FIFO (§6.5)
   std::size_t persistentHead_ = 0;
   std::vector<Value> persistentArgs_;
-  std::vector<std::pair<NodeId, std::uint32_t>> outgoing_;  // linear facts sent: delivered at run end
+  // Facts sent to other nodes during a node run, posted when it ends: the persistent ones first
+  // (the established VM posts them at once, so they precede every linear fact of the same run,
+  // §6.4.4), each kind in sending order. Nothing can read a mailbox before the run ends, so
+  // posting them together is unobservable, and it lets the posts prefetch their mailboxes.
+  std::vector<PendingFact> sentPersistent_, sentLinear_;
+  std::vector<Value> sentArgs_;
+  void postAll(const std::vector<PendingFact>& facts);
   std::vector<std::pair<NodeId, double>> priorityRequests_;
   std::vector<Value> triggerInput_, triggerAdded_, triggerRemoved_;
 

@@ -26,6 +26,15 @@ class SerialScheduler {
   bool pop(NodeId& node);
   // The node received work while not running: queue it unless it already waits.
   void wake(NodeId n);
+  // The node that pop() will return after the next `ahead` pops, when it is already known (the
+  // FIFO is served and holds that many nodes); false otherwise. For prefetching only.
+  bool peek(std::size_t ahead, NodeId& node) const {
+    if (!heap_.empty()) return false;
+    const std::size_t i = fifoHead_ + ahead;
+    if (i >= fifo_.size()) return false;
+    node = fifo_[i].node;  // may be a stale entry: harmless for a hint
+    return true;
+  }
   // The node's run ended: its temporary priority falls back to the default; requeue if it still
   // has work.
   void finished(NodeId n, bool hasWork);

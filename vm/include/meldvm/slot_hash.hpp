@@ -24,6 +24,9 @@ class SlotHash {
       if (e.hash == h && eq(e.slot)) return e.slot;
     }
   }
+  [[gnu::always_inline]] void prefetch(std::uint64_t hash) const {
+    if (size_ != 0) __builtin_prefetch(&entries_[fold(hash) & mask_]);
+  }
   void insert(std::uint64_t hash, std::uint32_t slot);  // the key must not be present
   bool erase(std::uint64_t hash, std::uint32_t slot);   // removes that exact slot
   bool replace(std::uint64_t hash, std::uint32_t oldSlot, std::uint32_t newSlot);  // same key

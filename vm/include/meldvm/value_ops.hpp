@@ -21,6 +21,16 @@ std::uint64_t hashValue(const TypeTable& types, TypeId t, Value v);
 // threads by id, strings byte-wise, lists/structs/arrays/sets lexicographically by item.
 int compareValues(const TypeTable& types, TypeId t, Value a, Value b);
 
+// The same three, inlined for the integer-like kinds (int, bool, node, thread) that fill most
+// facts: the store's hot paths call these.
+inline bool integerLike(const TypeTable& types, TypeId t) {
+  const TypeKind k = types.kind(t);
+  return k == TypeKind::Int || k == TypeKind::Bool || k == TypeKind::Node || k == TypeKind::Thread;
+}
+inline bool valuesEqualFast(const TypeTable& types, TypeId t, Value a, Value b) {
+  return integerLike(types, t) ? a.bits() == b.bits() : valuesEqual(types, t, a, b);
+}
+
 // Appends the dump form of a value (§8): int decimal, float as printf("%.5g"), true/false, @N, #TN,
 // "raw string", [a,b] (no spaces, every element), :(a, b), #[a, b], {a, b}.
 void appendValue(std::string& out, const TypeTable& types, TypeId t, Value v);
@@ -32,6 +42,14 @@ inline std::uint64_t mixHash(std::uint64_t h, std::uint64_t v) {
   h ^= h >> 31;
   h *= 0xbf58476d1ce4e5b9ull;
   return h ^ (h >> 29);
+}
+
+inline std::uint64_t hashValueFast(const TypeTable& types, TypeId t, Value v) {
+  return integerLike(types, t) ? mixHash(2, v.bits()) : hashValue(types, t, v);
+}
+inline int compareValuesFast(const TypeTable& types, TypeId t, Value a, Value b) {
+  if (types.kind(t) == TypeKind::Int) return (a.asInt() > b.asInt()) - (a.asInt() < b.asInt());
+  return compareValues(types, t, a, b);
 }
 
 }  // namespace meldvm
