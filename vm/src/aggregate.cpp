@@ -16,7 +16,8 @@ bool Database::computeAggregate(NodeId n, PredId p) {
   const TypeTable& types = heap_.types();
   const std::uint32_t k = d.aggregateField;
   const TypeId ft = d.fields[k];
-  const FactRef firstInput = in.firstWithKey(n, 0, input_.data());
+  const std::uint32_t it = inputTable_[p];
+  const FactRef firstInput = groupFirst(p, it, n, input_.data());
   if (firstInput == kNoFact) return false;
 
   // Fields after the aggregate field come from the winning input (min/max) or from the first input
@@ -25,29 +26,29 @@ bool Database::computeAggregate(NodeId n, PredId p) {
   Value sum;
   if (d.aggregate == AggregateKind::Min || d.aggregate == AggregateKind::Max) {
     const int better = d.aggregate == AggregateKind::Min ? -1 : 1;
-    for (FactRef f = in.nextWithKey(0, firstInput); f != kNoFact; f = in.nextWithKey(0, f))
+    for (FactRef f = groupNext(p, it, firstInput); f != kNoFact; f = groupNext(p, it, f))
       if (compareValuesFast(types, ft, in.args(f)[k], in.args(winner)[k]) * better > 0) winner = f;
   } else if (d.aggregate == AggregateKind::Sum) {
     // A sum over the multiset: an input stored with count c counts c times.
     if (types.kind(ft) == TypeKind::Int) {
       std::uint32_t total = 0;  // 32-bit wrap-around like the established VM's int arithmetic
-      for (FactRef f = firstInput; f != kNoFact; f = in.nextWithKey(0, f))
+      for (FactRef f = firstInput; f != kNoFact; f = groupNext(p, it, f))
         total += std::uint32_t(in.args(f)[k].asInt()) * in.count(f);
       sum = Value::fromInt(std::int32_t(total));
     } else if (types.kind(ft) == TypeKind::Float) {
       double total = 0.0;
-      for (FactRef f = firstInput; f != kNoFact; f = in.nextWithKey(0, f))
+      for (FactRef f = firstInput; f != kNoFact; f = groupNext(p, it, f))
         for (std::uint32_t c = 0; c < in.count(f); ++c) total += in.args(f)[k].asFloat();
       sum = Value::fromFloat(total);
     } else {  // list float: element-wise, as long as the shortest list (like addfloatlists)
       std::size_t len = SIZE_MAX;
-      for (FactRef f = firstInput; f != kNoFact; f = in.nextWithKey(0, f)) {
+      for (FactRef f = firstInput; f != kNoFact; f = groupNext(p, it, f)) {
         std::size_t l = 0;
         for (Value v = in.args(f)[k]; !v.isNil(); v = listTail(v)) ++l;
         len = std::min(len, l);
       }
       sums_.assign(len, 0.0);
-      for (FactRef f = firstInput; f != kNoFact; f = in.nextWithKey(0, f))
+      for (FactRef f = firstInput; f != kNoFact; f = groupNext(p, it, f))
         for (std::uint32_t c = 0; c < in.count(f); ++c) {
           Value v = in.args(f)[k];
           for (std::size_t i = 0; i < len; ++i, v = listTail(v)) sums_[i] += listHead(v).asFloat();
@@ -77,7 +78,7 @@ Change Database::aggregateChange(NodeId n, PredId p, const Value* args, std::uin
   Change c;
   const FactRef f = in.find(n, input_.data());
   FactTable& visible = tables_[p];
-  const FactRef old = visible.firstWithKey(n, 0, input_.data());
+  const FactRef old = groupFirst(p, p, n, input_.data());
   // min/max/first change the visible fact only when the winner changes, which most inputs do
   // not do: decide that from the published value instead of rescanning the group. Ties keep the
   // earliest input, so an input equal to the published value never wins.
@@ -117,7 +118,7 @@ Change Database::aggregateChange(NodeId n, PredId p, const Value* args, std::uin
       // not the first input), so removing it changes nothing.
       const bool wasWinnerCandidate =
           old == kNoFact || d.aggregate == AggregateKind::Sum ||
-          (d.aggregate == AggregateKind::First ? in.firstWithKey(n, 0, input_.data()) == f
+          (d.aggregate == AggregateKind::First ? groupFirst(p, it, n, input_.data()) == f
                                                : rank(input_.data()) >= 0);
       in.erase(head(n, it), f);
       if (!wasWinnerCandidate) return c;

@@ -26,15 +26,16 @@ Database::Database(const PredicateTable& preds, Heap& heap) : preds_(preds), hea
     // asking for an index on field 0 gets).
     grouped_.push_back(dedup && d.arity() > 0);
     if (grouped_.back()) tables_.back().addIndex({0, 1});
-    // Aggregated: the visible facts keep one fact per group, found through index 0 on the group.
-    if (d.aggregated()) tables_.back().addIndex({0, d.aggregateField});
+    // Aggregated: the visible facts keep one fact per group, found through index 0 on the group
+    // (or, when the group is the node alone, through the node's list: no hashing).
+    if (d.aggregated() && d.aggregateField > 0) tables_.back().addIndex({0, d.aggregateField});
   }
   for (PredId p = 0; p < preds.size(); ++p) {
     const PredicateDesc& d = preds[p];
     if (!d.aggregated()) continue;
     inputTable_[p] = std::uint32_t(tables_.size());
     tables_.emplace_back(types, heap, d.fields, true);  // inputs: a multiset, grouped by index 0
-    tables_.back().addIndex({0, d.aggregateField});
+    if (d.aggregateField > 0) tables_.back().addIndex({0, d.aggregateField});
   }
   for (auto* v : {&added_, &removed_, &input_, &next_}) v->reserve(maxArity);
 }

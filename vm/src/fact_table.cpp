@@ -44,9 +44,27 @@ bool FactTable::keyEqual(FactRef f, const Value* key, KeySpec spec) const {
   return true;
 }
 
+std::uint64_t FactTable::dedupHash(NodeId n, const Value* key) const {
+  // Only unboxed keys: a boxed value's bits are a pointer, which may be reused for another value.
+  const std::uint32_t k = arity();
+  const bool memo = k <= kHashMemo && boxedFields_.empty();
+  if (memo && n == memoNode_) {
+    bool same = true;
+    for (std::uint32_t i = 0; i < k && same; ++i) same = key[i].bits() == memoKey_[i].bits();
+    if (same) return memoHash_;  // equal bits are equal values of the same field types
+  }
+  const std::uint64_t h = hashKey(n, key, KeySpec{0, k});
+  if (memo) {
+    memoNode_ = n;
+    for (std::uint32_t i = 0; i < k; ++i) memoKey_[i] = key[i];
+    memoHash_ = h;
+  }
+  return h;
+}
+
 FactRef FactTable::find(NodeId n, const Value* a) const {
   const KeySpec all{0, arity()};
-  return facts_.find(hashKey(n, a, all),
+  return facts_.find(dedupHash(n, a),
                      [&](std::uint32_t f) { return node(f) == n && keyEqual(f, a, all); });
 }
 
@@ -151,14 +169,14 @@ FactRef FactTable::insert(ListHead& list, NodeId n, const Value* a, std::uint32_
     setLo(base(nx), f);
   ++list.size;
   linkIndexes(f);
-  if (dedup_) facts_.insert(hashKey(n, args(f), KeySpec{0, arity()}), f);
+  if (dedup_) facts_.insert(dedupHash(n, args(f)), f);
   ++live_;
   return f;
 }
 
 void FactTable::erase(ListHead& list, FactRef f) {
   unlinkIndexes(f);
-  if (dedup_) facts_.erase(hashKey(node(f), args(f), KeySpec{0, arity()}), f);
+  if (dedup_) facts_.erase(dedupHash(node(f), args(f)), f);
   const FactRef p = prevOf(f), nx = next(f);
   if (p == kNoFact)
     list.first = nx;
@@ -192,13 +210,12 @@ void FactTable::moveToBack(ListHead& list, FactRef f) {
 
 void FactTable::replaceArgs(FactRef f, const Value* a) {
   unlinkIndexes(f);
-  const KeySpec all{0, arity()};
-  if (dedup_) facts_.erase(hashKey(node(f), args(f), all), f);
+  if (dedup_) facts_.erase(dedupHash(node(f), args(f)), f);
   retainArgs(a);  // before releasing: the new values may be the old ones
   releaseArgs(f);
   for (std::uint32_t i = 0; i < arity(); ++i) words_[base(f) + argOffset_ + i] = a[i];
   linkIndexes(f);
-  if (dedup_) facts_.insert(hashKey(node(f), args(f), all), f);
+  if (dedup_) facts_.insert(dedupHash(node(f), args(f)), f);
 }
 
 }  // namespace meldvm

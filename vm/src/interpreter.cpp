@@ -32,11 +32,20 @@ Interpreter::Interpreter(Machine& machine, const Program& program, Database& db,
 Interpreter::~Interpreter() = default;
 
 const std::vector<std::uint8_t>& Interpreter::boxedOf(const CodeBlock& b) {
+  if (&b == lastBlock_) return *lastBoxed_;
   auto it = boxed_.find(&b);
-  if (it != boxed_.end()) return it->second;
-  std::vector<std::uint8_t> v(b.registerTypes.size());
-  for (std::size_t r = 0; r < v.size(); ++r) v[r] = program_.types.boxed(b.registerTypes[r]);
-  return boxed_.emplace(&b, std::move(v)).first->second;
+  if (it == boxed_.end()) {
+    // One more byte at the end: whether any register is boxed (leave() skips the release loop).
+    std::vector<std::uint8_t> v(b.registerTypes.size() + 1);
+    for (std::size_t r = 0; r < b.registerTypes.size(); ++r) {
+      v[r] = program_.types.boxed(b.registerTypes[r]);
+      v.back() |= v[r];
+    }
+    it = boxed_.emplace(&b, std::move(v)).first;
+  }
+  lastBlock_ = &b;
+  lastBoxed_ = &it->second;
+  return it->second;
 }
 
 Interpreter::Alloc Interpreter::enter(const CodeBlock& b) {
@@ -62,8 +71,9 @@ Interpreter::Alloc Interpreter::enter(const CodeBlock& b) {
 
 void Interpreter::leave(const Frame& f, const Alloc& a) {
   const std::size_t regs = f.block->registerTypes.size();
-  for (std::size_t r = 0; r < regs; ++r)
-    if (f.boxed[r]) heap_.release(f.block->registerTypes[r], f.regs[r]);
+  if (f.boxed[regs])
+    for (std::size_t r = 0; r < regs; ++r)
+      if (f.boxed[r]) heap_.release(f.block->registerTypes[r], f.regs[r]);
   regChunk_ = a.regMark / kRegChunk;
   regUsed_ = a.regMark % kRegChunk;
   slotChunk_ = a.slotMark / kSlotChunk;

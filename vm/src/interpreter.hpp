@@ -87,6 +87,8 @@ class Interpreter {
   std::vector<std::unique_ptr<Slot[]>> slotChunks_;
   std::size_t regChunk_ = 0, regUsed_ = 0, slotChunk_ = 0, slotUsed_ = 0;
   std::unordered_map<const CodeBlock*, std::vector<std::uint8_t>> boxed_;
+  const CodeBlock* lastBlock_ = nullptr;  // the processes of a program run the same few blocks
+  const std::vector<std::uint8_t>* lastBoxed_ = nullptr;
   std::vector<Value> args_;      // arguments gathered for DERIVE/SEND/CALL
   std::vector<FactRef> sorted_;  // ITER_SORTED candidates (a stack of runs)
 };

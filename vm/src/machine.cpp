@@ -395,11 +395,10 @@ void Machine::processPersistent(NodeId n) {
       db_->prefetchDerive(next.node, next.pred, persistentArgs_.data() + next.args);
     }
     // Copy out: running processes appends to persistentArgs_.
-    triggerInput_.assign(persistentArgs_.begin() + e.args,
-                         persistentArgs_.begin() + e.args + program_.predicates[e.pred].arity());
-    const Change c = e.negative ? db_->retract(n, e.pred, triggerInput_.data())
-                                : db_->derive(n, e.pred, triggerInput_.data());
-    releaseArgs(e.pred, triggerInput_.data());  // the queue's references
+    // The database copies what it keeps, and nothing appends to the queue before the release.
+    const Value* input = persistentArgs_.data() + e.args;
+    const Change c = e.negative ? db_->retract(n, e.pred, input) : db_->derive(n, e.pred, input);
+    releaseArgs(e.pred, input);  // the queue's references
     if (c.removed) {
       triggerRemoved_.assign(c.removedArgs.begin(), c.removedArgs.end());
       for (std::uint32_t i = 0; i < triggerRemoved_.size(); ++i)

@@ -97,8 +97,10 @@ class Database {
       return;
     }
     tables_[in].prefetchFind(n, args);
-    tables_[in].prefetchKey(n, 0, args);
-    tables_[p].prefetchKey(n, 0, args);
+    if (preds_[p].aggregateField > 0) {
+      tables_[in].prefetchKey(n, 0, args);
+      tables_[p].prefetchKey(n, 0, args);
+    }
   }
   // Distinct inputs stored for an aggregated predicate at a node.
   std::uint32_t aggregateInputs(NodeId n, PredId p) const;
@@ -120,7 +122,15 @@ class Database {
   void clearScratch();
   void keepRemoved(PredId p, FactRef f);  // copies a visible fact into removed_ before erasing it
   Change aggregateChange(NodeId n, PredId p, const Value* args, std::uint32_t copies, bool add);
-  bool computeAggregate(NodeId n, PredId p);  // fills next_ from the group of input_; false if empty
+  bool computeAggregate(NodeId n, PredId p);
+  // The facts of an aggregate group (node + the fields before the aggregate field) in one of the
+  // predicate's tables: through index 0, or the node's whole list when the group is the node.
+  FactRef groupFirst(PredId p, std::uint32_t table, NodeId n, const Value* key) const {
+    return preds_[p].aggregateField == 0 ? head(n, table).first : tables_[table].firstWithKey(n, 0, key);
+  }
+  FactRef groupNext(PredId p, std::uint32_t table, FactRef f) const {
+    return preds_[p].aggregateField == 0 ? tables_[table].next(f) : tables_[table].nextWithKey(0, f);
+  }  // fills next_ from the group of input_; false if empty
 
   const PredicateTable& preds_;
   Heap& heap_;

@@ -63,7 +63,7 @@ class FactTable {
   FactRef firstWithKey(NodeId node, std::uint32_t index, const Value* key) const;
   // Hints that find / firstWithKey with these arguments come soon.
   [[gnu::always_inline]] void prefetchFind(NodeId node, const Value* args) const {
-    facts_.prefetch(hashKey(node, args, KeySpec{0, arity()}));
+    facts_.prefetch(hashKey(node, args, KeySpec{0, arity()}));  // not memoised: a later key
   }
   [[gnu::always_inline]] void prefetchKey(NodeId node, std::uint32_t index, const Value* key) const {
     indexes_[index].heads.prefetch(hashKey(node, key, indexes_[index].key));
@@ -107,6 +107,9 @@ class FactTable {
   FactRef prevOf(FactRef f) const { return lo(base(f)); }
 
   FactRef chainHead(FactRef f, std::uint32_t x, std::uint64_t& hash) const;
+  // Hash of a node and all arguments, for the de-duplication table. A derivation hashes the same
+  // key for find and then insert (or erase): the last result is remembered.
+  std::uint64_t dedupHash(NodeId node, const Value* key) const;
   void linkIndexes(FactRef f);
   void unlinkIndexes(FactRef f);
   void retainArgs(const Value* args);
@@ -119,6 +122,10 @@ class FactTable {
   std::vector<Index> indexes_;
   bool dedup_;
   SlotHash facts_;  // de-duplication: node + all arguments
+  static constexpr std::uint32_t kHashMemo = 4;  // arities up to this use the memo
+  mutable NodeId memoNode_ = 0xFFFFFFFFu;
+  mutable Value memoKey_[kHashMemo] = {};
+  mutable std::uint64_t memoHash_ = 0;
   std::uint32_t stride_ = 0, argOffset_ = 0;
   std::vector<Value> words_;
   FactRef freeList_ = kNoFact;
