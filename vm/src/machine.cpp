@@ -101,13 +101,17 @@ void Machine::run() {
 }
 
 void Machine::runNode(NodeId n) {
-  // The FIFO says which nodes run next: fetch their inboxes two runs ahead and the first message
-  // and list heads one run ahead, so that a run rarely waits for memory when it starts.
+  // The FIFO says which nodes run next: fetch their mailbox entries and list heads three runs
+  // ahead, then their first messages and first facts two runs ahead, so that a run rarely waits
+  // for memory when it starts.
   NodeId ahead;
-  if (sched_.peek(1, ahead)) mail_->prefetchBox(ahead);
-  if (sched_.peek(0, ahead)) {
-    mail_->prefetchMessages(ahead);
+  if (sched_.peek(2, ahead)) {
+    mail_->prefetchBox(ahead);
     db_->prefetchNode(ahead);
+  }
+  if (sched_.peek(1, ahead)) {
+    mail_->prefetchMessages(ahead);
+    db_->prefetchNodeFacts(ahead);
   }
   running_ = n;
   inRun_ = true;
@@ -388,10 +392,16 @@ void Machine::deliverIncoming(NodeId n) {
 // ---- persistent facts (§6.5, §6.8) ----
 
 void Machine::processPersistent(NodeId n) {
+  constexpr std::size_t kAhead = 4;
+  for (std::size_t i = persistentHead_; i < persistentQueue_.size() && i < persistentHead_ + kAhead - 1; ++i)
+    db_->prefetchDerive(persistentQueue_[i].node, persistentQueue_[i].pred,
+                        persistentArgs_.data() + persistentQueue_[i].args);
   while (persistentHead_ < persistentQueue_.size()) {
     const PendingFact e = persistentQueue_[persistentHead_++];
-    if (persistentHead_ < persistentQueue_.size()) {  // fetch the buckets the next one needs
-      const PendingFact& next = persistentQueue_[persistentHead_];
+    // Fetch the hash buckets of an entry a few places ahead: most entries take less time than a
+    // memory access.
+    if (persistentHead_ + kAhead - 1 < persistentQueue_.size()) {
+      const PendingFact& next = persistentQueue_[persistentHead_ + kAhead - 1];
       db_->prefetchDerive(next.node, next.pred, persistentArgs_.data() + next.args);
     }
     // Copy out: running processes appends to persistentArgs_.

@@ -31,6 +31,10 @@ class Mailboxes {
     while (c != kNone) {
       const Value* chunk = words_.data() + std::size_t(c) * chunkWords_;
       const std::uint32_t next = std::uint32_t(chunk[0].bits()), count = std::uint32_t(chunk[0].bits() >> 32);
+      if (next != kNone) {
+        const char* p = reinterpret_cast<const char*>(words_.data() + std::size_t(next) * chunkWords_);
+        for (std::size_t off = 0; off < chunkWords_ * sizeof(Value); off += 64) __builtin_prefetch(p + off);
+      }
       for (std::uint32_t i = 0; i < count; ++i) {
         const Value* r = chunk + 1 + std::size_t(i) * recordWords_;
         f(PredId(r[0].bits()), (r[0].bits() >> 32) != 0, r + 1);

@@ -75,6 +75,7 @@ class FactTable {
   }
 
   FactRef next(FactRef f) const { return hi(base(f)); }
+  const Value* slotAddress(FactRef f) const { return words_.data() + base(f); }  // for prefetching
   NodeId node(FactRef f) const { return lo(base(f) + 1); }
   std::uint32_t count(FactRef f) const { return hi(base(f) + 1); }
   // Valid until the next insertion into this table (the slot array may move).
