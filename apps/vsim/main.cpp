@@ -10,6 +10,8 @@
 #include <memory>
 #include <optional>
 
+#include "meld_program.hpp"
+#include "meldvm/block_runtime.hpp"
 #include "options.hpp"
 #include "progress.hpp"
 #include "report.hpp"
@@ -149,15 +151,25 @@ int runVsim(const Options& o) {
     for (const std::string& w : world.warnings) std::cerr << w << '\n';
   const simcore::TargetSpec target = chooseTarget(o, world);
 
-  const std::string codePath = !o.code.empty() ? o.code : world.code;
+  const std::string codePath = !o.program.empty() ? o.program : !o.code.empty() ? o.code : world.code;
   if (codePath.empty())
-    throw Failure{kExitUsage, "no block code: give --code LIB.so (or code=\"LIB.so\" in " + o.world + ")"};
+    throw Failure{kExitUsage, "no block code: give --code LIB.so or --program PROG.meld (or code=\"LIB.so\" in " +
+                                  o.world + ")"};
   // Declared before the simulation: the code table must outlive it.
   std::optional<simcore::BlockCodeLibrary> library;
-  try {
-    library.emplace(simcore::BlockCodeLibrary::open(codePath));
-  } catch (const simcore::BlockCodeError& e) {
-    throw Failure{kExitInput, e.what()};
+  std::unique_ptr<meldvm::Program> meldProgram;
+  if (!o.program.empty()) {
+    try {
+      meldProgram = loadMeldProgram(o.program, o.includeDirs);
+    } catch (const ProgramLoadError& e) {
+      throw Failure{kExitInput, e.what()};
+    }
+  } else {
+    try {
+      library.emplace(simcore::BlockCodeLibrary::open(codePath));
+    } catch (const simcore::BlockCodeError& e) {
+      throw Failure{kExitInput, e.what()};
+    }
   }
 
   simcore::SimulationConfig config;
@@ -174,7 +186,21 @@ int runVsim(const Options& o) {
     throw Failure{kExitInput, e.what()};
   }
   scheduleTaps(o, sim);
-  sim.setBlockCode(library->code());
+  std::unique_ptr<meldvm::BlockRuntime> meld;
+  if (meldProgram) {
+    meldvm::BlockRuntimeOptions mo;
+    mo.output = &std::cout;
+    if (o.timePerRule >= 0) mo.timePerRuleNs = o.timePerRule;
+    mo.palette = o.paletteLm ? meldvm::Palette::LinearMeld : meldvm::Palette::VisibleSim;
+    try {
+      meld = std::make_unique<meldvm::BlockRuntime>(*meldProgram, std::uint32_t(sim.world().blockCount()), mo);
+    } catch (const meldvm::BlockProgramError& e) {
+      throw Failure{kExitInput, o.program + ": error: " + e.what()};
+    }
+    sim.setBlockCode(meld->blockcode());
+  } else {
+    sim.setBlockCode(library->code());
+  }
 
   std::optional<simcore::Trace> trace;
   if (o.trace) {
@@ -187,7 +213,7 @@ int runVsim(const Options& o) {
   RunInfo info;
   info.world = o.world;
   info.code = codePath;
-  info.codeName = library->name();
+  info.codeName = meld ? std::string("meld-vm") : library->name();
   info.until = o.until;
   try {
     info.end = runSimulation(sim, o, progress);
@@ -196,6 +222,8 @@ int runVsim(const Options& o) {
                   std::string("simulation failed at ") + simcore::formatTime(sim.now()) + ": " + e.what()};
   }
   traceOut->flush();
+  if (meld && !meld->error().empty())
+    throw Failure{kExitRuntime, "Meld program failed at " + simcore::formatTime(sim.now()) + ": " + meld->error()};
   if (traceFile) {
     traceFile->close();
     if (!*traceFile) throw Failure{kExitRuntime, "error while writing trace file '" + o.traceFile + "'"};
@@ -207,6 +235,10 @@ int runVsim(const Options& o) {
   if (!o.quiet) printSummary(report, sim, info);
   if (o.stats) simcore::printStatistics(report, sim.statistics(), sim.fingerprint());
   report.flush();
+  if (meld && o.dump) {
+    meld->dump(std::cout);
+    std::cout.flush();
+  }
   if (json.wanted()) {
     writeJsonReport(json.stream(), sim, info);
     json.close();

@@ -7,9 +7,10 @@
 namespace vsim {
 
 const char* usageText() {
-  return R"(usage: vsim WORLD.xml [--code LIB.so] [options]
+  return R"(usage: vsim WORLD.xml [--code LIB.so | --program PROG.meld|PROG.mbc] [options]
 
-Runs the block program LIB.so on every block of the world WORLD.xml (headless) and prints a
+Runs the block program LIB.so, or the Meld program PROG (one Meld node per block, node id = block
+id; a .meld file is compiled first), on every block of the world WORLD.xml (headless) and prints a
 summary: target, blocks, events, simulated and wall time, events/s, the run fingerprint and a
 histogram of the final colors (plus each block's color for worlds of at most 20 blocks).
 
@@ -19,6 +20,15 @@ early and still prints the summary).
 
 options:
   --code LIB.so         block program (C BlockCode .so); overrides the world's code= attribute
+  --program PROG        Meld program (.meld, compiled with node ids = block ids, or .mbc from
+                        `meldc --robots`); the target's include file is found by `include`
+  --dump                with --program: print every block's final facts (the `meld --dump`
+                        format) after the summary
+  --time-per-rule T     with --program: simulated computing time of one rule firing (default
+                        1us); a node run's messages leave after its rules' time
+  --palette visiblesim|lm
+                        with --program: colours of setColor2 (default visiblesim: C mod 12)
+  -I DIR                with --program: include directory for the .meld compiler
   --target NAME         blinkyblocks, smartblocks, catoms2d or catoms3d; overrides the world's
                         target= attribute
                         (default when neither says: blinkyblocks)
@@ -58,6 +68,8 @@ examples:
   vsim examples/worlds/color-flood.xml --code build/release/blockcodes/color_flood.so
   vsim examples/worlds/tap-cycle.xml --code build/release/blockcodes/tap_cycle.so \
        --tap 2@1s --trace 'kinds=tap,color'
+  vsim examples/worlds/meld-gradient-tap.xml --program examples/meld/gradient-tap.meld \
+       --tap 0@1s --dump
 )";
 }
 
@@ -140,6 +152,18 @@ Options parseOptions(int argc, char** argv) {
       flag(), o.stats = true;
     else if (arg == "--code")
       o.code = value();
+    else if (arg == "--program")
+      o.program = value();
+    else if (arg == "--dump")
+      flag(), o.dump = true;
+    else if (arg == "--time-per-rule")
+      o.timePerRule = parseTime("--time-per-rule", value());
+    else if (arg == "--palette") {
+      const std::string_view v = value();
+      if (v != "visiblesim" && v != "lm") throw UsageError("--palette wants visiblesim or lm, got '" + std::string(v) + "'");
+      o.paletteLm = v == "lm";
+    } else if (arg == "-I")
+      o.includeDirs.emplace_back(value());
     else if (arg == "--target")
       o.target = value();
     else if (arg == "--until")
@@ -189,6 +213,9 @@ Options parseOptions(int argc, char** argv) {
   if (o.help || o.version) return o;
   if (o.world.empty())
     throw UsageError("no world file given (usage: vsim WORLD.xml --code LIB.so; see --help)");
+  if (!o.program.empty() && !o.code.empty()) throw UsageError("give --code or --program, not both");
+  if (o.program.empty() && (o.dump || o.timePerRule >= 0 || !o.includeDirs.empty()))
+    throw UsageError("--dump, --time-per-rule and -I go with --program");
   if (traceFormatOrFile) o.trace = true;
   if (o.jsonFile == "-" && o.exportFile == "-")
     throw UsageError("--json and --export cannot both write to stdout");

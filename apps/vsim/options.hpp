@@ -35,6 +35,11 @@ struct TapRequest {
 struct Options {
   std::string world;                      // the XML world file
   std::string code;                       // --code: overrides the world's code= attribute
+  std::string program;                    // --program: a Meld program instead of a C BlockCode
+  bool dump = false;                      // --dump: the final facts of every block
+  simcore::SimTime timePerRule = -1;      // --time-per-rule (negative: the VM's default)
+  bool paletteLm = false;                 // --palette lm
+  std::vector<std::string> includeDirs;   // -I for the Meld compiler
   std::string target;                     // --target: overrides the world's target= attribute
   std::optional<simcore::SimTime> until;  // --until; none = until the event queue is empty
   std::optional<std::uint64_t> seed;      // --seed; none = the world's seed, else 1

@@ -70,7 +70,7 @@ static int on_info(vs_ctx* c, char* text, size_t capacity) {
 }
 
 static const vs_blockcode brownian_flood_code = {
-    VS_ABI_VERSION, "brownian-flood", sizeof(brownian_state), on_start, on_event, on_info,
+    VS_ABI_VERSION, "brownian-flood", sizeof(brownian_state), on_start, on_event, on_info, NULL,
 };
 
 const vs_blockcode* vs_blockcode_entry(void) { return &brownian_flood_code; }

@@ -34,7 +34,7 @@ static int on_info(vs_ctx* c, char* text, size_t capacity) {
 }
 
 static const vs_blockcode tap_cycle_code = {
-    VS_ABI_VERSION, "tap-cycle", sizeof(tap_state), NULL, on_event, on_info,
+    VS_ABI_VERSION, "tap-cycle", sizeof(tap_state), NULL, on_event, on_info, NULL,
 };
 
 const vs_blockcode* vs_blockcode_entry(void) { return &tap_cycle_code; }

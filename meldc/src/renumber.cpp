@@ -159,8 +159,8 @@ std::vector<int64_t> numberBreadthFirst(const std::vector<int64_t>& order,
   return out;
 }
 
-bool renumberNodes(ast::Program& program, Diagnostics& diag) {
-  bool clusterStatic = false;
+bool renumberNodes(ast::Program& program, Diagnostics& diag, bool identity) {
+  bool clusterStatic = identity;
   bool ok = true;
   for (const ast::Directive& d : program.directives) {
     if (d.kind == ast::DirectiveKind::Data) {

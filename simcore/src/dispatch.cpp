@@ -11,14 +11,14 @@ namespace simcore {
 
 void Simulation::deliver(BlockId block, const vs_event& ev) {
   if (!code_ || !code_->event) return;
-  vs_ctx ctx{&kHostApi, this, block, blockState(block)};
+  vs_ctx ctx{&kHostApi, this, block, blockState(block), code_->user};
   code_->event(&ctx, &ev);
 }
 
 std::string Simulation::blockInfo(BlockId id) {
   // The per-block state exists once the run has started; before that there is nothing to describe.
   if (!code_ || !code_->info || !started_ || id >= world_.blockCount()) return {};
-  vs_ctx ctx{&kHostApi, this, id, blockState(id)};
+  vs_ctx ctx{&kHostApi, this, id, blockState(id), code_->user};
   char text[256];
   text[0] = '\0';
   const int n = code_->info(&ctx, text, sizeof text);
@@ -138,7 +138,7 @@ void Simulation::dispatch(const Event& e) {
     for (SimulationObserver* o : observers_) o->onEvent(*this, e);
   if (e.kind == EventKind::Start) {
     if (code_ && code_->start) {
-      vs_ctx ctx{&kHostApi, this, e.block, blockState(e.block)};
+      vs_ctx ctx{&kHostApi, this, e.block, blockState(e.block), code_->user};
       code_->start(&ctx);
     }
   } else {

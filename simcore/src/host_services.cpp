@@ -82,6 +82,14 @@ struct Simulation::Services {
     for (SimulationObserver* o : s.observers_) o->onBlockTrace(s, c->block, text);
   }
   static uint32_t blockCount(vs_ctx* c) { return uint32_t(sim(c).world_.blockCount()); }
+  static int faceToward(vs_ctx* c, const int32_t xyz[3]) {
+    Simulation& s = sim(c);
+    if (!xyz) return VS_ERR_BAD_ARGUMENT;
+    const Cell& from = s.world_.block(c->block).cell;
+    for (int f = 0; f < s.faceCount_; ++f)
+      if (s.world_.lattice().neighborCell(from, f) == Cell{xyz[0], xyz[1], xyz[2]}) return f;
+    return VS_ERR_BAD_ARGUMENT;
+  }
 };
 
 const vs_host_api kHostApi = {
@@ -104,6 +112,7 @@ const vs_host_api kHostApi = {
     &Simulation::Services::randomBelow,
     &Simulation::Services::trace,
     &Simulation::Services::blockCount,
+    &Simulation::Services::faceToward,
 };
 
 int Simulation::send(BlockId from, int f, const void* data, std::uint32_t size, SimTime delay) {

@@ -264,9 +264,9 @@ BOOST_AUTO_TEST_CASE(block_info_comes_from_the_info_callback) {
 
 BOOST_AUTO_TEST_CASE(abi_version_mismatch_and_null_callbacks) {
   auto sim = testsupport::makeSmart({2, 2, 1}, {{0, 0, 0}, {1, 0, 0}});
-  const vs_blockcode wrong = {VS_ABI_VERSION + 1, "future", 0, nullptr, nullptr, nullptr};
+  const vs_blockcode wrong = {VS_ABI_VERSION + 1, "future", 0, nullptr, nullptr, nullptr, nullptr};
   BOOST_CHECK_THROW(sim->setBlockCode(&wrong), std::runtime_error);
-  const vs_blockcode empty = {VS_ABI_VERSION, "empty", 8, nullptr, nullptr, nullptr};
+  const vs_blockcode empty = {VS_ABI_VERSION, "empty", 8, nullptr, nullptr, nullptr, nullptr};
   sim->setBlockCode(&empty);
   sim->scheduleTap(0, kMillisecond);
   sim->runUntilEmpty();
@@ -312,7 +312,7 @@ BOOST_AUTO_TEST_CASE(c_blockcode_loaded_with_dlopen_runs) {
     }
     BOOST_CHECK_GT(flooded, 1u);
     // The info callback, given a context for block 0.
-    vs_ctx ctx{nullptr, nullptr, 0, sim->blockState(0)};
+    vs_ctx ctx{nullptr, nullptr, 0, sim->blockState(0), nullptr};
     char text[32];
     BOOST_CHECK_EQUAL(code->info(&ctx, text, sizeof text), 7);
     BOOST_CHECK_EQUAL(std::string(text), "flooded");

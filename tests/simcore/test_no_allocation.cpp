@@ -24,7 +24,7 @@ void onEvent(vs_ctx* c, const vs_event* ev) {
     wake(c);
   }
 }
-const vs_blockcode kWanderer = {VS_ABI_VERSION, "wanderer", 0, onStart, onEvent, nullptr};
+const vs_blockcode kWanderer = {VS_ABI_VERSION, "wanderer", 0, onStart, onEvent, nullptr, nullptr};
 
 void checkSteadyStateAllocations(simcore::FesKind fes) {
   simcore::SimulationConfig cfg;

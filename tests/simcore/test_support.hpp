@@ -65,7 +65,7 @@ class Script {
   std::vector<Rec> log;
 
   explicit Script(simcore::Simulation& sim, std::uint32_t stateSize = 0) : sim_(&sim) {
-    table_ = vs_blockcode{VS_ABI_VERSION, "test-script", stateSize, &start, &event, &info};
+    table_ = vs_blockcode{VS_ABI_VERSION, "test-script", stateSize, &start, &event, &info, nullptr};
     registry()[sim_] = this;
     sim.setBlockCode(&table_);
   }
@@ -211,7 +211,7 @@ inline void event(vs_ctx* c, const vs_event* ev) {
 }
 }  // namespace walk_detail
 inline const vs_blockcode kRandomWalk = {VS_ABI_VERSION,      "random-walk",       sizeof(WalkState),
-                                         &walk_detail::start, &walk_detail::event, nullptr};
+                                         &walk_detail::start, &walk_detail::event, nullptr, nullptr};
 
 // `n` Smart Blocks on distinct cells of an L x L grid, placed from (seed) with the kernel's RNG.
 inline std::unique_ptr<simcore::Simulation> makeWalkWorld(std::uint32_t n, std::int32_t L,

@@ -463,9 +463,9 @@ Interpreter::Status Interpreter::exec(Frame& f, std::uint32_t pc) {
         machine_.send(f.host, R[c[2]].asNode(), c[1], args_.data(), f.negative);
         pc += 4 + c[3];
         break;
-      case Opcode::SEND_DELAY:  // no simulated time on the VM's own graph: delivered at once
+      case Opcode::SEND_DELAY:
         gatherArgs(f, c + 5, c[4]);
-        machine_.send(f.host, R[c[2]].asNode(), c[1], args_.data(), f.negative);
+        machine_.send(f.host, R[c[2]].asNode(), c[1], args_.data(), f.negative, c[3]);
         pc += 5 + c[4];
         break;
       case Opcode::UPDATE: {
@@ -477,7 +477,7 @@ Interpreter::Status Interpreter::exec(Frame& f, std::uint32_t pc) {
       }
       case Opcode::ACTION:
         gatherArgs(f, c + 4, c[3]);
-        if (!f.negative) machine_.action(R[c[2]].asNode(), c[1], args_.data());
+        if (!f.negative) machine_.action(f.host, R[c[2]].asNode(), c[1], args_.data());
         pc += 4 + c[3];
         break;
       case Opcode::AXIOMS: {

@@ -22,6 +22,7 @@ Machine::Machine(const Program& program, MachineOptions options)
       builtinCtx_(heap_),
       rng_(Rng::forThread(0)),
       sched_(program.scheduling) {
+  host_ = options_.host;
   builtinCtx_.rng = &rng_;
   builtinCtx_.sched = this;
   const std::size_t preds = program.predicates.size();
@@ -72,35 +73,47 @@ bool Machine::hasWork(NodeId n) const { return !mail_->empty(n); }
 
 // ---- set-up and the scheduler loop ----
 
-void Machine::run() {
-  const NodeId n = NodeId(program_.nodeSourceIds.size());
-  if (initialNodes_ == 0 && db_->nodeCount() == 0) {
-    initialNodes_ = n;
-    db_->addNodes(n);
-    candidates_.assign(std::size_t(n) * ruleWords_, 0);
-    mail_->addNodes(n);
-    created_.assign(n, 0);
-    if (!program_.globalsInit.code.empty()) {
-      try {
-        interp_->run(program_.globalsInit, 0);
-      } catch (const std::exception& e) {
-        fail(e, 0, "the constants");
-      }
+void Machine::start() {
+  if (started_) return;
+  started_ = true;
+  const NodeId n = std::max<NodeId>(NodeId(program_.nodeSourceIds.size()), options_.nodes);
+  initialNodes_ = n;
+  db_->addNodes(n);
+  candidates_.assign(std::size_t(n) * ruleWords_, 0);
+  mail_->addNodes(n);
+  created_.assign(n, 0);
+  if (!program_.globalsInit.code.empty()) {
+    try {
+      interp_->run(program_.globalsInit, 0);
+    } catch (const std::exception& e) {
+      fail(e, 0, "the constants");
     }
-    if (program_.initPredicate != Program::kNoPred) {
-      for (NodeId i = 0; i < n; ++i) {
-        db_->addLinear(i, program_.initPredicate, kNoArgs);
-        factAdded(i, program_.initPredicate);
-      }
-    }
-    sched_.start(n);
   }
+  if (program_.initPredicate != Program::kNoPred) {
+    for (NodeId i = 0; i < n; ++i) {
+      db_->addLinear(i, program_.initPredicate, kNoArgs);
+      factAdded(i, program_.initPredicate);
+    }
+  }
+  sched_.start(n);
+}
+
+void Machine::run() {
+  start();
   NodeId node;
   while (!stop_ && sched_.pop(node)) runNode(node);
   if (!stop_) collectGarbageNodes();
 }
 
-void Machine::runNode(NodeId n) {
+void Machine::receive(NodeId n, PredId p, const Value* args, bool negative) {
+  start();
+  if (n >= db_->nodeCount()) throw RuntimeError("fact for node @" + std::to_string(n) + ", which does not exist");
+  post(n, p, args, negative);
+}
+
+std::uint64_t Machine::runNode(NodeId n) {
+  start();
+  const std::uint64_t firedBefore = stats_.rulesFired;
   // The FIFO says which nodes run next: fetch their mailbox entries and list heads three runs
   // ahead, then their first messages and first facts two runs ahead, so that a run rarely waits
   // for memory when it starts.
@@ -136,7 +149,8 @@ void Machine::runNode(NodeId n) {
   inRun_ = false;
   flushOutgoing();
   applyPriorityRequests();
-  sched_.finished(n, hasWork(n));
+  if (!host_) sched_.finished(n, hasWork(n));
+  return stats_.rulesFired - firedBefore;
 }
 
 void Machine::runRule(NodeId n, std::uint32_t rule) {
@@ -207,7 +221,7 @@ void Machine::releaseArgs(PredId p, const Value* args) {
 void Machine::derive(NodeId host, PredId p, const Value* args, bool negative) {
   const PredicateDesc& d = program_.predicates[p];
   if (d.action) {
-    if (!negative) action(host, p, args);
+    if (!negative) action(host, host, p, args);
     return;
   }
   if (!negative) {
@@ -230,34 +244,39 @@ void Machine::derive(NodeId host, PredId p, const Value* args, bool negative) {
   if (c.removed) factRemoved(host, p);
 }
 
-void Machine::send(NodeId host, NodeId dest, PredId p, const Value* args, bool negative) {
-  if (dest == host) return derive(host, p, args, negative);
+void Machine::send(NodeId host, NodeId dest, PredId p, const Value* args, bool negative, std::uint32_t delayMs) {
+  // Delays need simulated time: only a host has it; on the VM's own graph a delayed fact is sent
+  // at once.
+  if (!host_) delayMs = 0;
+  if (dest == host && delayMs == 0) return derive(host, p, args, negative);
   if (dest >= db_->nodeCount() || !db_->alive(dest))
     throw RuntimeError("fact " + program_.predicates[p].name + " sent to node @" + std::to_string(dest) +
                        ", which does not exist");
   const PredicateDesc& d = program_.predicates[p];
   if (d.action) {
-    if (!negative) action(dest, p, args);
+    if (!negative) action(host, dest, p, args);
     return;
   }
+  if (host_ && dest != host && !host_->reachable(host, dest))
+    throw RuntimeError("fact " + d.name + " for node @" + std::to_string(dest) + ", which is not a neighbour of @" +
+                       std::to_string(host));
   if (d.linear && negative) return;
   if (!negative) {
     ++stats_.factsDerived;
     ++runDerived_;
   }
   ++stats_.factsSent;
-  (d.linear ? sentLinear_ : sentPersistent_).push_back({dest, p, negative, std::uint32_t(sentArgs_.size())});
+  (d.linear ? sentLinear_ : sentPersistent_)
+      .push_back({dest, p, negative, std::uint32_t(sentArgs_.size()), delayMs});
   pushArgs(sentArgs_, p, args);
 }
 
-void Machine::action(NodeId dest, PredId p, const Value* args) {
-  const PredicateDesc& d = program_.predicates[p];
+void Machine::action(NodeId from, NodeId dest, PredId p, const Value* args) {
+  if (host_) return host_->action(from, dest, p, args);
   // On the VM's own graph only write-string has a visible effect (§4.1.3); the robot runtime
   // executes the others (colours, motion).
-  if (d.name == "write-string" && options_.output && d.arity() == 1) {
-    *options_.output << stringOf(args[0]) << '\n';
-  }
-  (void)dest;
+  const PredicateDesc& d = program_.predicates[p];
+  if (d.name == "write-string" && options_.output && d.arity() == 1) *options_.output << stringOf(args[0]) << '\n';
 }
 
 void Machine::consumed(NodeId, PredId p, FactRef f) {
@@ -284,6 +303,7 @@ NodeId Machine::newNode() {
     db_->addLinear(id, program_.initPredicate, kNoArgs);
     factAdded(id, program_.initPredicate);
   }
+  if (host_) throw RuntimeError("exists: a robot cannot create nodes (every node is a block)");
   sched_.wake(id);
   return id;
 }
@@ -352,12 +372,21 @@ void Machine::post(NodeId dest, PredId p, const Value* args, bool negative) {
   if (boxedField_[p])
     for (std::uint32_t i = 0; i < d.arity(); ++i) heap_.retain(d.fields[i], args[i]);
   mail_->post(dest, p, negative, args, d.arity());
-  if (!(inRun_ && dest == running_)) sched_.wake(dest);
+  if (!host_ && !(inRun_ && dest == running_)) sched_.wake(dest);
 }
 
 void Machine::flushOutgoing() {
-  postAll(sentPersistent_);
-  postAll(sentLinear_);
+  if (host_) {
+    for (const auto* list : {&sentPersistent_, &sentLinear_})
+      for (const PendingFact& e : *list) {
+        const Value* args = sentArgs_.data() + e.args;
+        host_->transmit(running_, e.node, e.pred, args, e.negative, e.delayMs);
+        releaseArgs(e.pred, args);
+      }
+  } else {
+    postAll(sentPersistent_);
+    postAll(sentLinear_);
+  }
   sentPersistent_.clear();
   sentLinear_.clear();
   sentArgs_.clear();

@@ -20,6 +20,9 @@ struct FrontEndInput {
   std::string path;
   std::vector<std::string> includeDirs;
   std::vector<std::pair<std::string, std::string>> defines;  // NAME, VALUE (a Meld expression)
+  // Robots (§7.3): node ids are block ids, so literals keep their source ids and every id up to
+  // the largest literal exists, as with `priority @cluster @static`.
+  bool identityNodes = false;
 };
 
 // Returns the checked program, or nullopt when there were errors (all reported to `diag`).

@@ -24,7 +24,7 @@ namespace meldc {
 
 // Rewrites the node literals of `program` and fills program.nodeTable. Returns false (after
 // reporting to `diag`) when the program asks for a numbering this compiler does not support.
-bool renumberNodes(ast::Program& program, Diagnostics& diag);
+bool renumberNodes(ast::Program& program, Diagnostics& diag, bool identity = false);
 
 // The pieces of the algorithm, exposed for the tests.
 

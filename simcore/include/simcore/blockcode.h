@@ -25,7 +25,7 @@
 extern "C" {
 #endif
 
-#define VS_ABI_VERSION 1
+#define VS_ABI_VERSION 2
 
 typedef int64_t vs_time; /* simulated nanoseconds */
 typedef uint32_t vs_block_id;
@@ -86,6 +86,7 @@ struct vs_ctx {
   void* host;        /* opaque to the block program */
   vs_block_id block; /* the block this callback runs on */
   void* state;       /* this block's `state_size` bytes, zeroed before `start` */
+  void* user;        /* the program's vs_blockcode.user (since ABI 2) */
 };
 
 /* Host services. Every function is always present (never NULL). */
@@ -135,6 +136,9 @@ struct vs_host_api {
   void (*trace)(vs_ctx* ctx, const char* text);
   /* Number of blocks in the world. */
   uint32_t (*block_count)(vs_ctx* ctx);
+  /* The face of this block whose adjacent cell is `xyz` (e.g. to turn a target cell into a `move`),
+   * or VS_ERR_BAD_ARGUMENT when `xyz` is not an adjacent cell (since ABI 2). */
+  int (*face_toward)(vs_ctx* ctx, const int32_t xyz[3]);
 };
 
 /* The table a block program exports. Callbacks may be NULL where the program has nothing to do. */
@@ -147,6 +151,9 @@ typedef struct vs_blockcode {
   /* Write a one-line description of the block's state for the IDE (NUL-terminated, truncated to
    * `capacity`). Returns the length it would have written. */
   int (*info)(vs_ctx* ctx, char* text, size_t capacity);
+  /* Program-wide data handed to every callback as ctx->user (since ABI 2): lets one program object
+   * serve all blocks, e.g. the Meld VM's shared code and fact store. NULL for most C BlockCodes. */
+  void* user;
 } vs_blockcode;
 
 /* Symbol a block program shared object exports. */

@@ -22,9 +22,28 @@
 
 namespace meldvm {
 
+// What a Machine asks of the code that drives it from outside (the robot runtime, where every
+// node is a simulated block): the facts that leave a node and the actions it takes. Without a
+// host, a Machine runs its own graph: facts go to local mailboxes, write-string prints.
+class MachineHost {
+ public:
+  virtual ~MachineHost() = default;
+  // A fact derived at `from` for node `to` (another node, or `from` itself with a delay), handed
+  // over when the node run ends (§6.4.4); `delayMs` from a `@+N` head. Arguments are borrowed.
+  virtual void transmit(NodeId from, NodeId to, PredId p, const Value* args, bool negative,
+                        std::uint32_t delayMs) = 0;
+  // An action fact (§7.2) derived at `from` for node `to`; never stored.
+  virtual void action(NodeId from, NodeId to, PredId p, const Value* args) = 0;
+  // Whether node `from` can send a fact to node `to` (robots: only to a neighbour). Asked when the
+  // rule derives the fact, so that an error names the rule.
+  virtual bool reachable(NodeId from, NodeId to) = 0;
+};
+
 struct MachineOptions {
   std::vector<std::string> args;  // @arg1.. (program arguments after `--`)
   std::ostream* output = nullptr;  // write-string output (nullptr: discarded)
+  MachineHost* host = nullptr;     // set: the nodes are driven from outside (receive, runNode)
+  NodeId nodes = 0;                // at least this many nodes (with a host: one per block)
 };
 
 struct MachineStats {
@@ -45,8 +64,17 @@ class Machine : private SchedulerView {
   Machine(const Machine&) = delete;
   Machine& operator=(const Machine&) = delete;
 
+  // Creates the nodes (one `_init` fact each) and computes the constants; run() starts with it.
+  void start();
   // Runs to global quiescence or stop-program. Throws RuntimeError naming the rule and node.
   void run();
+
+  // Driving the nodes from outside (MachineOptions::host): a fact arrives at node n (a message, a
+  // sensor change; negative = a retraction), and node n runs until it has nothing left to do.
+  // runNode returns the number of rules fired. Both throw RuntimeError like run().
+  void receive(NodeId n, PredId p, const Value* args, bool negative);
+  std::uint64_t runNode(NodeId n);
+  bool hasWork(NodeId n) const;
   bool stopped() const { return stop_; }
 
   void dump(std::ostream& out) const;
@@ -62,8 +90,8 @@ class Machine : private SchedulerView {
 
   // ---- what the interpreter calls ----
   void derive(NodeId host, PredId p, const Value* args, bool negative);
-  void send(NodeId host, NodeId dest, PredId p, const Value* args, bool negative);
-  void action(NodeId dest, PredId p, const Value* args);
+  void send(NodeId host, NodeId dest, PredId p, const Value* args, bool negative, std::uint32_t delayMs = 0);
+  void action(NodeId from, NodeId dest, PredId p, const Value* args);
   void consumed(NodeId host, PredId p, FactRef f);
   void updated(NodeId host, PredId p, FactRef f, const Value* args, bool moveToBack);
   NodeId newNode();
@@ -73,7 +101,6 @@ class Machine : private SchedulerView {
   Value programArg(std::uint32_t k) const;
 
   // ---- node runs ----
-  void runNode(NodeId n);
   void runRule(NodeId n, std::uint32_t rule);
   void finishRuleRun(NodeId n);
   void deliverIncoming(NodeId n);
@@ -83,7 +110,6 @@ class Machine : private SchedulerView {
   void applyPriorityRequests();
   void factAdded(NodeId n, PredId p);    // candidate rules (§6.4.2)
   void factRemoved(NodeId n, PredId p);  // after the store lost a fact of p
-  bool hasWork(NodeId n) const;
   void collectGarbageNodes();
   [[noreturn]] void fail(const std::exception& e, NodeId n, const std::string& where) const;
 
@@ -94,7 +120,8 @@ class Machine : private SchedulerView {
     NodeId node;
     PredId pred;
     bool negative;
-    std::uint32_t args;  // offset in the owning buffer's value array
+    std::uint32_t args;         // offset in the owning buffer's value array
+    std::uint32_t delayMs = 0;  // sent facts: the `@+N` delay
   };
   // Owned copies of argument lists (boxed values retained).
   void pushArgs(std::vector<Value>& to, PredId p, const Value* args);
@@ -110,6 +137,8 @@ class Machine : private SchedulerView {
   SerialScheduler sched_;
   MachineStats stats_;
   bool stop_ = false;
+  bool started_ = false;
+  MachineHost* host_ = nullptr;
   NodeId running_ = 0;
   bool inRun_ = false;
   NodeId initialNodes_ = 0;

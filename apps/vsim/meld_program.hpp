@@ -1,0 +1,23 @@
+// vsim --program: a Meld program as the block program of every block (the VM behind the block
+// ABI, vm/include/meldvm/block_runtime.hpp).
+#pragma once
+
+#include <memory>
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+#include "meldvm/program.hpp"
+
+namespace vsim {
+
+// A .meld file is compiled with node ids = block ids (compile errors go to stderr in the usual
+// file:line:col form); a .mbc file is loaded and verified. Throws ProgramLoadError.
+class ProgramLoadError : public std::runtime_error {
+ public:
+  using std::runtime_error::runtime_error;
+};
+std::unique_ptr<meldvm::Program> loadMeldProgram(const std::string& path,
+                                                 const std::vector<std::string>& includeDirs);
+
+}  // namespace vsim

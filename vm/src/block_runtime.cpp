@@ -1,0 +1,284 @@
+#include "meldvm/block_runtime.hpp"
+
+#include <cstdio>
+#include <ostream>
+
+#include "meldvm/arith.hpp"
+
+namespace meldvm {
+
+namespace {
+
+constexpr std::uint32_t kVisibleSimColors[12] = {0xFF0000, 0xFFA500, 0xFFFF00, 0x00FF00, 0x00FFFF, 0x0000FF,
+                                                 0xFFFFFF, 0xFF00FF, 0xFFC0CB, 0xFFD700, 0xA52A2A, 0x808080};
+constexpr std::uint32_t kLinearMeldColors[9] = {0xFF0000, 0xFFA500, 0xFFFF00, 0x00FF00, 0x00FFFF,
+                                                0x0000FF, 0xFFFFFF, 0x800080, 0xFFC0CB};
+
+std::uint32_t clampByte(std::int32_t v) { return std::uint32_t(v < 0 ? 0 : v > 255 ? 255 : v); }
+
+}  // namespace
+
+// The §7 predicates the program declares (kNoPred when it does not mention one).
+struct BlockRuntime::Sensing {
+  PredId neighbor, vacant, neighborCount, tap, accel, shake, at;
+  PredId setcolor, setcolor2, moveto, terminate, writeString;
+};
+
+struct BlockRuntime::BlockState {
+  std::int32_t neighbors;  // the count last asserted in neighborCount
+  std::int32_t at[3];      // the position last asserted in at
+  std::uint8_t terminated;
+};
+
+BlockRuntime::BlockRuntime(const Program& program, std::uint32_t blockCount, BlockRuntimeOptions options)
+    : program_(program), options_(std::move(options)), sensing_(std::make_unique<Sensing>()) {
+  const PredicateTable& preds = program.predicates;
+  const TypeId I = TypeTable::kInt, N = TypeTable::kNode;
+  auto find = [&](std::initializer_list<const char*> names, std::vector<TypeId> shape, bool linear,
+                  const char* declaration) -> PredId {
+    for (const char* name : names) {
+      const PredId p = preds.find(name);
+      if (p == preds.size()) continue;
+      if (preds[p].fields != shape || (linear && !preds[p].linear))
+        throw BlockProgramError(std::string("predicate '") + preds[p].name + "' must be declared as `" +
+                                declaration + "` to be sensed or executed by the robot (spec §7)");
+      return p;
+    }
+    return Program::kNoPred;
+  };
+  Sensing& s = *sensing_;
+  s.neighbor = find({"neighbor"}, {N, I}, false, "type route neighbor(node, node, int).");
+  s.vacant = find({"vacant"}, {I}, false, "type vacant(node, int).");
+  s.neighborCount = find({"neighborCount"}, {I}, false, "type neighborCount(node, int).");
+  s.tap = find({"tap"}, {}, true, "type linear tap(node).");
+  s.accel = find({"accel"}, {I}, true, "type linear accel(node, int).");
+  s.shake = find({"shake"}, {I, I, I}, true, "type linear shake(node, int, int, int).");
+  s.at = find({"at"}, {I, I, I}, false, "type at(node, int, int, int).");
+  s.moveto = find({"moveto"}, {I, I, I}, false, "type linear action moveTo(node, int, int, int).");
+  s.terminate = find({"terminate"}, {}, false, "type linear action terminate(node).");
+  s.setcolor2 = preds.find("setcolor2") == preds.size() ? Program::kNoPred : preds.find("setcolor2");
+  s.setcolor = preds.find("setcolor") == preds.size() ? Program::kNoPred : preds.find("setcolor");
+  s.writeString = preds.find("write-string") == preds.size() ? Program::kNoPred : preds.find("write-string");
+
+  for (std::size_t i = 0; i < program.nodeSourceIds.size(); ++i) {
+    if (program.nodeSourceIds[i] != std::int64_t(i))
+      throw BlockProgramError("the program was compiled with renumbered nodes (node @" +
+                              std::to_string(program.nodeSourceIds[i]) + " became @" + std::to_string(i) +
+                              "); on robots node ids are block ids: compile it with `meldc --robots`");
+  }
+  if (program.nodeSourceIds.size() > blockCount)
+    throw BlockProgramError("the program mentions node @" + std::to_string(program.nodeSourceIds.size() - 1) +
+                            " but the world has only " + std::to_string(blockCount) + " blocks");
+
+  MachineOptions mo;
+  mo.args = options_.args;
+  mo.output = options_.output;
+  mo.host = this;
+  mo.nodes = blockCount;
+  machine_ = std::make_unique<Machine>(program, mo);
+  code_ = vs_blockcode{VS_ABI_VERSION, "meld-vm", sizeof(BlockState), &onStart, &onEvent, &onInfo, this};
+}
+
+BlockRuntime::~BlockRuntime() = default;
+
+// ---- callbacks ----
+
+void BlockRuntime::onStart(vs_ctx* ctx) { static_cast<BlockRuntime*>(ctx->user)->start(ctx); }
+void BlockRuntime::onEvent(vs_ctx* ctx, const vs_event* ev) { static_cast<BlockRuntime*>(ctx->user)->event(ctx, *ev); }
+
+int BlockRuntime::onInfo(vs_ctx* ctx, char* text, size_t capacity) {
+  const auto& self = *static_cast<const BlockRuntime*>(ctx->user);
+  const Database& db = self.machine_->database();
+  std::uint32_t facts = 0;
+  for (PredId p = 0; p < self.program_.predicates.size(); ++p) facts += db.factCount(ctx->block, p);
+  return std::snprintf(text, capacity, "Meld node @%u: %u facts", ctx->block, facts);
+}
+
+void BlockRuntime::failed(vs_ctx* ctx, const std::exception& e) {
+  if (error_.empty()) error_ = e.what();
+  ctx->api->trace(ctx, e.what());
+}
+
+void BlockRuntime::start(vs_ctx* ctx) {
+  if (!error_.empty()) return;
+  try {
+    machine_->start();
+    auto& st = *static_cast<BlockState*>(ctx->state);
+    st.neighbors = ctx->api->neighbor_count(ctx);
+    ctx->api->position(ctx, st.at);
+    ctx_ = ctx;
+    assertSensors(ctx);
+    runNode(ctx);
+  } catch (const std::exception& e) {
+    failed(ctx, e);
+  }
+}
+
+void BlockRuntime::sense(NodeId n, PredId p, std::initializer_list<std::int32_t> ints, bool negative) {
+  if (p == Program::kNoPred) return;
+  Value args[4];
+  std::size_t i = 0;
+  for (std::int32_t v : ints) args[i++] = Value::fromInt(v);
+  machine_->receive(n, p, args, negative);
+}
+
+void BlockRuntime::assertSensors(vs_ctx* ctx) {
+  const Sensing& s = *sensing_;
+  const auto& st = *static_cast<BlockState*>(ctx->state);
+  const NodeId n = ctx->block;
+  for (int f = 0; f < ctx->api->face_count(ctx); ++f) {
+    const vs_block_id other = ctx->api->neighbor(ctx, f);
+    if (other != VS_NO_BLOCK) {
+      if (s.neighbor != Program::kNoPred) {
+        const Value args[2] = {Value::fromNode(other), Value::fromInt(f)};
+        machine_->receive(n, s.neighbor, args, false);
+      }
+    } else {
+      sense(n, s.vacant, {f}, false);
+    }
+  }
+  sense(n, s.neighborCount, {st.neighbors}, false);
+  sense(n, s.at, {st.at[0], st.at[1], st.at[2]}, false);
+}
+
+void BlockRuntime::event(vs_ctx* ctx, const vs_event& ev) {
+  auto& st = *static_cast<BlockState*>(ctx->state);
+  if (!error_.empty() || st.terminated) return;
+  const Sensing& s = *sensing_;
+  const NodeId n = ctx->block;
+  ctx_ = ctx;
+  try {
+    switch (ev.kind) {
+      case VS_EV_MESSAGE: {
+        decodeFact(static_cast<const std::uint8_t*>(ev.data), ev.size, program_.predicates,
+                   machine_->database().heap(), decoded_);
+        machine_->receive(n, decoded_.pred, decoded_.args.data(), decoded_.negative);
+        const auto& fields = program_.predicates[decoded_.pred].fields;
+        for (std::size_t i = 0; i < decoded_.args.size(); ++i)
+          machine_->database().heap().release(fields[i], decoded_.args[i]);
+        break;
+      }
+      case VS_EV_NEIGHBOR_ADDED:
+      case VS_EV_NEIGHBOR_REMOVED: {
+        const bool added = ev.kind == VS_EV_NEIGHBOR_ADDED;
+        if (s.neighbor != Program::kNoPred) {
+          const Value args[2] = {Value::fromNode(ev.other), Value::fromInt(ev.face)};
+          machine_->receive(n, s.neighbor, args, !added);
+        }
+        sense(n, s.vacant, {ev.face}, added);
+        sense(n, s.neighborCount, {st.neighbors}, true);
+        st.neighbors += added ? 1 : -1;
+        sense(n, s.neighborCount, {st.neighbors}, false);
+        break;
+      }
+      case VS_EV_TAP: sense(n, s.tap, {}, false); break;
+      case VS_EV_SENSOR:
+        sense(n, s.accel, {ev.values[0]}, false);
+        sense(n, s.shake, {ev.values[0], ev.values[1], ev.values[2]}, false);
+        break;
+      case VS_EV_MOTION_END:
+        ctx->api->position(ctx, st.at);
+        sense(n, s.at, {st.at[0], st.at[1], st.at[2]}, false);
+        break;
+      case VS_EV_TIMER: {
+        if (ev.tag >= delayed_.size()) return;
+        const std::vector<std::uint8_t>& bytes = delayed_[ev.tag];
+        decodeFact(bytes.data(), bytes.size(), program_.predicates,
+                   machine_->database().heap(), decoded_);
+        freeDelayed_.push_back(std::uint32_t(ev.tag));
+        machine_->receive(n, decoded_.pred, decoded_.args.data(), decoded_.negative);
+        const auto& fields = program_.predicates[decoded_.pred].fields;
+        for (std::size_t i = 0; i < decoded_.args.size(); ++i)
+          machine_->database().heap().release(fields[i], decoded_.args[i]);
+        break;
+      }
+      default: return;
+    }
+    runNode(ctx);
+  } catch (const std::exception& e) {
+    failed(ctx, e);
+  }
+}
+
+void BlockRuntime::runNode(vs_ctx* ctx) {
+  // A run may give its own block new facts (an action's sensing change): run again for those.
+  do {
+    firedInRun_ = machine_->stats().rulesFired;
+    machine_->runNode(ctx->block);
+  } while (machine_->hasWork(ctx->block) && !machine_->stopped());
+}
+
+// ---- what the machine hands over ----
+
+bool BlockRuntime::reachable(NodeId from, NodeId to) {
+  if (!ctx_ || ctx_->block != from) return false;
+  for (int f = 0; f < ctx_->api->face_count(ctx_); ++f)
+    if (ctx_->api->neighbor(ctx_, f) == to) return true;
+  return false;
+}
+
+void BlockRuntime::transmit(NodeId from, NodeId to, PredId p, const Value* args, bool negative,
+                            std::uint32_t delayMs) {
+  vs_ctx* ctx = ctx_;
+  const std::uint64_t fired = machine_->stats().rulesFired - firedInRun_;
+  const vs_time delay = vs_time(fired) * options_.timePerRuleNs + vs_time(delayMs) * VS_MS;
+  buffer_.clear();
+  encodeFact(buffer_, program_.predicates, p, args, negative);
+  if (to == from) {  // a delayed fact for the block itself: wait for a timer
+    std::uint32_t slot;
+    if (!freeDelayed_.empty()) {
+      slot = freeDelayed_.back();
+      freeDelayed_.pop_back();
+      delayed_[slot] = buffer_;
+    } else {
+      slot = std::uint32_t(delayed_.size());
+      delayed_.push_back(buffer_);
+    }
+    ctx->api->set_timer(ctx, delay, slot, nullptr);
+    return;
+  }
+  for (int f = 0; f < ctx->api->face_count(ctx); ++f)
+    if (ctx->api->neighbor(ctx, f) == to) {
+      ctx->api->send(ctx, f, buffer_.data(), std::uint32_t(buffer_.size()), delay);
+      messageBytes_ += buffer_.size();
+      ++messages_;
+      return;
+    }
+  throw BlockProgramError("block " + std::to_string(from) + ": fact " + program_.predicates[p].name +
+                          " for block " + std::to_string(to) + ", which is no longer a neighbour");
+}
+
+void BlockRuntime::action(NodeId from, NodeId, PredId p, const Value* args) {
+  vs_ctx* ctx = ctx_;
+  if (!ctx || ctx->block != from) return;
+  const Sensing& s = *sensing_;
+  if (p == s.setcolor2) {
+    const std::int32_t c = args[0].asInt();
+    if (options_.palette == Palette::VisibleSim) {
+      ctx->api->set_color(ctx, kVisibleSimColors[((c % 12) + 12) % 12]);
+    } else if (c >= 0 && c < 9) {
+      ctx->api->set_color(ctx, kLinearMeldColors[c]);
+    }
+  } else if (p == s.setcolor && program_.predicates[p].arity() >= 3) {
+    ctx->api->set_color(ctx, clampByte(args[0].asInt()) << 16 | clampByte(args[1].asInt()) << 8 |
+                                 clampByte(args[2].asInt()));
+  } else if (p == s.moveto) {
+    const std::int32_t xyz[3] = {args[0].asInt(), args[1].asInt(), args[2].asInt()};
+    const int face = ctx->api->face_toward(ctx, xyz);
+    if (face < 0)
+      throw RuntimeError("moveTo(" + std::to_string(xyz[0]) + ", " + std::to_string(xyz[1]) + ", " +
+                         std::to_string(xyz[2]) + "): not a cell next to the block");
+    if (ctx->api->move(ctx, face) == VS_OK && s.at != Program::kNoPred) {
+      auto& st = *static_cast<BlockState*>(ctx->state);
+      sense(from, s.at, {st.at[0], st.at[1], st.at[2]}, true);  // §7.2: `at` is retracted at once
+    } else {
+      ctx->api->trace(ctx, "moveTo refused by the world (cell taken, no pivot, or no motion)");
+    }
+  } else if (p == s.terminate) {
+    static_cast<BlockState*>(ctx->state)->terminated = 1;
+  } else if (p == s.writeString && options_.output) {
+    *options_.output << stringOf(args[0]) << '\n';
+  }
+}
+
+}  // namespace meldvm
