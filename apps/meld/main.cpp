@@ -7,6 +7,7 @@
 
 #include "meldc/diagnostics.hpp"
 #include "meldc/frontend.hpp"
+#include "meldc/includes.hpp"
 #include "meldc/lower.hpp"
 #include "meldc/source.hpp"
 #include "meldvm/arith.hpp"
@@ -63,6 +64,8 @@ int main(int argc, char** argv) {
     meldc::SourceManager sources;
     meldc::Diagnostics diag(sources, std::cerr);
     meldc::FrontEndInput input{options->program, options->includeDirs, options->defines};
+    if (!meldc::defaultStdlibDir().empty())
+      input.includeDirs.push_back(meldc::defaultStdlibDir());  // after -I
     std::optional<meldc::ast::Program> ast = meldc::runFrontEnd(input, sources, diag);
     if (!ast) return kExitCompileErrors;
     program = meldc::lowerProgram(*ast, sources, diag);

@@ -222,6 +222,15 @@ int runVsim(const Options& o) {
                   std::string("simulation failed at ") + simcore::formatTime(sim.now()) + ": " + e.what()};
   }
   traceOut->flush();
+  if (meld) {
+    const meldvm::MachineStats& ms = meld->machine().stats();
+    info.counters = {{"facts derived", ms.factsDerived},
+                     {"facts consumed", ms.factsConsumed},
+                     {"rules fired", ms.rulesFired},
+                     {"fact messages", meld->messages()},
+                     {"message bytes", meld->messageBytes()},
+                     {"node runs", ms.nodeRuns}};
+  }
   if (meld && !meld->error().empty())
     throw Failure{kExitRuntime, "Meld program failed at " + simcore::formatTime(sim.now()) + ": " + meld->error()};
   if (traceFile) {

@@ -94,6 +94,7 @@ void printSummary(std::ostream& out, const simcore::Simulation& sim, const RunIn
   row(out, "wall time", format("%.3f s", s.wallSeconds));
   row(out, "events/s", rate(s.eventsPerSecond(), s.wallSeconds));
   row(out, "fingerprint", format("%016" PRIx64, sim.fingerprint()));
+  for (const auto& [name, value] : info.counters) row(out, name.c_str(), std::to_string(value));
 
   // A long tail of colors says nothing more; the first ones and a count do.
   constexpr std::size_t kMaxColorsListed = 32;
@@ -141,6 +142,12 @@ void writeJsonReport(std::ostream& out, const simcore::Simulation& sim, const Ru
       << ",\"events\":" << s.eventsProcessed << format(",\"wall_s\":%.6f", s.wallSeconds)
       << format(",\"events_per_s\":%.0f", s.eventsPerSecond());
   jsonField(out, "fingerprint", format("%016" PRIx64, sim.fingerprint()));
+  for (const auto& [name, value] : info.counters) {
+    std::string key = name;
+    for (char& c : key)
+      if (c == ' ' || c == '/') c = '_';
+    out << ",\"" << key << "\":" << value;
+  }
 
   out << ",\"colors\":[";
   const std::vector<ColorCount> histogram = colorHistogram(world);

@@ -21,6 +21,9 @@ struct RunInfo {
   std::string codeName;  // the block program's own name
   std::optional<simcore::SimTime> until;
   RunEnd end = RunEnd::QueueEmpty;
+  // Counters of the block program (the Meld VM's facts, rules, messages), shown after the
+  // fingerprint as "name  value" and in JSON as "name_with_underscores": value.
+  std::vector<std::pair<std::string, std::uint64_t>> counters;
 };
 
 // Blocks are listed one by one up to this many; larger worlds get the histogram only.

@@ -1,5 +1,6 @@
 #include "meldc/includes.hpp"
 
+#include <cstdlib>
 #include <filesystem>
 #include <set>
 #include <system_error>
@@ -117,6 +118,15 @@ std::optional<ast::Program> loadProgram(const std::string& mainPath,
                                         Diagnostics& diag) {
   IncludeLoader loader(includeDirs, sources, diag);
   return loader.load(mainPath, SourceLoc{});
+}
+
+std::string defaultStdlibDir() {
+  if (const char* env = std::getenv("MELD_STDLIB")) return env;
+#ifdef MELD_STDLIB_DIR
+  return MELD_STDLIB_DIR;
+#else
+  return "";  // built without the definition (not through meldc/CMakeLists.txt)
+#endif
 }
 
 }  // namespace meldc

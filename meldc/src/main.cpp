@@ -6,6 +6,7 @@
 
 #include "meldc/ast_dump.hpp"
 #include "meldc/frontend.hpp"
+#include "meldc/includes.hpp"
 #include "meldc/lower.hpp"
 #include "meldc/options.hpp"
 #include "meldvm/bytecode.hpp"
@@ -55,6 +56,8 @@ int main(int argc, char** argv) {
   SourceManager sources;
   Diagnostics diag(sources, std::cerr);
   FrontEndInput input{options->input, options->includeDirs, options->defines};
+  // After the -I folders, so that a program's own copy of a target file wins.
+  if (!options->noStdlib && !defaultStdlibDir().empty()) input.includeDirs.push_back(defaultStdlibDir());
   std::optional<ast::Program> program = runFrontEnd(input, sources, diag);
   if (!program) return kExitProgramErrors;
   if (options->emit == EmitKind::Check) return kExitOk;

@@ -1,5 +1,13 @@
 #include "meldc/options.hpp"
 
+// --help names the built-in standard library folder, so that users can see where an include such
+// as #blinkyblocks.meld comes from.
+#ifdef MELD_STDLIB_DIR
+#define MELD_STDLIB_DIR_TEXT MELD_STDLIB_DIR
+#else
+#define MELD_STDLIB_DIR_TEXT "(none built in)"
+#endif
+
 namespace meldc {
 
 namespace {
@@ -16,7 +24,8 @@ bool validConstName(const std::string& name) {
 }  // namespace
 
 const char* usageText() {
-  return "usage: meldc FILE.meld [-o OUT] [-I DIR]... [-DNAME=VALUE]... [--check | --emit=KIND]\n"
+  return "usage: meldc FILE.meld [-o OUT] [-I DIR]... [--no-stdlib] [-DNAME=VALUE]...\n"
+         "             [--check | --emit=KIND]\n"
          "\n"
          "Compiles a Linear Meld program to bytecode for the Meld VM: parses the program, merges its\n"
          "includes, resolves names, checks it, renumbers its nodes and lowers its rules.\n"
@@ -32,6 +41,10 @@ const char* usageText() {
          "  -o OUT           write the --emit output to OUT instead of standard output (bytecode:\n"
          "                   instead of FILE.mbc)\n"
          "  -I DIR           search DIR for included files, after the including file's folder\n"
+         "  --no-stdlib      do not search the standard library folder, which comes after the -I\n"
+         "                   folders: $MELD_STDLIB if set (empty: none), otherwise\n"
+         "                   " MELD_STDLIB_DIR_TEXT
+         "\n"
          "  -DNAME=VALUE     define the constant NAME as the Meld expression VALUE (replaces a\n"
          "                   'const NAME = ...' of the program, or adds one)\n"
          "  --help           print this help\n"
@@ -58,6 +71,8 @@ std::optional<Options> parseOptions(const std::vector<std::string>& args, std::s
       o.help = true;
     } else if (a == "--version") {
       o.version = true;
+    } else if (a == "--no-stdlib") {
+      o.noStdlib = true;
     } else if (a == "--check") {
       o.emit = EmitKind::Check;
     } else if (a.rfind("--emit=", 0) == 0) {

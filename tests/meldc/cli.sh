@@ -5,6 +5,8 @@ MELDC=$1
 CASE=$2
 WORK=$(mktemp -d)
 trap 'rm -rf "$WORK"' EXIT
+# The default standard library folder (stdlib/ of the tree) unless a case sets MELD_STDLIB itself.
+unset MELD_STDLIB
 OUT="$WORK/stdout"
 ERR="$WORK/stderr"
 
@@ -116,6 +118,47 @@ case_emit_nodes_cluster_random() {
 case_help_mentions_nodes() {
   run 0 --help
   has "$OUT" "--emit=nodes"
+}
+case_stdlib_default() {
+  # include #blinkyblocks.meld resolves in the built-in stdlib folder without any -I
+  run 0 --check cli/uses_blinkyblocks.meld
+  [ -s "$ERR" ] && fail "unexpected diagnostics"
+  run 0 --emit=ast cli/uses_blinkyblocks.meld
+  has "$OUT" "type route neighbor(node, node, int)"
+  has "$OUT" "const top = 5"
+}
+case_no_stdlib() {
+  run 1 --check --no-stdlib cli/uses_blinkyblocks.meld
+  has "$ERR" "cli/uses_blinkyblocks.meld:2:1: error: cannot find included file 'blinkyblocks.meld' (searched cli)"
+  # with -I the folder list still ends before the stdlib
+  run 1 --check cli/uses_blinkyblocks.meld -I cli/stdlib --no-stdlib
+  has "$ERR" "(searched cli, cli/stdlib)"
+}
+case_stdlib_env() {
+  # MELD_STDLIB replaces the built-in folder; an empty value means none
+  export MELD_STDLIB=cli/stdlib
+  run 0 --check cli/uses_stdlib.meld
+  run 1 --check cli/uses_blinkyblocks.meld
+  has "$ERR" "(searched cli, cli/stdlib)"
+  MELD_STDLIB=
+  run 1 --check cli/uses_blinkyblocks.meld
+  has "$ERR" "(searched cli)"
+  unset MELD_STDLIB
+}
+case_stdlib_after_include_dirs() {
+  # a -I folder comes first: its blinkyblocks.meld shadows the stdlib's
+  mkdir -p "$WORK/mine"
+  printf 'const top = 42.\n' >"$WORK/mine/blinkyblocks.meld"
+  printf 'include #blinkyblocks.meld\ntype linear a(node, int).\na(X, top).\n' >"$WORK/p.meld"
+  run 0 --emit=ast "$WORK/p.meld" -I "$WORK/mine"
+  has "$OUT" "const top = 42"
+  run 0 --emit=ast "$WORK/p.meld"
+  has "$OUT" "const top = 5"
+}
+case_help_mentions_no_stdlib() {
+  run 0 --help
+  has "$OUT" "--no-stdlib"
+  has "$OUT" "MELD_STDLIB"
 }
 case_warnings_keep_exit_zero() {
   run 0 --check cli/warning.meld

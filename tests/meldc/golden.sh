@@ -6,6 +6,9 @@
 #                                     meldc --emit=ast must print exactly that
 # UPDATE_GOLDEN=1 rewrites the .expected / .ast files instead of comparing.
 set -u
+# The standard library folder as a path relative to tests/meldc, so that "cannot find included
+# file" diagnostics (which list it) are the same in every checkout.
+export MELD_STDLIB=../../stdlib
 MELDC=$1
 KIND=$2
 FILE=$3

@@ -44,3 +44,14 @@ BOOST_AUTO_TEST_CASE(usage_errors) {
   BOOST_TEST(error == "option '-o' needs a value");
   BOOST_TEST(parseOptions({"--help"}, error).has_value());
 }
+
+BOOST_AUTO_TEST_CASE(no_stdlib) {
+  std::string error;
+  auto o = parseOptions({"prog.meld"}, error);
+  BOOST_REQUIRE(o);
+  BOOST_TEST(!o->noStdlib);
+  auto n = parseOptions({"prog.meld", "--no-stdlib", "-I", "a"}, error);
+  BOOST_REQUIRE(n);
+  BOOST_TEST(n->noStdlib);
+  BOOST_TEST(n->includeDirs.size() == 1u);  // the driver, not the parser, appends the stdlib folder
+}

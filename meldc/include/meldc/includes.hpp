@@ -3,6 +3,8 @@
 // items first, then its included files in reverse order of inclusion (recursively).
 // A file included a second time is skipped; an include cycle and a missing file are errors at the
 // include line.
+// The drivers (meldc, meld, vsim) append defaultStdlibDir() to the -I directories, so that
+// `include #blinkyblocks.meld` finds the target files of stdlib/ without any option.
 #pragma once
 
 #include <optional>
@@ -20,5 +22,12 @@ namespace meldc {
 std::optional<ast::Program> loadProgram(const std::string& mainPath,
                                         const std::vector<std::string>& includeDirs, SourceManager& sources,
                                         Diagnostics& diag);
+
+// The standard library folder searched after the -I directories: the value of the environment
+// variable MELD_STDLIB when it is set (an empty value means no standard library folder), otherwise
+// the stdlib/ folder of the source tree, fixed at build time (MELD_STDLIB_DIR). "" when there is
+// none. A lookup rather than a constant so that a moved tree or an installed compiler can be
+// pointed elsewhere without rebuilding.
+std::string defaultStdlibDir();
 
 }  // namespace meldc

@@ -18,10 +18,11 @@ inline constexpr int kExitInternal = 70;      // internal error: the compiler pr
 
 struct Options {
   std::string input;
-  std::string output;  // -o; empty = stdout
-  std::vector<std::string> includeDirs;
+  std::string output;                    // -o; empty = stdout
+  std::vector<std::string> includeDirs;  // -I, in order (the driver appends the stdlib folder)
   std::vector<std::pair<std::string, std::string>> defines;  // -DNAME=VALUE
   EmitKind emit = EmitKind::Bytecode;
+  bool noStdlib = false;  // --no-stdlib: do not search the standard library folder
   bool help = false;
   bool version = false;
 };

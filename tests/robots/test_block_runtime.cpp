@@ -1,0 +1,146 @@
+// The Meld VM behind the block ABI (issue 4): sensing facts, messages between blocks, retraction
+// when the world changes, message sizes, the non-neighbour error, reproducible runs.
+#define BOOST_TEST_MODULE robots_block_runtime
+#include <boost/test/unit_test.hpp>
+
+#include "robot_fixture.hpp"
+
+using robots::World;
+
+namespace {
+
+const char* kGradient = R"(
+type route neighbor(node, node, int).
+type linear tap(node).
+type hops(node, min int).
+tap(X) -o !hops(X, 0).
+!hops(X, D), !neighbor(X, Y, _) -o !hops(Y, D + 1).
+!hops(X, D) -o !setColor2(X, D).
+)";
+
+}  // namespace
+
+BOOST_AUTO_TEST_CASE(sensing_facts_describe_the_neighbourhood_at_start) {
+  World w("blinkyblocks", robots::line(3), R"(
+type route neighbor(node, node, int).
+type vacant(node, int).
+type neighborCount(node, int).
+type at(node, int, int, int).
+)");
+  w.sim->runUntilEmpty();
+  BOOST_TEST(w.vm->error() == "");
+  // Blinky Blocks faces: right 2 (+x), left 4 (-x).
+  BOOST_TEST(w.facts(1) ==
+             "!at(1, 0, 0)\n!neighbor(@0, 4)\n!neighbor(@2, 2)\n!neighborCount(2)\n"
+             "!vacant(0)\n!vacant(1)\n!vacant(3)\n!vacant(5)\n");
+  BOOST_TEST(w.facts(0).find("!neighborCount(1)") != std::string::npos);
+}
+
+BOOST_AUTO_TEST_CASE(a_gradient_from_a_tapped_block_reaches_every_block_with_its_hop_distance) {
+  World w("blinkyblocks", robots::line(5), kGradient);
+  w.sim->scheduleTap(1, simcore::SimTime(1) * 1000000000);
+  w.sim->runUntilEmpty();
+  BOOST_TEST(w.vm->error() == "");
+  const int expected[5] = {1, 0, 1, 2, 3};
+  for (std::uint32_t b = 0; b < 5; ++b) {
+    BOOST_TEST(w.facts(b).find("!hops(" + std::to_string(expected[b]) + ")") != std::string::npos);
+    // setColor2 with the VisibleSim palette: 0 red, 1 orange, 2 yellow, 3 green.
+    const std::uint32_t palette[4] = {0xFF0000, 0xFFA500, 0xFFFF00, 0x00FF00};
+    BOOST_TEST(w.color(b) == palette[expected[b]]);
+  }
+}
+
+BOOST_AUTO_TEST_CASE(removing_a_block_retracts_its_neighbor_facts_at_the_others) {
+  World w("blinkyblocks", robots::line(3), R"(
+type route neighbor(node, node, int).
+type vacant(node, int).
+type neighborCount(node, int).
+)");
+  w.sim->runUntil(simcore::SimTime(1) * 1000000000);
+  BOOST_TEST(w.facts(1).find("!neighbor(@2, 2)") != std::string::npos);
+  w.sim->removeBlock(2);
+  w.sim->runUntilEmpty();
+  BOOST_TEST(w.vm->error() == "");
+  const std::string f = w.facts(1);
+  BOOST_TEST(f.find("!neighbor(@2, 2)") == std::string::npos);
+  BOOST_TEST(f.find("!vacant(2)") != std::string::npos);
+  BOOST_TEST(f.find("!neighborCount(1)") != std::string::npos);
+  BOOST_TEST(f.find("!neighborCount(2)") == std::string::npos);
+}
+
+BOOST_AUTO_TEST_CASE(a_fact_for_a_neighbour_is_a_message_of_its_encoded_size) {
+  // ping(node, int): predicate id (2 bytes) + flags (1) + int (4) = 7 bytes on the link.
+  World w("blinkyblocks", robots::line(2), R"(
+type route neighbor(node, node, int).
+type linear ping(node, int).
+type linear got(node, int).
+!neighbor(X, Y, _) -o ping(Y, 42).
+ping(X, N) -o got(X, N).
+)");
+  w.sim->runUntilEmpty();
+  BOOST_TEST(w.vm->error() == "");
+  BOOST_TEST(w.vm->messages() == 2u);
+  BOOST_TEST(w.vm->messageBytes() == 14u);
+  BOOST_TEST(w.sim->statistics().bytesSent == 14u);
+  BOOST_TEST(w.facts(0) == "got(42)\n!neighbor(@1, 2)\n");
+}
+
+BOOST_AUTO_TEST_CASE(a_fact_for_a_block_that_is_not_a_neighbour_is_an_error_naming_the_rule) {
+  World w("blinkyblocks", robots::line(4), R"(
+type linear hello(node).
+hello(@0).
+hello(X) -o hello(@3).
+)");
+  w.sim->runUntilEmpty();
+  const std::string e = w.vm->error();
+  BOOST_TEST(e.find("not a neighbour") != std::string::npos, e);
+  BOOST_TEST(e.find("@3") != std::string::npos, e);
+  BOOST_TEST(e.find("rule 1") != std::string::npos, e);
+  BOOST_TEST(e.find("hello(X) -o hello(@3).") != std::string::npos, e);
+}
+
+BOOST_AUTO_TEST_CASE(repeated_runs_give_the_same_fingerprint_and_facts) {
+  std::uint64_t fp[2];
+  std::string dump[2];
+  for (int i = 0; i < 2; ++i) {
+    std::vector<simcore::Cell> cells;
+    for (int x = 0; x < 4; ++x)
+      for (int y = 0; y < 3; ++y) cells.push_back({x, y, 0});
+    World w("blinkyblocks", cells, kGradient);
+    w.sim->scheduleTap(5, 1000000);
+    w.sim->runUntilEmpty();
+    fp[i] = w.sim->fingerprint();
+    dump[i] = w.dump();
+  }
+  BOOST_TEST(fp[0] == fp[1]);
+  BOOST_TEST(dump[0] == dump[1]);
+}
+
+BOOST_AUTO_TEST_CASE(computing_time_delays_the_messages_a_node_run_sends) {
+  // With 1 ms per rule the neighbour hears later than with the default 1 us.
+  simcore::SimTime arrival[2];
+  for (int i = 0; i < 2; ++i) {
+    meldvm::BlockRuntimeOptions o;
+    o.timePerRuleNs = i == 0 ? 1000 : 1000000;
+    World w("blinkyblocks", robots::line(2), kGradient, o);
+    w.sim->scheduleTap(0, 0);
+    w.sim->runUntilEmpty();
+    arrival[i] = w.sim->now();
+  }
+  BOOST_TEST(arrival[1] > arrival[0] + 900000);
+}
+
+BOOST_AUTO_TEST_CASE(move_to_retracts_and_reasserts_the_position) {
+  // Smart Blocks: block 0 at (0,0) moves to (0,1) once; `at` follows.
+  World w("smartblocks", {{0, 0, 0}, {1, 0, 0}}, R"(
+type at(node, int, int, int).
+type linear action moveTo(node, int, int, int).
+type linear go(node).
+go(@0).
+go(X), !at(X, A, B, C) -o moveTo(X, A, B + 1, C).
+)");
+  w.sim->runUntilEmpty();
+  BOOST_TEST(w.vm->error() == "");
+  BOOST_TEST(w.facts(0) == "!at(0, 1, 0)\n");
+  BOOST_TEST((w.sim->world().block(0).cell == simcore::Cell{0, 1, 0}));
+}
