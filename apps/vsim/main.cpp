@@ -190,7 +190,7 @@ int runVsim(const Options& o) {
   if (meldProgram) {
     meldvm::BlockRuntimeOptions mo;
     mo.output = &std::cout;
-    if (o.timePerRule >= 0) mo.timePerRuleNs = o.timePerRule;
+    mo.timePerRuleNs = o.timePerRule >= 0 ? o.timePerRule : target.ruleTime;
     mo.palette = o.paletteLm ? meldvm::Palette::LinearMeld : meldvm::Palette::VisibleSim;
     try {
       meld = std::make_unique<meldvm::BlockRuntime>(*meldProgram, std::uint32_t(sim.world().blockCount()), mo);

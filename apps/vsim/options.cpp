@@ -24,8 +24,9 @@ options:
                         `meldc --robots`); the target's include file is found by `include`
   --dump                with --program: print every block's final facts (the `meld --dump`
                         format) after the summary
-  --time-per-rule T     with --program: simulated computing time of one rule firing (default
-                        1us); a node run's messages leave after its rules' time
+  --time-per-rule T     with --program: simulated computing time of one rule firing (target
+                        default: 10us Blinky/Smart Blocks, 1us Catoms); a node run's messages
+                        leave after its rules' time
   --palette visiblesim|lm
                         with --program: colours of setColor2 (default visiblesim: C mod 12)
   -I DIR                with --program: include directory for the .meld compiler

@@ -58,6 +58,7 @@ int main(int argc, char** argv) {
   FrontEndInput input{options->input, options->includeDirs, options->defines};
   // After the -I folders, so that a program's own copy of a target file wins.
   if (!options->noStdlib && !defaultStdlibDir().empty()) input.includeDirs.push_back(defaultStdlibDir());
+  input.identityNodes = options->robots;
   std::optional<ast::Program> program = runFrontEnd(input, sources, diag);
   if (!program) return kExitProgramErrors;
   if (options->emit == EmitKind::Check) return kExitOk;

@@ -24,7 +24,7 @@ bool validConstName(const std::string& name) {
 }  // namespace
 
 const char* usageText() {
-  return "usage: meldc FILE.meld [-o OUT] [-I DIR]... [--no-stdlib] [-DNAME=VALUE]...\n"
+  return "usage: meldc FILE.meld [-o OUT] [-I DIR]... [--no-stdlib] [--robots] [-DNAME=VALUE]...\n"
          "             [--check | --emit=KIND]\n"
          "\n"
          "Compiles a Linear Meld program to bytecode for the Meld VM: parses the program, merges its\n"
@@ -41,6 +41,8 @@ const char* usageText() {
          "  -o OUT           write the --emit output to OUT instead of standard output (bytecode:\n"
          "                   instead of FILE.mbc)\n"
          "  -I DIR           search DIR for included files, after the including file's folder\n"
+         "  --robots         node ids are block ids (for vsim --program): node literals keep their\n"
+         "                   numbers and every id up to the largest exists (no renumbering, §6.1)\n"
          "  --no-stdlib      do not search the standard library folder, which comes after the -I\n"
          "                   folders: $MELD_STDLIB if set (empty: none), otherwise\n"
          "                   " MELD_STDLIB_DIR_TEXT
@@ -73,6 +75,8 @@ std::optional<Options> parseOptions(const std::vector<std::string>& args, std::s
       o.version = true;
     } else if (a == "--no-stdlib") {
       o.noStdlib = true;
+    } else if (a == "--robots") {
+      o.robots = true;
     } else if (a == "--check") {
       o.emit = EmitKind::Check;
     } else if (a.rfind("--emit=", 0) == 0) {

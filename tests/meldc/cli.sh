@@ -109,6 +109,12 @@ case_emit_nodes_define() {
   printf '0 7\n1 2\n2 3\n3 1\n' >"$WORK/want"
   diff -u "$WORK/want" "$OUT" || fail "node table differs"
 }
+case_emit_nodes_robots() {
+  # --robots: literals @2 @1 @3 keep their ids and every id up to 3 exists (node 0 too)
+  run 0 --emit=nodes --robots valid/header.meld
+  printf '0 0\n1 1\n2 2\n3 3\n' >"$WORK/want"
+  diff -u "$WORK/want" "$OUT" || fail "node table differs"
+}
 case_emit_nodes_cluster_random() {
   printf 'type linear a(node).\npriority @cluster @random.\na(@1).\n' >"$WORK/r.meld"
   run 1 --emit=nodes "$WORK/r.meld"

@@ -23,6 +23,7 @@ struct Options {
   std::vector<std::pair<std::string, std::string>> defines;  // -DNAME=VALUE
   EmitKind emit = EmitKind::Bytecode;
   bool noStdlib = false;  // --no-stdlib: do not search the standard library folder
+  bool robots = false;    // --robots: node ids are block ids (no renumbering)
   bool help = false;
   bool version = false;
 };

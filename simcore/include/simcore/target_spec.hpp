@@ -35,6 +35,9 @@ struct TargetSpec {
   bool hasAccelerometer = false;
   bool hasDisplayValue = false;
   double blockSizeMm = 40.0;
+  // Simulated computing time of one Meld rule firing on the block's processor (the Meld VM's
+  // execution time model): an assumption per target, overridable with vsim --time-per-rule.
+  SimTime ruleTime = 1000;
   std::uint32_t defaultColor = 0x808080;
 
   bool canMove() const { return canTranslate || motionRule != nullptr; }
