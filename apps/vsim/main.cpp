@@ -192,6 +192,10 @@ int runVsim(const Options& o) {
     mo.output = &std::cout;
     mo.timePerRuleNs = o.timePerRule >= 0 ? o.timePerRule : target.ruleTime;
     mo.palette = o.paletteLm ? meldvm::Palette::LinearMeld : meldvm::Palette::VisibleSim;
+    const simcore::World& w = sim.world();
+    const int faces = int(target.faceNames.size());
+    for (simcore::BlockId b = 0; b < w.blockCount(); ++b)
+      for (int f = 0; f < faces; ++f) (w.neighbor(b, f) != simcore::kNoBlock ? mo.neighborFacts : mo.vacantFacts)++;
     try {
       meld = std::make_unique<meldvm::BlockRuntime>(*meldProgram, std::uint32_t(sim.world().blockCount()), mo);
     } catch (const meldvm::BlockProgramError& e) {

@@ -76,6 +76,8 @@ BlockRuntime::BlockRuntime(const Program& program, std::uint32_t blockCount, Blo
   mo.host = this;
   mo.nodes = blockCount;
   machine_ = std::make_unique<Machine>(program, mo);
+  if (s.neighbor != Program::kNoPred && options_.neighborFacts) machine_->reserveFacts(s.neighbor, options_.neighborFacts);
+  if (s.vacant != Program::kNoPred && options_.vacantFacts) machine_->reserveFacts(s.vacant, options_.vacantFacts);
   code_ = vs_blockcode{VS_ABI_VERSION, "meld-vm", sizeof(BlockState), &onStart, &onEvent, &onInfo, this};
 }
 

@@ -44,6 +44,12 @@ bool FactTable::keyEqual(FactRef f, const Value* key, KeySpec spec) const {
   return true;
 }
 
+void FactTable::reserve(std::size_t facts) {
+  words_.reserve(facts * stride_);
+  if (dedup_) facts_.reserve(std::uint32_t(facts));
+  for (Index& x : indexes_) x.heads.reserve(std::uint32_t(facts));
+}
+
 std::uint64_t FactTable::dedupHash(NodeId n, const Value* key) const {
   // Only unboxed keys: a boxed value's bits are a pointer, which may be reused for another value.
   const std::uint32_t k = arity();

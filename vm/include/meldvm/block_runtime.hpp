@@ -36,6 +36,9 @@ struct BlockRuntimeOptions {
   std::ostream* output = nullptr;     // write-string
   std::int64_t timePerRuleNs = 1000;  // simulated computing time of one rule firing
   Palette palette = Palette::VisibleSim;
+  // How many neighbor and vacant facts the world will start with (all blocks together), so that
+  // their tables are allocated once at the right size; 0 = unknown.
+  std::size_t neighborFacts = 0, vacantFacts = 0;
 };
 
 // A run-time error of the program on a block (a fact for a block that is not a neighbour, ...):

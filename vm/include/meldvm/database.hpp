@@ -50,6 +50,9 @@ class Database {
   // returns the index handle for firstWithKey.
   std::uint32_t requestIndex(PredId p, std::uint32_t field);
 
+  // Room for that many facts of p (all nodes together) without growing.
+  void reserve(PredId p, std::size_t facts) { tables_[p].reserve(facts); }
+
   // Linear predicates.
   FactRef addLinear(NodeId n, PredId p, const Value* args);
   void consume(NodeId n, PredId p, FactRef f);  // read next(p, f) first when iterating

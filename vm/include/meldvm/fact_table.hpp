@@ -42,6 +42,8 @@ class FactTable {
   ~FactTable();  // releases the boxed arguments of the facts still stored
   FactTable(FactTable&&) = default;
 
+  // Room for `facts` facts without growing (a caller that knows the count saves the doubling).
+  void reserve(std::size_t facts);
   // Indexes must be added while the table is empty (the slot layout depends on their number).
   std::uint32_t addIndex(KeySpec key);
   std::uint32_t indexCount() const { return std::uint32_t(indexes_.size()); }

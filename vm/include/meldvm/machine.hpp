@@ -75,6 +75,8 @@ class Machine : private SchedulerView {
   void receive(NodeId n, PredId p, const Value* args, bool negative);
   std::uint64_t runNode(NodeId n);
   bool hasWork(NodeId n) const;
+  // Room for that many facts of p (all nodes together), when the driver knows the count.
+  void reserveFacts(PredId p, std::size_t facts) { db_->reserve(p, facts); }
   bool stopped() const { return stop_; }
 
   void dump(std::ostream& out) const;

@@ -28,6 +28,7 @@ class SlotHash {
     if (size_ != 0) __builtin_prefetch(&entries_[fold(hash) & mask_]);
   }
   void insert(std::uint64_t hash, std::uint32_t slot);  // the key must not be present
+  void reserve(std::uint32_t entries);  // room for that many without growing
   bool erase(std::uint64_t hash, std::uint32_t slot);   // removes that exact slot
   bool replace(std::uint64_t hash, std::uint32_t oldSlot, std::uint32_t newSlot);  // same key
   std::uint32_t size() const { return size_; }
@@ -40,7 +41,7 @@ class SlotHash {
   };
   static std::uint32_t fold(std::uint64_t h) { return std::uint32_t(h ^ (h >> 32)); }
   std::uint32_t indexOf(std::uint32_t h, std::uint32_t slot) const;
-  void grow();
+  void grow(std::size_t capacity = 0);  // 0: double
 
   std::vector<Entry> entries_;
   std::uint32_t mask_ = 0;
