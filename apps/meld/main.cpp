@@ -102,8 +102,8 @@ int main(int argc, char** argv) {
                  "node runs: %llu\nload s: %.3f\nwall s: %.3f\nfacts/s: %.0f\npeak RSS MB: %.1f\n",
                  (unsigned long long)s.factsDerived, (unsigned long long)s.factsConsumed,
                  (unsigned long long)s.factsSent, (unsigned long long)s.rulesFired,
-                 (unsigned long long)s.nodeRuns, loadSeconds, wall, wall > 0 ? double(s.factsDerived) / wall : 0.0,
-                 peakRssMb());
+                 (unsigned long long)s.nodeRuns, loadSeconds, wall,
+                 wall > 0 ? double(s.factsDerived) / wall : 0.0, peakRssMb());
   }
   return kExitOk;
 }

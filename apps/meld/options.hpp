@@ -22,7 +22,7 @@ struct Options {
   bool stats = false;
   bool help = false;
   bool version = false;
-  std::vector<std::string> includeDirs;                       // -I (for .meld)
+  std::vector<std::string> includeDirs;                      // -I (for .meld)
   std::vector<std::pair<std::string, std::string>> defines;  // -D NAME=VALUE (for .meld)
   std::vector<std::string> programArgs;                      // after `--`: @arg1 ...
 };

@@ -153,8 +153,9 @@ int runVsim(const Options& o) {
 
   const std::string codePath = !o.program.empty() ? o.program : !o.code.empty() ? o.code : world.code;
   if (codePath.empty())
-    throw Failure{kExitUsage, "no block code: give --code LIB.so or --program PROG.meld (or code=\"LIB.so\" in " +
-                                  o.world + ")"};
+    throw Failure{
+        kExitUsage,
+        "no block code: give --code LIB.so or --program PROG.meld (or code=\"LIB.so\" in " + o.world + ")"};
   // Declared before the simulation: the code table must outlive it.
   std::optional<simcore::BlockCodeLibrary> library;
   std::unique_ptr<meldvm::Program> meldProgram;
@@ -195,9 +196,11 @@ int runVsim(const Options& o) {
     const simcore::World& w = sim.world();
     const int faces = int(target.faceNames.size());
     for (simcore::BlockId b = 0; b < w.blockCount(); ++b)
-      for (int f = 0; f < faces; ++f) (w.neighbor(b, f) != simcore::kNoBlock ? mo.neighborFacts : mo.vacantFacts)++;
+      for (int f = 0; f < faces; ++f)
+        (w.neighbor(b, f) != simcore::kNoBlock ? mo.neighborFacts : mo.vacantFacts)++;
     try {
-      meld = std::make_unique<meldvm::BlockRuntime>(*meldProgram, std::uint32_t(sim.world().blockCount()), mo);
+      meld =
+          std::make_unique<meldvm::BlockRuntime>(*meldProgram, std::uint32_t(sim.world().blockCount()), mo);
     } catch (const meldvm::BlockProgramError& e) {
       throw Failure{kExitInput, o.program + ": error: " + e.what()};
     }
@@ -228,15 +231,13 @@ int runVsim(const Options& o) {
   traceOut->flush();
   if (meld) {
     const meldvm::MachineStats& ms = meld->machine().stats();
-    info.counters = {{"facts derived", ms.factsDerived},
-                     {"facts consumed", ms.factsConsumed},
-                     {"rules fired", ms.rulesFired},
-                     {"fact messages", meld->messages()},
-                     {"message bytes", meld->messageBytes()},
-                     {"node runs", ms.nodeRuns}};
+    info.counters = {{"facts derived", ms.factsDerived},      {"facts consumed", ms.factsConsumed},
+                     {"rules fired", ms.rulesFired},          {"fact messages", meld->messages()},
+                     {"message bytes", meld->messageBytes()}, {"node runs", ms.nodeRuns}};
   }
   if (meld && !meld->error().empty())
-    throw Failure{kExitRuntime, "Meld program failed at " + simcore::formatTime(sim.now()) + ": " + meld->error()};
+    throw Failure{kExitRuntime,
+                  "Meld program failed at " + simcore::formatTime(sim.now()) + ": " + meld->error()};
   if (traceFile) {
     traceFile->close();
     if (!*traceFile) throw Failure{kExitRuntime, "error while writing trace file '" + o.traceFile + "'"};

@@ -25,7 +25,8 @@ std::unique_ptr<meldvm::Program> loadMeldProgram(const std::string& path,
   meldc::Diagnostics diag(sources, std::cerr);
   meldc::FrontEndInput input{path, includeDirs, {}};
   // After the -I folders, the target include files of stdlib/ (`include #blinkyblocks.meld`).
-  if (const std::string stdlib = meldc::defaultStdlibDir(); !stdlib.empty()) input.includeDirs.push_back(stdlib);
+  if (const std::string stdlib = meldc::defaultStdlibDir(); !stdlib.empty())
+    input.includeDirs.push_back(stdlib);
   input.identityNodes = true;
   std::optional<meldc::ast::Program> ast = meldc::runFrontEnd(input, sources, diag);
   std::unique_ptr<meldvm::Program> program = ast ? meldc::lowerProgram(*ast, sources, diag) : nullptr;

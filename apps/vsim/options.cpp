@@ -161,7 +161,8 @@ Options parseOptions(int argc, char** argv) {
       o.timePerRule = parseTime("--time-per-rule", value());
     else if (arg == "--palette") {
       const std::string_view v = value();
-      if (v != "visiblesim" && v != "lm") throw UsageError("--palette wants visiblesim or lm, got '" + std::string(v) + "'");
+      if (v != "visiblesim" && v != "lm")
+        throw UsageError("--palette wants visiblesim or lm, got '" + std::string(v) + "'");
       o.paletteLm = v == "lm";
     } else if (arg == "-I")
       o.includeDirs.emplace_back(value());

@@ -32,7 +32,8 @@ void floodStart(vs_ctx* c) {
 void floodEvent(vs_ctx* c, const vs_event* ev) {
   if (ev->kind == VS_EV_MESSAGE && !static_cast<FloodState*>(c->state)->reached) floodOut(c);
 }
-const vs_blockcode kFlood = {VS_ABI_VERSION, "flood", sizeof(FloodState), &floodStart, &floodEvent, nullptr, nullptr};
+const vs_blockcode kFlood = {VS_ABI_VERSION, "flood", sizeof(FloodState), &floodStart, &floodEvent,
+                             nullptr,        nullptr};
 
 // The connected component of `start` computed independently of the kernel: face-adjacent cells
 // (4 in the plane, 6 in space).

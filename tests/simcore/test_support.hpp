@@ -210,8 +210,9 @@ inline void event(vs_ctx* c, const vs_event* ev) {
   }
 }
 }  // namespace walk_detail
-inline const vs_blockcode kRandomWalk = {VS_ABI_VERSION,      "random-walk",       sizeof(WalkState),
-                                         &walk_detail::start, &walk_detail::event, nullptr, nullptr};
+inline const vs_blockcode kRandomWalk = {
+    VS_ABI_VERSION, "random-walk", sizeof(WalkState), &walk_detail::start, &walk_detail::event,
+    nullptr,        nullptr};
 
 // `n` Smart Blocks on distinct cells of an L x L grid, placed from (seed) with the kernel's RNG.
 inline std::unique_ptr<simcore::Simulation> makeWalkWorld(std::uint32_t n, std::int32_t L,

@@ -76,8 +76,10 @@ BlockRuntime::BlockRuntime(const Program& program, std::uint32_t blockCount, Blo
   mo.host = this;
   mo.nodes = blockCount;
   machine_ = std::make_unique<Machine>(program, mo);
-  if (s.neighbor != Program::kNoPred && options_.neighborFacts) machine_->reserveFacts(s.neighbor, options_.neighborFacts);
-  if (s.vacant != Program::kNoPred && options_.vacantFacts) machine_->reserveFacts(s.vacant, options_.vacantFacts);
+  if (s.neighbor != Program::kNoPred && options_.neighborFacts)
+    machine_->reserveFacts(s.neighbor, options_.neighborFacts);
+  if (s.vacant != Program::kNoPred && options_.vacantFacts)
+    machine_->reserveFacts(s.vacant, options_.vacantFacts);
   code_ = vs_blockcode{VS_ABI_VERSION, "meld-vm", sizeof(BlockState), &onStart, &onEvent, &onInfo, this};
 }
 
@@ -86,7 +88,9 @@ BlockRuntime::~BlockRuntime() = default;
 // ---- callbacks ----
 
 void BlockRuntime::onStart(vs_ctx* ctx) { static_cast<BlockRuntime*>(ctx->user)->start(ctx); }
-void BlockRuntime::onEvent(vs_ctx* ctx, const vs_event* ev) { static_cast<BlockRuntime*>(ctx->user)->event(ctx, *ev); }
+void BlockRuntime::onEvent(vs_ctx* ctx, const vs_event* ev) {
+  static_cast<BlockRuntime*>(ctx->user)->event(ctx, *ev);
+}
 
 int BlockRuntime::onInfo(vs_ctx* ctx, char* text, size_t capacity) {
   const auto& self = *static_cast<const BlockRuntime*>(ctx->user);
@@ -173,7 +177,9 @@ void BlockRuntime::event(vs_ctx* ctx, const vs_event& ev) {
         sense(n, s.neighborCount, {st.neighbors}, false);
         break;
       }
-      case VS_EV_TAP: sense(n, s.tap, {}, false); break;
+      case VS_EV_TAP:
+        sense(n, s.tap, {}, false);
+        break;
       case VS_EV_SENSOR:
         sense(n, s.accel, {ev.values[0]}, false);
         sense(n, s.shake, {ev.values[0], ev.values[1], ev.values[2]}, false);
@@ -185,8 +191,7 @@ void BlockRuntime::event(vs_ctx* ctx, const vs_event& ev) {
       case VS_EV_TIMER: {
         if (ev.tag >= delayed_.size()) return;
         const std::vector<std::uint8_t>& bytes = delayed_[ev.tag];
-        decodeFact(bytes.data(), bytes.size(), program_.predicates,
-                   machine_->database().heap(), decoded_);
+        decodeFact(bytes.data(), bytes.size(), program_.predicates, machine_->database().heap(), decoded_);
         freeDelayed_.push_back(std::uint32_t(ev.tag));
         machine_->receive(n, decoded_.pred, decoded_.args.data(), decoded_.negative);
         const auto& fields = program_.predicates[decoded_.pred].fields;
@@ -194,7 +199,8 @@ void BlockRuntime::event(vs_ctx* ctx, const vs_event& ev) {
           machine_->database().heap().release(fields[i], decoded_.args[i]);
         break;
       }
-      default: return;
+      default:
+        return;
     }
     runNode(ctx);
   } catch (const std::exception& e) {
@@ -262,8 +268,8 @@ void BlockRuntime::action(NodeId from, NodeId, PredId p, const Value* args) {
       ctx->api->set_color(ctx, kLinearMeldColors[c]);
     }
   } else if (p == s.setcolor && program_.predicates[p].arity() >= 3) {
-    ctx->api->set_color(ctx, clampByte(args[0].asInt()) << 16 | clampByte(args[1].asInt()) << 8 |
-                                 clampByte(args[2].asInt()));
+    ctx->api->set_color(
+        ctx, clampByte(args[0].asInt()) << 16 | clampByte(args[1].asInt()) << 8 | clampByte(args[2].asInt()));
   } else if (p == s.moveto) {
     const std::int32_t xyz[3] = {args[0].asInt(), args[1].asInt(), args[2].asInt()};
     const int face = ctx->api->face_toward(ctx, xyz);

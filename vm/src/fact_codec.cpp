@@ -15,11 +15,19 @@ void put(std::vector<std::uint8_t>& out, T v) {
 
 void encodeValue(std::vector<std::uint8_t>& out, const TypeTable& types, TypeId t, Value v) {
   switch (types.kind(t)) {
-    case TypeKind::Int: put<std::int32_t>(out, v.asInt()); break;
-    case TypeKind::Float: put<double>(out, v.asFloat()); break;
-    case TypeKind::Bool: put<std::uint8_t>(out, v.asBool()); break;
+    case TypeKind::Int:
+      put<std::int32_t>(out, v.asInt());
+      break;
+    case TypeKind::Float:
+      put<double>(out, v.asFloat());
+      break;
+    case TypeKind::Bool:
+      put<std::uint8_t>(out, v.asBool());
+      break;
     case TypeKind::Node:
-    case TypeKind::Thread: put<std::uint32_t>(out, std::uint32_t(v.bits())); break;
+    case TypeKind::Thread:
+      put<std::uint32_t>(out, std::uint32_t(v.bits()));
+      break;
     case TypeKind::String: {
       const std::string_view s = stringOf(v);
       put<std::uint32_t>(out, std::uint32_t(s.size()));
@@ -79,11 +87,16 @@ class Reader {
 
 Value Reader::value(TypeId t) {
   switch (types_.kind(t)) {
-    case TypeKind::Int: return Value::fromInt(get<std::int32_t>());
-    case TypeKind::Float: return Value::fromFloat(get<double>());
-    case TypeKind::Bool: return Value::fromBool(get<std::uint8_t>() != 0);
-    case TypeKind::Node: return Value::fromNode(get<std::uint32_t>());
-    case TypeKind::Thread: return Value::fromThread(get<std::uint32_t>());
+    case TypeKind::Int:
+      return Value::fromInt(get<std::int32_t>());
+    case TypeKind::Float:
+      return Value::fromFloat(get<double>());
+    case TypeKind::Bool:
+      return Value::fromBool(get<std::uint8_t>() != 0);
+    case TypeKind::Node:
+      return Value::fromNode(get<std::uint32_t>());
+    case TypeKind::Thread:
+      return Value::fromThread(get<std::uint32_t>());
     case TypeKind::String: {
       const std::uint32_t len = count(1);
       const Value s = heap_.makeString({reinterpret_cast<const char*>(d_ + at_), len});

@@ -70,8 +70,7 @@ std::uint64_t FactTable::dedupHash(NodeId n, const Value* key) const {
 
 FactRef FactTable::find(NodeId n, const Value* a) const {
   const KeySpec all{0, arity()};
-  return facts_.find(dedupHash(n, a),
-                     [&](std::uint32_t f) { return node(f) == n && keyEqual(f, a, all); });
+  return facts_.find(dedupHash(n, a), [&](std::uint32_t f) { return node(f) == n && keyEqual(f, a, all); });
 }
 
 FactRef FactTable::firstWithKey(NodeId n, std::uint32_t index, const Value* key) const {

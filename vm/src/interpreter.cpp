@@ -167,7 +167,8 @@ bool Interpreter::loop(Frame& f, std::uint32_t pc) {
 
   if (op != Opcode::ITER_SORTED) {
     for (FactRef fact = db_.first(f.host, p); fact != kNoFact;) {
-      if (op == Opcode::ITER_KEY && !valuesEqualFast(program_.types, keyType, db_.args(p, fact)[keyField], key)) {
+      if (op == Opcode::ITER_KEY &&
+          !valuesEqualFast(program_.types, keyType, db_.args(p, fact)[keyField], key)) {
         fact = db_.next(p, fact);
         continue;
       }

@@ -107,7 +107,8 @@ void Machine::run() {
 
 void Machine::receive(NodeId n, PredId p, const Value* args, bool negative) {
   start();
-  if (n >= db_->nodeCount()) throw RuntimeError("fact for node @" + std::to_string(n) + ", which does not exist");
+  if (n >= db_->nodeCount())
+    throw RuntimeError("fact for node @" + std::to_string(n) + ", which does not exist");
   post(n, p, args, negative);
 }
 
@@ -244,7 +245,8 @@ void Machine::derive(NodeId host, PredId p, const Value* args, bool negative) {
   if (c.removed) factRemoved(host, p);
 }
 
-void Machine::send(NodeId host, NodeId dest, PredId p, const Value* args, bool negative, std::uint32_t delayMs) {
+void Machine::send(NodeId host, NodeId dest, PredId p, const Value* args, bool negative,
+                   std::uint32_t delayMs) {
   // Delays need simulated time: only a host has it; on the VM's own graph a delayed fact is sent
   // at once.
   if (!host_) delayMs = 0;
@@ -258,8 +260,8 @@ void Machine::send(NodeId host, NodeId dest, PredId p, const Value* args, bool n
     return;
   }
   if (host_ && dest != host && !host_->reachable(host, dest))
-    throw RuntimeError("fact " + d.name + " for node @" + std::to_string(dest) + ", which is not a neighbour of @" +
-                       std::to_string(host));
+    throw RuntimeError("fact " + d.name + " for node @" + std::to_string(dest) +
+                       ", which is not a neighbour of @" + std::to_string(host));
   if (d.linear && negative) return;
   if (!negative) {
     ++stats_.factsDerived;
@@ -276,7 +278,8 @@ void Machine::action(NodeId from, NodeId dest, PredId p, const Value* args) {
   // On the VM's own graph only write-string has a visible effect (§4.1.3); the robot runtime
   // executes the others (colours, motion).
   const PredicateDesc& d = program_.predicates[p];
-  if (d.name == "write-string" && options_.output && d.arity() == 1) *options_.output << stringOf(args[0]) << '\n';
+  if (d.name == "write-string" && options_.output && d.arity() == 1)
+    *options_.output << stringOf(args[0]) << '\n';
 }
 
 void Machine::consumed(NodeId, PredId p, FactRef f) {

@@ -26,8 +26,7 @@ inline constexpr std::uint32_t kBytecodeVersion = 1;
 class BytecodeError : public std::runtime_error {
  public:
   // `offset`: byte offset in the file where the problem was found (or 0).
-  BytecodeError(const std::string& what, std::size_t offset)
-      : std::runtime_error(what), offset_(offset) {}
+  BytecodeError(const std::string& what, std::size_t offset) : std::runtime_error(what), offset_(offset) {}
   std::size_t offset() const { return offset_; }
 
  private:

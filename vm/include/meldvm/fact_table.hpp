@@ -124,7 +124,7 @@ class FactTable {
   std::vector<std::uint32_t> boxedFields_;  // positions to retain/release
   std::vector<Index> indexes_;
   bool dedup_;
-  SlotHash facts_;  // de-duplication: node + all arguments
+  SlotHash facts_;                               // de-duplication: node + all arguments
   static constexpr std::uint32_t kHashMemo = 4;  // arities up to this use the memo
   mutable NodeId memoNode_ = 0xFFFFFFFFu;
   mutable Value memoKey_[kHashMemo] = {};

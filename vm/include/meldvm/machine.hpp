@@ -40,7 +40,7 @@ class MachineHost {
 };
 
 struct MachineOptions {
-  std::vector<std::string> args;  // @arg1.. (program arguments after `--`)
+  std::vector<std::string> args;   // @arg1.. (program arguments after `--`)
   std::ostream* output = nullptr;  // write-string output (nullptr: discarded)
   MachineHost* host = nullptr;     // set: the nodes are driven from outside (receive, runNode)
   NodeId nodes = 0;                // at least this many nodes (with a host: one per block)
@@ -177,8 +177,8 @@ class Machine : private SchedulerView {
   std::vector<Value> triggerInput_, triggerAdded_, triggerRemoved_;
 
   std::vector<Value> globals_;
-  std::vector<Value> strings_;  // the string constants as heap strings
-  std::vector<Value> args_;     // program arguments as heap strings
+  std::vector<Value> strings_;         // the string constants as heap strings
+  std::vector<Value> args_;            // program arguments as heap strings
   std::vector<std::uint8_t> created_;  // per node: created by exists (may be collected)
 
   // SchedulerView (built-ins priority, cpu-id, ...).

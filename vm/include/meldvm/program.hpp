@@ -36,10 +36,10 @@ inline constexpr std::uint32_t kOpcodeCount = std::uint32_t(Opcode::Count);
 
 // Flag bits of ITER / ITER_KEY / ITER_SORTED (operand X).
 enum IterFlags : std::uint32_t {
-  kIterLinear = 1,          // the predicate is linear: skip consumed facts and facts bound by enclosing loops
-  kIterConsume = 2,         // FIRE/CFIRE consume the fact bound here
-  kIterReturnOnFire = 4,    // §6.4.3: an enclosing loop iterates a consumable linear subgoal
-  kIterRandom = 8,          // ITER_SORTED: random order ([:random] selector) instead of ascending
+  kIterLinear = 1,        // the predicate is linear: skip consumed facts and facts bound by enclosing loops
+  kIterConsume = 2,       // FIRE/CFIRE consume the fact bound here
+  kIterReturnOnFire = 4,  // §6.4.3: an enclosing loop iterates a consumable linear subgoal
+  kIterRandom = 8,        // ITER_SORTED: random order ([:random] selector) instead of ascending
   kIterConsumableClass = 16,  // counts as "iterates a consumable linear subgoal" for nested loops
 };
 // Flag bits of UPDATE.
@@ -122,8 +122,8 @@ struct Program {
   std::vector<Function> functions;
   std::vector<Extern> externs;
 
-  std::vector<Rule> rules;          // rules[0] = `_init -o axioms`
-  std::vector<Process> processes;   // persistent rules, in program order
+  std::vector<Rule> rules;         // rules[0] = `_init -o axioms`
+  std::vector<Process> processes;  // persistent rules, in program order
   // Constant axioms per initial node (run by AXIOMS in rule 0): index into axiomBlocks, or
   // kNoAxioms.
   static constexpr std::uint32_t kNoAxioms = 0xFFFFFFFFu;

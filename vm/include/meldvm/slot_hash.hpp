@@ -28,7 +28,7 @@ class SlotHash {
     if (size_ != 0) __builtin_prefetch(&entries_[fold(hash) & mask_]);
   }
   void insert(std::uint64_t hash, std::uint32_t slot);  // the key must not be present
-  void reserve(std::uint32_t entries);  // room for that many without growing
+  void reserve(std::uint32_t entries);                  // room for that many without growing
   bool erase(std::uint64_t hash, std::uint32_t slot);   // removes that exact slot
   bool replace(std::uint64_t hash, std::uint32_t oldSlot, std::uint32_t newSlot);  // same key
   std::uint32_t size() const { return size_; }
