@@ -5,6 +5,7 @@
 #include <string>
 #include <vector>
 
+#include "free_vars.hpp"
 #include "meldc/builtins.hpp"
 #include "meldc/case_folding.hpp"
 
@@ -17,19 +18,8 @@ namespace {
 using VarSet = std::set<std::string>;
 
 // Variables used by an expression (`let` variables are local to their body).
-void uses(const Expr& e, std::vector<const Expr*>& out, const VarSet& local = {}) {
-  if (e.kind == ExprKind::Var) {
-    if (!local.count(e.name)) out.push_back(&e);
-    return;
-  }
-  if (e.kind == ExprKind::Let) {
-    uses(e.args.at(0), out, local);
-    VarSet inner = local;
-    inner.insert(e.name);
-    uses(e.args.at(1), out, inner);
-    return;
-  }
-  for (const Expr& a : e.args) uses(a, out, local);
+void uses(const Expr& e, std::vector<const Expr*>& out) {
+  forEachFreeVar(e, [&](const Expr& v) { out.push_back(&v); });
 }
 
 // A subgoal argument binds the variables of its pattern part (a variable, a list or struct

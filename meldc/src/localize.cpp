@@ -8,6 +8,7 @@
 #include <string>
 #include <vector>
 
+#include "free_vars.hpp"
 #include "meldc/builtins.hpp"
 #include "meldc/case_folding.hpp"
 #include "meldc/types.hpp"
@@ -22,19 +23,8 @@ using VarSet = std::set<std::string>;
 using VarList = std::vector<std::string>;
 
 // Variables of an expression in textual order, repeats included (`let` variables are local).
-void exprVars(const Expr& e, VarList& out, const VarSet& local = {}) {
-  if (e.kind == ExprKind::Var) {
-    if (!local.count(e.name)) out.push_back(e.name);
-    return;
-  }
-  if (e.kind == ExprKind::Let) {
-    exprVars(e.args.at(0), out, local);
-    VarSet inner = local;
-    inner.insert(e.name);
-    exprVars(e.args.at(1), out, inner);
-    return;
-  }
-  for (const Expr& a : e.args) exprVars(a, out, local);
+void exprVars(const Expr& e, VarList& out) {
+  forEachFreeVar(e, [&](const Expr& v) { out.push_back(v.name); });
 }
 
 // Calls `f` on every expression of a term, nested constructs included.

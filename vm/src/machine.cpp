@@ -168,6 +168,11 @@ void Machine::finishRuleRun(NodeId n) {
     factRemoved(n, p);
   }
   consumed_.clear();
+  storeDerivedLinear();
+  processPersistent(n);
+}
+
+void Machine::storeDerivedLinear() {
   for (const PendingFact& e : linearOut_) {
     const Value* args = linearOutArgs_.data() + e.args;
     db_->addLinear(e.node, e.pred, args);
@@ -176,7 +181,6 @@ void Machine::finishRuleRun(NodeId n) {
   }
   linearOut_.clear();
   linearOutArgs_.clear();
-  processPersistent(n);
 }
 
 void Machine::fail(const std::exception& e, NodeId n, const std::string& where) const {
@@ -309,185 +313,6 @@ NodeId Machine::newNode() {
   if (host_) throw RuntimeError("exists: a robot cannot create nodes (every node is a block)");
   sched_.wake(id);
   return id;
-}
-
-void Machine::priorityRequest(NodeId n, double p) {
-  if (n == running_ && inRun_) return;  // §5.7: ignored for the running node
-  priorityRequests_.emplace_back(n, p);
-}
-
-void Machine::applyPriorityRequests() {
-  for (const auto& [n, p] : priorityRequests_) sched_.setPriority(n, p);
-  priorityRequests_.clear();
-}
-
-void Machine::coordination(Opcode op, NodeId n, double value) {
-  if (n >= db_->nodeCount())
-    throw RuntimeError("coordination fact for node @" + std::to_string(n) + ", which does not exist");
-  switch (op) {
-    case Opcode::ADD_PRIORITY:
-      if (!(n == running_ && inRun_)) sched_.addPriority(n, value);
-      break;
-    case Opcode::REMOVE_PRIORITY:
-      sched_.removePriority(n);
-      break;
-    case Opcode::SET_DEFAULT_PRIORITY:
-      sched_.setDefaultPriority(n, value);
-      break;
-    case Opcode::SCHEDULE_NEXT:
-      sched_.scheduleNext(n);
-      break;
-    case Opcode::SET_STATIC:
-      sched_.setStatic(n, true);
-      break;
-    case Opcode::SET_MOVING:
-      sched_.setStatic(n, false);
-      break;
-    case Opcode::SET_AFFINITY:
-    case Opcode::SET_CPU:
-      // One thread: the node stays where it is and is pinned; just-moved arrives at once (§5.7).
-      sched_.setStatic(n, true);
-      if (justMoved_ != Program::kNoPred) send(running_, n, justMoved_, kNoArgs, false);
-      break;
-    default:
-      break;
-  }
-}
-
-Value Machine::programArg(std::uint32_t k) const {
-  if (k == 0 || k > args_.size())
-    throw RuntimeError("program argument @arg" + std::to_string(k) + " was not given (pass it after `--`)");
-  const Value v = args_[k - 1];
-  const_cast<Heap&>(heap_).retain(TypeTable::kString, v);
-  return v;
-}
-
-std::int32_t Machine::staticNodes(ThreadId) const {
-  std::int32_t count = 0;
-  for (NodeId n = 0; n < db_->nodeCount(); ++n) count += sched_.isStatic(n);
-  return count;
-}
-
-// ---- messages between nodes ----
-
-void Machine::post(NodeId dest, PredId p, const Value* args, bool negative) {
-  const PredicateDesc& d = program_.predicates[p];
-  if (boxedField_[p])
-    for (std::uint32_t i = 0; i < d.arity(); ++i) heap_.retain(d.fields[i], args[i]);
-  mail_->post(dest, p, negative, args, d.arity());
-  if (!host_ && !(inRun_ && dest == running_)) sched_.wake(dest);
-}
-
-void Machine::flushOutgoing() {
-  if (host_) {
-    for (const auto* list : {&sentPersistent_, &sentLinear_})
-      for (const PendingFact& e : *list) {
-        const Value* args = sentArgs_.data() + e.args;
-        host_->transmit(running_, e.node, e.pred, args, e.negative, e.delayMs);
-        releaseArgs(e.pred, args);
-      }
-  } else {
-    postAll(sentPersistent_);
-    postAll(sentLinear_);
-  }
-  sentPersistent_.clear();
-  sentLinear_.clear();
-  sentArgs_.clear();
-}
-
-void Machine::postAll(const std::vector<PendingFact>& facts) {
-  constexpr std::size_t kBoxAhead = 8, kTailAhead = 4;  // mailbox entry, then its last chunk
-  const std::size_t n = facts.size();
-  for (std::size_t i = 0; i < n; ++i) {
-    if (i + kBoxAhead < n) mail_->prefetchBox(facts[i + kBoxAhead].node);
-    if (i + kTailAhead < n) mail_->prefetchTail(facts[i + kTailAhead].node);
-    const PendingFact& e = facts[i];
-    const Value* args = sentArgs_.data() + e.args;
-    post(e.node, e.pred, args, e.negative);
-    releaseArgs(e.pred, args);
-  }
-}
-
-void Machine::deliverIncoming(NodeId n) {
-  mail_->drain(n, [&](PredId p, bool negative, const Value* args) {
-    if (program_.predicates[p].linear) {
-      db_->addLinear(n, p, args);
-      releaseArgs(p, args);
-      factAdded(n, p);
-    } else {  // the mailbox's references pass to the queue
-      persistentQueue_.push_back({n, p, negative, std::uint32_t(persistentArgs_.size())});
-      persistentArgs_.insert(persistentArgs_.end(), args, args + program_.predicates[p].arity());
-    }
-  });
-}
-
-// ---- persistent facts (§6.5, §6.8) ----
-
-void Machine::processPersistent(NodeId n) {
-  constexpr std::size_t kAhead = 4;
-  for (std::size_t i = persistentHead_; i < persistentQueue_.size() && i < persistentHead_ + kAhead - 1; ++i)
-    db_->prefetchDerive(persistentQueue_[i].node, persistentQueue_[i].pred,
-                        persistentArgs_.data() + persistentQueue_[i].args);
-  while (persistentHead_ < persistentQueue_.size()) {
-    const PendingFact e = persistentQueue_[persistentHead_++];
-    // Fetch the hash buckets of an entry a few places ahead: most entries take less time than a
-    // memory access.
-    if (persistentHead_ + kAhead - 1 < persistentQueue_.size()) {
-      const PendingFact& next = persistentQueue_[persistentHead_ + kAhead - 1];
-      db_->prefetchDerive(next.node, next.pred, persistentArgs_.data() + next.args);
-    }
-    // Copy out: running processes appends to persistentArgs_.
-    // The database copies what it keeps, and nothing appends to the queue before the release.
-    const Value* input = persistentArgs_.data() + e.args;
-    const Change c = e.negative ? db_->retract(n, e.pred, input) : db_->derive(n, e.pred, input);
-    releaseArgs(e.pred, input);  // the queue's references
-    if (c.removed) {
-      triggerRemoved_.assign(c.removedArgs.begin(), c.removedArgs.end());
-      for (std::uint32_t i = 0; i < triggerRemoved_.size(); ++i)
-        heap_.retain(program_.predicates[e.pred].fields[i], triggerRemoved_[i]);
-      std::vector<Value>& added = triggerAdded_;
-      added.clear();
-      if (c.added) added.assign(c.addedArgs.begin(), c.addedArgs.end());
-      for (std::uint32_t i = 0; i < added.size(); ++i)
-        heap_.retain(program_.predicates[e.pred].fields[i], added[i]);
-      factRemoved(n, e.pred);
-      runProcesses(n, e.pred, triggerRemoved_.data(), true);
-      releaseArgs(e.pred, triggerRemoved_.data());
-      if (c.added) {
-        factAdded(n, e.pred);
-        runProcesses(n, e.pred, added.data(), false);
-        releaseArgs(e.pred, added.data());
-      }
-    } else if (c.added) {
-      triggerAdded_.assign(c.addedArgs.begin(), c.addedArgs.end());
-      for (std::uint32_t i = 0; i < triggerAdded_.size(); ++i)
-        heap_.retain(program_.predicates[e.pred].fields[i], triggerAdded_[i]);
-      factAdded(n, e.pred);
-      runProcesses(n, e.pred, triggerAdded_.data(), false);
-      releaseArgs(e.pred, triggerAdded_.data());
-    }
-  }
-  persistentQueue_.clear();
-  persistentArgs_.clear();
-  persistentHead_ = 0;
-}
-
-void Machine::runProcesses(NodeId n, PredId p, const Value* args, bool negative) {
-  for (std::uint32_t i : processesOf_[p]) {
-    try {
-      interp_->run(program_.processes[i].block, n, negative, p, args);
-    } catch (const RuntimeError& e) {
-      fail(e, n, "persistent rule (" + program_.processes[i].block.label + ")");
-    }
-    for (const PendingFact& l : linearOut_) {
-      const Value* a = linearOutArgs_.data() + l.args;
-      db_->addLinear(l.node, l.pred, a);
-      releaseArgs(l.pred, a);
-      factAdded(l.node, l.pred);
-    }
-    linearOut_.clear();
-    linearOutArgs_.clear();
-  }
 }
 
 // ---- end of the run ----

@@ -105,6 +105,7 @@ class Machine : private SchedulerView {
   // ---- node runs ----
   void runRule(NodeId n, std::uint32_t rule);
   void finishRuleRun(NodeId n);
+  void storeDerivedLinear();  // the linear facts derived for the host, appended in order (§6.4.4)
   void deliverIncoming(NodeId n);
   void processPersistent(NodeId n);
   void runProcesses(NodeId n, PredId p, const Value* args, bool negative);
