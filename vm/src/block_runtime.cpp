@@ -60,6 +60,10 @@ BlockRuntime::BlockRuntime(const Program& program, std::uint32_t blockCount, Blo
   s.setcolor = preds.find("setcolor") == preds.size() ? Program::kNoPred : preds.find("setcolor");
   s.writeString = preds.find("write-string") == preds.size() ? Program::kNoPred : preds.find("write-string");
 
+  for (PredId p = 0; p < preds.size(); ++p)
+    if (preds[p].thread)
+      throw BlockProgramError("thread predicate '" + preds[p].name +
+                              "': a robot has no VM threads (§6.12 is for the multicore target)");
   for (std::size_t i = 0; i < program.nodeSourceIds.size(); ++i) {
     if (program.nodeSourceIds[i] != std::int64_t(i))
       throw BlockProgramError("the program was compiled with renumbered nodes (node @" +

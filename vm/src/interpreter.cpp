@@ -65,7 +65,7 @@ Interpreter::Alloc Interpreter::enter(const CodeBlock& b) {
   regUsed_ += regs;
   slotUsed_ += slots;
   std::fill(a.regs, a.regs + regs, Value());
-  for (std::size_t s = 0; s < slots; ++s) a.slots[s] = Slot{0, kNoFact, 0, nullptr};
+  for (std::size_t s = 0; s < slots; ++s) a.slots[s] = Slot{0, 0, kNoFact, 0, nullptr};
   return a;
 }
 
@@ -86,7 +86,7 @@ void Interpreter::run(const CodeBlock& block, NodeId host, bool negative, PredId
   current_ = &block;
   const Alloc a = enter(block);
   Frame f{&block, block.code.data(), a.regs, a.slots, boxedOf(block).data(), host, negative};
-  if (trigger) f.slots[0] = Slot{triggerPred, kNoFact, 0, trigger};
+  if (trigger) f.slots[0] = Slot{triggerPred, host, kNoFact, 0, trigger};
   try {
     exec(f, 0);
   } catch (...) {
@@ -123,7 +123,7 @@ void Interpreter::fire(Frame& f, std::uint32_t firstSlot) {
   for (std::uint32_t s = firstSlot; s < f.block->slots; ++s) {
     Slot& sl = f.slots[s];
     if (sl.fact != kNoFact && !sl.fixed && (sl.flags & kIterConsume) && !db_.consumedMark(sl.pred, sl.fact))
-      machine_.consumed(f.host, sl.pred, sl.fact);
+      machine_.consumed(sl.node, sl.pred, sl.fact);
   }
 }
 
@@ -152,6 +152,9 @@ bool Interpreter::loop(Frame& f, std::uint32_t pc) {
   bool fired = false;
   Slot& slot = f.slots[s];
   slot.pred = p;
+  // Thread facts (§6.12) live at the running thread's node and are visible to the node's rules.
+  const NodeId at = (flags & kIterThread) ? machine_.threadNode_ : f.host;
+  slot.node = at;
   slot.flags = flags;
   slot.fixed = nullptr;
 
@@ -166,7 +169,7 @@ bool Interpreter::loop(Frame& f, std::uint32_t pc) {
   };
 
   if (op != Opcode::ITER_SORTED) {
-    for (FactRef fact = db_.first(f.host, p); fact != kNoFact;) {
+    for (FactRef fact = db_.first(at, p); fact != kNoFact;) {
       if (op == Opcode::ITER_KEY &&
           !valuesEqualFast(program_.types, keyType, db_.args(p, fact)[keyField], key)) {
         fact = db_.next(p, fact);
@@ -177,7 +180,7 @@ bool Interpreter::loop(Frame& f, std::uint32_t pc) {
     }
   } else {
     const std::size_t begin = sorted_.size();
-    for (FactRef fact = db_.first(f.host, p); fact != kNoFact; fact = db_.next(p, fact))
+    for (FactRef fact = db_.first(at, p); fact != kNoFact; fact = db_.next(p, fact))
       if (!linear || !db_.consumedMark(p, fact)) sorted_.push_back(fact);
     if (flags & kIterRandom) {
       for (std::size_t i = sorted_.size() - begin; i > 1; --i)
@@ -464,6 +467,11 @@ Interpreter::Status Interpreter::exec(Frame& f, std::uint32_t pc) {
         machine_.send(f.host, R[c[2]].asNode(), c[1], args_.data(), f.negative);
         pc += 4 + c[3];
         break;
+      case Opcode::SEND_THREAD:
+        gatherArgs(f, c + 4, c[3]);
+        machine_.sendThread(f.host, R[c[2]].asThread(), c[1], args_.data(), f.negative);
+        pc += 4 + c[3];
+        break;
       case Opcode::SEND_DELAY:
         gatherArgs(f, c + 5, c[4]);
         machine_.send(f.host, R[c[2]].asNode(), c[1], args_.data(), f.negative, c[3]);
@@ -472,7 +480,7 @@ Interpreter::Status Interpreter::exec(Frame& f, std::uint32_t pc) {
       case Opcode::UPDATE: {
         gatherArgs(f, c + 4, c[3]);
         const Slot& sl = f.slots[c[1]];
-        if (!f.negative) machine_.updated(f.host, sl.pred, sl.fact, args_.data(), c[2] & kUpdateMoveToBack);
+        if (!f.negative) machine_.updated(sl.node, sl.pred, sl.fact, args_.data(), c[2] & kUpdateMoveToBack);
         pc += 4 + c[3];
         break;
       }

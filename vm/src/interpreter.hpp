@@ -37,6 +37,7 @@ class Interpreter {
  private:
   struct Slot {
     PredId pred;
+    NodeId node;  // where the fact is stored: the host, or the thread node (kIterThread)
     FactRef fact;
     std::uint32_t flags;
     const Value* fixed;  // pre-bound arguments (process trigger) instead of a stored fact

@@ -41,6 +41,16 @@ Machine::Machine(const Program& program, MachineOptions options)
     for (TypeId t : d.fields) boxed = boxed || program.types.boxed(t);
     boxedField_.push_back(boxed);
   }
+  isThreadPred_.assign(preds, 0);
+  for (PredId p = 0; p < preds; ++p) {
+    isThreadPred_[p] = program.predicates[p].thread;
+    hasThreads_ = hasThreads_ || isThreadPred_[p];
+  }
+  for (std::uint32_t r = 0; r < program.rules.size(); ++r) {
+    bool node = false, thread = false;
+    for (PredId p : program.rules[r].bodyPredicates) (isThreadPred_[p] ? thread : node) = true;
+    if (node && thread) mixedRules_.push_back(r);
+  }
   justMoved_ = program.predicates.find("just-moved");
   if (justMoved_ == program.predicates.size()) justMoved_ = Program::kNoPred;
   ruleWords_ = std::uint32_t((program.rules.size() + 63) / 64);
@@ -78,10 +88,14 @@ void Machine::start() {
   started_ = true;
   const NodeId n = std::max<NodeId>(NodeId(program_.nodeSourceIds.size()), options_.nodes);
   initialNodes_ = n;
-  db_->addNodes(n);
-  candidates_.assign(std::size_t(n) * ruleWords_, 0);
-  mail_->addNodes(n);
-  created_.assign(n, 0);
+  // §6.12: with thread predicates, the one VM thread has a node of its own, id n, allocated before
+  // any node `exists` creates.
+  const NodeId all = hasThreads_ ? n + 1 : n;
+  if (hasThreads_) threadNode_ = n;
+  db_->addNodes(all);
+  candidates_.assign(std::size_t(all) * ruleWords_, 0);
+  mail_->addNodes(all);
+  created_.assign(all, 0);
   if (!program_.globalsInit.code.empty()) {
     try {
       interp_->run(program_.globalsInit, 0);
@@ -96,12 +110,47 @@ void Machine::start() {
     }
   }
   sched_.start(n);
+  if (hasThreads_) {
+    sched_.addNode();  // the thread node has a scheduler entry but is served apart (run())
+    startThreadNode();
+  }
+}
+
+void Machine::startThreadNode() {
+  const PredicateTable& preds = program_.predicates;
+  auto find = [&](const char* name) {
+    const PredId p = preds.find(name);
+    return p < preds.size() && preds[p].thread ? p : Program::kNoPred;
+  };
+  const Value self = Value::fromThread(0);
+  if (const PredId p = find("_init_thread"); p != Program::kNoPred) {
+    db_->addLinear(threadNode_, p, kNoArgs);
+    factAdded(threadNode_, p);
+  }
+  // The special facts of one thread: the list of all threads and the leader; no other threads.
+  if (const PredId p = find("thread-list"); p != Program::kNoPred) {
+    const Value list = heap_.makeList(preds[p].fields[0], std::span<const Value>(&self, 1));
+    db_->derive(threadNode_, p, &list);
+    heap_.release(preds[p].fields[0], list);
+    factAdded(threadNode_, p);
+  }
+  if (const PredId p = find("leader-thread"); p != Program::kNoPred) {
+    db_->derive(threadNode_, p, &self);
+    factAdded(threadNode_, p);
+  }
 }
 
 void Machine::run() {
   start();
-  NodeId node;
-  while (!stop_ && sched_.pop(node)) runNode(node);
+  // §6.11: the heap, then the FIFO, then the thread node.
+  for (NodeId node; !stop_;) {
+    if (sched_.pop(node))
+      runNode(node);
+    else if (threadNode_ != kNoNode && (hasWork(threadNode_) || hasCandidate(threadNode_)))
+      runNode(threadNode_);
+    else
+      break;
+  }
   if (!stop_) collectGarbageNodes();
 }
 
@@ -134,6 +183,11 @@ std::uint64_t Machine::runNode(NodeId n) {
   deliverIncoming(n);
   processPersistent(n);
   std::uint64_t* cand = candidates_.data() + std::size_t(n) * ruleWords_;
+  // Rules over node and thread facts: the thread's facts may have changed since this node last
+  // ran, so their candidacy is checked again at the start of every run of a normal node.
+  if (n != threadNode_)
+    for (std::uint32_t r : mixedRules_)
+      if (allPresent(n, r)) cand[r / 64] |= std::uint64_t(1) << (r % 64);
   while (!stop_) {
     std::uint32_t rule = ~0u;
     for (std::uint32_t w = 0; w < ruleWords_; ++w)
@@ -150,7 +204,7 @@ std::uint64_t Machine::runNode(NodeId n) {
   inRun_ = false;
   flushOutgoing();
   applyPriorityRequests();
-  if (!host_) sched_.finished(n, hasWork(n));
+  if (!host_ && n != threadNode_) sched_.finished(n, hasWork(n));
   return stats_.rulesFired - firedBefore;
 }
 
@@ -163,9 +217,9 @@ void Machine::runRule(NodeId n, std::uint32_t rule) {
 }
 
 void Machine::finishRuleRun(NodeId n) {
-  for (const auto& [p, f] : consumed_) {
-    db_->consume(n, p, f);
-    factRemoved(n, p);
+  for (const Consumed& c : consumed_) {
+    db_->consume(c.node, c.pred, c.fact);
+    factRemoved(c.node, c.pred);
   }
   consumed_.clear();
   storeDerivedLinear();
@@ -189,17 +243,25 @@ void Machine::fail(const std::exception& e, NodeId n, const std::string& where) 
 
 // ---- candidate rules (§6.4.2) ----
 
+bool Machine::allPresent(NodeId n, std::uint32_t rule) const {
+  for (PredId q : program_.rules[rule].bodyPredicates)
+    if (db_->factCount(isThreadPred_[q] ? threadNode_ : n, q) == 0) return false;
+  return true;
+}
+
+bool Machine::hasCandidate(NodeId n) const {
+  const std::uint64_t* cand = candidates_.data() + std::size_t(n) * ruleWords_;
+  for (std::uint32_t w = 0; w < ruleWords_; ++w)
+    if (cand[w]) return true;
+  return false;
+}
+
 void Machine::factAdded(NodeId n, PredId p) {
+  // A thread fact makes the thread node's own rules candidates; rules mixing node and thread
+  // facts are checked when a node starts a run (runNode).
   std::uint64_t* cand = candidates_.data() + std::size_t(n) * ruleWords_;
-  for (std::uint32_t r : rulesOf_[p]) {
-    bool all = true;
-    for (PredId q : program_.rules[r].bodyPredicates)
-      if (q != p && db_->factCount(n, q) == 0) {
-        all = false;
-        break;
-      }
-    if (all) cand[r / 64] |= std::uint64_t(1) << (r % 64);
-  }
+  for (std::uint32_t r : rulesOf_[p])
+    if (allPresent(n, r)) cand[r / 64] |= std::uint64_t(1) << (r % 64);
 }
 
 void Machine::factRemoved(NodeId n, PredId p) {
@@ -277,6 +339,25 @@ void Machine::send(NodeId host, NodeId dest, PredId p, const Value* args, bool n
   pushArgs(sentArgs_, p, args);
 }
 
+void Machine::sendThread(NodeId host, ThreadId t, PredId p, const Value* args, bool negative) {
+  if (t != 0 || threadNode_ == kNoNode)
+    throw RuntimeError("fact " + program_.predicates[p].name + " for thread #T" + std::to_string(t) +
+                       ", which does not exist (the VM runs one thread)");
+  // One thread: its node is visible to every node's rules, so its facts are stored directly, as
+  // facts of the host are (linear ones when the rule run ends, persistent ones through the queue).
+  if (!negative) ++stats_.factsDerived, ++runDerived_;
+  const PredicateDesc& d = program_.predicates[p];
+  if (d.linear) {
+    if (negative) return;
+    linearOut_.push_back({threadNode_, p, false, std::uint32_t(linearOutArgs_.size())});
+    pushArgs(linearOutArgs_, p, args);
+    return;
+  }
+  persistentQueue_.push_back({threadNode_, p, negative, std::uint32_t(persistentArgs_.size())});
+  pushArgs(persistentArgs_, p, args);
+  (void)host;
+}
+
 void Machine::action(NodeId from, NodeId dest, PredId p, const Value* args) {
   if (host_) return host_->action(from, dest, p, args);
   // On the VM's own graph only write-string has a visible effect (§4.1.3); the robot runtime
@@ -286,9 +367,9 @@ void Machine::action(NodeId from, NodeId dest, PredId p, const Value* args) {
     *options_.output << stringOf(args[0]) << '\n';
 }
 
-void Machine::consumed(NodeId, PredId p, FactRef f) {
+void Machine::consumed(NodeId n, PredId p, FactRef f) {
   db_->markConsumed(p, f);
-  consumed_.emplace_back(p, f);
+  consumed_.push_back({n, p, f});
   ++stats_.factsConsumed;
   ++runConsumed_;
 }

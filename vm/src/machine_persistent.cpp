@@ -5,20 +5,20 @@
 
 namespace meldvm {
 
-void Machine::processPersistent(NodeId n) {
+void Machine::processPersistent(NodeId) {
   constexpr std::size_t kAhead = 4;
   for (std::size_t i = persistentHead_; i < persistentQueue_.size() && i < persistentHead_ + kAhead - 1; ++i)
     db_->prefetchDerive(persistentQueue_[i].node, persistentQueue_[i].pred,
                         persistentArgs_.data() + persistentQueue_[i].args);
   while (persistentHead_ < persistentQueue_.size()) {
     const PendingFact e = persistentQueue_[persistentHead_++];
+    const NodeId n = e.node;  // the running node, or the thread node for thread facts (§6.12)
     // Fetch the hash buckets of an entry a few places ahead: most entries take less time than a
     // memory access.
     if (persistentHead_ + kAhead - 1 < persistentQueue_.size()) {
       const PendingFact& next = persistentQueue_[persistentHead_ + kAhead - 1];
       db_->prefetchDerive(next.node, next.pred, persistentArgs_.data() + next.args);
     }
-    // Copy out: running processes appends to persistentArgs_.
     // The database copies what it keeps, and nothing appends to the queue before the release.
     const Value* input = persistentArgs_.data() + e.args;
     const Change c = e.negative ? db_->retract(n, e.pred, input) : db_->derive(n, e.pred, input);

@@ -208,7 +208,7 @@ void BlockVerifier::semantics() {
     case Opcode::ITER_SORTED: {
       const PredId pred = v_[0];
       const std::uint32_t slot = v_[1], flags = v_[2];
-      if (flags & ~std::uint32_t(31)) bad("unknown flag bits " + n2s(flags));
+      if (flags & ~std::uint32_t(63)) bad("unknown flag bits " + n2s(flags));
       if (bound(slot)) bad("slot " + n2s(slot) + " is already bound by an enclosing loop");
       if (op != Opcode::ITER) fieldInRange(pred, v_[3]);
       if (op == Opcode::ITER_KEY)
@@ -315,6 +315,12 @@ void BlockVerifier::semantics() {
     case Opcode::DERIVE:
     case Opcode::SEND:
     case Opcode::SEND_DELAY:
+      args(p_.predicates[v_[0]].fields, predText(v_[0]));
+      break;
+    case Opcode::SEND_THREAD:
+      if (!p_.predicates[v_[0]].thread) bad(predText(v_[0]) + " is not a thread predicate");
+      if (p_.types.kind(b_.registerTypes[v_[1]]) != TypeKind::Thread)
+        bad("register " + n2s(v_[1]) + " is not a thread");
       args(p_.predicates[v_[0]].fields, predText(v_[0]));
       break;
     case Opcode::UPDATE: {

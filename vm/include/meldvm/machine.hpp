@@ -111,7 +111,11 @@ class Machine : private SchedulerView {
   void runProcesses(NodeId n, PredId p, const Value* args, bool negative);
   void flushOutgoing();
   void applyPriorityRequests();
-  void factAdded(NodeId n, PredId p);    // candidate rules (§6.4.2)
+  void factAdded(NodeId n, PredId p);                   // candidate rules (§6.4.2)
+  bool allPresent(NodeId n, std::uint32_t rule) const;  // every body predicate has a fact
+  bool hasCandidate(NodeId n) const;
+  void startThreadNode();  // _init_thread and the special thread facts (§6.12)
+  void sendThread(NodeId host, ThreadId t, PredId p, const Value* args, bool negative);
   void factRemoved(NodeId n, PredId p);  // after the store lost a fact of p
   void collectGarbageNodes();
   [[noreturn]] void fail(const std::exception& e, NodeId n, const std::string& where) const;
@@ -140,6 +144,11 @@ class Machine : private SchedulerView {
   SerialScheduler sched_;
   MachineStats stats_;
   bool stop_ = false;
+  static constexpr NodeId kNoNode = 0xFFFFFFFFu;
+  bool hasThreads_ = false;
+  NodeId threadNode_ = kNoNode;  // the node of the one VM thread (§6.12)
+  std::vector<std::uint8_t> isThreadPred_;
+  std::vector<std::uint32_t> mixedRules_;  // bodies with node and thread facts
   bool started_ = false;
   MachineHost* host_ = nullptr;
   NodeId running_ = 0;
@@ -161,7 +170,12 @@ class Machine : private SchedulerView {
   std::unique_ptr<Mailboxes> mail_;
 
   // Within a rule run.
-  std::vector<std::pair<PredId, FactRef>> consumed_;
+  struct Consumed {
+    NodeId node;
+    PredId pred;
+    FactRef fact;
+  };
+  std::vector<Consumed> consumed_;
   std::vector<PendingFact> linearOut_;  // linear facts derived for the host, appended after the run
   std::vector<Value> linearOutArgs_;
   std::vector<PendingFact> persistentQueue_;  // FIFO (§6.5)

@@ -41,6 +41,7 @@ enum IterFlags : std::uint32_t {
   kIterReturnOnFire = 4,  // §6.4.3: an enclosing loop iterates a consumable linear subgoal
   kIterRandom = 8,        // ITER_SORTED: random order ([:random] selector) instead of ascending
   kIterConsumableClass = 16,  // counts as "iterates a consumable linear subgoal" for nested loops
+  kIterThread = 32,           // iterate the facts of the running thread's node (§6.12), not the host's
 };
 // Flag bits of UPDATE.
 enum UpdateFlags : std::uint32_t { kUpdateMoveToBack = 1 };
