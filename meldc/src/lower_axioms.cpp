@@ -1,7 +1,9 @@
 // Start-up code (§6.2): rule 0 (`_init -o axioms`: the host's constant axioms through AXIOMS, then
-// the variable axioms in program order) and one axiom block per initial node holding its constant
-// axioms: those needing evaluation in reverse source order, then the purely literal facts grouped
-// by predicate (groups in order of first occurrence, source order within a group).
+// the variable axioms in program order), with thread predicates rule 1 (`_init_thread -o thread
+// axioms`: the variable axioms of thread predicates, §6.12) and one axiom block per initial node
+// holding its constant axioms: those needing evaluation in reverse source order, then the purely
+// literal facts grouped by predicate (groups in order of first occurrence, source order within a
+// group).
 #include <algorithm>
 #include <functional>
 #include <map>
@@ -123,10 +125,64 @@ void checkFactOnly(const Rule& r) {
       unsupported(t.loc, "this construct in a fact (axiom)");
 }
 
+// A fact of a thread predicate whose home is not a node literal: instantiated in every thread node
+// by rule 1 (§6.2, §6.12) instead of in every node by rule 0.
+bool isThreadFact(const Lowering& L, const Term& t) {
+  const PredInfo* p = L.pred(t.name);
+  return p && p->id != meldvm::Program::kNoPred && L.desc(*p).thread &&
+         (t.args[0].kind == ExprKind::Var || t.args[0].kind == ExprKind::Thread);
+}
+
+struct ThreadAxioms {
+  const Rule* statement;
+  std::vector<const Term*> facts;
+};
+
+// Rule 1 (§6.2): `_init_thread -o thread axioms`, run on the thread node. The loop carries
+// kIterThread so that the VM iterates the thread node's `_init_thread` fact; every variable home
+// stands for that thread.
+meldvm::Rule threadInitRule(Lowering& L, const std::vector<ThreadAxioms>& axioms) {
+  CodeBuilder cb;
+  const PredInfo* init = L.pred("_init_thread");
+  if (!init) throw LowerError({}, "internal error: thread predicates without _init_thread");
+  CodeBuilder::Label next = cb.label(), end = cb.label();
+  cb.useSlot(0);
+  cb.op(Opcode::ITER)
+      .w(init->id)
+      .w(0)
+      .w(meldvm::kIterLinear | meldvm::kIterConsume | meldvm::kIterConsumableClass | meldvm::kIterThread)
+      .to(end);
+  const Reg self = cb.reg(meldvm::TypeTable::kThread);
+  cb.emit(Opcode::THREAD, {self});
+  for (const ThreadAxioms& a : axioms) {
+    try {
+      RuleLowering rl(L, cb, "");
+      for (const Term* t : a.facts)
+        if (t->args[0].kind == ExprKind::Var) rl.ex.env[t->args[0].name] = self;
+      CodeBuilder::Label skip = cb.label();
+      evaluateConditions(rl, cb, *a.statement, skip);
+      for (const Term* t : a.facts) rl.subgoal(*t);
+      cb.place(skip);
+    } catch (const LowerError& e) {
+      L.diag.error(e.loc, e.what());
+    }
+  }
+  cb.emit(Opcode::FIRE, {0});
+  cb.place(next);
+  cb.op(Opcode::NEXT);
+  cb.place(end);
+  cb.op(Opcode::RET);
+  meldvm::Rule rule1;
+  rule1.block = cb.finish("_init_thread -o thread axioms");
+  rule1.bodyPredicates = {init->id};
+  return rule1;
+}
+
 }  // namespace
 
 void lowerAxioms(Lowering& L) {
   std::map<std::int64_t, std::vector<Axiom>> constant;  // per node, in source order
+  std::vector<ThreadAxioms> threadAxioms;               // for rule 1, in program order
   CodeBuilder cb;
   const PredInfo* init = L.pred("_init");
   if (!init) return;
@@ -143,16 +199,19 @@ void lowerAxioms(Lowering& L) {
     if (!isAxiom(L, r)) continue;
     try {
       checkFactOnly(r);
-      std::vector<const Term*> variable;
+      std::vector<const Term*> variable, thread;
       for (const Term& t : r.head) {
         if (t.kind != TermKind::Subgoal || t.args.empty()) continue;
-        if (t.args[0].kind == ExprKind::Node)
+        if (isThreadFact(L, t))
+          thread.push_back(&t);
+        else if (t.args[0].kind == ExprKind::Node)
           constant[t.args[0].intValue].push_back(Axiom{&r, &t});
         else if (t.args[0].kind == ExprKind::Var)
           variable.push_back(&t);
         else
           unsupported(t.args[0].loc, "this home argument in a fact");
       }
+      if (!thread.empty()) threadAxioms.push_back(ThreadAxioms{&r, std::move(thread)});
       if (variable.empty()) continue;
       // Every variable home stands for the node running rule 0.
       RuleLowering rl(L, cb, variable.front()->args[0].name);
@@ -186,6 +245,13 @@ void lowerAxioms(Lowering& L) {
   rule0.block = cb.finish("_init -o axioms");
   rule0.bodyPredicates = {init->id};
   L.prog.rules.insert(L.prog.rules.begin(), std::move(rule0));
+  if (L.threads) {
+    try {
+      L.prog.rules.insert(L.prog.rules.begin() + 1, threadInitRule(L, threadAxioms));
+    } catch (const LowerError& e) {
+      L.diag.error(e.loc, e.what());
+    }
+  }
 
   for (auto& [node, axioms] : constant) {
     if (node < 0 || size_t(node) >= L.prog.nodeAxioms.size()) continue;

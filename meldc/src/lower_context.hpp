@@ -78,6 +78,9 @@ struct Lowering {
   std::map<std::string, std::uint32_t> functions;  // user functions: function id
   std::map<std::string, std::uint32_t> externs;    // user externs: extern id
   std::map<std::string, std::uint32_t> strings;    // string constant -> index
+  // The program has thread predicates (§6.12): `_init_thread` exists and rule 1 initialises the
+  // thread node, so user rules start at 2 (§6.4.1).
+  bool threads = false;
 
   const PredInfo* pred(const std::string& name) const;
   const meldvm::PredicateDesc& desc(const PredInfo& p) const { return prog.predicates[p.id]; }
@@ -95,7 +98,8 @@ void lowerConstantsAndFunctions(Lowering& L);
 std::optional<Folded> foldConstant(Lowering& L, const ast::Expr& e);
 // lower_rule.cpp: user rules (numbered rules and persistent processes).
 void lowerRules(Lowering& L);
-// lower_axioms.cpp: rule 0 and the per-node axiom blocks.
+// lower_axioms.cpp: rule 0, rule 1 (thread axioms, with thread predicates) and the per-node
+// axiom blocks.
 void lowerAxioms(Lowering& L);
 
 bool isAxiom(const Lowering& L, const ast::Rule& r);  // a statement without body facts (§5.1)

@@ -1,6 +1,6 @@
-// Rule heads (§5.3): derived facts (DERIVE at the host, SEND elsewhere, SEND_DELAY with a delay),
-// actions, coordination instructions, in-place updates, assignments, `exists`, conditionals,
-// comprehensions and aggregate constructs.
+// Rule heads (§5.3): derived facts (DERIVE at the host, SEND elsewhere, SEND_DELAY with a delay,
+// SEND_THREAD for thread facts), actions, coordination instructions, in-place updates,
+// assignments, `exists`, conditionals, comprehensions and aggregate constructs.
 #include <climits>
 
 #include "lower_rule.hpp"
@@ -66,6 +66,12 @@ void RuleLowering::subgoal(const Term& t, std::optional<std::int64_t> localNode)
   std::vector<Reg> regs;
   for (size_t i = 1; i < t.args.size(); ++i) regs.push_back(ex.valueAs(t.args[i], desc.fields[i - 1]));
   const Expr& home = t.args[0];
+  if (desc.thread) {  // stored at the thread node of the thread the home names (§6.12)
+    if (t.delayMs) unsupported(t.loc, "a delay on the thread fact '" + t.name + "'");
+    const Reg to = ex.valueAs(home, TypeTable::kThread);  // may emit code: before the opcode
+    cb_.op(Opcode::SEND_THREAD).w(p->id).w(to).regs(regs);
+    return;
+  }
   const bool atHost = (home.kind == ExprKind::Var && home.name == hostVar_ && ex.env.count(home.name) &&
                        ex.env[home.name] == host_) ||
                       (localNode && home.kind == ExprKind::Node && home.intValue == *localNode);

@@ -24,6 +24,7 @@ bool isPattern(const Expr& e) { return e.kind == ExprKind::List || e.kind == Exp
 }  // namespace
 
 void RuleLowering::bindHost() {
+  if (hostVar_.empty()) return;  // only thread facts: the rule runs at the thread node (§6.12)
   host_ = cb_.reg(meldvm::TypeTable::kNode);
   cb_.emit(Opcode::HOST, {host_});
   ex.env[hostVar_] = host_;
@@ -105,6 +106,22 @@ void RuleLowering::destructure(Reg r, const Expr& pat, Label fail) {
     pending_.push_back(Pending{nullptr, r, &pat, false, false});
 }
 
+void RuleLowering::threadHome(const Expr& home, Label fail) {
+  // With one VM thread every thread fact a node sees belongs to the running thread (§6.12), so the
+  // home variable is that thread: bound here, or compared with it when already bound.
+  if (home.kind != ExprKind::Var) return;
+  Reg t = cb_.reg(meldvm::TypeTable::kThread);
+  cb_.emit(Opcode::THREAD, {t});
+  auto it = ex.env.find(home.name);
+  if (it == ex.env.end()) {
+    ex.env[home.name] = t;
+    return;
+  }
+  Reg same = cb_.reg(meldvm::TypeTable::kBool);
+  cb_.emit(Opcode::EQ, {same, it->second, t, meldvm::TypeTable::kThread});
+  cb_.op(Opcode::JF).w(same).to(fail);
+}
+
 void RuleLowering::pattern(std::uint32_t slot, std::uint32_t field, TypeId type, const Expr& arg,
                            Label fail) {
   if (arg.kind == ExprKind::Anon) return;
@@ -154,6 +171,7 @@ void RuleLowering::match(const BodyPlan& plan, std::uint32_t firstSlot, Label ou
     if (!(prebound && i == 0)) {
       std::uint32_t flags = 0;
       if (s.linear) flags |= meldvm::kIterLinear;
+      if (s.thread) flags |= meldvm::kIterThread;
       if (s.consumed()) flags |= meldvm::kIterConsume;
       if (s.consumableClass()) flags |= meldvm::kIterConsumableClass;
       if (mode == Mode::Rule && consumableAbove) flags |= meldvm::kIterReturnOnFire;
@@ -179,6 +197,7 @@ void RuleLowering::match(const BodyPlan& plan, std::uint32_t firstSlot, Label ou
       fail = loop.next;
     }
     consumableAbove |= s.consumableClass();
+    if (s.thread) threadHome(s.term->args[0], fail);
     for (size_t a = 1; a < s.term->args.size(); ++a)
       pattern(slot, std::uint32_t(a - 1), desc.fields.at(a - 1), s.term->args[a], fail);
     flush(fail);

@@ -82,6 +82,15 @@ void predicates(Lowering& L) {
   }
   std::map<std::string, const PredicateDecl*> declared;
   for (const PredicateDecl& d : L.ast.predicates) declared[lower(d.name)] = &d;
+  auto threadHome = [&](const PredicateDecl& d) {
+    return !d.fields.empty() && L.vmType(d.fields[0].type) == meldvm::TypeTable::kThread;
+  };
+
+  // §6.2: a program has thread predicates when it declares one or mentions a built-in one; only
+  // then do thread nodes (and `_init_thread`, rule 1) exist.
+  for (const PredicateDecl& d : L.ast.predicates) L.threads |= threadHome(d);
+  for (const BuiltinPredicate& b : builtinPredicates())
+    L.threads |= b.thread && used.count(std::string(b.name)) && !declared.count(std::string(b.name));
 
   // cl-meld's order (§9.3): _init, the used built-ins in table order, the declarations in
   // program order (generated predicates of localization come last there).
@@ -92,15 +101,15 @@ void predicates(Lowering& L) {
       continue;
     }
     if (declared.count(name)) continue;  // a declaration redefines the built-in
-    if (name != "_init" && !used.count(name)) continue;
-    if (b.thread) {
-      L.diag.error(used[name], "thread predicate '" + name + "' (§6.12) is not supported");
-      continue;
-    }
+    const bool always = name == "_init" || (name == "_init_thread" && L.threads);
+    if (!always && !used.count(name)) continue;
     meldvm::PredicateDesc desc;
     desc.name = name;
     desc.linear = b.kind == BuiltinPredKind::Linear;
     desc.action = b.action;
+    desc.thread = b.thread;
+    // The special thread facts are provided by the VM and stored compactly (§4.1.3, §4.4).
+    desc.compact = b.thread && !desc.linear;
     if (name == "setcolor")
       desc.fields = {meldvm::TypeTable::kInt, meldvm::TypeTable::kInt, meldvm::TypeTable::kInt};
     else if (name == "setedgelabel")
@@ -109,20 +118,23 @@ void predicates(Lowering& L) {
       desc.fields = {meldvm::TypeTable::kString};
     else if (name == "setcolor2")
       desc.fields = {meldvm::TypeTable::kInt};
+    else if (name == "thread-list")
+      desc.fields = {L.prog.types.list(meldvm::TypeTable::kThread)};
+    else if (name == "other-thread")
+      desc.fields = {meldvm::TypeTable::kThread, meldvm::TypeTable::kInt};
+    else if (name == "leader-thread")
+      desc.fields = {meldvm::TypeTable::kThread};
     addPredicate(L, std::move(desc), nullptr, {});
   }
   for (const PredicateDecl& d : L.ast.predicates) {
     if (d.fields.empty()) continue;
-    if (d.fields[0].type.kind == TypeKind::Thread) {
-      L.diag.error(d.nameLoc, "thread predicate '" + d.name + "' (§6.12) is not supported");
-      continue;
-    }
     meldvm::PredicateDesc desc;
     desc.name = d.name;
     desc.linear = d.linear;
     desc.route = d.route;
     desc.action = d.action;
     desc.reverseRoute = d.reverseRoute;  // generated ___xxx inverse routes (§6.7)
+    desc.thread = threadHome(d);         // facts live at thread nodes (§6.12)
     // cl-meld stores only persistent facts compactly; on a linear predicate the directive is moot.
     desc.compact = compact.count(lower(d.name)) > 0 && !d.linear;
     for (size_t i = 1; i < d.fields.size(); ++i) {

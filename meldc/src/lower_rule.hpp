@@ -23,7 +23,7 @@ class RuleLowering {
   RuleLowering(Lowering& L, CodeBuilder& cb, std::string hostVar)
       : L_(L), cb_(cb), ex(L, cb), hostVar_(std::move(hostVar)) {}
 
-  // HOST r and binds the host variable to it.
+  // HOST r and binds the host variable to it (nothing for a rule without one: thread facts only).
   void bindHost();
 
   // The loops of `plan` from slot `firstSlot` on; `outerFail` is where a test that fails before
@@ -51,6 +51,8 @@ class RuleLowering {
     bool done = false;
   };
   void flush(Label fail);
+  // The home of a thread fact (§6.12): binds an unbound variable to THREAD, else tests it.
+  void threadHome(const ast::Expr& home, Label fail);
   void pattern(std::uint32_t slot, std::uint32_t field, meldvm::TypeId type, const ast::Expr& arg,
                Label fail);
   void destructure(Reg r, const ast::Expr& pat, Label fail);

@@ -25,10 +25,11 @@ bool hasAggregateOrComprehension(const std::vector<Term>& head) {
   return false;
 }
 
-// A head item that derives a fact of `pred` at the host without delay.
-bool derivesAtHost(const Term& h, const std::string& pred, const std::string& host) {
+// A head item that derives a fact of `pred` at the node (or thread) held by variable `home`
+// without delay.
+bool derivesAt(const Term& h, const std::string& pred, const std::string& home) {
   return h.kind == TermKind::Subgoal && lower(h.name) == pred && !h.delayMs && !h.args.empty() &&
-         h.args[0].kind == ExprKind::Var && h.args[0].name == host;
+         h.args[0].kind == ExprKind::Var && h.args[0].name == home;
 }
 
 }  // namespace
@@ -80,11 +81,13 @@ bool isPredicateSubgoal(const Lowering& L, const Term& t) {
 
 std::string hostVariable(const Lowering& L, const Rule& rule) {
   for (const Term& t : rule.body) {
-    if (!isPredicateSubgoal(L, t)) continue;
+    if (!isPredicateSubgoal(L, t) || L.desc(*L.pred(t.name)).thread) continue;
     if (t.args.empty() || t.args[0].kind != ExprKind::Var)
       unsupported(t.loc, "a body fact whose home is not a variable");
     return t.args[0].name;
   }
+  for (const Term& t : rule.body)
+    if (isPredicateSubgoal(L, t)) return "";  // only thread facts
   throw LowerError(rule.loc, "internal error: rule without body facts");
 }
 
@@ -105,20 +108,29 @@ BodyPlan planBody(const Lowering& L, const std::vector<Term>& body, const std::v
     s.term = &t;
     s.pred = L.pred(t.name);
     s.linear = L.desc(*s.pred).linear;
+    s.thread = L.desc(*s.pred).thread;
     s.reused = t.mark == Mark::Reuse;
-    if (t.args.empty() || t.args[0].kind != ExprKind::Var || t.args[0].name != host)
+    // A thread fact may name any thread variable (it stands for the running thread and is bound
+    // or checked with THREAD); node facts must be at the host.
+    const ExprKind home = t.args.empty() ? ExprKind::Anon : t.args[0].kind;
+    const bool homeOk = s.thread ? !t.args.empty() && (home == ExprKind::Var || home == ExprKind::Anon)
+                                 : home == ExprKind::Var && t.args[0].name == host;
+    if (!homeOk)
       unsupported(t.args.empty() ? t.loc : t.args[0].loc,
-                  "a body fact at another node than the rule's host (after localization)");
+                  s.thread ? "a thread fact whose home is not a variable"
+                           : "a body fact at another node than the rule's host (after localization)");
     textual.push_back(s);
   }
 
-  // Reuse (§6.4.5): a linear subgoal re-derived identically at the host is not consumed.
+  // Reuse (§6.4.5): a linear subgoal re-derived identically at its home (the host, or the same
+  // thread variable for a thread fact) is not consumed.
   std::vector<bool> used(head.size(), false);
   for (SubgoalPlan& s : textual) {
-    if (!s.linear || s.reused) continue;
+    if (!s.linear || s.reused || s.term->args[0].kind != ExprKind::Var) continue;
     const std::string name = lower(s.term->name);
     for (size_t h = 0; h < head.size(); ++h) {
-      if (used[h] || !derivesAtHost(head[h], name, host) || head[h].args.size() != s.term->args.size())
+      if (used[h] || !derivesAt(head[h], name, s.term->args[0].name) ||
+          head[h].args.size() != s.term->args.size())
         continue;
       bool same = true;
       for (size_t a = 1; a < head[h].args.size() && same; ++a)
@@ -150,7 +162,8 @@ BodyPlan planBody(const Lowering& L, const std::vector<Term>& body, const std::v
   for (size_t h = 0; h < head.size() && !plan.updateHead; ++h) {
     if (used[h] || head[h].kind != TermKind::Subgoal) continue;
     const std::string name = lower(head[h].name);
-    if (!derivesAtHost(head[h], name, host)) continue;
+    // Not for thread facts: UPDATE rewrites a fact of the host's store.
+    if (!derivesAt(head[h], name, host)) continue;
     std::vector<size_t> consumed;
     for (size_t i = 0; i < plan.subgoals.size(); ++i)
       if (plan.subgoals[i].consumed() && lower(plan.subgoals[i].term->name) == name) consumed.push_back(i);

@@ -15,6 +15,7 @@ struct SubgoalPlan {
   const ast::Term* term = nullptr;
   const PredInfo* pred = nullptr;
   bool linear = false;
+  bool thread = false;   // a thread fact (§6.12): home is a thread variable, not the host
   bool reused = false;   // `$p(...)`
   bool kept = false;     // re-derived identically by the head: that head item is dropped
   bool updated = false;  // the fact is updated in place (UPDATE) instead of consumed
@@ -33,7 +34,9 @@ struct BodyPlan {
   const ast::Selector* selector = nullptr;  // [:min X | ...] of the rule
 };
 
-// The home variable of the first body subgoal (§6.7); throws LowerError when it is not a variable.
+// The home variable of the first body subgoal stored at a node (§6.7); throws LowerError when it is
+// not a variable. Empty for a rule whose body has only thread facts: it runs at the thread node
+// (§6.12) and has no host node variable.
 std::string hostVariable(const Lowering& L, const ast::Rule& rule);
 
 // Plans a body (a rule's, a comprehension's or an aggregate's) against the head items that may

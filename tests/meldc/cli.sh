@@ -62,9 +62,9 @@ case_emit_asm() {
   has "$OUT" "AXIOMS"
 }
 case_emit_unsupported() {
-  printf 'type linear w(thread, int).\nw(T, 1).\n' >"$WORK/d.meld"
+  printf 'type edge(node, node).\ndata stanford-snap "g.txt".\n' >"$WORK/d.meld"
   run 1 "$WORK/d.meld"
-  has "$ERR" "d.meld:1:13: error: thread predicate 'w' (§6.12) is not supported"
+  has "$ERR" "d.meld:2:1: error: 'data' directives are not supported yet"
   [ -e "$WORK/d.mbc" ] && fail "no bytecode expected"
   true
 }
