@@ -94,8 +94,8 @@ std::string Lister::predFlags(const PredicateDesc& d) const {
 }
 
 std::string Lister::iterFlags(std::uint32_t f) const {
-  static constexpr const char* kNames[] = {"linear", "consume", "return-on-fire", "random",
-                                           "consumable-class", "thread"};
+  static constexpr const char* kNames[] = {"linear", "consume",          "return-on-fire",
+                                           "random", "consumable-class", "thread"};
   if (f == 0) return "0";
   std::string s;
   for (std::uint32_t bit = 0; bit < 32; ++bit) {

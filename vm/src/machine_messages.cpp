@@ -34,7 +34,10 @@ void Machine::postAll(const std::vector<PendingFact>& facts) {
   constexpr std::size_t kBoxAhead = 8, kTailAhead = 4;  // mailbox entry, then its last chunk
   const std::size_t n = facts.size();
   for (std::size_t i = 0; i < n; ++i) {
-    if (i + kBoxAhead < n) mail_->prefetchBox(facts[i + kBoxAhead].node);
+    if (i + kBoxAhead < n) {
+      mail_->prefetchBox(facts[i + kBoxAhead].node);
+      if (!host_) sched_.prefetch(facts[i + kBoxAhead].node);
+    }
     if (i + kTailAhead < n) mail_->prefetchTail(facts[i + kTailAhead].node);
     const PendingFact& e = facts[i];
     const Value* args = sentArgs_.data() + e.args;

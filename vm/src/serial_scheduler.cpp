@@ -11,36 +11,32 @@ SerialScheduler::SerialScheduler(const SchedulingOptions& o) : desc_(o.order == 
 }
 
 void SerialScheduler::start(NodeId nodes) {
-  prio_.assign(nodes, initial_);
-  defaultPrio_.assign(nodes, default_);
-  static_.assign(nodes, 0);
-  where_.assign(nodes, Where::Idle);
-  heapIndex_.assign(nodes, 0);
-  ticket_.assign(nodes, 0);
+  NodeState init;
+  init.prio = initial_;
+  init.defaultPrio = default_;
+  nodes_.assign(nodes, init);
   for (NodeId n = 0; n < nodes; ++n) wake(n);
 }
 
 void SerialScheduler::addNode() {
-  prio_.push_back(noPriority_);
-  defaultPrio_.push_back(default_);
-  static_.push_back(0);
-  where_.push_back(Where::Idle);
-  heapIndex_.push_back(0);
-  ticket_.push_back(0);
+  NodeState fresh;
+  fresh.prio = noPriority_;
+  fresh.defaultPrio = default_;
+  nodes_.push_back(fresh);
 }
 
 bool SerialScheduler::pop(NodeId& node) {
   if (!heap_.empty()) {
     node = heap_[0];
     heapRemove(node);
-    where_[node] = Where::Idle;
+    nodes_[node].where = Where::Idle;
     return true;
   }
   while (fifoHead_ < fifo_.size()) {
     const FifoEntry e = fifo_[fifoHead_++];
-    if (where_[e.node] != Where::Fifo || ticket_[e.node] != e.ticket) continue;
+    if (nodes_[e.node].where != Where::Fifo || nodes_[e.node].ticket != e.ticket) continue;
     --fifoLive_;
-    where_[e.node] = Where::Idle;
+    nodes_[e.node].where = Where::Idle;
     node = e.node;
     if (fifoHead_ > 4096 && fifoHead_ * 2 > fifo_.size()) {
       fifo_.erase(fifo_.begin(), fifo_.begin() + std::ptrdiff_t(fifoHead_));
@@ -52,93 +48,93 @@ bool SerialScheduler::pop(NodeId& node) {
 }
 
 void SerialScheduler::wake(NodeId n) {
-  if (where_[n] != Where::Idle) return;
-  if (prio_[n] != noPriority_) {
+  if (nodes_[n].where != Where::Idle) return;
+  if (nodes_[n].prio != noPriority_) {
     heapPush(n);
   } else {
-    where_[n] = Where::Fifo;
-    fifo_.push_back({n, ++ticket_[n]});
+    nodes_[n].where = Where::Fifo;
+    fifo_.push_back({n, ++nodes_[n].ticket});
     ++fifoLive_;
   }
 }
 
 void SerialScheduler::finished(NodeId n, bool hasWork) {
-  prio_[n] = defaultPrio_[n];
+  nodes_[n].prio = nodes_[n].defaultPrio;
   if (hasWork) wake(n);
 }
 
 void SerialScheduler::changed(NodeId n) {
-  if (where_[n] == Where::Heap) {
-    if (prio_[n] == noPriority_) {  // back to the FIFO
+  if (nodes_[n].where == Where::Heap) {
+    if (nodes_[n].prio == noPriority_) {  // back to the FIFO
       heapRemove(n);
-      where_[n] = Where::Idle;
+      nodes_[n].where = Where::Idle;
       wake(n);
     } else {
-      siftUp(heapIndex_[n]);
-      siftDown(heapIndex_[n]);
+      siftUp(nodes_[n].heapIndex);
+      siftDown(nodes_[n].heapIndex);
     }
-  } else if (where_[n] == Where::Fifo && prio_[n] != noPriority_) {
-    where_[n] = Where::Idle;  // the FIFO entry goes stale
+  } else if (nodes_[n].where == Where::Fifo && nodes_[n].prio != noPriority_) {
+    nodes_[n].where = Where::Idle;  // the FIFO entry goes stale
     --fifoLive_;
     heapPush(n);
   }
 }
 
 void SerialScheduler::setPriority(NodeId n, double p) {
-  if (!moreUrgent(p, prio_[n])) return;
-  prio_[n] = p;
+  if (!moreUrgent(p, nodes_[n].prio)) return;
+  nodes_[n].prio = p;
   changed(n);
 }
 
 void SerialScheduler::addPriority(NodeId n, double delta) {
-  prio_[n] = (prio_[n] == noPriority_ ? 0.0 : prio_[n]) + delta;
+  nodes_[n].prio = (nodes_[n].prio == noPriority_ ? 0.0 : nodes_[n].prio) + delta;
   changed(n);
 }
 
 void SerialScheduler::removePriority(NodeId n) {
-  prio_[n] = defaultPrio_[n];
+  nodes_[n].prio = nodes_[n].defaultPrio;
   changed(n);
 }
 
 void SerialScheduler::setDefaultPriority(NodeId n, double p) {
-  const bool followsDefault = prio_[n] == defaultPrio_[n];
-  defaultPrio_[n] = p;
+  const bool followsDefault = nodes_[n].prio == nodes_[n].defaultPrio;
+  nodes_[n].defaultPrio = p;
   if (followsDefault) {
-    prio_[n] = p;
+    nodes_[n].prio = p;
     changed(n);
   }
 }
 
 void SerialScheduler::scheduleNext(NodeId n) {
-  prio_[n] = desc_ ? DBL_MAX : -DBL_MAX;
+  nodes_[n].prio = desc_ ? DBL_MAX : -DBL_MAX;
   changed(n);
 }
 
 void SerialScheduler::heapPush(NodeId n) {
-  where_[n] = Where::Heap;
-  heapIndex_[n] = std::uint32_t(heap_.size());
+  nodes_[n].where = Where::Heap;
+  nodes_[n].heapIndex = std::uint32_t(heap_.size());
   heap_.push_back(n);
-  siftUp(heapIndex_[n]);
+  siftUp(nodes_[n].heapIndex);
 }
 
 void SerialScheduler::heapRemove(NodeId n) {
-  const std::uint32_t i = heapIndex_[n];
+  const std::uint32_t i = nodes_[n].heapIndex;
   const NodeId last = heap_.back();
   heap_.pop_back();
   if (last == n) return;
   heap_[i] = last;
-  heapIndex_[last] = i;
+  nodes_[last].heapIndex = i;
   siftDown(i);
-  siftUp(heapIndex_[last]);
+  siftUp(nodes_[last].heapIndex);
 }
 
 void SerialScheduler::siftUp(std::uint32_t i) {
   while (i > 0) {
     const std::uint32_t parent = (i - 1) / 2;
-    if (!moreUrgent(prio_[heap_[i]], prio_[heap_[parent]])) break;
+    if (!moreUrgent(nodes_[heap_[i]].prio, nodes_[heap_[parent]].prio)) break;
     std::swap(heap_[i], heap_[parent]);
-    heapIndex_[heap_[i]] = i;
-    heapIndex_[heap_[parent]] = parent;
+    nodes_[heap_[i]].heapIndex = i;
+    nodes_[heap_[parent]].heapIndex = parent;
     i = parent;
   }
 }
@@ -148,12 +144,12 @@ void SerialScheduler::siftDown(std::uint32_t i) {
   for (;;) {
     const std::uint32_t left = 2 * i + 1, right = left + 1;
     std::uint32_t best = i;
-    if (left < size && moreUrgent(prio_[heap_[left]], prio_[heap_[best]])) best = left;
-    if (right < size && moreUrgent(prio_[heap_[right]], prio_[heap_[best]])) best = right;
+    if (left < size && moreUrgent(nodes_[heap_[left]].prio, nodes_[heap_[best]].prio)) best = left;
+    if (right < size && moreUrgent(nodes_[heap_[right]].prio, nodes_[heap_[best]].prio)) best = right;
     if (best == i) return;
     std::swap(heap_[i], heap_[best]);
-    heapIndex_[heap_[i]] = i;
-    heapIndex_[heap_[best]] = best;
+    nodes_[heap_[i]].heapIndex = i;
+    nodes_[heap_[best]].heapIndex = best;
     i = best;
   }
 }
