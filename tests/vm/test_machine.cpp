@@ -1,7 +1,7 @@
 // The rule engine on hand-assembled programs (independent of meldc): firing order, the linear-
 // ancestor rule of §6.4.3, deferred visibility (§6.4.4), persistent processes (§6.5) and sends.
 #define BOOST_TEST_MODULE vm_machine
-#include <boost/test/included/unit_test.hpp>
+#include <boost/test/unit_test.hpp>
 
 #include "bytecode_fixture.hpp"
 #include "meldvm/arith.hpp"

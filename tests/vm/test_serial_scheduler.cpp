@@ -1,6 +1,6 @@
 // The serial scheduler of spec §6.11 and the priority facts of §5.7.
 #define BOOST_TEST_MODULE vm_serial_scheduler
-#include <boost/test/included/unit_test.hpp>
+#include <boost/test/unit_test.hpp>
 #include <vector>
 
 #include "meldvm/serial_scheduler.hpp"
