@@ -27,6 +27,8 @@ Interpreter::Interpreter(Machine& machine, const Program& program, Database& db,
   regChunks_.push_back(std::make_unique<Value[]>(kRegChunk));
   slotChunks_.push_back(std::make_unique<Slot[]>(kSlotChunk));
   args_.reserve(64);
+  builtins_.assign(kBuiltinIdCount, nullptr);
+  for (const BuiltinInfo& b : builtinTable()) builtins_[b.id] = &b;
 }
 
 Interpreter::~Interpreter() = default;
@@ -441,7 +443,7 @@ Interpreter::Status Interpreter::exec(Frame& f, std::uint32_t pc) {
         break;
       }
       case Opcode::CALL: {
-        const BuiltinInfo* b = findBuiltin(std::uint16_t(c[2]));
+        const BuiltinInfo* b = c[2] < builtins_.size() ? builtins_[c[2]] : nullptr;
         if (!b) throw RuntimeError("built-in function " + std::to_string(c[2]) + " is not available");
         gatherArgs(f, c + 5, c[4]);
         setReg(f, c[1], b->fn(ctx_, args_, c[3]));

@@ -91,6 +91,7 @@ class Interpreter {
   const CodeBlock* lastBlock_ = nullptr;  // the processes of a program run the same few blocks
   const std::vector<std::uint8_t>* lastBoxed_ = nullptr;
   std::vector<Value> args_;      // arguments gathered for DERIVE/SEND/CALL
+  std::vector<const BuiltinInfo*> builtins_;  // by id (nullptr: not implemented)
   std::vector<FactRef> sorted_;  // ITER_SORTED candidates (a stack of runs)
 };
 
