@@ -130,17 +130,63 @@ BOOST_AUTO_TEST_CASE(computing_time_delays_the_messages_a_node_run_sends) {
   BOOST_TEST(arrival[1] > arrival[0] + 900000);
 }
 
-BOOST_AUTO_TEST_CASE(move_to_retracts_and_reasserts_the_position) {
-  // Smart Blocks: block 0 at (0,0) moves to (0,1) once; `at` follows.
+BOOST_AUTO_TEST_CASE(move_to_retracts_and_reasserts_the_position_and_the_links) {
+  // Smart Blocks: block 0 at (0,0) moves to (0,1) once; `at` follows, and its link to block 1 at
+  // (1,0) breaks (faces: north 0 (+y), east 1, south 2, west 3).
   World w("smartblocks", {{0, 0, 0}, {1, 0, 0}}, R"(
+type route neighbor(node, node, int).
+type vacant(node, int).
 type at(node, int, int, int).
 type linear action moveTo(node, int, int, int).
 type linear go(node).
-go(@0).
+type linear start(node).
+start(@0).
+start(X) -o go(X)@+100ms.
 go(X), !at(X, A, B, C) -o moveTo(X, A, B + 1, C).
 )");
+  w.sim->runUntil(simcore::SimTime(50) * 1000000);  // before the move: linked
+  BOOST_TEST(w.facts(1).find("!neighbor(@0, 3)") != std::string::npos);
   w.sim->runUntilEmpty();
   BOOST_TEST(w.vm->error() == "");
-  BOOST_TEST(w.facts(0) == "!at(0, 1, 0)\n");
+  BOOST_TEST(w.facts(0) == "!at(0, 1, 0)\n!vacant(0)\n!vacant(1)\n!vacant(2)\n!vacant(3)\n");
+  BOOST_TEST(w.facts(1).find("!neighbor(@0, 3)") == std::string::npos);
+  BOOST_TEST(w.facts(1).find("!vacant(3)") != std::string::npos);
   BOOST_TEST((w.sim->world().block(0).cell == simcore::Cell{0, 1, 0}));
+}
+
+BOOST_AUTO_TEST_CASE(a_delayed_fact_arrives_after_its_delay_in_simulated_time) {
+  // ping(X)@+250ms for the block itself waits on a timer; pong for the neighbour leaves 250 ms
+  // late on the link.
+  World w("blinkyblocks", robots::line(2), R"(
+type route neighbor(node, node, int).
+type linear start(node).
+type linear ping(node).
+type linear pong(node).
+start(@0).
+start(X) -o ping(X)@+250ms.
+ping(X), !neighbor(X, Y, _) -o pong(Y)@+250ms.
+)");
+  w.sim->runUntil(simcore::SimTime(240) * 1000000);
+  BOOST_TEST(w.facts(0).find("ping()") == std::string::npos);
+  w.sim->runUntil(simcore::SimTime(260) * 1000000);
+  BOOST_TEST(w.facts(0).find("ping()") == std::string::npos);  // consumed at once by the next rule
+  BOOST_TEST(w.facts(1).find("pong()") == std::string::npos);  // still on its way
+  w.sim->runUntilEmpty();
+  BOOST_TEST(w.vm->error() == "");
+  BOOST_TEST(w.facts(1).find("pong()") != std::string::npos);
+  BOOST_TEST(w.sim->now() > simcore::SimTime(500) * 1000000);
+  BOOST_TEST(w.sim->now() < simcore::SimTime(510) * 1000000);
+}
+
+BOOST_AUTO_TEST_CASE(catoms_2d_and_3d_run_the_gradient_over_their_lattices) {
+  // Catoms 2D: a hexagonal row (faces right 0 / left 3); Catoms 3D: a row along x (side0 / side6).
+  for (const char* target : {"catoms2d", "catoms3d"}) {
+    World w(target, robots::line(4), kGradient);
+    w.sim->scheduleTap(0, 1000000);
+    w.sim->runUntilEmpty();
+    BOOST_TEST(w.vm->error() == "", target);
+    for (std::uint32_t b = 0; b < 4; ++b)
+      BOOST_TEST(w.facts(b).find("!hops(" + std::to_string(b) + ")") != std::string::npos,
+                 target << " " << b);
+  }
 }
