@@ -231,9 +231,13 @@ int runVsim(const Options& o) {
   traceOut->flush();
   if (meld) {
     const meldvm::MachineStats& ms = meld->machine().stats();
-    info.counters = {{"facts derived", ms.factsDerived},      {"facts consumed", ms.factsConsumed},
-                     {"rules fired", ms.rulesFired},          {"fact messages", meld->messages()},
-                     {"message bytes", meld->messageBytes()}, {"node runs", ms.nodeRuns}};
+    info.counters = {{"facts derived", ms.factsDerived},
+                     {"facts consumed", ms.factsConsumed},
+                     {"rules fired", ms.rulesFired},
+                     {"fact messages", meld->messages()},
+                     {"message bytes", meld->messageBytes()},
+                     {"node runs", ms.nodeRuns},
+                     {"vm bytes", meld->machine().bytesInUse()}};
   }
   if (meld && !meld->error().empty())
     throw Failure{kExitRuntime,

@@ -46,8 +46,8 @@ fi
 median() { sort -g | awk '{a[NR]=$1} END {print (NR%2) ? a[(NR+1)/2] : (a[NR/2]+a[NR/2+1])/2}'; }
 field() { sed -n "s/^  $1 *\(.*\)$/\1/p" | head -1; }
 
-[ "$json" = 1 ] || printf "%-12s %-9s %7s %11s %12s %7s %9s %12s %9s %7s %8s  %s\n" \
-  world program blocks events sim_time wall_s Mev/s facts_derived Mfacts/s rss_MB B/block fingerprint
+[ "$json" = 1 ] || printf "%-12s %-9s %7s %11s %12s %7s %9s %12s %9s %7s %8s %9s  %s\n" \
+  world program blocks events sim_time wall_s Mev/s facts_derived Mfacts/s rss_MB B/block VM_B/block fingerprint
 for w in $worlds; do
   for prog in gradient leader; do
     walls="" rsss="" fp="" events="" facts="" simt="" blocks=""
@@ -61,6 +61,7 @@ for w in $worlds; do
       [ -z "$fp" ] || [ "$fp" = "$f" ] || echo "run-b3.sh: fingerprints differ between runs ($fp, $f)" >&2
       fp="$f"; events="$(field events < "$log")"; facts="$(field 'facts derived' < "$log")"
       simt="$(field 'simulated time' < "$log" | awk '{print $1}')"; blocks="$(field blocks < "$log")"
+      vmb="$(field 'vm bytes' < "$log")"
     done
     wall="$(printf "%s" "$walls" | median)"; rss="$(printf "%s" "$rsss" | median)"
     name="$(basename "$w" .xml)"
@@ -68,12 +69,13 @@ for w in $worlds; do
     fps="$(awk -v f="$facts" -v w="$wall" 'BEGIN{printf "%.2f", f / w / 1e6}')"
     rssmb="$(awk -v k="$rss" 'BEGIN{printf "%.1f", k / 1024}')"
     bpb="$(awk -v k="$rss" -v b="$blocks" 'BEGIN{printf "%.0f", k * 1024 / b}')"
+    vmbpb="$(awk -v v="$vmb" -v b="$blocks" 'BEGIN{printf "%.0f", v / b}')"
     if [ "$json" = 1 ]; then
-      printf '{"world":"%s","program":"%s","blocks":%s,"events":%s,"simulated_s":%s,"wall_s":%s,"facts_derived":%s,"peak_rss_mb":%s,"bytes_per_block":%s,"fingerprint":"%s"}\n' \
-        "$name" "$prog" "$blocks" "$events" "$simt" "$wall" "$facts" "$rssmb" "$bpb" "$fp"
+      printf '{"world":"%s","program":"%s","blocks":%s,"events":%s,"simulated_s":%s,"wall_s":%s,"facts_derived":%s,"peak_rss_mb":%s,"bytes_per_block":%s,"vm_bytes_per_block":%s,"fingerprint":"%s"}\n' \
+        "$name" "$prog" "$blocks" "$events" "$simt" "$wall" "$facts" "$rssmb" "$bpb" "$vmbpb" "$fp"
     else
-      printf "%-12s %-9s %7s %11s %12s %7.2f %9s %12s %9s %7s %8s  %s\n" "$name" "$prog" "$blocks" "$events" \
-        "$simt" "$wall" "$evs" "$facts" "$fps" "$rssmb" "$bpb" "$fp"
+      printf "%-12s %-9s %7s %11s %12s %7.2f %9s %12s %9s %7s %8s %9s  %s\n" "$name" "$prog" "$blocks" "$events" \
+        "$simt" "$wall" "$evs" "$facts" "$fps" "$rssmb" "$bpb" "$vmbpb" "$fp"
     fi
   done
 done

@@ -77,7 +77,10 @@ Machine::~Machine() {
   db_.reset();
 }
 
-std::size_t Machine::bytesInUse() const { return heap_.bytesReserved() + mail_->bytesReserved(); }
+std::size_t Machine::bytesInUse() const {
+  return db_->bytesReserved() + heap_.bytesReserved() + mail_->bytesReserved() +
+         candidates_.capacity() * sizeof(std::uint64_t) + created_.capacity() + (sched_.nodeCount() + 1) * 32;
+}
 
 bool Machine::hasWork(NodeId n) const { return !mail_->empty(n); }
 

@@ -50,6 +50,12 @@ class Database {
   // returns the index handle for firstWithKey.
   std::uint32_t requestIndex(PredId p, std::uint32_t field);
 
+  // Memory held by the store: fact tables, their hash tables, the per-node list heads.
+  std::size_t bytesReserved() const {
+    std::size_t b = heads_.capacity() * sizeof(ListHead) + alive_.capacity();
+    for (const FactTable& t : tables_) b += t.bytesReserved();
+    return b;
+  }
   // Room for that many facts of p (all nodes together) without growing.
   void reserve(PredId p, std::size_t facts) { tables_[p].reserve(facts); }
 

@@ -86,7 +86,12 @@ class FactTable {
   std::uint32_t arity() const { return std::uint32_t(fields_.size()); }
   const std::vector<TypeId>& fields() const { return fields_; }
   std::uint32_t liveFacts() const { return live_; }
-  std::size_t bytesReserved() const { return words_.capacity() * sizeof(Value); }
+  // Memory held: the slot array and the hash tables (de-duplication and indexes).
+  std::size_t bytesReserved() const {
+    std::size_t b = words_.capacity() * sizeof(Value) + facts_.capacity() * 8;
+    for (const Index& x : indexes_) b += x.heads.capacity() * 8;
+    return b;
+  }
 
   // Hash of a node and `count` key values with the types of fields [first, first + count).
   std::uint64_t hashKey(NodeId node, const Value* key, KeySpec spec) const;

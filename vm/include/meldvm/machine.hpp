@@ -85,6 +85,7 @@ class Machine : private SchedulerView {
   const MachineStats& stats() const { return stats_; }
   const Database& database() const { return *db_; }
   const Program& program() const { return program_; }
+  // Memory the VM holds for its nodes: fact store, values, mailboxes, scheduler, candidate sets.
   std::size_t bytesInUse() const;
 
  private:

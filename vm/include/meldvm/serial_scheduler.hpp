@@ -51,6 +51,7 @@ class SerialScheduler {
   bool isStatic(NodeId n) const { return nodes_[n].isStatic != 0; }
   // A hint that `wake(n)` comes soon (always inlined: GCC drops calls to prefetch-only functions).
   [[gnu::always_inline]] void prefetch(NodeId n) const { __builtin_prefetch(&nodes_[n]); }
+  std::size_t nodeCount() const { return nodes_.size(); }
   std::size_t waiting() const { return heap_.size() + fifoLive_; }
   // Urgency order: true when a is strictly more urgent than b.
   bool moreUrgent(double a, double b) const { return desc_ ? a > b : a < b; }
