@@ -57,7 +57,7 @@ int main(int argc, char** argv) {
     try {
       program = meldvm::readBytecodeFile(options->program);
     } catch (const meldvm::BytecodeError& e) {
-      std::cerr << options->program << ": error: " << e.what() << "\n";
+      std::cerr << "meld: error: " << e.what() << "\n";  // the message names the file
       return kExitBadBytecode;
     }
   } else {
