@@ -18,7 +18,7 @@ std::unique_ptr<meldvm::Program> loadMeldProgram(const std::string& path,
     try {
       return meldvm::readBytecodeFile(path);
     } catch (const meldvm::BytecodeError& e) {
-      throw ProgramLoadError(std::string("error: ") + e.what());  // the message names the file
+      throw ProgramLoadError(e.what());  // the message names the file
     }
   }
   meldc::SourceManager sources;
