@@ -5,7 +5,7 @@
 #include <string>
 #include <vector>
 
-#include "free_vars.hpp"
+#include "expr_vars.hpp"
 #include "meldc/builtins.hpp"
 #include "meldc/case_folding.hpp"
 
@@ -22,20 +22,9 @@ void uses(const Expr& e, std::vector<const Expr*>& out) {
   forEachFreeVar(e, [&](const Expr& v) { out.push_back(&v); });
 }
 
-// A subgoal argument binds the variables of its pattern part (a variable, a list or struct
-// pattern); any other expression only tests, so its variables must be bound elsewhere.
 void patternVars(const Expr& e, VarSet& bound, std::vector<const Expr*>& tests) {
-  switch (e.kind) {
-    case ExprKind::Var:
-      bound.insert(e.name);
-      return;
-    case ExprKind::List:
-    case ExprKind::Struct:
-      for (const Expr& a : e.args) patternVars(a, bound, tests);
-      return;
-    default:
-      uses(e, tests);
-  }
+  forEachPatternVar(
+      e, [&](const Expr& v) { bound.insert(v.name); }, [&](const Expr& v) { tests.push_back(&v); });
 }
 
 // `X = e` with X not yet bound: an assignment of X.

@@ -8,7 +8,7 @@
 #include <string>
 #include <vector>
 
-#include "free_vars.hpp"
+#include "expr_vars.hpp"
 #include "meldc/builtins.hpp"
 #include "meldc/case_folding.hpp"
 #include "meldc/types.hpp"
@@ -43,20 +43,9 @@ void termVars(const Term& t, VarList& out) {
   eachExpr(t, [&](const Expr& e) { exprVars(e, out); });
 }
 
-// As in the bindings check: a subgoal argument binds the variables of its pattern part (variable,
-// list or struct pattern); other expressions only test, with variables bound elsewhere.
 void patternVars(const Expr& e, VarSet& bound, VarList& tests) {
-  switch (e.kind) {
-    case ExprKind::Var:
-      bound.insert(e.name);
-      return;
-    case ExprKind::List:
-    case ExprKind::Struct:
-      for (const Expr& a : e.args) patternVars(a, bound, tests);
-      return;
-    default:
-      exprVars(e, tests);
-  }
+  forEachPatternVar(
+      e, [&](const Expr& v) { bound.insert(v.name); }, [&](const Expr& v) { tests.push_back(v.name); });
 }
 
 // The inferred type of each variable of an expression (the first occurrence the checker typed).

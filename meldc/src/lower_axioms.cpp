@@ -133,6 +133,33 @@ bool isThreadFact(const Lowering& L, const Term& t) {
          (t.args[0].kind == ExprKind::Var || t.args[0].kind == ExprKind::Thread);
 }
 
+// Rules 0 and 1 share one frame: a loop over the start-up fact whose body derives the axioms
+// and fires once.
+struct InitLoop {
+  CodeBuilder::Label next, end;
+};
+InitLoop openInitLoop(CodeBuilder& cb, meldvm::PredId init, std::uint32_t extraFlags) {
+  InitLoop loop{cb.label(), cb.label()};
+  cb.useSlot(0);
+  cb.op(Opcode::ITER)
+      .w(init)
+      .w(0)
+      .w(meldvm::kIterLinear | meldvm::kIterConsume | meldvm::kIterConsumableClass | extraFlags)
+      .to(loop.end);
+  return loop;
+}
+meldvm::Rule closeInitLoop(CodeBuilder& cb, const InitLoop& loop, meldvm::PredId init, const char* label) {
+  cb.emit(Opcode::FIRE, {0});
+  cb.place(loop.next);
+  cb.op(Opcode::NEXT);
+  cb.place(loop.end);
+  cb.op(Opcode::RET);
+  meldvm::Rule rule;
+  rule.block = cb.finish(label);
+  rule.bodyPredicates = {init};
+  return rule;
+}
+
 struct ThreadAxioms {
   const Rule* statement;
   std::vector<const Term*> facts;
@@ -145,13 +172,7 @@ meldvm::Rule threadInitRule(Lowering& L, const std::vector<ThreadAxioms>& axioms
   CodeBuilder cb;
   const PredInfo* init = L.pred("_init_thread");
   if (!init) throw LowerError({}, "internal error: thread predicates without _init_thread");
-  CodeBuilder::Label next = cb.label(), end = cb.label();
-  cb.useSlot(0);
-  cb.op(Opcode::ITER)
-      .w(init->id)
-      .w(0)
-      .w(meldvm::kIterLinear | meldvm::kIterConsume | meldvm::kIterConsumableClass | meldvm::kIterThread)
-      .to(end);
+  const InitLoop loop = openInitLoop(cb, init->id, meldvm::kIterThread);
   const Reg self = cb.reg(meldvm::TypeTable::kThread);
   cb.emit(Opcode::THREAD, {self});
   for (const ThreadAxioms& a : axioms) {
@@ -167,15 +188,7 @@ meldvm::Rule threadInitRule(Lowering& L, const std::vector<ThreadAxioms>& axioms
       L.diag.error(e.loc, e.what());
     }
   }
-  cb.emit(Opcode::FIRE, {0});
-  cb.place(next);
-  cb.op(Opcode::NEXT);
-  cb.place(end);
-  cb.op(Opcode::RET);
-  meldvm::Rule rule1;
-  rule1.block = cb.finish("_init_thread -o thread axioms");
-  rule1.bodyPredicates = {init->id};
-  return rule1;
+  return closeInitLoop(cb, loop, init->id, "_init_thread -o thread axioms");
 }
 
 }  // namespace
@@ -186,13 +199,7 @@ void lowerAxioms(Lowering& L) {
   CodeBuilder cb;
   const PredInfo* init = L.pred("_init");
   if (!init) return;
-  CodeBuilder::Label next = cb.label(), end = cb.label();
-  cb.useSlot(0);
-  cb.op(Opcode::ITER)
-      .w(init->id)
-      .w(0)
-      .w(meldvm::kIterLinear | meldvm::kIterConsume | meldvm::kIterConsumableClass)
-      .to(end);
+  const InitLoop loop = openInitLoop(cb, init->id, 0);
   cb.op(Opcode::AXIOMS);
   std::map<std::string, std::set<std::int64_t>> subtypes = subtypeNodes(L);
   for (const Rule& r : L.ast.rules) {
@@ -236,15 +243,7 @@ void lowerAxioms(Lowering& L) {
       L.diag.error(e.loc, e.what());
     }
   }
-  cb.emit(Opcode::FIRE, {0});
-  cb.place(next);
-  cb.op(Opcode::NEXT);
-  cb.place(end);
-  cb.op(Opcode::RET);
-  meldvm::Rule rule0;
-  rule0.block = cb.finish("_init -o axioms");
-  rule0.bodyPredicates = {init->id};
-  L.prog.rules.insert(L.prog.rules.begin(), std::move(rule0));
+  L.prog.rules.insert(L.prog.rules.begin(), closeInitLoop(cb, loop, init->id, "_init -o axioms"));
   if (L.threads) {
     try {
       L.prog.rules.insert(L.prog.rules.begin() + 1, threadInitRule(L, threadAxioms));

@@ -3,6 +3,7 @@
 // their variables are bound; a failing test jumps to the NEXT of the innermost loop.
 #include <set>
 
+#include "expr_vars.hpp"
 #include "lower_rule.hpp"
 
 namespace meldc {
@@ -13,10 +14,10 @@ using meldvm::TypeId;
 
 namespace {
 
+// The variables a subgoal argument binds (its pattern part).
 void patternVars(const Expr& e, std::set<std::string>& out) {
-  if (e.kind == ExprKind::Var) out.insert(e.name);
-  if (e.kind == ExprKind::List || e.kind == ExprKind::Struct)
-    for (const Expr& a : e.args) patternVars(a, out);
+  forEachPatternVar(
+      e, [&](const Expr& v) { out.insert(v.name); }, [](const Expr&) {});
 }
 
 bool isPattern(const Expr& e) { return e.kind == ExprKind::List || e.kind == ExprKind::Struct; }
