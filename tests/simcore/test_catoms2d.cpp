@@ -5,6 +5,7 @@
 
 #include "catoms2d/catoms2d.hpp"
 #include "catoms2d/hex_lattice.hpp"
+#include "catoms2d_support.hpp"
 #include "flood_check.hpp"
 #include "simcore/xml_world.hpp"
 #include "test_support.hpp"
@@ -15,11 +16,7 @@ using testsupport::Script;
 
 namespace {
 
-constexpr int kRight = targets::kC2DRight, kTopRight = targets::kC2DTopRight, kTopLeft = targets::kC2DTopLeft,
-              kLeft = targets::kC2DLeft, kBottomLeft = targets::kC2DBottomLeft,
-              kBottomRight = targets::kC2DBottomRight;
-
-bool near(double a, double b) { return std::fabs(a - b) < 1e-9; }
+using namespace c2dtest;
 
 // The centre of a cell by the VisibleSim convention, written out here rather than taken from the
 // lattice: odd rows shifted by half a catom, rows sqrt(3)/2 apart.
@@ -158,21 +155,7 @@ BOOST_AUTO_TEST_CASE(removing_a_catom_breaks_its_six_links_on_opposite_faces) {
   auto sim = makeC2D({3, 1, 3}, patch(3, 3));
   Script s(*sim);
   const BlockId centre = 4;  // (1,0,1), an odd row
-  sim->runUntilEmpty();
-  const World& w = sim->world();
-  std::vector<std::pair<BlockId, int>> expected;  // (neighbor, its face towards the centre)
-  for (int f = 0; f < 6; ++f) expected.emplace_back(w.neighbor(centre, f), (f + 3) % 6);
-  for (const auto& [n, face] : expected) BOOST_REQUIRE_NE(n, kNoBlock);
-  sim->removeBlock(centre);
-  sim->runUntilEmpty();
-  for (const auto& [n, face] : expected) {
-    const auto removed = s.of(n, VS_EV_NEIGHBOR_REMOVED);
-    BOOST_REQUIRE_EQUAL(removed.size(), 1u);
-    BOOST_CHECK_EQUAL(removed[0].face, face);
-    BOOST_CHECK_EQUAL(removed[0].other, centre);
-    BOOST_CHECK_EQUAL(w.neighbor(n, face), kNoBlock);
-  }
-  BOOST_CHECK(s.of(centre, VS_EV_NEIGHBOR_REMOVED).empty());  // a removed block hears nothing
+  testsupport::checkRemovalBreaksEveryLink(*sim, s, centre, 6, [](int f) { return (f + 3) % 6; });
 }
 
 BOOST_AUTO_TEST_CASE(messages_arrive_on_the_opposite_face) {

@@ -4,6 +4,7 @@
 #include <vector>
 
 #include "catoms2d/catoms2d.hpp"
+#include "catoms2d_support.hpp"
 #include "test_support.hpp"
 
 // The Catoms 2D motion (targets/catoms2d/rotation_rule.hpp): a 60-degree roll around a pivot into
@@ -15,11 +16,7 @@ using testsupport::Script;
 
 namespace {
 
-constexpr int kRight = targets::kC2DRight, kTopRight = targets::kC2DTopRight, kTopLeft = targets::kC2DTopLeft,
-              kLeft = targets::kC2DLeft, kBottomLeft = targets::kC2DBottomLeft,
-              kBottomRight = targets::kC2DBottomRight;
-
-bool near(double a, double b) { return std::fabs(a - b) < 1e-9; }
+using namespace c2dtest;
 
 std::unique_ptr<Simulation> makeC2D(GridSize size, const std::vector<Cell>& cells,
                                     const SimulationConfig& cfg = {}) {

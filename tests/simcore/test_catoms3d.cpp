@@ -151,20 +151,7 @@ BOOST_AUTO_TEST_CASE(removing_a_catom_breaks_its_twelve_links_on_opposite_connec
   auto sim = makeC3D({3, 3, 3}, box(3));
   Script s(*sim);
   const BlockId centre = 13;  // (1,1,1), an odd layer: all twelve neighbors are in the box
-  sim->runUntilEmpty();
-  const World& w = sim->world();
-  std::vector<std::pair<BlockId, int>> expected;
-  for (int f = 0; f < 12; ++f) expected.emplace_back(w.neighbor(centre, f), (f + 6) % 12);
-  for (const auto& [n, face] : expected) BOOST_REQUIRE_NE(n, kNoBlock);
-  sim->removeBlock(centre);
-  sim->runUntilEmpty();
-  for (const auto& [n, face] : expected) {
-    const auto removed = s.of(n, VS_EV_NEIGHBOR_REMOVED);
-    BOOST_REQUIRE_EQUAL(removed.size(), 1u);
-    BOOST_CHECK_EQUAL(removed[0].face, face);
-    BOOST_CHECK_EQUAL(removed[0].other, centre);
-    BOOST_CHECK_EQUAL(w.neighbor(n, face), kNoBlock);
-  }
+  testsupport::checkRemovalBreaksEveryLink(*sim, s, centre, 12, [](int f) { return (f + 6) % 12; });
 }
 
 BOOST_AUTO_TEST_CASE(messages_cross_layers_on_the_opposite_connector) {

@@ -214,6 +214,29 @@ inline const vs_blockcode kRandomWalk = {
     VS_ABI_VERSION, "random-walk", sizeof(WalkState), &walk_detail::start, &walk_detail::event,
     nullptr,        nullptr};
 
+// Removes `centre`, whose every face has a neighbor, and checks that each neighbor hears exactly
+// one NEIGHBOR_REMOVED on the face `opposite(f)` (the test's own expectation, not the lattice's)
+// and loses the link, while the removed block hears nothing.
+template <class Opposite>
+void checkRemovalBreaksEveryLink(simcore::Simulation& sim, const Script& s, simcore::BlockId centre,
+                                 int faces, Opposite opposite) {
+  sim.runUntilEmpty();
+  const simcore::World& w = sim.world();
+  std::vector<std::pair<simcore::BlockId, int>> expected;  // (neighbor, its face towards the centre)
+  for (int f = 0; f < faces; ++f) expected.emplace_back(w.neighbor(centre, f), opposite(f));
+  for (const auto& [n, face] : expected) BOOST_REQUIRE_NE(n, simcore::kNoBlock);
+  sim.removeBlock(centre);
+  sim.runUntilEmpty();
+  for (const auto& [n, face] : expected) {
+    const auto removed = s.of(n, VS_EV_NEIGHBOR_REMOVED);
+    BOOST_REQUIRE_EQUAL(removed.size(), 1u);
+    BOOST_CHECK_EQUAL(removed[0].face, face);
+    BOOST_CHECK_EQUAL(removed[0].other, centre);
+    BOOST_CHECK_EQUAL(w.neighbor(n, face), simcore::kNoBlock);
+  }
+  BOOST_CHECK(s.of(centre, VS_EV_NEIGHBOR_REMOVED).empty());
+}
+
 // `n` Smart Blocks on distinct cells of an L x L grid, placed from (seed) with the kernel's RNG.
 inline std::unique_ptr<simcore::Simulation> makeWalkWorld(std::uint32_t n, std::int32_t L,
                                                           const simcore::SimulationConfig& cfg,
