@@ -5,10 +5,8 @@
 #include <cstdio>
 #include <iostream>
 
+#include "meldc/compile.hpp"
 #include "meldc/diagnostics.hpp"
-#include "meldc/frontend.hpp"
-#include "meldc/includes.hpp"
-#include "meldc/lower.hpp"
 #include "meldc/source.hpp"
 #include "meldvm/arith.hpp"
 #include "meldvm/bytecode.hpp"
@@ -63,20 +61,14 @@ int main(int argc, char** argv) {
   } else {
     meldc::SourceManager sources;
     meldc::Diagnostics diag(sources, std::cerr);
-    meldc::FrontEndInput input{options->program, options->includeDirs, options->defines};
-    if (!meldc::defaultStdlibDir().empty())
-      input.includeDirs.push_back(meldc::defaultStdlibDir());  // after -I
-    std::optional<meldc::ast::Program> ast = meldc::runFrontEnd(input, sources, diag);
-    if (!ast) return kExitCompileErrors;
-    program = meldc::lowerProgram(*ast, sources, diag);
-    if (!program) return kExitCompileErrors;
     try {
-      meldvm::verifyProgram(*program);
-    } catch (const meldvm::BytecodeError& e) {
-      std::cerr << "meld: internal compiler error: the compiled program fails verification: " << e.what()
-                << "\n";
+      program =
+          meldc::compileProgram({options->program, options->includeDirs, options->defines}, sources, diag);
+    } catch (const meldc::InternalCompilerError& e) {
+      std::cerr << "meld: internal compiler error: " << e.what() << "\n";
       return 70;
     }
+    if (!program) return kExitCompileErrors;
   }
 
   meldvm::MachineOptions mo;

@@ -2,10 +2,7 @@
 
 #include <iostream>
 
-#include "meldc/diagnostics.hpp"
-#include "meldc/frontend.hpp"
-#include "meldc/includes.hpp"
-#include "meldc/lower.hpp"
+#include "meldc/compile.hpp"
 #include "meldc/source.hpp"
 #include "meldvm/bytecode.hpp"
 
@@ -24,19 +21,14 @@ std::unique_ptr<meldvm::Program> loadMeldProgram(const std::string& path,
   meldc::SourceManager sources;
   meldc::Diagnostics diag(sources, std::cerr);
   meldc::FrontEndInput input{path, includeDirs, {}};
-  // After the -I folders, the target include files of stdlib/ (`include #blinkyblocks.meld`).
-  if (const std::string stdlib = meldc::defaultStdlibDir(); !stdlib.empty())
-    input.includeDirs.push_back(stdlib);
-  input.identityNodes = true;
-  std::optional<meldc::ast::Program> ast = meldc::runFrontEnd(input, sources, diag);
-  std::unique_ptr<meldvm::Program> program = ast ? meldc::lowerProgram(*ast, sources, diag) : nullptr;
-  if (!program) throw ProgramLoadError(path + ": error: the Meld program has errors (see above)");
+  input.identityNodes = true;  // node ids are block ids
+  std::unique_ptr<meldvm::Program> program;
   try {
-    meldvm::verifyProgram(*program);
-  } catch (const meldvm::BytecodeError& e) {
-    throw ProgramLoadError(std::string("internal compiler error: the compiled program fails verification: ") +
-                           e.what());
+    program = meldc::compileProgram(input, sources, diag);
+  } catch (const meldc::InternalCompilerError& e) {
+    throw ProgramLoadError(std::string("internal compiler error: ") + e.what());
   }
+  if (!program) throw ProgramLoadError(path + ": error: the Meld program has errors (see above)");
   return program;
 }
 

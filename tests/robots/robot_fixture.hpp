@@ -9,11 +9,9 @@
 #include <vector>
 
 #include "../meldc/temp_dir.hpp"
+#include "meldc/compile.hpp"
 #include "meldc/diagnostics.hpp"
-#include "meldc/frontend.hpp"
-#include "meldc/lower.hpp"
 #include "meldvm/block_runtime.hpp"
-#include "meldvm/bytecode.hpp"
 #include "simcore/simulation.hpp"
 #include "targets.hpp"
 
@@ -27,10 +25,8 @@ inline std::unique_ptr<meldvm::Program> compile(const std::string& source) {
   meldc::Diagnostics diag(sources, errors);
   meldc::FrontEndInput input{path, {}, {}};
   input.identityNodes = true;
-  auto ast = meldc::runFrontEnd(input, sources, diag);
-  std::unique_ptr<meldvm::Program> p = ast ? meldc::lowerProgram(*ast, sources, diag) : nullptr;
+  std::unique_ptr<meldvm::Program> p = meldc::compileProgram(input, sources, diag);
   BOOST_REQUIRE_MESSAGE(p, "compile errors:\n" << errors.str());
-  meldvm::verifyProgram(*p);
   return p;
 }
 

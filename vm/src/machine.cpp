@@ -184,7 +184,7 @@ std::uint64_t Machine::runNode(NodeId n) {
   runDerived_ = runConsumed_ = 0;
   ++stats_.nodeRuns;
   deliverIncoming(n);
-  processPersistent(n);
+  processPersistent();
   std::uint64_t* cand = candidates_.data() + std::size_t(n) * ruleWords_;
   // Rules over node and thread facts: the thread's facts may have changed since this node last
   // ran, so their candidacy is checked again at the start of every run of a normal node.
@@ -201,7 +201,7 @@ std::uint64_t Machine::runNode(NodeId n) {
     if (rule == ~0u) break;
     cand[rule / 64] &= ~(std::uint64_t(1) << (rule % 64));
     runRule(n, rule);
-    finishRuleRun(n);
+    finishRuleRun();
     cand = candidates_.data() + std::size_t(n) * ruleWords_;  // exists may have grown the array
   }
   inRun_ = false;
@@ -219,14 +219,14 @@ void Machine::runRule(NodeId n, std::uint32_t rule) {
   }
 }
 
-void Machine::finishRuleRun(NodeId n) {
+void Machine::finishRuleRun() {
   for (const Consumed& c : consumed_) {
     db_->consume(c.node, c.pred, c.fact);
     factRemoved(c.node, c.pred);
   }
   consumed_.clear();
   storeDerivedLinear();
-  processPersistent(n);
+  processPersistent();
 }
 
 void Machine::storeDerivedLinear() {

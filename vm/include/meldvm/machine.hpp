@@ -105,10 +105,10 @@ class Machine : private SchedulerView {
 
   // ---- node runs ----
   void runRule(NodeId n, std::uint32_t rule);
-  void finishRuleRun(NodeId n);
+  void finishRuleRun();
   void storeDerivedLinear();  // the linear facts derived for the host, appended in order (§6.4.4)
   void deliverIncoming(NodeId n);
-  void processPersistent(NodeId n);
+  void processPersistent();  // the queue's entries name their own nodes
   void runProcesses(NodeId n, PredId p, const Value* args, bool negative);
   void flushOutgoing();
   void applyPriorityRequests();
@@ -190,7 +190,7 @@ class Machine : private SchedulerView {
   std::vector<Value> sentArgs_;
   void postAll(const std::vector<PendingFact>& facts);
   std::vector<std::pair<NodeId, double>> priorityRequests_;
-  std::vector<Value> triggerInput_, triggerAdded_, triggerRemoved_;
+  std::vector<Value> triggerAdded_, triggerRemoved_;
 
   std::vector<Value> globals_;
   std::vector<Value> strings_;         // the string constants as heap strings
