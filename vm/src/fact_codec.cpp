@@ -57,10 +57,12 @@ void encodeValue(std::vector<std::uint8_t>& out, const TypeTable& types, TypeId 
   }
 }
 
+// Decoded items of lists, structs, arrays and sets wait on one stack (the caller's reusable
+// vector), so decoding allocates nothing but the values themselves once the stack has grown.
 class Reader {
  public:
-  Reader(const std::uint8_t* d, std::size_t n, const TypeTable& types, Heap& heap)
-      : d_(d), n_(n), types_(types), heap_(heap) {}
+  Reader(const std::uint8_t* d, std::size_t n, const TypeTable& types, Heap& heap, std::vector<Value>& stack)
+      : d_(d), n_(n), types_(types), heap_(heap), stack_(stack) {}
   template <class T>
   T get() {
     if (n_ - at_ < sizeof(T)) throw FactCodecError("truncated fact message");
@@ -69,20 +71,38 @@ class Reader {
     at_ += sizeof(T);
     return v;
   }
-  std::uint32_t count(std::size_t minItemBytes) {
+  std::uint32_t count() {  // every item takes at least one byte
     const std::uint32_t c = get<std::uint32_t>();
-    if (minItemBytes && c > (n_ - at_) / minItemBytes) throw FactCodecError("bad count in fact message");
+    if (c > n_ - at_) throw FactCodecError("bad count in fact message");
     return c;
   }
   Value value(TypeId t);  // an owned reference
   bool done() const { return at_ == n_; }
 
  private:
+  // Decodes `count` items onto the stack, builds the object with `make`, releases the items.
+  template <class ItemType, class Make>
+  Value items(std::uint32_t count, ItemType itemType, Make make) {
+    const std::size_t base = stack_.size();
+    try {
+      for (std::uint32_t i = 0; i < count; ++i) stack_.push_back(value(itemType(i)));
+    } catch (...) {
+      for (std::size_t i = base; i < stack_.size(); ++i)
+        heap_.release(itemType(std::uint32_t(i - base)), stack_[i]);
+      stack_.resize(base);
+      throw;
+    }
+    const Value v = make(std::span<const Value>(stack_.data() + base, count));
+    for (std::uint32_t i = 0; i < count; ++i) heap_.release(itemType(i), stack_[base + i]);
+    stack_.resize(base);
+    return v;
+  }
+
   const std::uint8_t* d_;
   std::size_t n_, at_ = 0;
   const TypeTable& types_;
   Heap& heap_;
-  std::vector<Value> items_;
+  std::vector<Value>& stack_;
 };
 
 Value Reader::value(TypeId t) {
@@ -98,35 +118,29 @@ Value Reader::value(TypeId t) {
     case TypeKind::Thread:
       return Value::fromThread(get<std::uint32_t>());
     case TypeKind::String: {
-      const std::uint32_t len = count(1);
+      const std::uint32_t len = count();
       const Value s = heap_.makeString({reinterpret_cast<const char*>(d_ + at_), len});
       at_ += len;
       return s;
     }
     case TypeKind::List: {
-      const std::uint32_t c = count(1);
-      std::vector<Value> items;
-      items.reserve(c);
-      for (std::uint32_t i = 0; i < c; ++i) items.push_back(value(types_.element(t)));
-      const Value l = heap_.makeList(t, items);
-      for (Value x : items) heap_.release(types_.element(t), x);
-      return l;
+      const TypeId e = types_.element(t);
+      return items(
+          count(), [e](std::uint32_t) { return e; },
+          [&](std::span<const Value> v) { return heap_.makeList(t, v); });
     }
-    case TypeKind::Struct:
+    case TypeKind::Struct: {
+      const auto fields = types_.fields(t);
+      return items(
+          std::uint32_t(fields.size()), [fields](std::uint32_t i) { return fields[i]; },
+          [&](std::span<const Value> v) { return heap_.makeTuple(t, v); });
+    }
     case TypeKind::Array:
     case TypeKind::Set: {
-      std::vector<TypeId> itemTypes;
-      if (types_.kind(t) == TypeKind::Struct) {
-        const auto f = types_.fields(t);
-        itemTypes.assign(f.begin(), f.end());
-      } else {
-        itemTypes.assign(count(1), types_.element(t));
-      }
-      std::vector<Value> items;
-      for (TypeId it : itemTypes) items.push_back(value(it));
-      const Value v = heap_.makeTuple(t, items);
-      for (std::size_t i = 0; i < items.size(); ++i) heap_.release(itemTypes[i], items[i]);
-      return v;
+      const TypeId e = types_.element(t);
+      return items(
+          count(), [e](std::uint32_t) { return e; },
+          [&](std::span<const Value> v) { return heap_.makeTuple(t, v); });
     }
   }
   throw FactCodecError("bad type in fact message");
@@ -144,7 +158,7 @@ void encodeFact(std::vector<std::uint8_t>& out, const PredicateTable& preds, Pre
 
 void decodeFact(const std::uint8_t* data, std::size_t size, const PredicateTable& preds, Heap& heap,
                 DecodedFact& fact) {
-  Reader r(data, size, preds.types(), heap);
+  Reader r(data, size, preds.types(), heap, fact.stack);
   fact.pred = r.get<std::uint16_t>();
   if (fact.pred >= preds.size()) throw FactCodecError("unknown predicate in fact message");
   const std::uint8_t flags = r.get<std::uint8_t>();

@@ -27,9 +27,10 @@ struct DecodedFact {
   PredId pred = 0;
   bool negative = false;
   std::vector<Value> args;  // owned references (release them with the field types)
+  std::vector<Value> stack;  // working storage of the decoder, reused
 };
 
-// Decodes one fact; throws FactCodecError on malformed input. `fact.args` is reused.
+// Decodes one fact; throws FactCodecError on malformed input. `fact`'s vectors are reused.
 void decodeFact(const std::uint8_t* data, std::size_t size, const PredicateTable& preds, Heap& heap,
                 DecodedFact& fact);
 
