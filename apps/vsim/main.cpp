@@ -191,7 +191,7 @@ int runVsim(const Options& o) {
   if (meldProgram) {
     meldvm::BlockRuntimeOptions mo;
     mo.output = &std::cout;
-    mo.timePerRuleNs = o.timePerRule >= 0 ? o.timePerRule : target.ruleTime;
+    mo.timePerRuleNs = o.timePerRule >= 0 ? o.timePerRule : target.programStepTime;
     mo.palette = o.paletteLm ? meldvm::Palette::LinearMeld : meldvm::Palette::VisibleSim;
     const simcore::World& w = sim.world();
     const int faces = int(target.faceNames.size());

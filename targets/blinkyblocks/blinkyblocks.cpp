@@ -17,7 +17,7 @@ simcore::TargetSpec blinkyBlocksTarget() {
   // 38.4 kbit/s with no extra latency; both can be overridden per run.
   t.link.rateBitsPerSecond = 38400;
   t.canTranslate = false;
-  t.ruleTime = 10 * 1000;  // ns per Meld rule: assumed for an 8-bit 32 MHz microcontroller
+  t.programStepTime = 10 * 1000;  // assumed for an 8-bit 32 MHz microcontroller
   t.hasTap = true;
   t.hasAccelerometer = true;
   t.blockSizeMm = 40.0;

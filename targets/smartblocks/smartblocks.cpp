@@ -12,7 +12,7 @@ simcore::TargetSpec smartBlocksTarget() {
   t.faceNames = {"north", "east", "south", "west"};
   t.link.rateBitsPerSecond = 1e6;
   t.canTranslate = true;
-  t.ruleTime = 10 * 1000;  // ns per Meld rule: assumed for a small microcontroller
+  t.programStepTime = 10 * 1000;  // assumed for a small microcontroller
   t.motionDuration = simcore::kSecond;
   t.hasDisplayValue = true;
   t.blockSizeMm = 25.0;

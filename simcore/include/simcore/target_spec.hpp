@@ -35,9 +35,10 @@ struct TargetSpec {
   bool hasAccelerometer = false;
   bool hasDisplayValue = false;
   double blockSizeMm = 40.0;
-  // Simulated computing time of one Meld rule firing on the block's processor (the Meld VM's
-  // execution time model): an assumption per target, overridable with vsim --time-per-rule.
-  SimTime ruleTime = 1000;
+  // Simulated computing time of one step of a block program on the block's processor: an
+  // assumption per target that interpreted programs charge per step (the Meld VM: per rule
+  // firing). vsim --time-per-rule overrides it.
+  SimTime programStepTime = 1000;
   std::uint32_t defaultColor = 0x808080;
 
   bool canMove() const { return canTranslate || motionRule != nullptr; }
