@@ -84,8 +84,6 @@ void Interpreter::leave(const Frame& f, const Alloc& a) {
 
 void Interpreter::run(const CodeBlock& block, NodeId host, bool negative, PredId triggerPred,
                       const Value* trigger) {
-  const CodeBlock* saved = current_;
-  current_ = &block;
   const Alloc a = enter(block);
   Frame f{&block, block.code.data(), a.regs, a.slots, boxedOf(block).data(), host, negative};
   if (trigger) f.slots[0] = Slot{triggerPred, host, kNoFact, 0, trigger};
@@ -96,7 +94,6 @@ void Interpreter::run(const CodeBlock& block, NodeId host, bool negative, PredId
     throw;
   }
   leave(f, a);
-  current_ = saved;
 }
 
 void Interpreter::setReg(Frame& f, std::uint32_t r, Value v) {
@@ -496,7 +493,6 @@ Interpreter::Status Interpreter::exec(Frame& f, std::uint32_t pc) {
             f.host < program_.nodeAxioms.size() ? program_.nodeAxioms[f.host] : Program::kNoAxioms;
         if (idx != Program::kNoAxioms) {
           run(program_.axiomBlocks[idx], f.host);
-          current_ = f.block;
         }
         pc += 1;
         break;
@@ -542,8 +538,6 @@ Value Interpreter::callFunction(std::uint32_t fn, const Value* args, NodeId host
     depth_ = 0;
     throw RuntimeError("function '" + func.name + "' nested deeper than 10000 calls");
   }
-  const CodeBlock* saved = current_;
-  current_ = &func.block;
   const Alloc a = enter(func.block);
   Frame f{&func.block, func.block.code.data(), a.regs, a.slots, boxedOf(func.block).data(), host, false};
   const std::size_t n = func.params.size();
@@ -562,7 +556,6 @@ Value Interpreter::callFunction(std::uint32_t fn, const Value* args, NodeId host
   f.regs[n] = Value();  // ownership moves to the caller
   leave(f, a);
   --depth_;
-  current_ = saved;
   return result;
 }
 

@@ -31,9 +31,6 @@ class Interpreter {
   void run(const CodeBlock& block, NodeId host, bool negative = false, PredId triggerPred = 0,
            const Value* trigger = nullptr);
 
-  // Label of the block being run (for error messages).
-  const CodeBlock* current() const { return current_; }
-
  private:
   struct Slot {
     PredId pred;
@@ -81,7 +78,6 @@ class Interpreter {
   Database& db_;
   Heap& heap_;
   BuiltinContext& ctx_;
-  const CodeBlock* current_ = nullptr;
   std::uint32_t depth_ = 0;
 
   std::vector<std::unique_ptr<Value[]>> regChunks_;
