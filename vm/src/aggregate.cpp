@@ -3,6 +3,10 @@
 // once ("eager", the only mode cl-meld emits) and, when the visible fact differs from the published
 // one, retracts the old fact and asserts the new one. The caller gets both in the Change, to run
 // the persistent processes in negative then positive mode.
+//
+// Inputs live in one of two stores with one interface (the adapters below): a GroupInputs run per
+// node when the group is the node alone, or a FactTable grouped through its index 0 when the
+// group has key fields.
 #include <algorithm>
 
 #include "meldvm/database.hpp"
@@ -10,47 +14,84 @@
 
 namespace meldvm {
 
-bool Database::computeAggregate(NodeId n, PredId p) {
+namespace {
+
+// The inputs of one node's group when the group is the node (aggregate on the first field).
+struct NodeGroup {
+  using Handle = std::uint32_t;
+  static constexpr Handle kEnd = GroupInputs::kNone;
+  GroupInputs& in;
+  NodeId n;
+  Handle find(const Value* a) const { return in.find(n, a); }
+  Handle first() const { return in.size(n) != 0 ? 0 : kEnd; }
+  Handle next(Handle h) const { return h + 1 < in.size(n) ? h + 1 : kEnd; }
+  const Value* args(Handle h) const { return in.args(n, h); }
+  std::uint32_t count(Handle h) const { return in.count(n, h); }
+  void setCount(Handle h, std::uint32_t c) { in.setCount(n, h, c); }
+  void insert(const Value* a, std::uint32_t c) { in.append(n, a, c); }
+  void erase(Handle h) { in.erase(n, h); }
+};
+
+// The inputs of a group keyed by the fields before the aggregate field (index 0 of the table).
+struct KeyedGroup {
+  using Handle = FactRef;
+  static constexpr Handle kEnd = kNoFact;
+  FactTable& in;
+  ListHead& list;
+  NodeId n;
+  const Value* key;  // the input being changed (its key fields name the group)
+  Handle find(const Value* a) const { return in.find(n, a); }
+  Handle first() const { return in.firstWithKey(n, 0, key); }
+  Handle next(Handle h) const { return in.nextWithKey(0, h); }
+  const Value* args(Handle h) const { return in.args(h); }
+  std::uint32_t count(Handle h) const { return in.count(h); }
+  void setCount(Handle h, std::uint32_t c) { in.setCount(h, c); }
+  void insert(const Value* a, std::uint32_t c) { in.insert(list, n, a, c); }
+  void erase(Handle h) { in.erase(list, h); }
+};
+
+}  // namespace
+
+template <class Group>
+bool Database::computeAggregate(PredId p, const Group& g) {
   const PredicateDesc& d = preds_[p];
-  const FactTable& in = tables_[inputTable_[p]];
   const TypeTable& types = heap_.types();
   const std::uint32_t k = d.aggregateField;
   const TypeId ft = d.fields[k];
-  const std::uint32_t it = inputTable_[p];
-  const FactRef firstInput = groupFirst(p, it, n, input_.data());
-  if (firstInput == kNoFact) return false;
+  const auto firstInput = g.first();
+  if (firstInput == Group::kEnd) return false;
 
   // Fields after the aggregate field come from the winning input (min/max) or from the first input
   // in store order (first/sum); ties keep the earliest input.
-  FactRef winner = firstInput;
+  auto winner = firstInput;
   Value sum;
   if (d.aggregate == AggregateKind::Min || d.aggregate == AggregateKind::Max) {
     const int better = d.aggregate == AggregateKind::Min ? -1 : 1;
-    for (FactRef f = groupNext(p, it, firstInput); f != kNoFact; f = groupNext(p, it, f))
-      if (compareValuesFast(types, ft, in.args(f)[k], in.args(winner)[k]) * better > 0) winner = f;
+    for (auto f = g.next(firstInput); f != Group::kEnd; f = g.next(f))
+      if (compareValuesFast(types, ft, g.args(f)[k], g.args(winner)[k]) * better > 0) winner = f;
   } else if (d.aggregate == AggregateKind::Sum) {
     // A sum over the multiset: an input stored with count c counts c times.
     if (types.kind(ft) == TypeKind::Int) {
       std::uint32_t total = 0;  // 32-bit wrap-around like the established VM's int arithmetic
-      for (FactRef f = firstInput; f != kNoFact; f = groupNext(p, it, f))
-        total += std::uint32_t(in.args(f)[k].asInt()) * in.count(f);
+      for (auto f = firstInput; f != Group::kEnd; f = g.next(f))
+        total += std::uint32_t(g.args(f)[k].asInt()) * g.count(f);
       sum = Value::fromInt(std::int32_t(total));
     } else if (types.kind(ft) == TypeKind::Float) {
       double total = 0.0;
-      for (FactRef f = firstInput; f != kNoFact; f = groupNext(p, it, f))
-        for (std::uint32_t c = 0; c < in.count(f); ++c) total += in.args(f)[k].asFloat();
+      for (auto f = firstInput; f != Group::kEnd; f = g.next(f))
+        for (std::uint32_t c = 0; c < g.count(f); ++c) total += g.args(f)[k].asFloat();
       sum = Value::fromFloat(total);
     } else {  // list float: element-wise, as long as the shortest list (like addfloatlists)
       std::size_t len = SIZE_MAX;
-      for (FactRef f = firstInput; f != kNoFact; f = groupNext(p, it, f)) {
+      for (auto f = firstInput; f != Group::kEnd; f = g.next(f)) {
         std::size_t l = 0;
-        for (Value v = in.args(f)[k]; !v.isNil(); v = listTail(v)) ++l;
+        for (Value v = g.args(f)[k]; !v.isNil(); v = listTail(v)) ++l;
         len = std::min(len, l);
       }
       sums_.assign(len, 0.0);
-      for (FactRef f = firstInput; f != kNoFact; f = groupNext(p, it, f))
-        for (std::uint32_t c = 0; c < in.count(f); ++c) {
-          Value v = in.args(f)[k];
+      for (auto f = firstInput; f != Group::kEnd; f = g.next(f))
+        for (std::uint32_t c = 0; c < g.count(f); ++c) {
+          Value v = g.args(f)[k];
           for (std::size_t i = 0; i < len; ++i, v = listTail(v)) sums_[i] += listHead(v).asFloat();
         }
       sumItems_.clear();
@@ -59,26 +100,34 @@ bool Database::computeAggregate(NodeId n, PredId p) {
       sum = sumList_;
     }
   }
-  next_.assign(in.args(winner), in.args(winner) + d.arity());
+  setValues(next_, g.args(winner), d.arity());
   if (d.aggregate == AggregateKind::Sum) next_[k] = sum;
   return true;
 }
 
 Change Database::aggregateChange(NodeId n, PredId p, const Value* args, std::uint32_t copies, bool add) {
   const PredicateDesc& d = preds_[p];
-  const TypeTable& types = heap_.types();
-  const std::uint32_t it = inputTable_[p];
-  FactTable& in = tables_[it];
   // Our own reference to the input: `args` may point into a fact that this change erases.
-  input_.assign(args, args + d.arity());
-  for (std::size_t i = 0; i < input_.size(); ++i) heap_.retain(d.fields[i], input_[i]);
-  inputPred_ = p;
-  holdsInput_ = true;
+  setValues(input_, args, d.arity());
+  if (boxedPred_[p]) {
+    for (std::size_t i = 0; i < input_.size(); ++i) heap_.retain(d.fields[i], input_[i]);
+    inputPred_ = p;
+    holdsInput_ = true;
+  }
+  if (d.aggregateField == 0)
+    return aggregateChangeIn(n, p, NodeGroup{nodeInputs_[groupInputs_[p]], n}, copies, add);
+  const std::uint32_t it = inputTable_[p];
+  return aggregateChangeIn(n, p, KeyedGroup{tables_[it], head(n, it), n, input_.data()}, copies, add);
+}
 
+template <class Group>
+Change Database::aggregateChangeIn(NodeId n, PredId p, Group g, std::uint32_t copies, bool add) {
+  const PredicateDesc& d = preds_[p];
+  const TypeTable& types = heap_.types();
   Change c;
-  const FactRef f = in.find(n, input_.data());
+  const auto f = g.find(input_.data());
   FactTable& visible = tables_[p];
-  const FactRef old = groupFirst(p, p, n, input_.data());
+  const FactRef old = d.aggregateField == 0 ? head(n, p).first : visible.firstWithKey(n, 0, input_.data());
   // min/max/first change the visible fact only when the winner changes, which most inputs do
   // not do: decide that from the published value instead of rescanning the group. Ties keep the
   // earliest input, so an input equal to the published value never wins.
@@ -91,41 +140,40 @@ Change Database::aggregateChange(NodeId n, PredId p, const Value* args, std::uin
   };
   bool rescan = true;
   if (add) {
-    if (f != kNoFact) {
-      in.setCount(f, in.count(f) + copies);
-      c.count = in.count(f);
+    if (f != Group::kEnd) {
+      g.setCount(f, g.count(f) + copies);
+      c.count = g.count(f);
       if (selects && old != kNoFact) return c;  // one more copy of a stored input: same winner
     } else {
-      in.insert(head(n, it), n, input_.data(), copies);
+      g.insert(input_.data(), copies);
       c.count = copies;
     }
     if (selects && old != kNoFact) {
       if (rank(input_.data()) <= 0) return c;
-      next_.assign(input_.begin(), input_.end());  // the new input is the new winner
+      setValues(next_, input_.data(), input_.size());  // the new input is the new winner
       rescan = false;
     }
   } else {
-    if (f == kNoFact) {
+    if (f == Group::kEnd) {
       c.found = false;
       return c;
     }
-    if (in.count(f) > copies) {
-      in.setCount(f, in.count(f) - copies);
-      c.count = in.count(f);
+    if (g.count(f) > copies) {
+      g.setCount(f, g.count(f) - copies);
+      c.count = g.count(f);
       if (selects && old != kNoFact) return c;
     } else {
       // An input worse than the published value was not the winner (for first: one that is
       // not the first input), so removing it changes nothing.
       const bool wasWinnerCandidate =
           old == kNoFact || d.aggregate == AggregateKind::Sum ||
-          (d.aggregate == AggregateKind::First ? groupFirst(p, it, n, input_.data()) == f
-                                               : rank(input_.data()) >= 0);
-      in.erase(head(n, it), f);
+          (d.aggregate == AggregateKind::First ? g.first() == f : rank(input_.data()) >= 0);
+      g.erase(f);
       if (!wasWinnerCandidate) return c;
     }
   }
 
-  const bool has = rescan ? computeAggregate(n, p) : true;
+  const bool has = rescan ? computeAggregate(p, g) : true;
   if (old != kNoFact && has) {
     bool same = true;
     for (std::uint32_t i = 0; i < d.arity() && same; ++i)
@@ -140,7 +188,7 @@ Change Database::aggregateChange(NodeId n, PredId p, const Value* args, std::uin
   }
   if (has) {
     visible.insert(head(n, p), n, next_.data(), 1);
-    added_.assign(next_.begin(), next_.end());
+    setValues(added_, next_.data(), next_.size());
     c.added = true;
     c.addedArgs = added_;
   }

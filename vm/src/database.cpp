@@ -18,6 +18,8 @@ Database::Database(const PredicateTable& preds, Heap& heap) : preds_(preds), hea
   // Reserved up front: FactTables never move once facts exist.
   tables_.reserve(preds.size() + aggregated);
   inputTable_.assign(preds.size(), kNoTable);
+  groupInputs_.assign(preds.size(), kNoTable);
+  nodeInputs_.reserve(aggregated);
   for (PredId p = 0; p < preds.size(); ++p) {
     const PredicateDesc& d = preds[p];
     const bool dedup = d.persistent() && !d.compact && !d.aggregated();
@@ -32,33 +34,39 @@ Database::Database(const PredicateTable& preds, Heap& heap) : preds_(preds), hea
   }
   for (PredId p = 0; p < preds.size(); ++p) {
     const PredicateDesc& d = preds[p];
+    bool boxed = false;
+    for (TypeId t : d.fields) boxed = boxed || types.boxed(t);
+    boxedPred_.push_back(boxed);
     if (!d.aggregated()) continue;
+    if (d.aggregateField == 0) {
+      groupInputs_[p] = std::uint32_t(nodeInputs_.size());
+      nodeInputs_.emplace_back(types, heap, d.fields);
+      continue;
+    }
     inputTable_[p] = std::uint32_t(tables_.size());
     tables_.emplace_back(types, heap, d.fields, true);  // inputs: a multiset, grouped by index 0
-    if (d.aggregateField > 0) tables_.back().addIndex({0, d.aggregateField});
+    tables_.back().addIndex({0, d.aggregateField});
   }
   for (auto* v : {&added_, &removed_, &input_, &next_}) v->reserve(maxArity);
 }
 
 Database::~Database() { clearScratch(); }
 
-void Database::checkNode(NodeId n) const {
-  if (n >= alive_.size() || !alive_[n]) throw std::out_of_range("meldvm: no node " + std::to_string(n));
-}
+void Database::badNode(NodeId n) const { throw std::out_of_range("meldvm: no node " + std::to_string(n)); }
 
-const PredicateDesc& Database::storedPredicate(PredId p, bool linear) const {
+void Database::badPredicate(PredId p, bool linear) const {
   if (p >= preds_.size()) throw std::out_of_range("meldvm: no predicate " + std::to_string(p));
   const PredicateDesc& d = preds_[p];
   if (d.action) throw std::logic_error("meldvm: action '" + d.name + "' is executed, not stored");
-  if (d.linear != linear)
-    throw std::logic_error("meldvm: '" + d.name + "' is " + (d.linear ? "linear" : "persistent"));
-  return d;
+  (void)linear;
+  throw std::logic_error("meldvm: '" + d.name + "' is " + (d.linear ? "linear" : "persistent"));
 }
 
 NodeId Database::addNodes(NodeId count) {
   const NodeId firstNew = nodeCount();
   alive_.resize(alive_.size() + count, 1);
   heads_.resize(alive_.size() * tables_.size());
+  for (GroupInputs& g : nodeInputs_) g.addNodes(count);
   return firstNew;
 }
 
@@ -69,6 +77,7 @@ void Database::removeNode(NodeId n) {
     ListHead& h = head(n, t);
     while (h.first != kNoFact) tables_[t].erase(h, h.first);
   }
+  for (GroupInputs& g : nodeInputs_) g.clear(n);
   alive_[n] = 0;
 }
 
@@ -100,7 +109,7 @@ void Database::updateLinear(NodeId n, PredId p, FactRef f, const Value* args, bo
   if (moveToBack) tables_[p].moveToBack(head(n, p), f);
 }
 
-void Database::clearScratch() {
+void Database::releaseScratch() {
   if (holdsRemoved_) {
     const auto& fields = preds_[removedPred_].fields;
     for (std::size_t i = 0; i < removed_.size(); ++i) heap_.release(fields[i], removed_[i]);
@@ -116,13 +125,11 @@ void Database::clearScratch() {
     heap_.release(sumList_.asObject()->type, sumList_);
     sumList_ = Value::nil();
   }
-  removed_.clear();
-  added_.clear();
 }
 
 void Database::keepRemoved(PredId p, FactRef f) {
-  const Value* a = tables_[p].args(f);
-  removed_.assign(a, a + preds_[p].arity());
+  setValues(removed_, tables_[p].args(f), preds_[p].arity());
+  if (!boxedPred_[p]) return;
   for (std::size_t i = 0; i < removed_.size(); ++i) heap_.retain(preds_[p].fields[i], removed_[i]);
   removedPred_ = p;
   holdsRemoved_ = true;
@@ -143,6 +150,7 @@ FactRef Database::find(NodeId n, PredId p, const Value* args) const {
 }
 
 std::uint32_t Database::aggregateInputs(NodeId n, PredId p) const {
+  if (groupInputs_[p] != kNoTable) return nodeInputs_[groupInputs_[p]].size(n);
   return inputTable_[p] == kNoTable ? 0 : head(n, inputTable_[p]).size;
 }
 
@@ -162,7 +170,7 @@ Change Database::derive(NodeId n, PredId p, const Value* args, std::uint32_t cop
   }
   const FactRef after = grouped_[p] ? t.lastWithKey(n, 0, args) : kNoFact;
   const FactRef f = t.insert(head(n, p), n, args, copies, after);
-  added_.assign(t.args(f), t.args(f) + d.arity());
+  setValues(added_, t.args(f), d.arity());
   c.added = true;
   c.count = copies;
   c.addedArgs = added_;

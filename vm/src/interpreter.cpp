@@ -26,7 +26,7 @@ Interpreter::Interpreter(Machine& machine, const Program& program, Database& db,
     : machine_(machine), program_(program), db_(db), heap_(db.heap()), ctx_(ctx) {
   regChunks_.push_back(std::make_unique<Value[]>(kRegChunk));
   slotChunks_.push_back(std::make_unique<Slot[]>(kSlotChunk));
-  args_.reserve(64);
+  args_.resize(64);
   builtins_.assign(kBuiltinIdCount, nullptr);
   for (const BuiltinInfo& b : builtinTable()) builtins_[b.id] = &b;
 }
@@ -96,19 +96,17 @@ void Interpreter::run(const CodeBlock& block, NodeId host, bool negative, PredId
   leave(f, a);
 }
 
-void Interpreter::setReg(Frame& f, std::uint32_t r, Value v) {
-  if (f.boxed[r]) heap_.release(f.block->registerTypes[r], f.regs[r]);
-  f.regs[r] = v;
-}
-
 Value Interpreter::retained(const Frame& f, std::uint32_t r) const {
   heap_.retain(f.block->registerTypes[r], f.regs[r]);
   return f.regs[r];
 }
 
-void Interpreter::gatherArgs(const Frame& f, const std::uint32_t* regs, std::uint32_t count) {
-  args_.clear();
-  for (std::uint32_t i = 0; i < count; ++i) args_.push_back(f.regs[regs[i]]);
+std::span<const Value> Interpreter::gatherArgs(const Frame& f, const std::uint32_t* regs,
+                                               std::uint32_t count) {
+  if (count > args_.size()) args_.resize(count);
+  Value* out = args_.data();
+  for (std::uint32_t i = 0; i < count; ++i) out[i] = f.regs[regs[i]];
+  return {out, count};
 }
 
 bool Interpreter::skipFact(const Frame& f, std::uint32_t slot, PredId p, FactRef fact) const {
@@ -121,7 +119,7 @@ bool Interpreter::skipFact(const Frame& f, std::uint32_t slot, PredId p, FactRef
 void Interpreter::fire(Frame& f, std::uint32_t firstSlot) {
   for (std::uint32_t s = firstSlot; s < f.block->slots; ++s) {
     Slot& sl = f.slots[s];
-    if (sl.fact != kNoFact && !sl.fixed && (sl.flags & kIterConsume) && !db_.consumedMark(sl.pred, sl.fact))
+    if ((sl.flags & kIterConsume) && sl.fact != kNoFact && !sl.fixed && !db_.consumedMark(sl.pred, sl.fact))
       machine_.consumed(sl.node, sl.pred, sl.fact);
   }
 }
@@ -226,8 +224,12 @@ Interpreter::Status Interpreter::exec(Frame& f, std::uint32_t pc) {
         return Status::Return;
       case Opcode::LOAD: {
         const Value v = slotArgs(f, c[1])[c[2]];
-        heap_.retain(f.block->registerTypes[c[3]], v);
-        setReg(f, c[3], v);
+        if (f.boxed[c[3]]) {
+          heap_.retain(f.block->registerTypes[c[3]], v);
+          setReg(f, c[3], v);
+        } else {
+          R[c[3]] = v;
+        }
         pc += 4;
         break;
       }
@@ -427,8 +429,7 @@ Interpreter::Status Interpreter::exec(Frame& f, std::uint32_t pc) {
         break;
       }
       case Opcode::STRUCT: {
-        gatherArgs(f, c + 4, c[3]);
-        setReg(f, c[1], heap_.makeTuple(c[2], args_));
+        setReg(f, c[1], heap_.makeTuple(c[2], gatherArgs(f, c + 4, c[3])));
         pc += 4 + c[3];
         break;
       }
@@ -442,8 +443,7 @@ Interpreter::Status Interpreter::exec(Frame& f, std::uint32_t pc) {
       case Opcode::CALL: {
         const BuiltinInfo* b = c[2] < builtins_.size() ? builtins_[c[2]] : nullptr;
         if (!b) throw RuntimeError("built-in function " + std::to_string(c[2]) + " is not available");
-        gatherArgs(f, c + 5, c[4]);
-        setReg(f, c[1], b->fn(ctx_, args_, c[3]));
+        setReg(f, c[1], b->fn(ctx_, gatherArgs(f, c + 5, c[4]), c[3]));
         pc += 5 + c[4];
         break;
       }

@@ -10,6 +10,7 @@
 
 #include <cstdint>
 #include <memory>
+#include <span>
 #include <unordered_map>
 #include <vector>
 
@@ -58,10 +59,14 @@ class Interpreter {
     const Slot& sl = f.slots[s];
     return sl.fixed ? sl.fixed : db_.args(sl.pred, sl.fact);
   }
-  void setReg(Frame& f, std::uint32_t r, Value v);  // takes ownership of v
+  [[gnu::always_inline]] void setReg(Frame& f, std::uint32_t r, Value v) {  // takes ownership of v
+    if (f.boxed[r]) heap_.release(f.block->registerTypes[r], f.regs[r]);
+    f.regs[r] = v;
+  }
   Value retained(const Frame& f, std::uint32_t r) const;
   Value callFunction(std::uint32_t fn, const Value* args, NodeId host);
-  void gatherArgs(const Frame& f, const std::uint32_t* regs, std::uint32_t count);
+  // The registers' values in args_ (no references taken); valid until the next gatherArgs.
+  std::span<const Value> gatherArgs(const Frame& f, const std::uint32_t* regs, std::uint32_t count);
 
   // Frames: registers and slots from chunks that never move.
   struct Alloc {
@@ -86,9 +91,9 @@ class Interpreter {
   std::unordered_map<const CodeBlock*, std::vector<std::uint8_t>> boxed_;
   const CodeBlock* lastBlock_ = nullptr;  // the processes of a program run the same few blocks
   const std::vector<std::uint8_t>* lastBoxed_ = nullptr;
-  std::vector<Value> args_;      // arguments gathered for DERIVE/SEND/CALL
+  std::vector<Value> args_;  // arguments gathered for DERIVE/SEND/CALL (grows, never shrinks)
   std::vector<const BuiltinInfo*> builtins_;  // by id (nullptr: not implemented)
-  std::vector<FactRef> sorted_;  // ITER_SORTED candidates (a stack of runs)
+  std::vector<FactRef> sorted_;               // ITER_SORTED candidates (a stack of runs)
 };
 
 }  // namespace meldvm

@@ -1,7 +1,8 @@
 // The databases of all nodes (spec §6.3): per node and predicate, linear facts in insertion order,
 // persistent facts with counts, aggregated persistent predicates kept eagerly with retraction
 // (§6.8), and optional per-field indexes. Storage is one FactTable per relation shared by all nodes
-// (fact_table.hpp); per node there is only one ListHead per relation, kept node-major.
+// (fact_table.hpp); per node there is only one ListHead per relation, kept node-major. The inputs
+// of an aggregate grouped by the node alone live in a GroupInputs (one run of records per node).
 //
 // The Database stores and reports; it does not run rules. derive/retract return a Change saying
 // which visible fact appeared or disappeared, so that the rule engine can run the persistent
@@ -16,6 +17,7 @@
 #include <vector>
 
 #include "meldvm/fact_table.hpp"
+#include "meldvm/group_inputs.hpp"
 #include "meldvm/heap.hpp"
 #include "meldvm/predicate.hpp"
 
@@ -54,6 +56,7 @@ class Database {
   std::size_t bytesReserved() const {
     std::size_t b = heads_.capacity() * sizeof(ListHead) + alive_.capacity();
     for (const FactTable& t : tables_) b += t.bytesReserved();
+    for (const GroupInputs& g : nodeInputs_) b += g.bytesReserved();
     return b;
   }
   // Room for that many facts of p (all nodes together) without growing.
@@ -100,6 +103,10 @@ class Database {
   }
   // A hint that derive/retract(n, p, args) comes soon: fetch the hash buckets it will look at.
   [[gnu::always_inline]] void prefetchDerive(NodeId n, PredId p, const Value* args) const {
+    if (const std::uint32_t g = groupInputs_[p]; g != kNoTable) {
+      nodeInputs_[g].prefetch(n);
+      return;
+    }
     const std::uint32_t in = inputTable_[p];
     if (in == kNoTable) {
       if (!preds_[p].compact) tables_[p].prefetchFind(n, args);
@@ -136,27 +143,45 @@ class Database {
     return heads_[std::size_t(n) * tables_.size() + table];
   }
   ListHead& head(NodeId n, std::uint32_t table) { return heads_[std::size_t(n) * tables_.size() + table]; }
-  const PredicateDesc& storedPredicate(PredId p, bool linear) const;
-  void checkNode(NodeId n) const;
+  // Checks on every store call, inline: the failures are out of line.
+  const PredicateDesc& storedPredicate(PredId p, bool linear) const {
+    if (p >= preds_.size() || preds_[p].action || preds_[p].linear != linear) badPredicate(p, linear);
+    return preds_[p];
+  }
+  void checkNode(NodeId n) const {
+    if (n >= alive_.size() || !alive_[n]) badNode(n);
+  }
+  [[noreturn]] void badPredicate(PredId p, bool linear) const;
+  [[noreturn]] void badNode(NodeId n) const;
   // Releases what the previous Change kept alive.
-  void clearScratch();
+  void clearScratch() {
+    if (holdsRemoved_ || holdsInput_ || !sumList_.isNil()) releaseScratch();
+    removed_.clear();
+    added_.clear();
+  }
+  void releaseScratch();
+  // v = a[0..n) without a library call (the scratch vectors hold a few values, reserved once).
+  static void setValues(std::vector<Value>& v, const Value* a, std::size_t n) {
+    v.resize(n);
+    for (std::size_t i = 0; i < n; ++i) v[i] = a[i];
+  }
   void keepRemoved(PredId p, FactRef f);  // copies a visible fact into removed_ before erasing it
   Change aggregateChange(NodeId n, PredId p, const Value* args, std::uint32_t copies, bool add);
-  bool computeAggregate(NodeId n, PredId p);
-  // The facts of an aggregate group (node + the fields before the aggregate field) in one of the
-  // predicate's tables: through index 0, or the node's whole list when the group is the node.
-  FactRef groupFirst(PredId p, std::uint32_t table, NodeId n, const Value* key) const {
-    return preds_[p].aggregateField == 0 ? head(n, table).first : tables_[table].firstWithKey(n, 0, key);
-  }
-  FactRef groupNext(PredId p, std::uint32_t table, FactRef f) const {
-    return preds_[p].aggregateField == 0 ? tables_[table].next(f) : tables_[table].nextWithKey(0, f);
-  }  // fills next_ from the group of input_; false if empty
+  // The same over one of the two input stores (aggregate.cpp's NodeGroup and KeyedGroup).
+  template <class Group>
+  Change aggregateChangeIn(NodeId n, PredId p, Group g, std::uint32_t copies, bool add);
+  // Recomputes the group's value into next_; false if the group is empty.
+  template <class Group>
+  bool computeAggregate(PredId p, const Group& g);
 
   const PredicateTable& preds_;
   Heap& heap_;
-  std::vector<FactTable> tables_;          // one per predicate, then one per aggregated predicate
-  std::vector<std::uint32_t> inputTable_;  // per predicate: its aggregate input table, or kNoTable
-  std::vector<ListHead> heads_;            // node-major: heads_[node * tables + table]
+  std::vector<FactTable> tables_;           // one per predicate, then one per aggregated predicate
+  std::vector<std::uint32_t> inputTable_;   // per predicate: its keyed aggregate input table, or kNoTable
+  std::vector<GroupInputs> nodeInputs_;     // the inputs of the aggregates grouped by the node alone
+  std::vector<std::uint32_t> groupInputs_;  // per predicate: its entry in nodeInputs_, or kNoTable
+  std::vector<std::uint8_t> boxedPred_;     // per predicate: some field is boxed
+  std::vector<ListHead> heads_;             // node-major: heads_[node * tables + table]
   std::vector<std::uint8_t> alive_;
   std::vector<std::uint8_t> grouped_;  // per predicate: new persistent facts join their first-field group
 
