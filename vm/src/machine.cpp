@@ -40,6 +40,7 @@ Machine::Machine(const Program& program, MachineOptions options)
     bool boxed = false;
     for (TypeId t : d.fields) boxed = boxed || program.types.boxed(t);
     boxedField_.push_back(boxed);
+    arity_.push_back(d.arity());
   }
   isThreadPred_.assign(preds, 0);
   for (PredId p = 0; p < preds; ++p) {
@@ -276,10 +277,10 @@ void Machine::factRemoved(NodeId n, PredId p) {
 // ---- what the interpreter calls ----
 
 void Machine::pushArgs(std::vector<Value>& to, PredId p, const Value* args) {
-  const PredicateDesc& d = program_.predicates[p];
-  to.insert(to.end(), args, args + d.arity());
+  const std::uint32_t k = arity_[p];
+  for (std::uint32_t i = 0; i < k; ++i) to.push_back(args[i]);  // a few values: no range insert
   if (boxedField_[p])
-    for (std::uint32_t i = 0; i < d.arity(); ++i) heap_.retain(d.fields[i], args[i]);
+    for (std::uint32_t i = 0; i < k; ++i) heap_.retain(program_.predicates[p].fields[i], args[i]);
 }
 
 void Machine::releaseArgs(PredId p, const Value* args) {
@@ -337,6 +338,10 @@ void Machine::send(NodeId host, NodeId dest, PredId p, const Value* args, bool n
     ++runDerived_;
   }
   ++stats_.factsSent;
+  if (!host_) {  // posted when the run ends (flushOutgoing): fetch what the post will touch
+    mail_->prefetchBox(dest);
+    sched_.prefetch(dest);
+  }
   (d.linear ? sentLinear_ : sentPersistent_)
       .push_back({dest, p, negative, std::uint32_t(sentArgs_.size()), delayMs});
   pushArgs(sentArgs_, p, args);

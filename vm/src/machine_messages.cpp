@@ -9,7 +9,7 @@ void Machine::post(NodeId dest, PredId p, const Value* args, bool negative) {
   const PredicateDesc& d = program_.predicates[p];
   if (boxedField_[p])
     for (std::uint32_t i = 0; i < d.arity(); ++i) heap_.retain(d.fields[i], args[i]);
-  mail_->post(dest, p, negative, args, d.arity());
+  mail_->post(dest, p, negative, args, arity_[p]);
   if (!host_ && !(inRun_ && dest == running_)) sched_.wake(dest);
 }
 
@@ -31,13 +31,13 @@ void Machine::flushOutgoing() {
 }
 
 void Machine::postAll(const std::vector<PendingFact>& facts) {
-  constexpr std::size_t kBoxAhead = 8, kTailAhead = 4;  // mailbox entry, then its last chunk
+  // send() fetched each destination's mailbox entry and scheduler record when the fact was
+  // derived; here the last chunk of each mailbox is fetched a few posts ahead (the first ones
+  // before the loop), since its address is only known from the entry.
+  constexpr std::size_t kTailAhead = 4;
   const std::size_t n = facts.size();
+  for (std::size_t i = 0; i < n && i < kTailAhead; ++i) mail_->prefetchTail(facts[i].node);
   for (std::size_t i = 0; i < n; ++i) {
-    if (i + kBoxAhead < n) {
-      mail_->prefetchBox(facts[i + kBoxAhead].node);
-      if (!host_) sched_.prefetch(facts[i + kBoxAhead].node);
-    }
     if (i + kTailAhead < n) mail_->prefetchTail(facts[i + kTailAhead].node);
     const PendingFact& e = facts[i];
     const Value* args = sentArgs_.data() + e.args;
@@ -47,15 +47,23 @@ void Machine::postAll(const std::vector<PendingFact>& facts) {
 }
 
 void Machine::deliverIncoming(NodeId n) {
-  mail_->drain(n, [&](PredId p, bool negative, const Value* args) {
-    if (program_.predicates[p].linear) {
-      db_->addLinear(n, p, args);
-      releaseArgs(p, args);
-      factAdded(n, p);
-    } else {  // the mailbox's references pass to the queue
-      persistentQueue_.push_back({n, p, negative, std::uint32_t(persistentArgs_.size())});
-      persistentArgs_.insert(persistentArgs_.end(), args, args + program_.predicates[p].arity());
+  // Linear facts join the store first, in arrival order; then the persistent ones are processed in
+  // arrival order, straight from the mailbox (what they derive locally queues behind them, as in
+  // one FIFO, §6.5). Nothing posts to the running node, so the box is stable meanwhile.
+  bool persistent = false;
+  mail_->forEach(n, [&](PredId p, bool, const Value* args) {
+    if (!program_.predicates[p].linear) {
+      persistent = true;
+      return;
     }
+    db_->addLinear(n, p, args);
+    releaseArgs(p, args);
+    factAdded(n, p);
   });
+  if (persistent)
+    mail_->forEach(n, [&](PredId p, bool negative, const Value* args) {
+      if (!program_.predicates[p].linear) applyPersistent(n, p, args, negative);
+    });
+  mail_->release(n);
 }
 }  // namespace meldvm

@@ -20,38 +20,42 @@ void Machine::processPersistent() {
       db_->prefetchDerive(next.node, next.pred, persistentArgs_.data() + next.args);
     }
     // The database copies what it keeps, and nothing appends to the queue before the release.
-    const Value* input = persistentArgs_.data() + e.args;
-    const Change c = e.negative ? db_->retract(n, e.pred, input) : db_->derive(n, e.pred, input);
-    releaseArgs(e.pred, input);  // the queue's references
-    if (c.removed) {
-      triggerRemoved_.assign(c.removedArgs.begin(), c.removedArgs.end());
-      for (std::uint32_t i = 0; i < triggerRemoved_.size(); ++i)
-        heap_.retain(program_.predicates[e.pred].fields[i], triggerRemoved_[i]);
-      std::vector<Value>& added = triggerAdded_;
-      added.clear();
-      if (c.added) added.assign(c.addedArgs.begin(), c.addedArgs.end());
-      for (std::uint32_t i = 0; i < added.size(); ++i)
-        heap_.retain(program_.predicates[e.pred].fields[i], added[i]);
-      factRemoved(n, e.pred);
-      runProcesses(n, e.pred, triggerRemoved_.data(), true);
-      releaseArgs(e.pred, triggerRemoved_.data());
-      if (c.added) {
-        factAdded(n, e.pred);
-        runProcesses(n, e.pred, added.data(), false);
-        releaseArgs(e.pred, added.data());
-      }
-    } else if (c.added) {
-      triggerAdded_.assign(c.addedArgs.begin(), c.addedArgs.end());
-      for (std::uint32_t i = 0; i < triggerAdded_.size(); ++i)
-        heap_.retain(program_.predicates[e.pred].fields[i], triggerAdded_[i]);
-      factAdded(n, e.pred);
-      runProcesses(n, e.pred, triggerAdded_.data(), false);
-      releaseArgs(e.pred, triggerAdded_.data());
-    }
+    applyPersistent(n, e.pred, persistentArgs_.data() + e.args, e.negative);
   }
   persistentQueue_.clear();
   persistentArgs_.clear();
   persistentHead_ = 0;
+}
+
+// One persistent derivation or retraction at node n (§6.5, §6.8): store it, then run the processes
+// of the visible fact that disappeared (negative mode) and of the one that appeared.
+void Machine::applyPersistent(NodeId n, PredId p, const Value* input, bool negative) {
+  const Change c = negative ? db_->retract(n, p, input) : db_->derive(n, p, input);
+  releaseArgs(p, input);  // the references of the queue entry or message
+  if (c.removed) {
+    triggerRemoved_.assign(c.removedArgs.begin(), c.removedArgs.end());
+    for (std::uint32_t i = 0; i < triggerRemoved_.size(); ++i)
+      heap_.retain(program_.predicates[p].fields[i], triggerRemoved_[i]);
+    std::vector<Value>& added = triggerAdded_;
+    added.clear();
+    if (c.added) added.assign(c.addedArgs.begin(), c.addedArgs.end());
+    for (std::uint32_t i = 0; i < added.size(); ++i) heap_.retain(program_.predicates[p].fields[i], added[i]);
+    factRemoved(n, p);
+    runProcesses(n, p, triggerRemoved_.data(), true);
+    releaseArgs(p, triggerRemoved_.data());
+    if (c.added) {
+      factAdded(n, p);
+      runProcesses(n, p, added.data(), false);
+      releaseArgs(p, added.data());
+    }
+  } else if (c.added) {
+    triggerAdded_.assign(c.addedArgs.begin(), c.addedArgs.end());
+    for (std::uint32_t i = 0; i < triggerAdded_.size(); ++i)
+      heap_.retain(program_.predicates[p].fields[i], triggerAdded_[i]);
+    factAdded(n, p);
+    runProcesses(n, p, triggerAdded_.data(), false);
+    releaseArgs(p, triggerAdded_.data());
+  }
 }
 
 void Machine::runProcesses(NodeId n, PredId p, const Value* args, bool negative) {

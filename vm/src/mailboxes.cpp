@@ -22,24 +22,4 @@ std::uint32_t Mailboxes::newChunk() {
   return c;
 }
 
-void Mailboxes::post(NodeId dest, PredId p, bool negative, const Value* args, std::uint32_t arity) {
-  Box& b = boxes_[dest];
-  std::uint32_t c = b.last;
-  if (c == kNone || (words_[std::size_t(c) * chunkWords_].bits() >> 32) == perChunk_) {
-    const std::uint32_t fresh = newChunk();
-    if (c == kNone)
-      b.first = fresh;
-    else
-      words_[std::size_t(c) * chunkWords_] =
-          Value::fromBits((words_[std::size_t(c) * chunkWords_].bits() & 0xFFFFFFFF00000000ull) | fresh);
-    b.last = c = fresh;
-  }
-  Value& head = words_[std::size_t(c) * chunkWords_];
-  const std::uint64_t count = head.bits() >> 32;
-  Value* r = words_.data() + std::size_t(c) * chunkWords_ + 1 + count * recordWords_;
-  r[0] = Value::fromBits(std::uint64_t(p) | (std::uint64_t(negative) << 32));
-  std::copy(args, args + arity, r + 1);
-  head = Value::fromBits((head.bits() & 0xFFFFFFFFull) | ((count + 1) << 32));
-}
-
 }  // namespace meldvm

@@ -19,16 +19,32 @@ class Mailboxes {
   void addNodes(NodeId count) { boxes_.resize(boxes_.size() + count); }
   // Appends a message; the arguments are stored as given (the caller owns their references, which
   // pass to whoever drains the message).
-  void post(NodeId dest, PredId p, bool negative, const Value* args, std::uint32_t arity);
+  void post(NodeId dest, PredId p, bool negative, const Value* args, std::uint32_t arity) {
+    Box& b = boxes_[dest];
+    std::uint32_t c = b.last;
+    if (c == kNone || (words_[std::size_t(c) * chunkWords_].bits() >> 32) == perChunk_) {
+      const std::uint32_t fresh = newChunk();
+      if (c == kNone)
+        b.first = fresh;
+      else
+        words_[std::size_t(c) * chunkWords_] =
+            Value::fromBits((words_[std::size_t(c) * chunkWords_].bits() & 0xFFFFFFFF00000000ull) | fresh);
+      b.last = c = fresh;
+    }
+    Value& head = words_[std::size_t(c) * chunkWords_];
+    const std::uint64_t count = head.bits() >> 32;
+    Value* r = words_.data() + std::size_t(c) * chunkWords_ + 1 + count * recordWords_;
+    r[0] = Value::fromBits(std::uint64_t(p) | (std::uint64_t(negative) << 32));
+    for (std::uint32_t i = 0; i < arity; ++i) r[1 + i] = args[i];
+    head = Value::fromBits((head.bits() & 0xFFFFFFFFull) | ((count + 1) << 32));
+  }
   bool empty(NodeId n) const { return boxes_[n].first == kNone; }
 
-  // Calls f(pred, negative, args) for every message of node n in arrival order and empties the
-  // box. f must not post to n.
+  // Calls f(pred, negative, args) for every message of node n in arrival order, leaving them in
+  // the box (release() empties it). f must not post to n.
   template <class F>
-  void drain(NodeId n, F&& f) {
-    std::uint32_t c = boxes_[n].first;
-    boxes_[n] = Box{};
-    while (c != kNone) {
+  void forEach(NodeId n, F&& f) const {
+    for (std::uint32_t c = boxes_[n].first; c != kNone;) {
       const Value* chunk = words_.data() + std::size_t(c) * chunkWords_;
       const std::uint32_t next = std::uint32_t(chunk[0].bits()), count = std::uint32_t(chunk[0].bits() >> 32);
       if (next != kNone) {
@@ -39,6 +55,15 @@ class Mailboxes {
         const Value* r = chunk + 1 + std::size_t(i) * recordWords_;
         f(PredId(r[0].bits()), (r[0].bits() >> 32) != 0, r + 1);
       }
+      c = next;
+    }
+  }
+  // Empties node n's box; the messages' references must have been taken over or released.
+  void release(NodeId n) {
+    std::uint32_t c = boxes_[n].first;
+    boxes_[n] = Box{};
+    while (c != kNone) {
+      const std::uint32_t next = std::uint32_t(words_[std::size_t(c) * chunkWords_].bits());
       words_[std::size_t(c) * chunkWords_] = Value::fromBits(free_);
       free_ = c;
       c = next;

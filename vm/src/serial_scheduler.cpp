@@ -47,8 +47,7 @@ bool SerialScheduler::pop(NodeId& node) {
   return false;
 }
 
-void SerialScheduler::wake(NodeId n) {
-  if (nodes_[n].where != Where::Idle) return;
+void SerialScheduler::enqueue(NodeId n) {
   if (nodes_[n].prio != noPriority_) {
     heapPush(n);
   } else {

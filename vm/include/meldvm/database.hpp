@@ -100,6 +100,7 @@ class Database {
     const char* p = reinterpret_cast<const char*>(heads_.data() + std::size_t(n) * tables_.size());
     const std::size_t bytes = tables_.size() * sizeof(ListHead);
     for (std::size_t off = 0; off < bytes; off += 64) __builtin_prefetch(p + off);
+    for (const GroupInputs& g : nodeInputs_) g.prefetchRun(n);
   }
   // A hint that derive/retract(n, p, args) comes soon: fetch the hash buckets it will look at.
   [[gnu::always_inline]] void prefetchDerive(NodeId n, PredId p, const Value* args) const {
@@ -128,6 +129,7 @@ class Database {
         __builtin_prefetch(p);
         __builtin_prefetch(p + 64);
       }
+    for (const GroupInputs& g : nodeInputs_) g.prefetch(n);
   }
   // Distinct inputs stored for an aggregated predicate at a node.
   std::uint32_t aggregateInputs(NodeId n, PredId p) const;

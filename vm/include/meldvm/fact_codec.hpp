@@ -26,7 +26,7 @@ void encodeFact(std::vector<std::uint8_t>& out, const PredicateTable& preds, Pre
 struct DecodedFact {
   PredId pred = 0;
   bool negative = false;
-  std::vector<Value> args;  // owned references (release them with the field types)
+  std::vector<Value> args;   // owned references (release them with the field types)
   std::vector<Value> stack;  // working storage of the decoder, reused
 };
 

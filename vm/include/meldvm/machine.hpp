@@ -109,6 +109,7 @@ class Machine : private SchedulerView {
   void storeDerivedLinear();  // the linear facts derived for the host, appended in order (§6.4.4)
   void deliverIncoming(NodeId n);
   void processPersistent();  // the queue's entries name their own nodes
+  void applyPersistent(NodeId n, PredId p, const Value* args, bool negative);
   void runProcesses(NodeId n, PredId p, const Value* args, bool negative);
   void flushOutgoing();
   void applyPriorityRequests();
@@ -161,6 +162,7 @@ class Machine : private SchedulerView {
   std::vector<std::vector<std::uint32_t>> processesOf_;
   std::vector<std::uint8_t> queuedPersistent_;  // has processes or an aggregate: derive via the queue
   std::vector<std::uint8_t> boxedField_;        // per predicate: some field is boxed
+  std::vector<std::uint32_t> arity_;            // per predicate (home excluded)
   std::uint32_t maxArity_ = 1;
   PredId justMoved_ = Program::kNoPred;
 

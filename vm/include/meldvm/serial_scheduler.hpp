@@ -25,7 +25,9 @@ class SerialScheduler {
   // The next node to run (heap first, then FIFO), or false when none is waiting.
   bool pop(NodeId& node);
   // The node received work while not running: queue it unless it already waits.
-  void wake(NodeId n);
+  void wake(NodeId n) {  // inline: most wake-ups find the node already waiting
+    if (nodes_[n].where == Where::Idle) enqueue(n);
+  }
   // The node that pop() will return after the next `ahead` pops, when it is already known (the
   // FIFO is served and holds that many nodes); false otherwise. For prefetching only.
   bool peek(std::size_t ahead, NodeId& node) const {
@@ -60,6 +62,7 @@ class SerialScheduler {
  private:
   enum class Where : std::uint8_t { Idle, Fifo, Heap };
 
+  void enqueue(NodeId n);  // an idle node becomes runnable
   void heapPush(NodeId n);
   void heapRemove(NodeId n);
   void siftUp(std::uint32_t i);
