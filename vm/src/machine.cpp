@@ -3,6 +3,7 @@
 #include <ostream>
 #include <sstream>
 
+#include "bytecode_internal.hpp"
 #include "interpreter.hpp"
 #include "mailboxes.hpp"
 #include "meldvm/arith.hpp"
@@ -60,7 +61,7 @@ Machine::Machine(const Program& program, MachineOptions options)
   for (const std::string& a : options_.args) args_.push_back(heap_.makeString(a));
   globals_.assign(program.globals.size(), Value());
   interp_ = std::make_unique<Interpreter>(*this, program_, *db_, builtinCtx_);
-  mail_ = std::make_unique<Mailboxes>(maxArity_);
+  mail_ = std::make_unique<Mailboxes>(arity_);
   linearOutArgs_.reserve(1024);
   persistentArgs_.reserve(1024);
 }
@@ -107,6 +108,7 @@ void Machine::start() {
       fail(e, 0, "the constants");
     }
   }
+  reserveForAxioms();
   if (program_.initPredicate != Program::kNoPred) {
     for (NodeId i = 0; i < n; ++i) {
       db_->addLinear(i, program_.initPredicate, kNoArgs);
@@ -118,6 +120,23 @@ void Machine::start() {
     sched_.addNode();  // the thread node has a scheduler entry but is served apart (run())
     startThreadNode();
   }
+}
+
+void Machine::reserveForAxioms() {
+  // Every DERIVE of an axiom block stores one fact (the blocks are straight-line code): room for
+  // them all up front spares the fact tables and their hash tables growing step by step while
+  // millions of axioms go in.
+  std::vector<std::size_t> facts(program_.predicates.size(), 0);
+  std::string why;
+  for (const CodeBlock& b : program_.axiomBlocks)
+    for (std::size_t pc = 0; pc < b.code.size();) {
+      const std::size_t len = detail::instructionLength(b.code, pc, why);
+      if (len == 0) return;  // the verifier accepted the program: cannot happen
+      if (Opcode(b.code[pc]) == Opcode::DERIVE) ++facts[b.code[pc + 1]];
+      pc += len;
+    }
+  for (PredId p = 0; p < facts.size(); ++p)
+    if (facts[p] != 0 && !program_.predicates[p].action) db_->reserve(p, facts[p]);
 }
 
 void Machine::startThreadNode() {
@@ -175,6 +194,7 @@ std::uint64_t Machine::runNode(NodeId n) {
   if (sched_.peek(2, ahead)) {
     mail_->prefetchBox(ahead);
     db_->prefetchNode(ahead);
+    __builtin_prefetch(candidates_.data() + std::size_t(ahead) * ruleWords_);
   }
   if (sched_.peek(1, ahead)) {
     mail_->prefetchMessages(ahead);
@@ -321,7 +341,14 @@ void Machine::send(NodeId host, NodeId dest, PredId p, const Value* args, bool n
   // at once.
   if (!host_) delayMs = 0;
   if (dest == host && delayMs == 0) return derive(host, p, args, negative);
-  if (dest >= db_->nodeCount() || !db_->alive(dest))
+  if (dest >= db_->nodeCount())
+    throw RuntimeError("fact " + program_.predicates[p].name + " sent to node @" + std::to_string(dest) +
+                       ", which does not exist");
+  if (!host_) {  // posted when the run ends (flushOutgoing): fetch what the post will touch
+    mail_->prefetchBox(dest);
+    sched_.prefetch(dest);
+  }
+  if (!db_->alive(dest))
     throw RuntimeError("fact " + program_.predicates[p].name + " sent to node @" + std::to_string(dest) +
                        ", which does not exist");
   const PredicateDesc& d = program_.predicates[p];
@@ -338,10 +365,6 @@ void Machine::send(NodeId host, NodeId dest, PredId p, const Value* args, bool n
     ++runDerived_;
   }
   ++stats_.factsSent;
-  if (!host_) {  // posted when the run ends (flushOutgoing): fetch what the post will touch
-    mail_->prefetchBox(dest);
-    sched_.prefetch(dest);
-  }
   (d.linear ? sentLinear_ : sentPersistent_)
       .push_back({dest, p, negative, std::uint32_t(sentArgs_.size()), delayMs});
   pushArgs(sentArgs_, p, args);

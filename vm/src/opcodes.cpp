@@ -1,4 +1,5 @@
 // The opcode table of opcodes.def, and the decoding and naming helpers the bytecode files share.
+#include <array>
 #include <iterator>
 #include <string_view>
 
@@ -49,7 +50,13 @@ std::size_t instructionLength(std::span<const std::uint32_t> code, std::size_t p
     why = "unknown opcode " + std::to_string(code[pos]);
     return 0;
   }
-  const std::string_view ops = kTable[code[pos]].operands;
+  // The operand strings measured once (a loader walks millions of instructions).
+  static const std::array<std::string_view, kOpcodeCount> kOperands = [] {
+    std::array<std::string_view, kOpcodeCount> v;
+    for (std::uint32_t i = 0; i < kOpcodeCount; ++i) v[i] = kTable[i].operands;
+    return v;
+  }();
+  const std::string_view ops = kOperands[code[pos]];
   std::size_t p = pos + 1;
   for (char letter : ops) {
     const std::size_t words = letter == 'D' ? 2 : 1;

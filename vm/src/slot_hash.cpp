@@ -15,7 +15,7 @@ void SlotHash::reserve(std::uint32_t entries) {
 }
 
 void SlotHash::grow(std::size_t capacity) {
-  std::vector<Entry> old = std::move(entries_);
+  LargeVector<Entry> old = std::move(entries_);
   entries_.assign(capacity ? capacity : old.empty() ? 16 : old.size() * 2, Entry{0, kNone});
   mask_ = std::uint32_t(entries_.size() - 1);
   for (const Entry& e : old) {

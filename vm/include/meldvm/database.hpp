@@ -19,6 +19,7 @@
 #include "meldvm/fact_table.hpp"
 #include "meldvm/group_inputs.hpp"
 #include "meldvm/heap.hpp"
+#include "meldvm/large_allocator.hpp"
 #include "meldvm/predicate.hpp"
 
 namespace meldvm {
@@ -183,7 +184,7 @@ class Database {
   std::vector<GroupInputs> nodeInputs_;     // the inputs of the aggregates grouped by the node alone
   std::vector<std::uint32_t> groupInputs_;  // per predicate: its entry in nodeInputs_, or kNoTable
   std::vector<std::uint8_t> boxedPred_;     // per predicate: some field is boxed
-  std::vector<ListHead> heads_;             // node-major: heads_[node * tables + table]
+  LargeVector<ListHead> heads_;             // node-major: heads_[node * tables + table]
   std::vector<std::uint8_t> alive_;
   std::vector<std::uint8_t> grouped_;  // per predicate: new persistent facts join their first-field group
 

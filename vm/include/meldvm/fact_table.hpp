@@ -17,6 +17,7 @@
 #include <vector>
 
 #include "meldvm/heap.hpp"
+#include "meldvm/large_allocator.hpp"
 #include "meldvm/slot_hash.hpp"
 #include "meldvm/types.hpp"
 #include "meldvm/value.hpp"
@@ -135,7 +136,7 @@ class FactTable {
   mutable Value memoKey_[kHashMemo] = {};
   mutable std::uint64_t memoHash_ = 0;
   std::uint32_t stride_ = 0, argOffset_ = 0;
-  std::vector<Value> words_;
+  LargeVector<Value> words_;
   FactRef freeList_ = kNoFact;
   std::uint32_t live_ = 0;
 };

@@ -17,6 +17,7 @@
 #include "meldvm/builtins.hpp"
 #include "meldvm/database.hpp"
 #include "meldvm/heap.hpp"
+#include "meldvm/large_allocator.hpp"
 #include "meldvm/program.hpp"
 #include "meldvm/serial_scheduler.hpp"
 
@@ -116,6 +117,7 @@ class Machine : private SchedulerView {
   void factAdded(NodeId n, PredId p);                   // candidate rules (§6.4.2)
   bool allPresent(NodeId n, std::uint32_t rule) const;  // every body predicate has a fact
   bool hasCandidate(NodeId n) const;
+  void reserveForAxioms();
   void startThreadNode();  // _init_thread and the special thread facts (§6.12)
   void sendThread(NodeId host, ThreadId t, PredId p, const Value* args, bool negative);
   void factRemoved(NodeId n, PredId p);  // after the store lost a fact of p
@@ -168,7 +170,7 @@ class Machine : private SchedulerView {
 
   // Candidate rules per node: a bitset of rulesWords_ words per node.
   std::uint32_t ruleWords_ = 1;
-  std::vector<std::uint64_t> candidates_;
+  LargeVector<std::uint64_t> candidates_;
 
   std::unique_ptr<Mailboxes> mail_;
 

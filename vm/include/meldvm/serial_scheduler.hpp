@@ -8,6 +8,7 @@
 #include <cstdint>
 #include <vector>
 
+#include "meldvm/large_allocator.hpp"
 #include "meldvm/program.hpp"
 #include "meldvm/value.hpp"
 
@@ -78,7 +79,7 @@ class SerialScheduler {
     Where where = Where::Idle;
     std::uint8_t isStatic = 0;
   };
-  std::vector<NodeState> nodes_;
+  LargeVector<NodeState> nodes_;
   std::vector<NodeId> heap_;
   // A node may leave the FIFO for the heap (a priority was set): its entry then goes stale, which
   // the ticket detects. Consumed from fifoHead_, compacted when the dead prefix is large.

@@ -7,6 +7,8 @@
 #include <cstdint>
 #include <vector>
 
+#include "meldvm/large_allocator.hpp"
+
 namespace meldvm {
 
 class SlotHash {
@@ -43,7 +45,7 @@ class SlotHash {
   std::uint32_t indexOf(std::uint32_t h, std::uint32_t slot) const;
   void grow(std::size_t capacity = 0);  // 0: double
 
-  std::vector<Entry> entries_;
+  LargeVector<Entry> entries_;
   std::uint32_t mask_ = 0;
   std::uint32_t size_ = 0;
 };
