@@ -138,3 +138,45 @@ BOOST_AUTO_TEST_CASE(sum_of_float_lists_is_element_wise) {
   BOOST_TEST(s.facts(0, v) == S({"!vec(3, [])"}), boost::test_tools::per_element());
   BOOST_TEST(s.heap.liveObjects() == 0u);  // no list cell leaked by the sums
 }
+
+// `type p(node, min int)` / `max int`: the input is the value itself (the store's int fast path),
+// with the same outcome as the general case: counts, retraction of the winner, an emptied group.
+BOOST_AUTO_TEST_CASE(single_int_min_and_max) {
+  Store s;
+  const PredId lo = s.aggregate("lo", {TypeTable::kInt}, AggregateKind::Min, 0);
+  const PredId hi = s.aggregate("hi", {TypeTable::kInt}, AggregateKind::Max, 0);
+  Database& db = s.open(2);
+  for (int v : {5, 3, 8, 3}) {
+    db.derive(1, lo, std::vector<Value>{I(v)}.data());
+    db.derive(1, hi, std::vector<Value>{I(v)}.data());
+  }
+  BOOST_TEST(s.facts(1, lo) == S({"!lo(3)"}), boost::test_tools::per_element());
+  BOOST_TEST(s.facts(1, hi) == S({"!hi(8)"}), boost::test_tools::per_element());
+  BOOST_TEST(db.aggregateInputs(1, lo) == 3u);
+  BOOST_TEST(db.factCount(0, lo) == 0u);
+  // 3 was derived twice: the first retraction only lowers its count.
+  Change c = db.retract(1, lo, std::vector<Value>{I(3)}.data());
+  BOOST_TEST(!c.removed);
+  BOOST_TEST(c.count == 1u);
+  c = db.retract(1, lo, std::vector<Value>{I(3)}.data());
+  BOOST_TEST(c.removed);
+  BOOST_TEST(c.added);
+  BOOST_TEST(text(s, lo, c.removedArgs) == "!lo(3)");
+  BOOST_TEST(text(s, lo, c.addedArgs) == "!lo(5)");
+  c = db.retract(1, lo, std::vector<Value>{I(8)}.data());  // not the winner: nothing visible
+  BOOST_TEST(!c.removed);
+  BOOST_TEST(!c.added);
+  c = db.derive(1, lo, std::vector<Value>{I(5)}.data());  // a second copy of the winner
+  BOOST_TEST(!c.added);
+  BOOST_TEST(c.count == 2u);
+  c = db.retract(1, hi, std::vector<Value>{I(8)}.data());
+  BOOST_TEST(text(s, hi, c.addedArgs) == "!hi(5)");
+  BOOST_TEST(!db.retract(1, hi, std::vector<Value>{I(4)}.data()).found);
+  db.retract(1, hi, std::vector<Value>{I(5)}.data());
+  db.retract(1, hi, std::vector<Value>{I(3)}.data());
+  c = db.retract(1, hi, std::vector<Value>{I(3)}.data());
+  BOOST_TEST(c.removed);
+  BOOST_TEST(!c.added);
+  BOOST_TEST(db.factCount(1, hi) == 0u);
+  BOOST_TEST(db.aggregateInputs(1, hi) == 0u);
+}

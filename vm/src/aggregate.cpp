@@ -106,6 +106,7 @@ bool Database::computeAggregate(PredId p, const Group& g) {
 }
 
 Change Database::aggregateChange(NodeId n, PredId p, const Value* args, std::uint32_t copies, bool add) {
+  if (intMinMax_[p]) return intMinMaxChange(n, p, args[0], copies, add);
   const PredicateDesc& d = preds_[p];
   // Our own reference to the input: `args` may point into a fact that this change erases.
   setValues(input_, args, d.arity());
@@ -189,6 +190,71 @@ Change Database::aggregateChangeIn(NodeId n, PredId p, Group g, std::uint32_t co
   if (has) {
     visible.insert(head(n, p), n, next_.data(), 1);
     setValues(added_, next_.data(), next_.size());
+    c.added = true;
+    c.addedArgs = added_;
+  }
+  return c;
+}
+
+// The common shape `type p(node, min int)` (or max): the input is the value itself, so the group
+// is a set of distinct ints with counts and the published fact is the best of them. The same
+// outcome as aggregateChangeIn, without the generic machinery (B2 shortest-path sends tens of
+// millions of such inputs).
+Change Database::intMinMaxChange(NodeId n, PredId p, Value v, std::uint32_t copies, bool add) {
+  GroupInputs& g = nodeInputs_[groupInputs_[p]];
+  FactTable& visible = tables_[p];
+  ListHead& list = head(n, p);
+  const FactRef old = list.first;
+  const bool min = preds_[p].aggregate == AggregateKind::Min;
+  const std::int32_t x = v.asInt();
+  auto beats = [min](std::int32_t a, std::int32_t b) { return min ? a < b : a > b; };
+  const std::uint32_t i = g.find(n, &v);
+  Change c;
+  std::int32_t best = x;
+  bool has = true;
+  if (add) {
+    if (i != GroupInputs::kNone) {
+      g.setCount(n, i, g.count(n, i) + copies);
+      c.count = g.count(n, i);
+      if (old != kNoFact) return c;  // one more copy of a stored input: same winner
+    } else {
+      g.append(n, &v, copies);
+      c.count = copies;
+    }
+    if (old != kNoFact && !beats(x, visible.args(old)[0].asInt())) return c;
+  } else {
+    if (i == GroupInputs::kNone) {
+      c.found = false;
+      return c;
+    }
+    if (g.count(n, i) > copies) {
+      g.setCount(n, i, g.count(n, i) - copies);
+      c.count = g.count(n, i);
+      if (old != kNoFact) return c;
+    } else {
+      // Only the published value's input can change the winner when it goes.
+      const bool wasWinner = old == kNoFact || x == visible.args(old)[0].asInt();
+      g.erase(n, i);
+      if (!wasWinner) return c;
+    }
+    has = g.size(n) != 0;
+    if (has) {
+      best = g.args(n, 0)[0].asInt();
+      for (std::uint32_t k = 1; k < g.size(n); ++k)
+        if (beats(g.args(n, k)[0].asInt(), best)) best = g.args(n, k)[0].asInt();
+      if (old != kNoFact && best == visible.args(old)[0].asInt()) return c;
+    }
+  }
+  if (old != kNoFact) {
+    keepRemoved(p, old);
+    visible.erase(list, old);
+    c.removed = true;
+    c.removedArgs = removed_;
+  }
+  if (has) {
+    const Value b = Value::fromInt(best);
+    visible.insert(list, n, &b, 1);
+    setValues(added_, &b, 1);
     c.added = true;
     c.addedArgs = added_;
   }

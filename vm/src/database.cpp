@@ -37,6 +37,9 @@ Database::Database(const PredicateTable& preds, Heap& heap) : preds_(preds), hea
     bool boxed = false;
     for (TypeId t : d.fields) boxed = boxed || types.boxed(t);
     boxedPred_.push_back(boxed);
+    intMinMax_.push_back(d.aggregated() && d.aggregateField == 0 && d.arity() == 1 &&
+                         (d.aggregate == AggregateKind::Min || d.aggregate == AggregateKind::Max) &&
+                         types.kind(d.fields[0]) == TypeKind::Int);
     if (!d.aggregated()) continue;
     if (d.aggregateField == 0) {
       groupInputs_[p] = std::uint32_t(nodeInputs_.size());
@@ -168,8 +171,8 @@ Change Database::derive(NodeId n, PredId p, const Value* args, std::uint32_t cop
       return c;
     }
   }
-  const FactRef after = grouped_[p] ? t.lastWithKey(n, 0, args) : kNoFact;
-  const FactRef f = t.insert(head(n, p), n, args, copies, after);
+  const FactRef f =
+      grouped_[p] ? t.insertGrouped(head(n, p), n, args, copies) : t.insert(head(n, p), n, args, copies);
   setValues(added_, t.args(f), d.arity());
   c.added = true;
   c.count = copies;

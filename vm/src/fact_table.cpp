@@ -98,22 +98,26 @@ FactRef FactTable::chainHead(FactRef f, std::uint32_t x, std::uint64_t& hash) co
                                 [&](std::uint32_t g) { return node(g) == n && keyEqual(g, key, spec); });
 }
 
-void FactTable::linkIndexes(FactRef f) {
-  for (std::uint32_t x = 0; x < indexCount(); ++x) {
-    const std::size_t w = base(f) + 2 + x;
+void FactTable::linkIndexes(FactRef f, std::uint32_t fromIndex) {
+  for (std::uint32_t x = fromIndex; x < indexCount(); ++x) {
     std::uint64_t h;
     const FactRef head = chainHead(f, x, h);
-    setHi(w, kNoFact);
-    if (head == kNoFact) {
-      setLo(w, f);  // a one-fact chain: the head is its own tail
-      indexes_[x].heads.insert(h, f);
-    } else {
-      const std::size_t hw = base(head) + 2 + x;
-      const FactRef tail = lo(hw);
-      setHi(base(tail) + 2 + x, f);
-      setLo(w, tail);
-      setLo(hw, f);
-    }
+    linkIndex(f, x, head, h);
+  }
+}
+
+void FactTable::linkIndex(FactRef f, std::uint32_t x, FactRef head, std::uint64_t h) {
+  const std::size_t w = base(f) + 2 + x;
+  setHi(w, kNoFact);
+  if (head == kNoFact) {
+    setLo(w, f);  // a one-fact chain: the head is its own tail
+    indexes_[x].heads.insert(h, f);
+  } else {
+    const std::size_t hw = base(head) + 2 + x;
+    const FactRef tail = lo(hw);
+    setHi(base(tail) + 2 + x, f);
+    setLo(w, tail);
+    setLo(hw, f);
   }
 }
 
@@ -137,7 +141,8 @@ void FactTable::unlinkIndexes(FactRef f) {
   }
 }
 
-FactRef FactTable::insert(ListHead& list, NodeId n, const Value* a, std::uint32_t cnt, FactRef after) {
+// Takes a slot, stores the fact and links it into the node's list (not into the hash tables).
+FactRef FactTable::place(ListHead& list, NodeId n, const Value* a, std::uint32_t cnt, FactRef after) {
   if (cnt == 0) throw std::invalid_argument("meldvm: a stored fact has a count of at least 1");
   retainArgs(a);
   FactRef f;
@@ -173,9 +178,27 @@ FactRef FactTable::insert(ListHead& list, NodeId n, const Value* a, std::uint32_
   else
     setLo(base(nx), f);
   ++list.size;
+  ++live_;
+  return f;
+}
+
+FactRef FactTable::insert(ListHead& list, NodeId n, const Value* a, std::uint32_t cnt, FactRef after) {
+  const FactRef f = place(list, n, a, cnt, after);
   linkIndexes(f);
   if (dedup_) facts_.insert(dedupHash(n, args(f)), f);
-  ++live_;
+  return f;
+}
+
+FactRef FactTable::insertGrouped(ListHead& list, NodeId n, const Value* a, std::uint32_t cnt) {
+  const KeySpec spec = indexes_[0].key;
+  const std::uint64_t h = hashKey(n, a + spec.first, spec);
+  const FactRef head = indexes_[0].heads.find(
+      h, [&](std::uint32_t g) { return node(g) == n && keyEqual(g, a + spec.first, spec); });
+  const FactRef after = head == kNoFact ? kNoFact : lo(base(head) + 2);  // the head's prev is the tail
+  const FactRef f = place(list, n, a, cnt, after);
+  linkIndex(f, 0, head, h);
+  linkIndexes(f, 1);
+  if (dedup_) facts_.insert(dedupHash(n, args(f)), f);
   return f;
 }
 

@@ -170,6 +170,7 @@ class Database {
   }
   void keepRemoved(PredId p, FactRef f);  // copies a visible fact into removed_ before erasing it
   Change aggregateChange(NodeId n, PredId p, const Value* args, std::uint32_t copies, bool add);
+  Change intMinMaxChange(NodeId n, PredId p, Value v, std::uint32_t copies, bool add);
   // The same over one of the two input stores (aggregate.cpp's NodeGroup and KeyedGroup).
   template <class Group>
   Change aggregateChangeIn(NodeId n, PredId p, Group g, std::uint32_t copies, bool add);
@@ -184,6 +185,7 @@ class Database {
   std::vector<GroupInputs> nodeInputs_;     // the inputs of the aggregates grouped by the node alone
   std::vector<std::uint32_t> groupInputs_;  // per predicate: its entry in nodeInputs_, or kNoTable
   std::vector<std::uint8_t> boxedPred_;     // per predicate: some field is boxed
+  std::vector<std::uint8_t> intMinMax_;     // per predicate: `p(node, min int)` or max (intMinMaxChange)
   LargeVector<ListHead> heads_;             // node-major: heads_[node * tables + table]
   std::vector<std::uint8_t> alive_;
   std::vector<std::uint8_t> grouped_;  // per predicate: new persistent facts join their first-field group

@@ -54,6 +54,10 @@ class FactTable {
   // chains; the boxed arguments are retained.
   FactRef insert(ListHead& list, NodeId node, const Value* args, std::uint32_t count,
                  FactRef after = kNoFact);
+  // Adds a fact right after the last fact of the node with the same index-0 key (at the end of
+  // the list when there is none): persistent facts grouped by their first field. One hash look-up
+  // finds the group and links the index.
+  FactRef insertGrouped(ListHead& list, NodeId node, const Value* args, std::uint32_t count);
   // Removes a fact; its boxed arguments are released. Read next(f) before erasing f.
   void erase(ListHead& list, FactRef f);
   void moveToBack(ListHead& list, FactRef f);
@@ -119,7 +123,10 @@ class FactTable {
   // Hash of a node and all arguments, for the de-duplication table. A derivation hashes the same
   // key for find and then insert (or erase): the last result is remembered.
   std::uint64_t dedupHash(NodeId node, const Value* key) const;
-  void linkIndexes(FactRef f);
+  // Links f into its index chains; for index 0 the chain head and key hash may be known already.
+  void linkIndexes(FactRef f, std::uint32_t fromIndex = 0);
+  void linkIndex(FactRef f, std::uint32_t x, FactRef head, std::uint64_t hash);
+  FactRef place(ListHead& list, NodeId n, const Value* a, std::uint32_t cnt, FactRef after);
   void unlinkIndexes(FactRef f);
   void retainArgs(const Value* args);
   void releaseArgs(FactRef f);
