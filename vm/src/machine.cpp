@@ -192,6 +192,7 @@ std::uint64_t Machine::runNode(NodeId n) {
   // for memory when it starts.
   NodeId ahead;
   if (sched_.peek(2, ahead)) {
+    sched_.prefetch(ahead);
     mail_->prefetchBox(ahead);
     db_->prefetchNode(ahead);
     __builtin_prefetch(candidates_.data() + std::size_t(ahead) * ruleWords_);
@@ -296,11 +297,11 @@ void Machine::factRemoved(NodeId n, PredId p) {
 
 // ---- what the interpreter calls ----
 
-void Machine::pushArgs(std::vector<Value>& to, PredId p, const Value* args) {
+std::uint32_t Machine::pushArgs(ValueBuffer& to, PredId p, const Value* args) {
   const std::uint32_t k = arity_[p];
-  for (std::uint32_t i = 0; i < k; ++i) to.push_back(args[i]);  // a few values: no range insert
   if (boxedField_[p])
     for (std::uint32_t i = 0; i < k; ++i) heap_.retain(program_.predicates[p].fields[i], args[i]);
+  return to.append(args, k);
 }
 
 void Machine::releaseArgs(PredId p, const Value* args) {

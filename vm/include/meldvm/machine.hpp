@@ -20,6 +20,7 @@
 #include "meldvm/large_allocator.hpp"
 #include "meldvm/program.hpp"
 #include "meldvm/serial_scheduler.hpp"
+#include "meldvm/value_buffer.hpp"
 
 namespace meldvm {
 
@@ -135,7 +136,8 @@ class Machine : private SchedulerView {
     std::uint32_t delayMs = 0;  // sent facts: the `@+N` delay
   };
   // Owned copies of argument lists (boxed values retained).
-  void pushArgs(std::vector<Value>& to, PredId p, const Value* args);
+  // Appends the arguments to `to` (boxed values retained); returns their offset.
+  std::uint32_t pushArgs(ValueBuffer& to, PredId p, const Value* args);
   void releaseArgs(PredId p, const Value* args);
 
   const Program& program_;
@@ -182,16 +184,16 @@ class Machine : private SchedulerView {
   };
   std::vector<Consumed> consumed_;
   std::vector<PendingFact> linearOut_;  // linear facts derived for the host, appended after the run
-  std::vector<Value> linearOutArgs_;
+  ValueBuffer linearOutArgs_;
   std::vector<PendingFact> persistentQueue_;  // FIFO (§6.5)
   std::size_t persistentHead_ = 0;
-  std::vector<Value> persistentArgs_;
+  ValueBuffer persistentArgs_;
   // Facts sent to other nodes during a node run, posted when it ends: the persistent ones first
   // (the established VM posts them at once, so they precede every linear fact of the same run,
   // §6.4.4), each kind in sending order. Nothing can read a mailbox before the run ends, so
   // posting them together is unobservable, and it lets the posts prefetch their mailboxes.
   std::vector<PendingFact> sentPersistent_, sentLinear_;
-  std::vector<Value> sentArgs_;
+  ValueBuffer sentArgs_;
   void postAll(const std::vector<PendingFact>& facts);
   std::vector<std::pair<NodeId, double>> priorityRequests_;
   std::vector<Value> triggerAdded_, triggerRemoved_;
