@@ -50,6 +50,7 @@ Database::Database(const PredicateTable& preds, Heap& heap) : preds_(preds), hea
     tables_.emplace_back(types, heap, d.fields, true);  // inputs: a multiset, grouped by index 0
     tables_.back().addIndex({0, d.aggregateField});
   }
+  tableCount_ = std::uint32_t(tables_.size());
   for (auto* v : {&added_, &removed_, &input_, &next_}) v->reserve(maxArity);
 }
 
@@ -68,7 +69,7 @@ void Database::badPredicate(PredId p, bool linear) const {
 NodeId Database::addNodes(NodeId count) {
   const NodeId firstNew = nodeCount();
   alive_.resize(alive_.size() + count, 1);
-  heads_.resize(alive_.size() * tables_.size());
+  heads_.resize(alive_.size() * tableCount_);
   for (GroupInputs& g : nodeInputs_) g.addNodes(count);
   return firstNew;
 }
@@ -76,7 +77,7 @@ NodeId Database::addNodes(NodeId count) {
 void Database::removeNode(NodeId n) {
   checkNode(n);
   clearScratch();
-  for (std::uint32_t t = 0; t < tables_.size(); ++t) {
+  for (std::uint32_t t = 0; t < tableCount_; ++t) {
     ListHead& h = head(n, t);
     while (h.first != kNoFact) tables_[t].erase(h, h.first);
   }

@@ -101,27 +101,13 @@ Value Interpreter::retained(const Frame& f, std::uint32_t r) const {
   return f.regs[r];
 }
 
-std::span<const Value> Interpreter::gatherArgs(const Frame& f, const std::uint32_t* regs,
-                                               std::uint32_t count) {
-  if (count > args_.size()) args_.resize(count);
-  Value* out = args_.data();
-  for (std::uint32_t i = 0; i < count; ++i) out[i] = f.regs[regs[i]];
-  return {out, count};
-}
+void Interpreter::consumeSlot(const Slot& sl) { machine_.consumed(sl.node, sl.pred, sl.fact); }
 
 bool Interpreter::skipFact(const Frame& f, std::uint32_t slot, PredId p, FactRef fact) const {
   if (db_.consumedMark(p, fact)) return true;
   for (std::uint32_t s = 0; s < slot; ++s)  // §6.4.3: a fact bound by an enclosing loop
     if (f.slots[s].fact == fact && f.slots[s].pred == p && !f.slots[s].fixed) return true;
   return false;
-}
-
-void Interpreter::fire(Frame& f, std::uint32_t firstSlot) {
-  for (std::uint32_t s = firstSlot; s < f.block->slots; ++s) {
-    Slot& sl = f.slots[s];
-    if ((sl.flags & kIterConsume) && sl.fact != kNoFact && !sl.fixed && !db_.consumedMark(sl.pred, sl.fact))
-      machine_.consumed(sl.node, sl.pred, sl.fact);
-  }
 }
 
 bool Interpreter::loop(Frame& f, std::uint32_t pc) {

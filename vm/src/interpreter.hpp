@@ -54,7 +54,16 @@ class Interpreter {
   Status exec(Frame& f, std::uint32_t pc);
   bool loop(Frame& f, std::uint32_t pc);
   bool skipFact(const Frame& f, std::uint32_t slot, PredId p, FactRef fact) const;
-  void fire(Frame& f, std::uint32_t firstSlot);
+  // The rule fired: consume the linear facts bound from firstSlot on (inline: a persistent rule's
+  // firing consumes nothing and should cost next to nothing).
+  [[gnu::always_inline]] void fire(Frame& f, std::uint32_t firstSlot) {
+    for (std::uint32_t s = firstSlot; s < f.block->slots; ++s) {
+      Slot& sl = f.slots[s];
+      if ((sl.flags & kIterConsume) && sl.fact != kNoFact && !sl.fixed && !db_.consumedMark(sl.pred, sl.fact))
+        consumeSlot(sl);
+    }
+  }
+  void consumeSlot(const Slot& sl);
   const Value* slotArgs(const Frame& f, std::uint32_t s) const {
     const Slot& sl = f.slots[s];
     return sl.fixed ? sl.fixed : db_.args(sl.pred, sl.fact);
@@ -66,7 +75,14 @@ class Interpreter {
   Value retained(const Frame& f, std::uint32_t r) const;
   Value callFunction(std::uint32_t fn, const Value* args, NodeId host);
   // The registers' values in args_ (no references taken); valid until the next gatherArgs.
-  std::span<const Value> gatherArgs(const Frame& f, const std::uint32_t* regs, std::uint32_t count);
+  [[gnu::always_inline]] std::span<const Value> gatherArgs(const Frame& f, const std::uint32_t* regs,
+                                                           std::uint32_t count) {
+    if (count > args_.size()) growArgs(count);
+    Value* out = args_.data();
+    for (std::uint32_t i = 0; i < count; ++i) out[i] = f.regs[regs[i]];
+    return {out, count};
+  }
+  [[gnu::noinline]] void growArgs(std::uint32_t count) { args_.resize(count); }
 
   // Frames: registers and slots from chunks that never move.
   struct Alloc {

@@ -297,11 +297,9 @@ void Machine::factRemoved(NodeId n, PredId p) {
 
 // ---- what the interpreter calls ----
 
-std::uint32_t Machine::pushArgs(ValueBuffer& to, PredId p, const Value* args) {
-  const std::uint32_t k = arity_[p];
-  if (boxedField_[p])
-    for (std::uint32_t i = 0; i < k; ++i) heap_.retain(program_.predicates[p].fields[i], args[i]);
-  return to.append(args, k);
+void Machine::retainArgs(PredId p, const Value* args) {
+  const PredicateDesc& d = program_.predicates[p];
+  for (std::uint32_t i = 0; i < d.arity(); ++i) heap_.retain(d.fields[i], args[i]);
 }
 
 void Machine::releaseArgs(PredId p, const Value* args) {
@@ -342,24 +340,18 @@ void Machine::send(NodeId host, NodeId dest, PredId p, const Value* args, bool n
   // at once.
   if (!host_) delayMs = 0;
   if (dest == host && delayMs == 0) return derive(host, p, args, negative);
-  if (dest >= db_->nodeCount())
-    throw RuntimeError("fact " + program_.predicates[p].name + " sent to node @" + std::to_string(dest) +
-                       ", which does not exist");
+  if (dest >= db_->nodeCount()) noSuchNode(p, dest);
   if (!host_) {  // posted when the run ends (flushOutgoing): fetch what the post will touch
     mail_->prefetchBox(dest);
     sched_.prefetch(dest);
   }
-  if (!db_->alive(dest))
-    throw RuntimeError("fact " + program_.predicates[p].name + " sent to node @" + std::to_string(dest) +
-                       ", which does not exist");
+  if (!db_->alive(dest)) noSuchNode(p, dest);
   const PredicateDesc& d = program_.predicates[p];
   if (d.action) {
     if (!negative) action(host, dest, p, args);
     return;
   }
-  if (host_ && dest != host && !host_->reachable(host, dest))
-    throw RuntimeError("fact " + d.name + " for node @" + std::to_string(dest) +
-                       ", which is not a neighbour of @" + std::to_string(host));
+  if (host_ && dest != host && !host_->reachable(host, dest)) notANeighbour(p, host, dest);
   if (d.linear && negative) return;
   if (!negative) {
     ++stats_.factsDerived;
@@ -369,6 +361,16 @@ void Machine::send(NodeId host, NodeId dest, PredId p, const Value* args, bool n
   (d.linear ? sentLinear_ : sentPersistent_)
       .push_back({dest, p, negative, std::uint32_t(sentArgs_.size()), delayMs});
   pushArgs(sentArgs_, p, args);
+}
+
+void Machine::noSuchNode(PredId p, NodeId dest) const {
+  throw RuntimeError("fact " + program_.predicates[p].name + " sent to node @" + std::to_string(dest) +
+                     ", which does not exist");
+}
+
+void Machine::notANeighbour(PredId p, NodeId host, NodeId dest) const {
+  throw RuntimeError("fact " + program_.predicates[p].name + " for node @" + std::to_string(dest) +
+                     ", which is not a neighbour of @" + std::to_string(host));
 }
 
 void Machine::sendThread(NodeId host, ThreadId t, PredId p, const Value* args, bool negative) {

@@ -30,7 +30,7 @@ void Machine::processPersistent() {
 // One persistent derivation or retraction at node n (§6.5, §6.8): store it, then run the processes
 // of the visible fact that disappeared (negative mode) and of the one that appeared.
 void Machine::applyPersistent(NodeId n, PredId p, const Value* input, bool negative) {
-  const Change c = negative ? db_->retract(n, p, input) : db_->derive(n, p, input);
+  const Change c = db_->changePersistent(n, p, input, !negative);
   releaseArgs(p, input);  // the references of the queue entry or message
   if (c.removed) {
     triggerRemoved_.assign(c.removedArgs.begin(), c.removedArgs.end());

@@ -76,6 +76,16 @@ class Database {
   // Persistent predicates, aggregated ones included (then args is an aggregate input).
   Change derive(NodeId n, PredId p, const Value* args, std::uint32_t copies = 1);
   Change retract(NodeId n, PredId p, const Value* args, std::uint32_t copies = 1);
+  // derive (add) or retract one copy, for a caller that knows p is a persistent predicate and n
+  // a live node (the rule engine): skips the checks and goes straight to the common aggregate
+  // shape.
+  Change changePersistent(NodeId n, PredId p, const Value* args, bool add) {
+    if (intMinMax_[p]) {
+      clearScratch();
+      return intMinMaxChange(n, p, args[0], 1, add);
+    }
+    return add ? derive(n, p, args) : retract(n, p, args);
+  }
 
   // Reading the visible facts of a node, in store order: linear facts in insertion order;
   // persistent facts grouped by their first field (groups in order of first appearance, facts in
@@ -98,8 +108,8 @@ class Database {
   // A hint that node n runs soon: fetch its list heads (always inlined: GCC drops calls to
   // functions whose only effect is a prefetch).
   [[gnu::always_inline]] void prefetchNode(NodeId n) const {
-    const char* p = reinterpret_cast<const char*>(heads_.data() + std::size_t(n) * tables_.size());
-    const std::size_t bytes = tables_.size() * sizeof(ListHead);
+    const char* p = reinterpret_cast<const char*>(heads_.data() + std::size_t(n) * tableCount_);
+    const std::size_t bytes = tableCount_ * sizeof(ListHead);
     for (std::size_t off = 0; off < bytes; off += 64) __builtin_prefetch(p + off);
     for (const GroupInputs& g : nodeInputs_) g.prefetchRun(n);
   }
@@ -123,8 +133,8 @@ class Database {
   // The next stage, once the list heads are cached: the first facts of the node's lists (the
   // first two cache lines of each, which holds a few facts when they were stored together).
   [[gnu::always_inline]] void prefetchNodeFacts(NodeId n) const {
-    const ListHead* h = heads_.data() + std::size_t(n) * tables_.size();
-    for (std::size_t t = 0; t < tables_.size(); ++t)
+    const ListHead* h = heads_.data() + std::size_t(n) * tableCount_;
+    for (std::size_t t = 0; t < tableCount_; ++t)
       if (h[t].first != kNoFact) {
         const char* p = reinterpret_cast<const char*>(tables_[t].slotAddress(h[t].first));
         __builtin_prefetch(p);
@@ -143,9 +153,9 @@ class Database {
   static constexpr std::uint32_t kNoTable = 0xFFFFFFFFu;
 
   const ListHead& head(NodeId n, std::uint32_t table) const {
-    return heads_[std::size_t(n) * tables_.size() + table];
+    return heads_[std::size_t(n) * tableCount_ + table];
   }
-  ListHead& head(NodeId n, std::uint32_t table) { return heads_[std::size_t(n) * tables_.size() + table]; }
+  ListHead& head(NodeId n, std::uint32_t table) { return heads_[std::size_t(n) * tableCount_ + table]; }
   // Checks on every store call, inline: the failures are out of line.
   const PredicateDesc& storedPredicate(PredId p, bool linear) const {
     if (p >= preds_.size() || preds_[p].action || preds_[p].linear != linear) badPredicate(p, linear);
@@ -180,7 +190,8 @@ class Database {
 
   const PredicateTable& preds_;
   Heap& heap_;
-  std::vector<FactTable> tables_;           // one per predicate, then one per aggregated predicate
+  std::vector<FactTable> tables_;           // one per predicate, then one per keyed aggregated predicate
+  std::uint32_t tableCount_ = 0;            // tables_.size(), fixed once the constructor is done
   std::vector<std::uint32_t> inputTable_;   // per predicate: its keyed aggregate input table, or kNoTable
   std::vector<GroupInputs> nodeInputs_;     // the inputs of the aggregates grouped by the node alone
   std::vector<std::uint32_t> groupInputs_;  // per predicate: its entry in nodeInputs_, or kNoTable

@@ -137,7 +137,14 @@ class Machine : private SchedulerView {
   };
   // Owned copies of argument lists (boxed values retained).
   // Appends the arguments to `to` (boxed values retained); returns their offset.
-  std::uint32_t pushArgs(ValueBuffer& to, PredId p, const Value* args);
+  std::uint32_t pushArgs(ValueBuffer& to, PredId p, const Value* args) {
+    if (boxedField_[p]) retainArgs(p, args);
+    return to.append(args, arity_[p]);
+  }
+  [[gnu::noinline]] void retainArgs(PredId p, const Value* args);
+  // The run-time errors of send(), out of line.
+  [[noreturn, gnu::noinline]] void noSuchNode(PredId p, NodeId dest) const;
+  [[noreturn, gnu::noinline]] void notANeighbour(PredId p, NodeId host, NodeId dest) const;
   void releaseArgs(PredId p, const Value* args);
 
   const Program& program_;
