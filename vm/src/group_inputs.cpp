@@ -30,9 +30,16 @@ std::uint32_t GroupInputs::find(NodeId n, const Value* a) const {
   const std::uint32_t arity = stride_ - 1;
   if (integerKeys_) {
     // Equal bits are equal values: the common case compares words only.
-    if (arity == 1) {
+    if (arity == 1) {  // records of two words: [count][value]; four compared per step
       const std::uint64_t key = a[0].bits();
-      for (std::uint32_t i = 0; i < r.size; ++i, rec += stride_)
+      std::uint32_t i = 0;
+      for (; i + 4 <= r.size; i += 4, rec += 8)
+        if ((rec[0].bits() == key) | (rec[2].bits() == key) | (rec[4].bits() == key) | (rec[6].bits() == key))
+          return rec[0].bits() == key   ? i
+                 : rec[2].bits() == key ? i + 1
+                 : rec[4].bits() == key ? i + 2
+                                        : i + 3;
+      for (; i < r.size; ++i, rec += 2)
         if (rec[0].bits() == key) return i;
       return kNone;
     }

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cstring>
 
+#include "bytecode_internal.hpp"
 #include "meldvm/arith.hpp"
 #include "meldvm/machine.hpp"
 #include "meldvm/value_ops.hpp"
@@ -37,11 +38,23 @@ const std::vector<std::uint8_t>& Interpreter::boxedOf(const CodeBlock& b) {
   if (&b == lastBlock_) return *lastBoxed_;
   auto it = boxed_.find(&b);
   if (it == boxed_.end()) {
-    // One more byte at the end: whether any register is boxed (leave() skips the release loop).
-    std::vector<std::uint8_t> v(b.registerTypes.size() + 1);
-    for (std::size_t r = 0; r < b.registerTypes.size(); ++r) {
+    // Two more bytes at the end: whether any register is boxed (leave() skips the release loop),
+    // and whether any loop consumes its fact (fire() has nothing to do otherwise).
+    const std::size_t regs = b.registerTypes.size();
+    std::vector<std::uint8_t> v(regs + 2);
+    for (std::size_t r = 0; r < regs; ++r) {
       v[r] = program_.types.boxed(b.registerTypes[r]);
-      v.back() |= v[r];
+      v[regs] |= v[r];
+    }
+    std::string why;
+    for (std::size_t pc = 0; pc < b.code.size();) {
+      const std::size_t len = detail::instructionLength(b.code, pc, why);
+      if (len == 0) break;  // verified code: cannot happen
+      const auto op = Opcode(b.code[pc]);
+      if ((op == Opcode::ITER || op == Opcode::ITER_KEY || op == Opcode::ITER_SORTED) &&
+          (b.code[pc + 3] & kIterConsume))
+        v[regs + 1] = 1;
+      pc += len;
     }
     it = boxed_.emplace(&b, std::move(v)).first;
   }

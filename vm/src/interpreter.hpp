@@ -45,7 +45,7 @@ class Interpreter {
     const std::uint32_t* code;
     Value* regs;
     Slot* slots;
-    const std::uint8_t* boxed;  // per register
+    const std::uint8_t* boxed;  // per register, then "any boxed", then "some loop consumes"
     NodeId host;
     bool negative;
   };
@@ -57,6 +57,7 @@ class Interpreter {
   // The rule fired: consume the linear facts bound from firstSlot on (inline: a persistent rule's
   // firing consumes nothing and should cost next to nothing).
   [[gnu::always_inline]] void fire(Frame& f, std::uint32_t firstSlot) {
+    if (!f.boxed[f.block->registerTypes.size() + 1]) return;  // no loop of the block consumes
     for (std::uint32_t s = firstSlot; s < f.block->slots; ++s) {
       Slot& sl = f.slots[s];
       if ((sl.flags & kIterConsume) && sl.fact != kNoFact && !sl.fixed && !db_.consumedMark(sl.pred, sl.fact))
