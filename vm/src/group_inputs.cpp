@@ -24,35 +24,16 @@ GroupInputs::~GroupInputs() {
       for (std::uint32_t f : boxedFields_) heap_.release(fields_[f], args(n, i)[f]);
 }
 
-std::uint32_t GroupInputs::find(NodeId n, const Value* a) const {
+std::uint32_t GroupInputs::findAny(NodeId n, const Value* a) const {
   const Run& r = runs_[n];
   const Value* rec = words_.data() + r.offset + 1;
   const std::uint32_t arity = stride_ - 1;
-  if (integerKeys_) {
-    // Equal bits are equal values: the common case compares words only.
-    if (arity == 1) {  // records of two words: [count][value]; four compared per step
-      const std::uint64_t key = a[0].bits();
-      std::uint32_t i = 0;
-      for (; i + 4 <= r.size; i += 4, rec += 8)
-        if ((rec[0].bits() == key) | (rec[2].bits() == key) | (rec[4].bits() == key) | (rec[6].bits() == key))
-          return rec[0].bits() == key   ? i
-                 : rec[2].bits() == key ? i + 1
-                 : rec[4].bits() == key ? i + 2
-                                        : i + 3;
-      for (; i < r.size; ++i, rec += 2)
-        if (rec[0].bits() == key) return i;
-      return kNone;
-    }
-    for (std::uint32_t i = 0; i < r.size; ++i, rec += stride_) {
-      std::uint32_t k = 0;
-      while (k < arity && rec[k].bits() == a[k].bits()) ++k;
-      if (k == arity) return i;
-    }
-    return kNone;
-  }
   for (std::uint32_t i = 0; i < r.size; ++i, rec += stride_) {
     std::uint32_t k = 0;
-    while (k < arity && valuesEqualFast(types_, fields_[k], rec[k], a[k])) ++k;
+    if (integerKeys_)  // equal bits are equal values
+      while (k < arity && rec[k].bits() == a[k].bits()) ++k;
+    else
+      while (k < arity && valuesEqualFast(types_, fields_[k], rec[k], a[k])) ++k;
     if (k == arity) return i;
   }
   return kNone;

@@ -36,6 +36,18 @@ Interpreter::~Interpreter() = default;
 
 const std::vector<std::uint8_t>& Interpreter::boxedOf(const CodeBlock& b) {
   if (&b == lastBlock_) return *lastBoxed_;
+  const auto& axioms = program_.axiomBlocks;
+  if (!axioms.empty() && &b >= axioms.data() && &b < axioms.data() + axioms.size()) {
+    // An axiom block runs once: no cache entry (a big program has millions of them). Axiom
+    // blocks are straight-line code (no loops) and never nest, so one scratch serves them all.
+    const std::size_t regs = b.registerTypes.size();
+    axiomBoxed_.assign(regs + 2, 0);
+    for (std::size_t r = 0; r < regs; ++r) {
+      axiomBoxed_[r] = program_.types.boxed(b.registerTypes[r]);
+      axiomBoxed_[regs] |= axiomBoxed_[r];
+    }
+    return axiomBoxed_;
+  }
   auto it = boxed_.find(&b);
   if (it == boxed_.end()) {
     // Two more bytes at the end: whether any register is boxed (leave() skips the release loop),

@@ -106,6 +106,7 @@ class Interpreter {
   std::vector<std::unique_ptr<Slot[]>> slotChunks_;
   std::size_t regChunk_ = 0, regUsed_ = 0, slotChunk_ = 0, slotUsed_ = 0;
   std::unordered_map<const CodeBlock*, std::vector<std::uint8_t>> boxed_;
+  std::vector<std::uint8_t> axiomBoxed_;  // boxedOf an axiom block (not cached)
   const CodeBlock* lastBlock_ = nullptr;  // the processes of a program run the same few blocks
   const std::vector<std::uint8_t>* lastBoxed_ = nullptr;
   std::vector<Value> args_;  // arguments gathered for DERIVE/SEND/CALL (grows, never shrinks)

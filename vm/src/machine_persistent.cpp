@@ -27,11 +27,9 @@ void Machine::processPersistent() {
   persistentHead_ = 0;
 }
 
-// One persistent derivation or retraction at node n (§6.5, §6.8): store it, then run the processes
-// of the visible fact that disappeared (negative mode) and of the one that appeared.
-void Machine::applyPersistent(NodeId n, PredId p, const Value* input, bool negative) {
-  const Change c = db_->changePersistent(n, p, input, !negative);
-  releaseArgs(p, input);  // the references of the queue entry or message
+// A persistent derivation or retraction changed what is visible at node n (§6.5, §6.8): run the
+// processes of the fact that disappeared (negative mode), then of the one that appeared.
+void Machine::publishChange(NodeId n, PredId p, const Change& c) {
   if (c.removed) {
     triggerRemoved_.assign(c.removedArgs.begin(), c.removedArgs.end());
     for (std::uint32_t i = 0; i < triggerRemoved_.size(); ++i)

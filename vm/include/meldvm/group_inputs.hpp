@@ -34,7 +34,10 @@ class GroupInputs {
   void addNodes(std::uint32_t count) { runs_.resize(runs_.size() + count); }
   std::uint32_t size(NodeId n) const { return runs_[n].size; }
   // The position of the input with exactly these arguments at node n, or kNone.
-  std::uint32_t find(NodeId n, const Value* args) const;
+  std::uint32_t find(NodeId n, const Value* args) const {
+    if (stride_ == 2 && integerKeys_) return findWord(n, args[0].bits());
+    return findAny(n, args);
+  }
   // Valid until the next append (the word array may move).
   const Value* args(NodeId n, std::uint32_t i) const { return record(n, i) + 1; }
   std::uint32_t count(NodeId n, std::uint32_t i) const { return std::uint32_t(record(n, i)[0].bits()); }
@@ -66,6 +69,19 @@ class GroupInputs {
   const Value* record(NodeId n, std::uint32_t i) const {
     return words_.data() + runs_[n].offset + std::size_t(i) * stride_;
   }
+  // One integer-like field: records of two words, [count][value]; four compared per step.
+  std::uint32_t findWord(NodeId n, std::uint64_t key) const {
+    const Run& r = runs_[n];
+    const Value* rec = words_.data() + r.offset + 1;
+    std::uint32_t i = 0;
+    for (; i + 4 <= r.size; i += 4, rec += 8)
+      if ((rec[0].bits() == key) | (rec[2].bits() == key) | (rec[4].bits() == key) | (rec[6].bits() == key))
+        return rec[0].bits() == key ? i : rec[2].bits() == key ? i + 1 : rec[4].bits() == key ? i + 2 : i + 3;
+    for (; i < r.size; ++i, rec += 2)
+      if (rec[0].bits() == key) return i;
+    return kNone;
+  }
+  std::uint32_t findAny(NodeId n, const Value* args) const;
   std::uint32_t allocate(std::uint32_t sizeClass);  // returns the first word of a free run
   void free(std::uint32_t offset, std::uint32_t sizeClass);
 

@@ -111,7 +111,16 @@ class Machine : private SchedulerView {
   void storeDerivedLinear();  // the linear facts derived for the host, appended in order (§6.4.4)
   void deliverIncoming(NodeId n);
   void processPersistent();  // the queue's entries name their own nodes
-  void applyPersistent(NodeId n, PredId p, const Value* args, bool negative);
+  // Inline: most derivations change nothing visible (a copy more, an aggregate input that does not
+  // win), and then this is all there is to do.
+  void applyPersistent(NodeId n, PredId p, const Value* args, bool negative) {
+    const Change c = db_->changePersistent(n, p, args, !negative);
+    if (boxedField_[p]) releaseArgs(p, args);  // the references of the queue entry or message
+    if (c.removed || c.added) publishChange(n, p, c);
+  }
+  // Runs the processes of the visible fact that disappeared (negative mode) and of the one that
+  // appeared.
+  [[gnu::noinline]] void publishChange(NodeId n, PredId p, const Change& c);
   void runProcesses(NodeId n, PredId p, const Value* args, bool negative);
   void flushOutgoing();
   void applyPriorityRequests();
