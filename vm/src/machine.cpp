@@ -34,6 +34,23 @@ Machine::Machine(const Program& program, MachineOptions options)
     for (PredId p : program.rules[r].bodyPredicates) rulesOf_[p].push_back(r);
   for (std::uint32_t i = 0; i < program.processes.size(); ++i)
     processesOf_[program.processes[i].trigger].push_back(i);
+  // The predicates a process's loops read at the node (a persistent rule's body has no head
+  // comprehension or aggregate, so every loop is a body subgoal): with one of them empty there,
+  // the process cannot fire, and runProcesses skips it. Thread facts live elsewhere: not listed.
+  processNeeds_.resize(program.processes.size());
+  std::string why;
+  for (std::uint32_t i = 0; i < program.processes.size(); ++i) {
+    const std::vector<std::uint32_t>& code = program.processes[i].block.code;
+    for (std::size_t pc = 0; pc < code.size();) {
+      const std::size_t len = detail::instructionLength(code, pc, why);
+      if (len == 0) break;  // verified code: cannot happen
+      const auto op = Opcode(code[pc]);
+      if ((op == Opcode::ITER || op == Opcode::ITER_KEY || op == Opcode::ITER_SORTED) &&
+          !(code[pc + 3] & kIterThread))
+        processNeeds_[i].push_back(code[pc + 1]);
+      pc += len;
+    }
+  }
   for (PredId p = 0; p < preds; ++p) {
     const PredicateDesc& d = program.predicates[p];
     maxArity_ = std::max(maxArity_, d.arity());

@@ -58,6 +58,9 @@ void Machine::publishChange(NodeId n, PredId p, const Change& c) {
 
 void Machine::runProcesses(NodeId n, PredId p, const Value* args, bool negative) {
   for (std::uint32_t i : processesOf_[p]) {
+    bool ready = true;  // a loop over a predicate without facts here: nothing can fire
+    for (PredId q : processNeeds_[i]) ready = ready && db_->factCount(n, q) != 0;
+    if (!ready) continue;
     try {
       interp_->run(program_.processes[i].block, n, negative, p, args);
     } catch (const RuntimeError& e) {

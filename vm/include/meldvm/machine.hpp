@@ -180,6 +180,7 @@ class Machine : private SchedulerView {
   // Per predicate: the rules with it in their body, its processes, flags.
   std::vector<std::vector<std::uint32_t>> rulesOf_;
   std::vector<std::vector<std::uint32_t>> processesOf_;
+  std::vector<std::vector<PredId>> processNeeds_;  // per process: predicates its loops read
   std::vector<std::uint8_t> queuedPersistent_;  // has processes or an aggregate: derive via the queue
   std::vector<std::uint8_t> boxedField_;        // per predicate: some field is boxed
   std::vector<std::uint32_t> arity_;            // per predicate (home excluded)
