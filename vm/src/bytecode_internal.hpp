@@ -44,6 +44,25 @@ inline constexpr std::uint32_t kSchedFlagsAll = 15;
 // operands running past the end); then `why` says what is wrong.
 std::size_t instructionLength(std::span<const std::uint32_t> code, std::size_t pos, std::string& why);
 
+// Calls f(pos) for every instruction of verified code, in order (for the run-time summaries the
+// Machine and the interpreter draw from a block once).
+template <class F>
+void forEachInstruction(std::span<const std::uint32_t> code, F&& f) {
+  std::string why;
+  for (std::size_t pos = 0; pos < code.size();) {
+    const std::size_t len = instructionLength(code, pos, why);
+    if (len == 0) return;  // the verifier accepted the block: cannot happen
+    f(pos);
+    pos += len;
+  }
+}
+
+// ITER, ITER_KEY and ITER_SORTED: operands predicate, slot, flags (IterFlags), then their own.
+inline bool isLoop(std::uint32_t opcode) {
+  const auto op = Opcode(opcode);
+  return op == Opcode::ITER || op == Opcode::ITER_KEY || op == Opcode::ITER_SORTED;
+}
+
 // TypeTable::name with the nesting depth capped: a file can chain thousands of `list` types, and
 // the unbounded recursion of TypeTable::name would then overflow the stack.
 std::string typeName(const TypeTable& types, TypeId t);

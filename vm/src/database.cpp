@@ -58,11 +58,10 @@ Database::~Database() { clearScratch(); }
 
 void Database::badNode(NodeId n) const { throw std::out_of_range("meldvm: no node " + std::to_string(n)); }
 
-void Database::badPredicate(PredId p, bool linear) const {
+void Database::badPredicate(PredId p) const {
   if (p >= preds_.size()) throw std::out_of_range("meldvm: no predicate " + std::to_string(p));
   const PredicateDesc& d = preds_[p];
   if (d.action) throw std::logic_error("meldvm: action '" + d.name + "' is executed, not stored");
-  (void)linear;
   throw std::logic_error("meldvm: '" + d.name + "' is " + (d.linear ? "linear" : "persistent"));
 }
 

@@ -34,40 +34,34 @@ Interpreter::Interpreter(Machine& machine, const Program& program, Database& db,
 
 Interpreter::~Interpreter() = default;
 
+// Per register whether it is boxed, then whether any register is (leave() skips the release loop
+// otherwise), then whether any loop consumes its fact (fire() has nothing to do otherwise).
+void Interpreter::blockFlags(const CodeBlock& b, std::vector<std::uint8_t>& v, bool scanLoops) const {
+  const std::size_t regs = b.registerTypes.size();
+  v.assign(regs + 2, 0);
+  for (std::size_t r = 0; r < regs; ++r) {
+    v[r] = program_.types.boxed(b.registerTypes[r]);
+    v[regs] |= v[r];
+  }
+  if (scanLoops)
+    detail::forEachInstruction(b.code, [&](std::size_t pc) {
+      if (detail::isLoop(b.code[pc]) && (b.code[pc + 3] & kIterConsume)) v[regs + 1] = 1;
+    });
+}
+
 const std::vector<std::uint8_t>& Interpreter::boxedOf(const CodeBlock& b) {
   if (&b == lastBlock_) return *lastBoxed_;
   const auto& axioms = program_.axiomBlocks;
   if (!axioms.empty() && &b >= axioms.data() && &b < axioms.data() + axioms.size()) {
     // An axiom block runs once: no cache entry (a big program has millions of them). Axiom
     // blocks are straight-line code (no loops) and never nest, so one scratch serves them all.
-    const std::size_t regs = b.registerTypes.size();
-    axiomBoxed_.assign(regs + 2, 0);
-    for (std::size_t r = 0; r < regs; ++r) {
-      axiomBoxed_[r] = program_.types.boxed(b.registerTypes[r]);
-      axiomBoxed_[regs] |= axiomBoxed_[r];
-    }
+    blockFlags(b, axiomBoxed_, false);
     return axiomBoxed_;
   }
   auto it = boxed_.find(&b);
   if (it == boxed_.end()) {
-    // Two more bytes at the end: whether any register is boxed (leave() skips the release loop),
-    // and whether any loop consumes its fact (fire() has nothing to do otherwise).
-    const std::size_t regs = b.registerTypes.size();
-    std::vector<std::uint8_t> v(regs + 2);
-    for (std::size_t r = 0; r < regs; ++r) {
-      v[r] = program_.types.boxed(b.registerTypes[r]);
-      v[regs] |= v[r];
-    }
-    std::string why;
-    for (std::size_t pc = 0; pc < b.code.size();) {
-      const std::size_t len = detail::instructionLength(b.code, pc, why);
-      if (len == 0) break;  // verified code: cannot happen
-      const auto op = Opcode(b.code[pc]);
-      if ((op == Opcode::ITER || op == Opcode::ITER_KEY || op == Opcode::ITER_SORTED) &&
-          (b.code[pc + 3] & kIterConsume))
-        v[regs + 1] = 1;
-      pc += len;
-    }
+    std::vector<std::uint8_t> v;
+    blockFlags(b, v, true);
     it = boxed_.emplace(&b, std::move(v)).first;
   }
   lastBlock_ = &b;

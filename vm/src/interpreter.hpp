@@ -94,6 +94,7 @@ class Interpreter {
   Alloc enter(const CodeBlock& b);
   void leave(const Frame& f, const Alloc& a);
   const std::vector<std::uint8_t>& boxedOf(const CodeBlock& b);
+  void blockFlags(const CodeBlock& b, std::vector<std::uint8_t>& v, bool scanLoops) const;
 
   Machine& machine_;
   const Program& program_;

@@ -38,18 +38,11 @@ Machine::Machine(const Program& program, MachineOptions options)
   // comprehension or aggregate, so every loop is a body subgoal): with one of them empty there,
   // the process cannot fire, and runProcesses skips it. Thread facts live elsewhere: not listed.
   processNeeds_.resize(program.processes.size());
-  std::string why;
   for (std::uint32_t i = 0; i < program.processes.size(); ++i) {
     const std::vector<std::uint32_t>& code = program.processes[i].block.code;
-    for (std::size_t pc = 0; pc < code.size();) {
-      const std::size_t len = detail::instructionLength(code, pc, why);
-      if (len == 0) break;  // verified code: cannot happen
-      const auto op = Opcode(code[pc]);
-      if ((op == Opcode::ITER || op == Opcode::ITER_KEY || op == Opcode::ITER_SORTED) &&
-          !(code[pc + 3] & kIterThread))
-        processNeeds_[i].push_back(code[pc + 1]);
-      pc += len;
-    }
+    detail::forEachInstruction(code, [&](std::size_t pc) {
+      if (detail::isLoop(code[pc]) && !(code[pc + 3] & kIterThread)) processNeeds_[i].push_back(code[pc + 1]);
+    });
   }
   for (PredId p = 0; p < preds; ++p) {
     const PredicateDesc& d = program.predicates[p];
@@ -144,14 +137,10 @@ void Machine::reserveForAxioms() {
   // them all up front spares the fact tables and their hash tables growing step by step while
   // millions of axioms go in.
   std::vector<std::size_t> facts(program_.predicates.size(), 0);
-  std::string why;
   for (const CodeBlock& b : program_.axiomBlocks)
-    for (std::size_t pc = 0; pc < b.code.size();) {
-      const std::size_t len = detail::instructionLength(b.code, pc, why);
-      if (len == 0) return;  // the verifier accepted the program: cannot happen
+    detail::forEachInstruction(b.code, [&](std::size_t pc) {
       if (Opcode(b.code[pc]) == Opcode::DERIVE) ++facts[b.code[pc + 1]];
-      pc += len;
-    }
+    });
   for (PredId p = 0; p < facts.size(); ++p)
     if (facts[p] != 0 && !program_.predicates[p].action) db_->reserve(p, facts[p]);
 }

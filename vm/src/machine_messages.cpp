@@ -6,9 +6,7 @@
 namespace meldvm {
 
 void Machine::post(NodeId dest, PredId p, const Value* args, bool negative) {
-  const PredicateDesc& d = program_.predicates[p];
-  if (boxedField_[p])
-    for (std::uint32_t i = 0; i < d.arity(); ++i) heap_.retain(d.fields[i], args[i]);
+  if (boxedField_[p]) retainArgs(p, args);
   mail_->post(dest, p, negative, args);
   if (!host_ && !(inRun_ && dest == running_)) sched_.wake(dest);
 }

@@ -30,26 +30,19 @@ void Machine::processPersistent() {
 // A persistent derivation or retraction changed what is visible at node n (§6.5, §6.8): run the
 // processes of the fact that disappeared (negative mode), then of the one that appeared.
 void Machine::publishChange(NodeId n, PredId p, const Change& c) {
+  // Own copies: the processes change the store, whose scratch the Change points into.
+  triggerRemoved_.assign(c.removedArgs.begin(), c.removedArgs.end());
+  triggerAdded_.assign(c.addedArgs.begin(), c.addedArgs.end());
+  if (boxedField_[p]) {
+    if (c.removed) retainArgs(p, triggerRemoved_.data());
+    if (c.added) retainArgs(p, triggerAdded_.data());
+  }
   if (c.removed) {
-    triggerRemoved_.assign(c.removedArgs.begin(), c.removedArgs.end());
-    for (std::uint32_t i = 0; i < triggerRemoved_.size(); ++i)
-      heap_.retain(program_.predicates[p].fields[i], triggerRemoved_[i]);
-    std::vector<Value>& added = triggerAdded_;
-    added.clear();
-    if (c.added) added.assign(c.addedArgs.begin(), c.addedArgs.end());
-    for (std::uint32_t i = 0; i < added.size(); ++i) heap_.retain(program_.predicates[p].fields[i], added[i]);
     factRemoved(n, p);
     runProcesses(n, p, triggerRemoved_.data(), true);
     releaseArgs(p, triggerRemoved_.data());
-    if (c.added) {
-      factAdded(n, p);
-      runProcesses(n, p, added.data(), false);
-      releaseArgs(p, added.data());
-    }
-  } else if (c.added) {
-    triggerAdded_.assign(c.addedArgs.begin(), c.addedArgs.end());
-    for (std::uint32_t i = 0; i < triggerAdded_.size(); ++i)
-      heap_.retain(program_.predicates[p].fields[i], triggerAdded_[i]);
+  }
+  if (c.added) {
     factAdded(n, p);
     runProcesses(n, p, triggerAdded_.data(), false);
     releaseArgs(p, triggerAdded_.data());

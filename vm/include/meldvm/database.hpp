@@ -158,13 +158,13 @@ class Database {
   ListHead& head(NodeId n, std::uint32_t table) { return heads_[std::size_t(n) * tableCount_ + table]; }
   // Checks on every store call, inline: the failures are out of line.
   const PredicateDesc& storedPredicate(PredId p, bool linear) const {
-    if (p >= preds_.size() || preds_[p].action || preds_[p].linear != linear) badPredicate(p, linear);
+    if (p >= preds_.size() || preds_[p].action || preds_[p].linear != linear) badPredicate(p);
     return preds_[p];
   }
   void checkNode(NodeId n) const {
     if (n >= alive_.size() || !alive_[n]) badNode(n);
   }
-  [[noreturn]] void badPredicate(PredId p, bool linear) const;
+  [[noreturn]] void badPredicate(PredId p) const;
   [[noreturn]] void badNode(NodeId n) const;
   // Releases what the previous Change kept alive.
   void clearScratch() {

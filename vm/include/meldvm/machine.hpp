@@ -181,9 +181,9 @@ class Machine : private SchedulerView {
   std::vector<std::vector<std::uint32_t>> rulesOf_;
   std::vector<std::vector<std::uint32_t>> processesOf_;
   std::vector<std::vector<PredId>> processNeeds_;  // per process: predicates its loops read
-  std::vector<std::uint8_t> queuedPersistent_;  // has processes or an aggregate: derive via the queue
-  std::vector<std::uint8_t> boxedField_;        // per predicate: some field is boxed
-  std::vector<std::uint32_t> arity_;            // per predicate (home excluded)
+  std::vector<std::uint8_t> queuedPersistent_;     // has processes or an aggregate: derive via the queue
+  std::vector<std::uint8_t> boxedField_;           // per predicate: some field is boxed
+  std::vector<std::uint32_t> arity_;               // per predicate (home excluded)
   std::uint32_t maxArity_ = 1;
   PredId justMoved_ = Program::kNoPred;
 
