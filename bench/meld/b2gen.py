@@ -39,6 +39,17 @@ def program(name, consts):
     return "\n".join(lines) + "\n"
 
 
+def random_successors(rng, n, src, degree):
+    """`degree` distinct random nodes of 0..n-1 other than src, sorted (the graphs of
+    shortest-path and pagerank; the draws are part of the output's seed contract)."""
+    succ = set()
+    while len(succ) < degree:
+        dst = rng.randrange(n)
+        if dst != src:
+            succ.add(dst)
+    return sorted(succ)
+
+
 def fmt_float(x, digits=4):
     """A Meld float literal: no exponent, digits on both sides of the point (e.g. -0.0125)."""
     s = f"{x:.{digits}f}"

@@ -32,12 +32,7 @@ def main():
     succ = []
     indeg = [0] * n
     for src in range(n):
-        s = set()
-        while len(s) < a.degree:
-            dst = rng.randrange(n)
-            if dst != src:
-                s.add(dst)
-        s = sorted(s)
+        s = b2gen.random_successors(rng, n, src, a.degree)
         for dst in s:
             indeg[dst] += 1
         succ.append(s)

@@ -29,12 +29,7 @@ def main():
     w.line(f"!path(@{a.source}, 0).")
     n = a.nodes
     for src in range(n):
-        succ = set()
-        while len(succ) < a.degree:
-            dst = rng.randrange(n)
-            if dst != src:
-                succ.add(dst)
-        for dst in sorted(succ):
+        for dst in b2gen.random_successors(rng, n, src, a.degree):
             w.line(f"!edge(@{src}, @{dst}, {rng.randint(1, a.max_weight)}).")
     w.close()
 
