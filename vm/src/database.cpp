@@ -82,6 +82,7 @@ void Database::removeNode(NodeId n) {
   }
   for (GroupInputs& g : nodeInputs_) g.clear(n);
   alive_[n] = 0;
+  ++removedNodes_;
 }
 
 std::uint32_t Database::requestIndex(PredId p, std::uint32_t field) {

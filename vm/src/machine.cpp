@@ -5,9 +5,9 @@
 
 #include "bytecode_internal.hpp"
 #include "interpreter.hpp"
-#include "mailboxes.hpp"
 #include "meldvm/arith.hpp"
 #include "meldvm/dump.hpp"
+#include "meldvm/mailboxes.hpp"
 
 namespace meldvm {
 
@@ -51,6 +51,7 @@ Machine::Machine(const Program& program, MachineOptions options)
     bool boxed = false;
     for (TypeId t : d.fields) boxed = boxed || program.types.boxed(t);
     boxedField_.push_back(boxed);
+    isLinear_.push_back(d.linear);
     arity_.push_back(d.arity());
   }
   isThreadPred_.assign(preds, 0);
@@ -71,7 +72,16 @@ Machine::Machine(const Program& program, MachineOptions options)
   for (const std::string& a : options_.args) args_.push_back(heap_.makeString(a));
   globals_.assign(program.globals.size(), Value());
   interp_ = std::make_unique<Interpreter>(*this, program_, *db_, builtinCtx_);
-  mail_ = std::make_unique<Mailboxes>(arity_);
+  std::vector<std::vector<ArgWidth>> shapes(preds);
+  for (PredId p = 0; p < preds; ++p)
+    for (TypeId t : program.predicates[p].fields) {
+      const TypeKind k = program.types.kind(t);
+      shapes[p].push_back(k == TypeKind::Int ? ArgWidth::Int32
+                          : k == TypeKind::Bool || k == TypeKind::Node || k == TypeKind::Thread
+                              ? ArgWidth::Uint32
+                              : ArgWidth::Word);
+    }
+  mail_ = std::make_unique<Mailboxes>(shapes);
   linearOutArgs_.reserve(1024);
   persistentArgs_.reserve(1024);
 }

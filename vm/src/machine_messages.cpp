@@ -1,12 +1,13 @@
 // The Machine's messages (§6.6): facts for other nodes, posted when a node run ends, and taken
 // in when the receiver runs.
-#include "mailboxes.hpp"
 #include "meldvm/machine.hpp"
+#include "meldvm/mailboxes.hpp"
 
 namespace meldvm {
 
 void Machine::post(NodeId dest, PredId p, const Value* args, bool negative) {
   if (boxedField_[p]) retainArgs(p, args);
+  linearPosted_ |= isLinear_[p];
   mail_->post(dest, p, negative, args);
   if (!host_ && !(inRun_ && dest == running_)) sched_.wake(dest);
 }
@@ -47,21 +48,25 @@ void Machine::postAll(const std::vector<PendingFact>& facts) {
 void Machine::deliverIncoming(NodeId n) {
   // Linear facts join the store first, in arrival order; then the persistent ones are processed in
   // arrival order, straight from the mailbox (what they derive locally queues behind them, as in
-  // one FIFO, §6.5). Nothing posts to the running node, so the box is stable meanwhile.
-  bool persistent = false;
-  mail_->forEach(n, [&](PredId p, bool, const Value* args) {
-    if (!program_.predicates[p].linear) {
-      persistent = true;
-      return;
-    }
-    db_->addLinear(n, p, args);
-    releaseArgs(p, args);
-    factAdded(n, p);
-  });
+  // one FIFO, §6.5). Nothing posts to the running node, so the box is stable meanwhile. Until a
+  // linear fact has been sent at all, the first pass has nothing to find.
+  bool persistent = !linearPosted_;
+  if (linearPosted_)
+    mail_->forEach(
+        n,
+        [&](PredId p) {
+          persistent = persistent || !isLinear_[p];
+          return isLinear_[p] != 0;
+        },
+        [&](PredId p, bool, const Value* args) {
+          db_->addLinear(n, p, args);
+          releaseArgs(p, args);
+          factAdded(n, p);
+        });
   if (persistent)
-    mail_->forEach(n, [&](PredId p, bool negative, const Value* args) {
-      if (!program_.predicates[p].linear) applyPersistent(n, p, args, negative);
-    });
+    mail_->forEach(
+        n, [&](PredId p) { return isLinear_[p] == 0; },
+        [&](PredId p, bool negative, const Value* args) { applyPersistent(n, p, args, negative); });
   mail_->release(n);
 }
 }  // namespace meldvm

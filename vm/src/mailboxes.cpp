@@ -1,15 +1,25 @@
-#include "mailboxes.hpp"
+#include "meldvm/mailboxes.hpp"
 
 #include <algorithm>
 #include <stdexcept>
 
 namespace meldvm {
 
-Mailboxes::Mailboxes(std::vector<std::uint32_t> arities) : arity_(std::move(arities)) {
-  // 32 words (four cache lines), or one record of the widest predicate when that is larger.
+Mailboxes::Mailboxes(const std::vector<std::vector<ArgWidth>>& shapes) {
+  if (shapes.size() > 0x80000000u) throw std::length_error("meldvm: too many predicates for the mailboxes");
   std::uint32_t widest = 0;
-  for (std::uint32_t a : arity_) widest = std::max(widest, a);
-  chunkWords_ = std::max<std::uint32_t>(32, 2 + widest);
+  for (const std::vector<ArgWidth>& fields : shapes) {
+    Shape s{std::uint32_t(fields.size()), 0, 0, fields.size() <= kMaxNarrowArity};
+    for (std::uint32_t i = 0; i < fields.size(); ++i) {
+      if (fields[i] == ArgWidth::Word) s.narrow = false;
+      if (fields[i] == ArgWidth::Int32) s.signMask |= std::uint32_t(1) << (i % 32);
+    }
+    s.words = s.narrow ? 1 + s.arity / 2 : 1 + s.arity;
+    widest = std::max(widest, s.words);
+    shape_.push_back(s);
+  }
+  // 32 words (four cache lines), or one record of the widest predicate when that is larger.
+  chunkWords_ = std::max<std::uint32_t>(32, 1 + widest);
 }
 
 Mailboxes::~Mailboxes() {

@@ -183,6 +183,8 @@ class Machine : private SchedulerView {
   std::vector<std::vector<PredId>> processNeeds_;  // per process: predicates its loops read
   std::vector<std::uint8_t> queuedPersistent_;     // has processes or an aggregate: derive via the queue
   std::vector<std::uint8_t> boxedField_;           // per predicate: some field is boxed
+  std::vector<std::uint8_t> isLinear_;             // per predicate
+  bool linearPosted_ = false;                      // some linear fact went into a mailbox
   std::vector<std::uint32_t> arity_;               // per predicate (home excluded)
   std::uint32_t maxArity_ = 1;
   PredId justMoved_ = Program::kNoPred;

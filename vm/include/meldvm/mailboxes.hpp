@@ -1,10 +1,16 @@
 // Facts in transit to nodes (spec §6.6): per node, the messages not yet taken in, in arrival
 // order. A node's messages live in chains of fixed-size chunks (256 bytes), so taking in a run's
 // worth of messages touches a few cache lines in a row instead of one scattered record per
-// message. A record takes 1 + arity words of its own predicate, so small facts pack densely: a
+// message. A record takes only the words its own predicate needs, so small facts pack densely: a
 // wide flood keeps millions of messages in flight, and every word of them is written and read
 // back from memory. Chunks come from slabs that never move (growing copies nothing) and are
 // recycled through a free list, so the steady state allocates nothing.
+//
+// Record layout, in 8-byte words. The first word holds the predicate (low 31 bits) and the sign
+// (bit 31) in its low half. A predicate whose arguments are all 32-bit scalars (int, bool, node,
+// thread) is "narrow": its arguments take 4 bytes each, the first one in the high half of the first
+// word, the others two to a word after it (so `p(node, min int)` takes one word, not two). Other
+// predicates keep one word per argument after the first word.
 #pragma once
 
 #include <cstdint>
@@ -16,10 +22,14 @@
 
 namespace meldvm {
 
+// How a message keeps one argument: a whole word, or the low 4 bytes of an int (sign-extended when
+// read back) or of a bool, node or thread id (zero-extended).
+enum class ArgWidth : std::uint8_t { Word, Int32, Uint32 };
+
 class Mailboxes {
  public:
-  // arities: per predicate, the number of arguments (home excluded).
-  explicit Mailboxes(std::vector<std::uint32_t> arities);
+  // shapes: per predicate, the widths of its arguments (home excluded).
+  explicit Mailboxes(const std::vector<std::vector<ArgWidth>>& shapes);
   ~Mailboxes();
   Mailboxes(const Mailboxes&) = delete;
   Mailboxes& operator=(const Mailboxes&) = delete;
@@ -28,10 +38,10 @@ class Mailboxes {
   // Appends a message; the arguments are stored as given (the caller owns their references, which
   // pass to whoever takes the message in).
   void post(NodeId dest, PredId p, bool negative, const Value* args) {
-    const std::uint32_t arity = arity_[p];
+    const Shape& s = shape_[p];
     Box& b = boxes_[dest];
     std::uint32_t c = b.last;
-    if (c == kNone || used(c) + 1 + arity > chunkWords_ - 1) {
+    if (c == kNone || used(c) + s.words > chunkWords_ - 1) {
       const std::uint32_t fresh = newChunk();
       if (c == kNone)
         b.first = fresh;
@@ -42,21 +52,30 @@ class Mailboxes {
     Value* head = chunk(c);
     const std::uint64_t at = head[0].bits() >> 32;
     Value* r = head + 1 + at;
-    r[0] = Value::fromBits(std::uint64_t(p) | (std::uint64_t(negative) << 32));
-    for (std::uint32_t i = 0; i < arity; ++i) r[1 + i] = args[i];
-    head[0] = Value::fromBits((head[0].bits() & 0xFFFFFFFFull) | ((at + 1 + arity) << 32));
+    const std::uint64_t tag = std::uint64_t(p) | (std::uint64_t(negative) << 31);
+    if (s.narrow) {
+      r[0] = Value::fromBits(tag | (s.arity ? args[0].bits() << 32 : 0));
+      for (std::uint32_t i = 1; i < s.arity; ++i) {
+        Value& w = r[1 + (i - 1) / 2];
+        w = Value::fromBits(i % 2 ? std::uint32_t(args[i].bits()) : w.bits() | args[i].bits() << 32);
+      }
+    } else {
+      r[0] = Value::fromBits(tag);
+      for (std::uint32_t i = 0; i < s.arity; ++i) r[1 + i] = args[i];
+    }
+    head[0] = Value::fromBits((head[0].bits() & 0xFFFFFFFFull) | ((at + s.words) << 32));
   }
   bool empty(NodeId n) const { return boxes_[n].first == kNone; }
 
-  // Calls f(pred, negative, args) for every message of node n in arrival order, leaving them in
-  // the box (release() empties it). f must not post to n.
-  template <class F>
-  void forEach(NodeId n, F&& f) const {
+  // Calls f(pred, negative, args) for every message of node n whose predicate passes select(pred),
+  // in arrival order, leaving them in the box (release() empties it). f must not post to n.
+  template <class Select, class F>
+  void forEach(NodeId n, Select&& select, F&& f) const {
     for (std::uint32_t c = boxes_[n].first; c != kNone;) {
       const Value* head = chunk(c);
       const std::uint32_t next = std::uint32_t(head[0].bits());
       if (next != kNone) prefetchChunk(next);
-      forEachRecord(head, f);
+      forEachRecord(head, select, f);
       c = next;
     }
   }
@@ -76,7 +95,8 @@ class Mailboxes {
   void forEachPending(F&& f) const {
     for (const Box& b : boxes_)
       for (std::uint32_t c = b.first; c != kNone; c = std::uint32_t(chunk(c)[0].bits()))
-        forEachRecord(chunk(c), [&](PredId p, bool, const Value* args) { f(p, args); });
+        forEachRecord(
+            chunk(c), [](PredId) { return true; }, [&](PredId p, bool, const Value* args) { f(p, args); });
   }
 
   // Prefetch hints for a node that runs soon (always inlined: GCC drops calls to functions whose
@@ -105,6 +125,13 @@ class Mailboxes {
   struct Box {
     std::uint32_t first = kNone, last = kNone;
   };
+  struct Shape {
+    std::uint32_t arity;
+    std::uint32_t words;     // the record's length
+    std::uint32_t signMask;  // narrow: bit i set when argument i is an int (sign-extended)
+    bool narrow;
+  };
+  static constexpr std::uint32_t kMaxNarrowArity = 16;  // wider predicates keep whole words
   // A chunk: [next | words used] then records of [pred | negative] + the predicate's arguments.
   Value* chunk(std::uint32_t c) const {
     return slabs_[c >> kSlabShift] + std::size_t(c & (kSlabChunks - 1)) * chunkWords_;
@@ -114,19 +141,36 @@ class Mailboxes {
     const char* p = reinterpret_cast<const char*>(chunk(c));
     for (std::size_t off = 0; off < chunkWords_ * sizeof(Value); off += 64) __builtin_prefetch(p + off);
   }
-  template <class F>
-  void forEachRecord(const Value* head, F&& f) const {
+  static Value widen(std::uint32_t half, bool isSigned) {
+    return isSigned ? Value::fromInt(std::int32_t(half)) : Value::fromBits(half);
+  }
+  template <class Select, class F>
+  void forEachRecord(const Value* head, Select&& select, F&& f) const {
     const std::uint32_t end = 1 + std::uint32_t(head[0].bits() >> 32);
+    Value args[kMaxNarrowArity];
     for (std::uint32_t w = 1; w < end;) {
       const Value* r = head + w;
-      const PredId p = PredId(r[0].bits());
-      f(p, (r[0].bits() >> 32) != 0, r + 1);
-      w += 1 + arity_[p];
+      const std::uint64_t tag = r[0].bits();
+      const PredId p = PredId(tag & 0x7FFFFFFFu);
+      const Shape& s = shape_[p];
+      w += s.words;
+      if (!select(p)) continue;
+      const bool negative = (tag >> 31) & 1;
+      if (s.narrow) {
+        if (s.arity) args[0] = widen(std::uint32_t(tag >> 32), s.signMask & 1);
+        for (std::uint32_t i = 1; i < s.arity; ++i) {
+          const std::uint64_t word = r[1 + (i - 1) / 2].bits();
+          args[i] = widen(std::uint32_t(i % 2 ? word : word >> 32), (s.signMask >> i) & 1);
+        }
+        f(p, negative, static_cast<const Value*>(args));
+      } else {
+        f(p, negative, r + 1);
+      }
     }
   }
   std::uint32_t newChunk();
 
-  std::vector<std::uint32_t> arity_;
+  std::vector<Shape> shape_;
   std::uint32_t chunkWords_;
   std::vector<Value*> slabs_;   // from LargeAllocator, freed by the destructor
   std::uint32_t slabUsed_ = 0;  // chunks handed out of the last slab
