@@ -40,6 +40,26 @@ BOOST_AUTO_TEST_CASE(find_append_erase_keep_insertion_order) {
   BOOST_TEST(g.count(1, 0) == 7u);
 }
 
+BOOST_AUTO_TEST_CASE(erase_unordered_moves_the_last_input_into_the_gap) {
+  TypeTable types;
+  Heap heap(types);
+  GroupInputs g(types, heap, {TypeTable::kInt});
+  g.addNodes(2);
+  for (int v : {5, 3, 9, 4}) g.append(1, std::vector<Value>{I(v)}.data(), 1);
+  g.setCount(1, 3, 6);
+  g.eraseUnordered(1, 0);
+  BOOST_TEST(ints(g, 1) == std::vector<int>({4, 3, 9}), boost::test_tools::per_element());
+  BOOST_TEST(g.count(1, 0) == 6u);  // the moved input keeps its count
+  BOOST_TEST(g.find(1, std::vector<Value>{I(4)}.data()) == 0u);
+  g.eraseUnordered(1, 2);  // the last one: nothing moves
+  BOOST_TEST(ints(g, 1) == std::vector<int>({4, 3}), boost::test_tools::per_element());
+  g.eraseUnordered(1, 0);
+  g.eraseUnordered(1, 0);
+  BOOST_TEST(g.size(1) == 0u);
+  g.append(1, std::vector<Value>{I(8)}.data(), 1);  // an emptied group starts again
+  BOOST_TEST(ints(g, 1) == std::vector<int>({8}), boost::test_tools::per_element());
+}
+
 BOOST_AUTO_TEST_CASE(runs_grow_through_size_classes_without_mixing_nodes) {
   TypeTable types;
   Heap heap(types);

@@ -234,7 +234,7 @@ Change Database::intMinMaxChange(NodeId n, PredId p, Value v, std::uint32_t copi
     } else {
       // Only the published value's input can change the winner when it goes.
       const bool wasWinner = old == kNoFact || x == visible.args(old)[0].asInt();
-      g.erase(n, i);
+      g.eraseUnordered(n, i);  // equal ints are interchangeable: the order of inputs is not seen
       if (!wasWinner) return c;
     }
     has = g.size(n) != 0;

@@ -96,6 +96,18 @@ void GroupInputs::erase(NodeId n, std::uint32_t i) {
   }
 }
 
+void GroupInputs::eraseUnordered(NodeId n, std::uint32_t i) {
+  Run& r = runs_[n];
+  Value* rec = words_.data() + r.offset + std::size_t(i) * stride_;
+  for (std::uint32_t f : boxedFields_) heap_.release(fields_[f], rec[1 + f]);
+  const Value* last = words_.data() + r.offset + std::size_t(r.size - 1) * stride_;
+  for (std::uint32_t k = 0; k < stride_; ++k) rec[k] = last[k];
+  if (--r.size == 0) {
+    free(r.offset, r.sizeClass);
+    r = Run{};
+  }
+}
+
 void GroupInputs::clear(NodeId n) {
   while (runs_[n].size != 0) erase(n, runs_[n].size - 1);
 }

@@ -49,6 +49,9 @@ class GroupInputs {
   // Removes the input at position i (later inputs move up one place); its boxed arguments are
   // released.
   void erase(NodeId n, std::uint32_t i);
+  // Removes the input at position i, moving the last input into its place: for groups whose
+  // order does not matter (an int min or max), it saves moving every later input.
+  void eraseUnordered(NodeId n, std::uint32_t i);
   void clear(NodeId n);
   // Hints that node n's inputs are read soon: first where its run is, then the run (always inlined: GCC drops
   // calls to functions whose only effect is a prefetch).

@@ -41,17 +41,17 @@ class Mailboxes {
     const Shape& s = shape_[p];
     Box& b = boxes_[dest];
     std::uint32_t c = b.last;
-    if (c == kNone || used(c) + s.words > chunkWords_ - 1) {
+    if (c == kNone || b.used + s.words > chunkWords_ - 1) {
       const std::uint32_t fresh = newChunk();
       if (c == kNone)
         b.first = fresh;
       else
-        chunk(c)[0] = Value::fromBits((chunk(c)[0].bits() & 0xFFFFFFFF00000000ull) | fresh);
+        chunk(c)[0] = Value::fromBits(fresh | (std::uint64_t(b.used) << 32));  // closed: link and length
       b.last = c = fresh;
+      b.used = 0;
     }
-    Value* head = chunk(c);
-    const std::uint64_t at = head[0].bits() >> 32;
-    Value* r = head + 1 + at;
+    Value* r = chunk(c) + 1 + b.used;
+    b.used += s.words;
     const std::uint64_t tag = std::uint64_t(p) | (std::uint64_t(negative) << 31);
     if (s.narrow) {
       r[0] = Value::fromBits(tag | (s.arity ? args[0].bits() << 32 : 0));
@@ -63,7 +63,6 @@ class Mailboxes {
       r[0] = Value::fromBits(tag);
       for (std::uint32_t i = 0; i < s.arity; ++i) r[1 + i] = args[i];
     }
-    head[0] = Value::fromBits((head[0].bits() & 0xFFFFFFFFull) | ((at + s.words) << 32));
   }
   bool empty(NodeId n) const { return boxes_[n].first == kNone; }
 
@@ -71,11 +70,12 @@ class Mailboxes {
   // in arrival order, leaving them in the box (release() empties it). f must not post to n.
   template <class Select, class F>
   void forEach(NodeId n, Select&& select, F&& f) const {
-    for (std::uint32_t c = boxes_[n].first; c != kNone;) {
+    const Box& b = boxes_[n];
+    for (std::uint32_t c = b.first; c != kNone;) {
       const Value* head = chunk(c);
       const std::uint32_t next = std::uint32_t(head[0].bits());
       if (next != kNone) prefetchChunk(next);
-      forEachRecord(head, select, f);
+      forEachRecord(head, wordsUsed(b, c), select, f);
       c = next;
     }
   }
@@ -96,7 +96,8 @@ class Mailboxes {
     for (const Box& b : boxes_)
       for (std::uint32_t c = b.first; c != kNone; c = std::uint32_t(chunk(c)[0].bits()))
         forEachRecord(
-            chunk(c), [](PredId) { return true; }, [&](PredId p, bool, const Value* args) { f(p, args); });
+            chunk(c), wordsUsed(b, c), [](PredId) { return true; },
+            [&](PredId p, bool, const Value* args) { f(p, args); });
   }
 
   // Prefetch hints for a node that runs soon (always inlined: GCC drops calls to functions whose
@@ -106,7 +107,8 @@ class Mailboxes {
     if (boxes_[n].first != kNone) prefetchChunk(boxes_[n].first);
   }
   [[gnu::always_inline]] void prefetchTail(NodeId n) const {
-    if (boxes_[n].last != kNone) __builtin_prefetch(chunk(boxes_[n].last));
+    const Box& b = boxes_[n];
+    if (b.last != kNone) __builtin_prefetch(chunk(b.last) + 1 + b.used, 1);
   }
   std::size_t bytesReserved() const {
     std::size_t chunks = 0;
@@ -122,8 +124,12 @@ class Mailboxes {
   static std::uint32_t slabCapacity(std::size_t slab) {
     return slab == 0 ? 16 : slab == 1 ? 1024 : kSlabChunks;
   }
+  // The last chunk's length is kept here, not in the chunk: a post then writes its record without
+  // first reading the chunk (a cache miss per message on a large graph). A chunk's head gets its
+  // final length when the next chunk is linked.
   struct Box {
     std::uint32_t first = kNone, last = kNone;
+    std::uint32_t used = 0;  // words of records in the last chunk
   };
   struct Shape {
     std::uint32_t arity;
@@ -132,11 +138,13 @@ class Mailboxes {
     bool narrow;
   };
   static constexpr std::uint32_t kMaxNarrowArity = 16;  // wider predicates keep whole words
-  // A chunk: [next | words used] then records of [pred | negative] + the predicate's arguments.
+  // A chunk: [next | words used (once closed)] then the records.
   Value* chunk(std::uint32_t c) const {
     return slabs_[c >> kSlabShift] + std::size_t(c & (kSlabChunks - 1)) * chunkWords_;
   }
-  std::uint32_t used(std::uint32_t c) const { return std::uint32_t(chunk(c)[0].bits() >> 32); }
+  std::uint32_t wordsUsed(const Box& b, std::uint32_t c) const {
+    return c == b.last ? b.used : std::uint32_t(chunk(c)[0].bits() >> 32);
+  }
   [[gnu::always_inline]] void prefetchChunk(std::uint32_t c) const {
     const char* p = reinterpret_cast<const char*>(chunk(c));
     for (std::size_t off = 0; off < chunkWords_ * sizeof(Value); off += 64) __builtin_prefetch(p + off);
@@ -145,8 +153,8 @@ class Mailboxes {
     return isSigned ? Value::fromInt(std::int32_t(half)) : Value::fromBits(half);
   }
   template <class Select, class F>
-  void forEachRecord(const Value* head, Select&& select, F&& f) const {
-    const std::uint32_t end = 1 + std::uint32_t(head[0].bits() >> 32);
+  void forEachRecord(const Value* head, std::uint32_t used, Select&& select, F&& f) const {
+    const std::uint32_t end = 1 + used;
     Value args[kMaxNarrowArity];
     for (std::uint32_t w = 1; w < end;) {
       const Value* r = head + w;
