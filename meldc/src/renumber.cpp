@@ -58,9 +58,11 @@ std::map<uint32_t, std::vector<int64_t>> literalsPerFile(const std::vector<ast::
     return std::tie(a->loc.file, a->loc.line, a->loc.col) < std::tie(b->loc.file, b->loc.line, b->loc.col);
   });
   std::map<uint32_t, std::vector<int64_t>> out;
+  std::unordered_set<int64_t> seen;  // (file, value) pairs, one file at a time: sorted by file
+  uint32_t file = 0;
   for (const ast::Expr* e : sorted) {
-    std::vector<int64_t>& list = out[e->loc.file];
-    if (!contains(list, e->intValue)) list.push_back(e->intValue);
+    if (e->loc.file != file) seen.clear(), file = e->loc.file;
+    if (seen.insert(e->intValue).second) out[e->loc.file].push_back(e->intValue);
   }
   return out;
 }
@@ -144,7 +146,10 @@ std::vector<int64_t> numberBreadthFirst(const std::vector<int64_t>& order,
         if (inP.erase(order[i])) out.push_back(order[i]);
       break;
     }
-    std::erase_if(queue, [&](int64_t n) { return !inP.count(n); });
+    // The queue's nodes that are numbered already are dropped. Only the front matters: dropping
+    // them as they reach it picks the same node as filtering the whole queue at every step, which
+    // was quadratic in the number of edges.
+    while (!queue.empty() && !inP.count(queue.front())) queue.pop_front();
     if (queue.empty() && first < order.size()) queue.push_back(order[first]);
     if (queue.empty()) break;
     int64_t n = queue.front();
