@@ -18,6 +18,8 @@ class AstBuilder : public meldgen::MeldBaseVisitor {
   AstBuilder(Diagnostics& diag, uint32_t file) : diag_(diag), file_(file) {}
 
   ast::Program buildProgram(meldgen::MeldParser::ProgramContext* ctx);
+  // One top-level item at a time, into `program` (the file parsed item by item).
+  void addTopItem(meldgen::MeldParser::TopItemContext* ctx, ast::Program& program) { topItem(ctx, program); }
   ast::Expr buildExpr(meldgen::MeldParser::ExprContext* ctx);
 
   // Expressions and conditions.

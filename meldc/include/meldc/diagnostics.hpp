@@ -23,6 +23,14 @@ class Diagnostics {
 
   void report(Severity severity, SourceLoc loc, const std::string& message);
 
+  // Passes on what `other` reported into `text` (its stream's contents): a caller that may
+  // discard a tentative pass collects its diagnostics apart, then keeps them.
+  void append(const Diagnostics& other, const std::string& text) {
+    out_ << text;
+    errors_ += other.errors_;
+    warnings_ += other.warnings_;
+  }
+
   int errorCount() const { return errors_; }
   int warningCount() const { return warnings_; }
   bool hasErrors() const { return errors_ > 0; }
