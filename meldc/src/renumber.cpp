@@ -58,10 +58,13 @@ std::map<uint32_t, std::vector<int64_t>> literalsPerFile(const std::vector<ast::
     return std::tie(a->loc.file, a->loc.line, a->loc.col) < std::tie(b->loc.file, b->loc.line, b->loc.col);
   });
   std::map<uint32_t, std::vector<int64_t>> out;
-  std::unordered_set<int64_t> seen;  // (file, value) pairs, one file at a time: sorted by file
+  std::unordered_set<int64_t> seen;  // the values of the current file (`sorted` groups the files)
   uint32_t file = 0;
   for (const ast::Expr* e : sorted) {
-    if (e->loc.file != file) seen.clear(), file = e->loc.file;
+    if (e->loc.file != file) {
+      seen.clear();
+      file = e->loc.file;
+    }
     if (seen.insert(e->intValue).second) out[e->loc.file].push_back(e->intValue);
   }
   return out;

@@ -2,6 +2,7 @@
 // runs growing through size classes and recycled when a group empties).
 #define BOOST_TEST_MODULE vm_group_inputs
 #include <boost/test/unit_test.hpp>
+#include <initializer_list>
 #include <vector>
 
 #include "meldvm/group_inputs.hpp"
@@ -19,14 +20,21 @@ std::vector<int> ints(const GroupInputs& g, NodeId n, std::uint32_t field = 0) {
   return out;
 }
 
+// The inputs of `p(node, min int)` and the like: one int field.
+struct IntInputs {
+  TypeTable types;
+  Heap heap{types};
+  GroupInputs g{types, heap, {TypeTable::kInt}};
+  void append(NodeId n, std::initializer_list<int> values) {
+    for (int v : values) g.append(n, std::vector<Value>{I(v)}.data(), 1);
+  }
+};
+
 }  // namespace
 
-BOOST_AUTO_TEST_CASE(find_append_erase_keep_insertion_order) {
-  TypeTable types;
-  Heap heap(types);
-  GroupInputs g(types, heap, {TypeTable::kInt});
+BOOST_FIXTURE_TEST_CASE(find_append_erase_keep_insertion_order, IntInputs) {
   g.addNodes(3);
-  for (int v : {5, 3, 9}) g.append(1, std::vector<Value>{I(v)}.data(), 1);
+  append(1, {5, 3, 9});
   BOOST_TEST(g.size(0) == 0u);
   BOOST_TEST(g.size(1) == 3u);
   BOOST_TEST(g.find(1, std::vector<Value>{I(3)}.data()) == 1u);
@@ -40,12 +48,9 @@ BOOST_AUTO_TEST_CASE(find_append_erase_keep_insertion_order) {
   BOOST_TEST(g.count(1, 0) == 7u);
 }
 
-BOOST_AUTO_TEST_CASE(erase_unordered_moves_the_last_input_into_the_gap) {
-  TypeTable types;
-  Heap heap(types);
-  GroupInputs g(types, heap, {TypeTable::kInt});
+BOOST_FIXTURE_TEST_CASE(erase_unordered_moves_the_last_input_into_the_gap, IntInputs) {
   g.addNodes(2);
-  for (int v : {5, 3, 9, 4}) g.append(1, std::vector<Value>{I(v)}.data(), 1);
+  append(1, {5, 3, 9, 4});
   g.setCount(1, 3, 6);
   g.eraseUnordered(1, 0);
   BOOST_TEST(ints(g, 1) == std::vector<int>({4, 3, 9}), boost::test_tools::per_element());
@@ -56,7 +61,7 @@ BOOST_AUTO_TEST_CASE(erase_unordered_moves_the_last_input_into_the_gap) {
   g.eraseUnordered(1, 0);
   g.eraseUnordered(1, 0);
   BOOST_TEST(g.size(1) == 0u);
-  g.append(1, std::vector<Value>{I(8)}.data(), 1);  // an emptied group starts again
+  append(1, {8});  // an emptied group starts again
   BOOST_TEST(ints(g, 1) == std::vector<int>({8}), boost::test_tools::per_element());
 }
 
@@ -86,10 +91,7 @@ BOOST_AUTO_TEST_CASE(runs_grow_through_size_classes_without_mixing_nodes) {
   BOOST_TEST(g.count(1, 3) == 2u);
 }
 
-BOOST_AUTO_TEST_CASE(an_emptied_run_is_reused_without_growing) {
-  TypeTable types;
-  Heap heap(types);
-  GroupInputs g(types, heap, {TypeTable::kInt});
+BOOST_FIXTURE_TEST_CASE(an_emptied_run_is_reused_without_growing, IntInputs) {
   g.addNodes(1);
   for (int v = 0; v < 8; ++v) g.append(0, std::vector<Value>{I(v)}.data(), 1);
   g.clear(0);

@@ -137,3 +137,13 @@ BOOST_AUTO_TEST_CASE(narrow_records_take_less_room) {
       [&](PredId, bool, const Value* args) { seen += args[0].asInt() == 42; });
   BOOST_TEST(seen == 300000u);
 }
+
+BOOST_AUTO_TEST_CASE(argument_widths_follow_the_field_types) {
+  BOOST_TEST((argWidth(TypeKind::Int) == ArgWidth::Int32));
+  BOOST_TEST((argWidth(TypeKind::Node) == ArgWidth::Uint32));
+  BOOST_TEST((argWidth(TypeKind::Bool) == ArgWidth::Uint32));
+  BOOST_TEST((argWidth(TypeKind::Thread) == ArgWidth::Uint32));
+  BOOST_TEST((argWidth(TypeKind::Float) == ArgWidth::Word));   // a double needs 8 bytes
+  BOOST_TEST((argWidth(TypeKind::String) == ArgWidth::Word));  // a pointer
+  BOOST_TEST((argWidth(TypeKind::List) == ArgWidth::Word));
+}

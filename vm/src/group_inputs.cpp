@@ -87,22 +87,27 @@ void GroupInputs::append(NodeId n, const Value* a, std::uint32_t count) {
 
 void GroupInputs::erase(NodeId n, std::uint32_t i) {
   Run& r = runs_[n];
-  Value* rec = words_.data() + r.offset + std::size_t(i) * stride_;
-  for (std::uint32_t f : boxedFields_) heap_.release(fields_[f], rec[1 + f]);
+  Value* rec = releaseRecord(r, i);
   std::copy(rec + stride_, words_.data() + r.offset + std::size_t(r.size) * stride_, rec);
-  if (--r.size == 0) {  // an empty group gives its run back
-    free(r.offset, r.sizeClass);
-    r = Run{};
-  }
+  dropLast(r);
 }
 
 void GroupInputs::eraseUnordered(NodeId n, std::uint32_t i) {
   Run& r = runs_[n];
+  Value* rec = releaseRecord(r, i);
+  const Value* last = words_.data() + r.offset + std::size_t(r.size - 1) * stride_;
+  for (std::uint32_t k = 0; k < stride_; ++k) rec[k] = last[k];  // a word or two: no memmove call
+  dropLast(r);
+}
+
+Value* GroupInputs::releaseRecord(const Run& r, std::uint32_t i) {
   Value* rec = words_.data() + r.offset + std::size_t(i) * stride_;
   for (std::uint32_t f : boxedFields_) heap_.release(fields_[f], rec[1 + f]);
-  const Value* last = words_.data() + r.offset + std::size_t(r.size - 1) * stride_;
-  for (std::uint32_t k = 0; k < stride_; ++k) rec[k] = last[k];
-  if (--r.size == 0) {
+  return rec;
+}
+
+void GroupInputs::dropLast(Run& r) {
+  if (--r.size == 0) {  // an empty group gives its run back
     free(r.offset, r.sizeClass);
     r = Run{};
   }

@@ -74,13 +74,7 @@ Machine::Machine(const Program& program, MachineOptions options)
   interp_ = std::make_unique<Interpreter>(*this, program_, *db_, builtinCtx_);
   std::vector<std::vector<ArgWidth>> shapes(preds);
   for (PredId p = 0; p < preds; ++p)
-    for (TypeId t : program.predicates[p].fields) {
-      const TypeKind k = program.types.kind(t);
-      shapes[p].push_back(k == TypeKind::Int ? ArgWidth::Int32
-                          : k == TypeKind::Bool || k == TypeKind::Node || k == TypeKind::Thread
-                              ? ArgWidth::Uint32
-                              : ArgWidth::Word);
-    }
+    for (TypeId t : program.predicates[p].fields) shapes[p].push_back(argWidth(program.types.kind(t)));
   mail_ = std::make_unique<Mailboxes>(shapes);
   linearOutArgs_.reserve(1024);
   persistentArgs_.reserve(1024);

@@ -87,6 +87,9 @@ class GroupInputs {
   std::uint32_t findAny(NodeId n, const Value* args) const;
   std::uint32_t allocate(std::uint32_t sizeClass);  // returns the first word of a free run
   void free(std::uint32_t offset, std::uint32_t sizeClass);
+  // Releases the boxed arguments of input i; returns its record (the gap to fill).
+  Value* releaseRecord(const Run& r, std::uint32_t i);
+  void dropLast(Run& r);  // one record fewer; an emptied run is given back
 
   const TypeTable& types_;
   Heap& heap_;

@@ -18,6 +18,7 @@
 
 #include "meldvm/large_allocator.hpp"
 #include "meldvm/predicate.hpp"
+#include "meldvm/types.hpp"
 #include "meldvm/value.hpp"
 
 namespace meldvm {
@@ -25,6 +26,11 @@ namespace meldvm {
 // How a message keeps one argument: a whole word, or the low 4 bytes of an int (sign-extended when
 // read back) or of a bool, node or thread id (zero-extended).
 enum class ArgWidth : std::uint8_t { Word, Int32, Uint32 };
+inline ArgWidth argWidth(TypeKind k) {
+  if (k == TypeKind::Int) return ArgWidth::Int32;
+  if (k == TypeKind::Bool || k == TypeKind::Node || k == TypeKind::Thread) return ArgWidth::Uint32;
+  return ArgWidth::Word;
+}
 
 class Mailboxes {
  public:
