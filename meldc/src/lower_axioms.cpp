@@ -7,6 +7,7 @@
 #include <algorithm>
 #include <functional>
 #include <map>
+#include <optional>
 #include <set>
 
 #include "lower_rule.hpp"
@@ -191,6 +192,33 @@ meldvm::Rule threadInitRule(Lowering& L, const std::vector<ThreadAxioms>& axioms
   return closeInitLoop(cb, loop, init->id, "_init_thread -o thread axioms");
 }
 
+// The internal id of a home argument known at compile time: a node literal or a `const` that
+// folds to one (`const start = @3.` then `path(start, 0).`, §4.6).
+std::optional<std::int64_t> constantNode(Lowering& L, const Expr& home) {
+  if (home.kind == ExprKind::Node) return home.intValue;
+  if (home.kind != ExprKind::Const) return std::nullopt;
+  std::optional<Folded> f = foldConstant(L, home);
+  if (!f || f->kind != Folded::Node) return std::nullopt;
+  return f->i;
+}
+
+// A fact whose home is a node-valued expression known only at run time (a global computed at
+// start-up, a call): rule 0 evaluates it on every node and derives the fact on the node it names,
+// so the fact lands where a constant axiom with that home would.
+void computedHomeAxiom(Lowering& L, CodeBuilder& cb, const Rule& r, const Term& t) {
+  RuleLowering rl(L, cb, "");
+  const Reg host = cb.reg(meldvm::TypeTable::kNode);
+  cb.emit(Opcode::HOST, {host});
+  CodeBuilder::Label skip = cb.label();
+  evaluateConditions(rl, cb, r, skip);
+  const Reg home = rl.ex.valueAs(t.args[0], meldvm::TypeTable::kNode);
+  const Reg same = cb.reg(meldvm::TypeTable::kBool);
+  cb.emit(Opcode::EQ, {same, host, home, meldvm::TypeTable::kNode});
+  cb.op(Opcode::JF).w(same).to(skip);
+  rl.subgoal(t);
+  cb.place(skip);
+}
+
 }  // namespace
 
 void lowerAxioms(Lowering& L) {
@@ -206,19 +234,20 @@ void lowerAxioms(Lowering& L) {
     if (!isAxiom(L, r)) continue;
     try {
       checkFactOnly(r);
-      std::vector<const Term*> variable, thread;
+      std::vector<const Term*> variable, thread, computed;
       for (const Term& t : r.head) {
         if (t.kind != TermKind::Subgoal || t.args.empty()) continue;
         if (isThreadFact(L, t))
           thread.push_back(&t);
-        else if (t.args[0].kind == ExprKind::Node)
-          constant[t.args[0].intValue].push_back(Axiom{&r, &t});
+        else if (std::optional<std::int64_t> node = constantNode(L, t.args[0]))
+          constant[*node].push_back(Axiom{&r, &t});
         else if (t.args[0].kind == ExprKind::Var)
           variable.push_back(&t);
         else
-          unsupported(t.args[0].loc, "this home argument in a fact");
+          computed.push_back(&t);
       }
       if (!thread.empty()) threadAxioms.push_back(ThreadAxioms{&r, std::move(thread)});
+      for (const Term* t : computed) computedHomeAxiom(L, cb, r, *t);
       if (variable.empty()) continue;
       // Every variable home stands for the node running rule 0.
       RuleLowering rl(L, cb, variable.front()->args[0].name);

@@ -34,7 +34,13 @@ void numberedRule(Lowering& L, const std::vector<const Analyzed*>& group) {
   CodeBuilder cb;
   meldvm::Rule rule;
   std::string label;
+  bool updates = false;  // an earlier part updates a fact in place
   for (const Analyzed* a : group) {
+    // A merged rule tries its parts in order in one run (§6.15), except after an in-place update
+    // (§6.4.5): the updated fact makes the rule a candidate again, and the node's rules are then
+    // tried again from the highest priority, so later parts must not see it in this run.
+    if (updates) cb.op(Opcode::RET_IF_UPDATED);
+    updates = updates || a->plan.updateHead != nullptr;
     lowerPart(L, cb, *a, a->plan, false);
     if (!label.empty()) label += '\n';
     label += L.label(a->rule->loc);

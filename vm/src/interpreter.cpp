@@ -227,6 +227,10 @@ Interpreter::Status Interpreter::exec(Frame& f, std::uint32_t pc) {
         return Status::NotFired;
       case Opcode::RET:
         return Status::Return;
+      case Opcode::RET_IF_UPDATED:
+        if (f.updated) return Status::Return;
+        pc += 1;
+        break;
       case Opcode::LOAD: {
         const Value v = slotArgs(f, c[1])[c[2]];
         if (f.boxed[c[3]]) {
@@ -485,6 +489,7 @@ Interpreter::Status Interpreter::exec(Frame& f, std::uint32_t pc) {
         gatherArgs(f, c + 4, c[3]);
         const Slot& sl = f.slots[c[1]];
         if (!f.negative) machine_.updated(sl.node, sl.pred, sl.fact, args_.data(), c[2] & kUpdateMoveToBack);
+        f.updated = true;
         pc += 4 + c[3];
         break;
       }

@@ -48,6 +48,7 @@ class Interpreter {
     const std::uint8_t* boxed;  // per register, then "any boxed", then "some loop consumes"
     NodeId host;
     bool negative;
+    bool updated = false;  // an UPDATE ran in this block (RET_IF_UPDATED)
   };
   enum class Status : std::uint8_t { NotFired, Fired, Return };
 
