@@ -184,7 +184,8 @@ void directives(Lowering& L) {
             s.staticNodes = true;
             break;
           case PriorityKind::NoPriority:
-            L.diag.error(d.loc, "'priority @no_priority' (a custom no-priority value) is not supported");
+            s.hasNoPriority = true;
+            s.noPriority = d.value;
             break;
           default:  // cluster: node numbering (done); a < b: stratum levels the VM ignores
             break;

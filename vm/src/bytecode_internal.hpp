@@ -38,7 +38,9 @@ inline constexpr std::uint32_t kPredFlagsAll = 63;
 
 // SchedulingOptions booleans as one word.
 inline constexpr std::uint32_t kSchedInitial = 1, kSchedDefault = 2, kSchedNoInitial = 4, kSchedStatic = 8;
-inline constexpr std::uint32_t kSchedFlagsAll = 15;
+// With kSchedNoPriority a third double (the no-priority value) follows the two of version 1 files.
+inline constexpr std::uint32_t kSchedNoPriority = 16;
+inline constexpr std::uint32_t kSchedFlagsAll = 31;
 
 // Length in words of the instruction at `pos` of `code`, or 0 when it is malformed (unknown opcode,
 // operands running past the end); then `why` says what is wrong.

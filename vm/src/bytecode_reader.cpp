@@ -270,6 +270,8 @@ void readSection(Cursor& c, std::uint32_t tag, Program& p) {
       o.staticNodes = flags & kSchedStatic;
       o.initialPriority = c.f64("initial priority");
       o.defaultPriority = c.f64("default priority");
+      o.hasNoPriority = flags & kSchedNoPriority;
+      if (o.hasNoPriority) o.noPriority = c.f64("no-priority value");
       break;
     }
     case kSecIndexes: {

@@ -164,9 +164,11 @@ std::vector<std::uint8_t> writeBytecode(const Program& p) {
   const SchedulingOptions& o = p.scheduling;
   w.word(std::uint32_t(o.order));
   w.word((o.hasInitialPriority ? kSchedInitial : 0) | (o.hasDefaultPriority ? kSchedDefault : 0) |
-         (o.noInitialPriorities ? kSchedNoInitial : 0) | (o.staticNodes ? kSchedStatic : 0));
+         (o.noInitialPriorities ? kSchedNoInitial : 0) | (o.staticNodes ? kSchedStatic : 0) |
+         (o.hasNoPriority ? kSchedNoPriority : 0));
   w.f64(o.initialPriority);
   w.f64(o.defaultPriority);
+  if (o.hasNoPriority) w.f64(o.noPriority);
   w.end(s);
 
   s = w.begin(kSecIndexes);

@@ -227,6 +227,7 @@ void Lister::header() {
   if (o.hasInitialPriority) out_ << ", initial " << number(o.initialPriority);
   if (o.hasDefaultPriority) out_ << ", default " << number(o.defaultPriority);
   if (o.noInitialPriorities) out_ << ", no-initial-priorities";
+  if (o.hasNoPriority) out_ << ", no-priority " << number(o.noPriority);
   if (o.staticNodes) out_ << ", static";
   out_ << "\n";
   for (const IndexRequest& ix : p_.indexes)

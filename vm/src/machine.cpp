@@ -113,6 +113,7 @@ void Machine::start() {
   if (hasThreads_) threadNode_ = n;
   db_->addNodes(all);
   candidates_.assign(std::size_t(all) * ruleWords_, 0);
+  axiomCandidates_.assign(ruleWords_, 0);
   mail_->addNodes(all);
   created_.assign(all, 0);
   if (!program_.globalsInit.code.empty()) {
@@ -214,6 +215,7 @@ std::uint64_t Machine::runNode(NodeId n) {
   running_ = n;
   inRun_ = true;
   runDerived_ = runConsumed_ = 0;
+  axiomsDeferred_ = false;
   ++stats_.nodeRuns;
   deliverIncoming(n);
   processPersistent();
@@ -230,17 +232,51 @@ std::uint64_t Machine::runNode(NodeId n) {
         rule = w * 64 + std::uint32_t(__builtin_ctzll(cand[w]));
         break;
       }
-    if (rule == ~0u) break;
+    if (rule == ~0u) {
+      if (!takeAxiomCandidates(cand)) break;
+      continue;
+    }
     cand[rule / 64] &= ~(std::uint64_t(1) << (rule % 64));
+    if (rule == 0) std::copy(cand, cand + ruleWords_, axiomCandidates_.begin());
     runRule(n, rule);
     finishRuleRun();
     cand = candidates_.data() + std::size_t(n) * ruleWords_;  // exists may have grown the array
+    if (rule == 0) deferAxiomCandidates(cand);
   }
   inRun_ = false;
   flushOutgoing();
   applyPriorityRequests();
   if (!host_ && n != threadNode_) sched_.finished(n, hasWork(n));
   return stats_.rulesFired - firedBefore;
+}
+
+// The established VM stores a node's axioms when rule 0 runs, but the rules they enable are tried
+// only after the rules enabled by the facts the node had already received: a node whose first
+// run finds messages waiting handles them before its own axioms (§6.2, §6.11).
+void Machine::deferAxiomCandidates(std::uint64_t* cand) {
+  for (std::uint32_t w = 0; w < ruleWords_; ++w) {
+    const std::uint64_t fresh = cand[w] & ~axiomCandidates_[w];
+    axiomCandidates_[w] = fresh;
+    cand[w] &= ~fresh;
+  }
+  axiomsDeferred_ = true;
+}
+
+bool Machine::takeAxiomCandidates(std::uint64_t* cand) {
+  if (!axiomsDeferred_) return false;
+  axiomsDeferred_ = false;
+  bool any = false;
+  for (std::uint32_t w = 0; w < ruleWords_; ++w) {
+    for (std::uint64_t bits = axiomCandidates_[w]; bits; bits &= bits - 1) {
+      const std::uint32_t r = w * 64 + std::uint32_t(__builtin_ctzll(bits));
+      if (allPresent(running_, r)) {
+        cand[w] |= std::uint64_t(1) << (r % 64);
+        any = true;
+      }
+    }
+    axiomCandidates_[w] = 0;
+  }
+  return any;
 }
 
 void Machine::runRule(NodeId n, std::uint32_t rule) {

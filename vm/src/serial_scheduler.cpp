@@ -3,7 +3,7 @@
 namespace meldvm {
 
 SerialScheduler::SerialScheduler(const SchedulingOptions& o) : desc_(o.order == PriorityOrder::Desc) {
-  noPriority_ = desc_ ? -DBL_MAX : DBL_MAX;
+  noPriority_ = o.hasNoPriority ? o.noPriority : (desc_ ? -DBL_MAX : DBL_MAX);
   default_ = o.hasDefaultPriority ? o.defaultPriority : noPriority_;
   // §4.4: the initial priority defaults to the most urgent value.
   initial_ = o.hasInitialPriority ? o.initialPriority : (desc_ ? DBL_MAX : -DBL_MAX);
@@ -86,7 +86,9 @@ void SerialScheduler::setPriority(NodeId n, double p) {
 }
 
 void SerialScheduler::addPriority(NodeId n, double delta) {
-  nodes_[n].prio = (nodes_[n].prio == noPriority_ ? 0.0 : nodes_[n].prio) + delta;
+  // Plain addition, as the established VM: "no priority" (-DBL_MAX, +DBL_MAX for asc) absorbs
+  // any small delta, so a node without a priority keeps none.
+  nodes_[n].prio += delta;
   changed(n);
 }
 

@@ -108,6 +108,8 @@ class Machine : private SchedulerView {
   // ---- node runs ----
   void runRule(NodeId n, std::uint32_t rule);
   void finishRuleRun();
+  void deferAxiomCandidates(std::uint64_t* cand);
+  bool takeAxiomCandidates(std::uint64_t* cand);
   void storeDerivedLinear();  // the linear facts derived for the host, appended in order (§6.4.4)
   void deliverIncoming(NodeId n);
   void processPersistent();  // the queue's entries name their own nodes
@@ -192,6 +194,10 @@ class Machine : private SchedulerView {
   // Candidate rules per node: a bitset of rulesWords_ words per node.
   std::uint32_t ruleWords_ = 1;
   LargeVector<std::uint64_t> candidates_;
+  // Rules that the facts of rule 0 (the node's axioms) made candidates: they join the candidate
+  // set only once the node has no other candidate (runNode).
+  std::vector<std::uint64_t> axiomCandidates_;
+  bool axiomsDeferred_ = false;
 
   std::unique_ptr<Mailboxes> mail_;
 

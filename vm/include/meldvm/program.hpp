@@ -95,6 +95,8 @@ struct SchedulingOptions {
   bool hasDefaultPriority = false;  // `priority @default P.`
   double defaultPriority = 0.0;
   bool noInitialPriorities = false;  // `priority @no_initial_priorities.`
+  bool hasNoPriority = false;        // `priority @no_priority P.`: P means "no priority"
+  double noPriority = 0.0;
   bool staticNodes = false;          // `priority @static.`
 };
 
