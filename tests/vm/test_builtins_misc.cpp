@@ -17,6 +17,7 @@ struct FakeScheduler : SchedulerView {
   std::int32_t queueSize(NodeId n) const override { return std::int32_t(n) + 10; }
   std::int32_t factsProved() const override { return 12; }
   std::int32_t factsConsumed() const override { return 5; }
+  std::int32_t threadCount() const override { return 4; }
 };
 
 }  // namespace

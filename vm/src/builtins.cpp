@@ -18,7 +18,6 @@ constexpr BuiltinInfo E(std::uint16_t id, std::string_view name, std::initialize
   return info;
 }
 
-// Ids 32, 33, 44-46, 54, 55, 62, 63 are not implemented (see vm/README.md).
 const BuiltinInfo kTable[] = {
     E(0, "sigmoid", {Float}, Float, false, b::sigmoid),
     E(1, "randint", {Int}, Int, false, b::randint),
@@ -52,6 +51,8 @@ const BuiltinInfo kTable[] = {
     E(29, "intpower", {Int, Int}, Int, false, b::intpower),
     E(30, "lsort", {ListT}, ListT, true, b::lsort),
     E(31, "lremoveduplicates", {ListT}, ListT, true, b::lremoveduplicates),
+    E(32, "degeneratevector", {Int, Int}, ListInt, false, b::degeneratevector),
+    E(33, "demergemessages", {ListInt, ListInt}, ListInt, false, b::demergemessages),
     E(34, "intlistequal", {ListInt, ListInt}, Int, false, b::intlistequal),
     E(35, "addfloatstructs", {Struct, Struct}, Struct, true, b::addfloatstructs),
     E(36, "normalizestruct", {Struct}, Struct, true, b::normalizestruct),
@@ -62,6 +63,9 @@ const BuiltinInfo kTable[] = {
     E(41, "cpu-static", {Node}, Int, false, b::cpu_static),
     E(42, "is-moving", {Node}, Bool, false, b::is_moving),
     E(43, "is-static", {Node}, Bool, false, b::is_static),
+    E(44, "partition_vertical", {Int, Int, Int, Int}, Thread, false, b::partition_vertical),
+    E(45, "partition_horizontal", {Int, Int, Int, Int}, Thread, false, b::partition_horizontal),
+    E(46, "partition_grid", {Int, Int, Int, Int}, Thread, false, b::partition_grid),
     E(47, "queue-size", {Node}, Int, false, b::queue_size),
     E(48, "facts-proved", {Node}, Int, false, b::facts_proved),
     E(49, "facts-consumed", {Node}, Int, false, b::facts_consumed),
@@ -69,12 +73,16 @@ const BuiltinInfo kTable[] = {
     E(51, "lexists", {ListT, T}, Bool, true, b::lexists),
     E(52, "lexistss", {ListT, ListT}, Bool, true, b::lexistss),
     E(53, "queens_violation", {Int, ListInt}, Bool, false, b::queens_violation),
+    E(54, "minimax_score", {ListInt, Int, Int}, Int, false, b::minimax_score),
+    E(55, "minimax_points", {ListInt, Int}, Int, false, b::minimax_points),
     E(56, "array_init", {Int, T}, ArrayT, true, b::array_init),
     E(57, "array_get", {ArrayT, Int}, T, false, b::array_get),
     E(58, "array_set", {ArrayT, Int, T}, ArrayT, true, b::array_set),
     E(59, "array_add", {ArrayT, T}, ArrayT, true, b::array_add),
     E(60, "array_from_list", {ListT}, ArrayT, true, b::array_from_list),
     E(61, "array_size", {ArrayT}, Int, false, b::array_size),
+    E(62, "minimax_score2", {ArrayInt, Int, Int}, Int, false, b::minimax_score2),
+    E(63, "minimax_points2", {ArrayInt, Int}, Int, false, b::minimax_points2),
     E(64, "fabs", {Float}, Float, false, b::fabs),
     // Sets and arrays share the tuple representation (the heap keeps a set's items unique), so the
     // set functions are the array ones.

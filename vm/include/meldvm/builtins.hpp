@@ -44,6 +44,7 @@ class SchedulerView {
   virtual std::int32_t queueSize(NodeId n) const = 0;  // work queue size of n's owner thread
   virtual std::int32_t factsProved() const = 0;        // in the current run of the host node
   virtual std::int32_t factsConsumed() const = 0;
+  virtual std::int32_t threadCount() const = 0;  // VM threads (the partition_* functions)
 };
 
 // The random stream of one VM thread: splitmix64, seeded per thread, so that serial runs are
@@ -184,6 +185,16 @@ Value array_add(BuiltinContext&, std::span<const Value>, TypeId);
 Value array_from_list(BuiltinContext&, std::span<const Value>, TypeId);
 Value array_size(BuiltinContext&, std::span<const Value>, TypeId);
 Value array_exists(BuiltinContext&, std::span<const Value>, TypeId);
+// Benchmark and placement helpers (builtins_helpers.cpp)
+Value minimax_score(BuiltinContext&, std::span<const Value>, TypeId);
+Value minimax_points(BuiltinContext&, std::span<const Value>, TypeId);
+Value minimax_score2(BuiltinContext&, std::span<const Value>, TypeId);
+Value minimax_points2(BuiltinContext&, std::span<const Value>, TypeId);
+Value degeneratevector(BuiltinContext&, std::span<const Value>, TypeId);
+Value demergemessages(BuiltinContext&, std::span<const Value>, TypeId);
+Value partition_vertical(BuiltinContext&, std::span<const Value>, TypeId);
+Value partition_horizontal(BuiltinContext&, std::span<const Value>, TypeId);
+Value partition_grid(BuiltinContext&, std::span<const Value>, TypeId);
 }  // namespace builtins
 
 }  // namespace meldvm

@@ -236,6 +236,7 @@ class Machine : private SchedulerView {
   std::int32_t queueSize(NodeId) const override { return std::int32_t(sched_.waiting()); }
   std::int32_t factsProved() const override { return std::int32_t(runDerived_); }
   std::int32_t factsConsumed() const override { return std::int32_t(runConsumed_); }
+  std::int32_t threadCount() const override { return 1; }
   std::uint64_t runDerived_ = 0, runConsumed_ = 0;
 };
 
