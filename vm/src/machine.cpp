@@ -63,6 +63,7 @@ Machine::Machine(const Program& program, MachineOptions options)
     bool node = false, thread = false;
     for (PredId p : program.rules[r].bodyPredicates) (isThreadPred_[p] ? thread : node) = true;
     if (node && thread) mixedRules_.push_back(r);
+    isMixedRule_.push_back(node && thread);
   }
   justMoved_ = program.predicates.find("just-moved");
   if (justMoved_ == program.predicates.size()) justMoved_ = Program::kNoPred;
@@ -220,25 +221,32 @@ std::uint64_t Machine::runNode(NodeId n) {
   deliverIncoming(n);
   processPersistent();
   std::uint64_t* cand = candidates_.data() + std::size_t(n) * ruleWords_;
-  // Rules over node and thread facts: the thread's facts may have changed since this node last
-  // ran, so their candidacy is checked again at the start of every run of a normal node.
-  if (n != threadNode_)
+  // §6.12: while a normal node runs, its thread's facts are visible: rules over node and thread
+  // facts are checked again (the thread's facts may have changed since this node last ran), and
+  // the thread node's own candidates (rule 1, rules over thread facts only) compete with the
+  // node's by rule number, running on the thread node.
+  const bool withThread = threadNode_ != kNoNode && n != threadNode_;
+  if (withThread)
     for (std::uint32_t r : mixedRules_)
       if (allPresent(n, r)) cand[r / 64] |= std::uint64_t(1) << (r % 64);
   while (!stop_) {
+    const std::uint64_t* threadCand = withThread ? candidates_.data() + std::size_t(threadNode_) * ruleWords_ : nullptr;
     std::uint32_t rule = ~0u;
-    for (std::uint32_t w = 0; w < ruleWords_; ++w)
-      if (cand[w]) {
-        rule = w * 64 + std::uint32_t(__builtin_ctzll(cand[w]));
-        break;
-      }
+    NodeId host = n;
+    for (std::uint32_t w = 0; w < ruleWords_ && rule == ~0u; ++w) {
+      const std::uint64_t bits = cand[w] | (threadCand ? threadCand[w] : 0);
+      if (!bits) continue;
+      rule = w * 64 + std::uint32_t(__builtin_ctzll(bits));
+      if (!(cand[w] & (std::uint64_t(1) << (rule % 64)))) host = threadNode_;
+    }
     if (rule == ~0u) {
       if (!takeAxiomCandidates(cand)) break;
       continue;
     }
-    cand[rule / 64] &= ~(std::uint64_t(1) << (rule % 64));
+    std::uint64_t* hostCand = candidates_.data() + std::size_t(host) * ruleWords_;
+    hostCand[rule / 64] &= ~(std::uint64_t(1) << (rule % 64));
     if (rule == 0) std::copy(cand, cand + ruleWords_, axiomCandidates_.begin());
-    runRule(n, rule);
+    runRule(host, rule);
     finishRuleRun();
     cand = candidates_.data() + std::size_t(n) * ruleWords_;  // exists may have grown the array
     if (rule == 0) deferAxiomCandidates(cand);
@@ -328,11 +336,15 @@ bool Machine::hasCandidate(NodeId n) const {
 }
 
 void Machine::factAdded(NodeId n, PredId p) {
-  // A thread fact makes the thread node's own rules candidates; rules mixing node and thread
-  // facts are checked when a node starts a run (runNode).
+  // A thread fact makes the thread node's own rules candidates, and the rules mixing node and
+  // thread facts of the node that is running (others check them when they start a run).
   std::uint64_t* cand = candidates_.data() + std::size_t(n) * ruleWords_;
   for (std::uint32_t r : rulesOf_[p])
     if (allPresent(n, r)) cand[r / 64] |= std::uint64_t(1) << (r % 64);
+  if (n != threadNode_ || !inRun_ || running_ == threadNode_) return;
+  std::uint64_t* runningCand = candidates_.data() + std::size_t(running_) * ruleWords_;
+  for (std::uint32_t r : rulesOf_[p])
+    if (isMixedRule_[r] && allPresent(running_, r)) runningCand[r / 64] |= std::uint64_t(1) << (r % 64);
 }
 
 void Machine::factRemoved(NodeId n, PredId p) {

@@ -173,6 +173,7 @@ class Machine : private SchedulerView {
   NodeId threadNode_ = kNoNode;  // the node of the one VM thread (§6.12)
   std::vector<std::uint8_t> isThreadPred_;
   std::vector<std::uint32_t> mixedRules_;  // bodies with node and thread facts
+  std::vector<std::uint8_t> isMixedRule_;  // per rule
   bool started_ = false;
   MachineHost* host_ = nullptr;
   NodeId running_ = 0;
