@@ -37,16 +37,26 @@ void Machine::publishChange(NodeId n, PredId p, const Change& c) {
     if (c.removed) retainArgs(p, triggerRemoved_.data());
     if (c.added) retainArgs(p, triggerAdded_.data());
   }
+  // On robots the facts these processes send travel over links with delays, and a neighbour acts
+  // on each as it arrives: an aggregate that moves from one value to another announces the new
+  // value before retracting the old one, so that a neighbour whose own aggregate rests on the old
+  // value moves once, to the new one, instead of falling back and cascading the fall through the
+  // ensemble before the new value catches up (issue 10, point 15). On its own graph the VM keeps
+  // the established order: retraction first.
+  const bool addFirst = host_ != nullptr && c.removed && c.added;
+  if (addFirst) publishAdded(n, p);
   if (c.removed) {
     factRemoved(n, p);
     runProcesses(n, p, triggerRemoved_.data(), true);
     releaseArgs(p, triggerRemoved_.data());
   }
-  if (c.added) {
-    factAdded(n, p);
-    runProcesses(n, p, triggerAdded_.data(), false);
-    releaseArgs(p, triggerAdded_.data());
-  }
+  if (c.added && !addFirst) publishAdded(n, p);
+}
+
+void Machine::publishAdded(NodeId n, PredId p) {
+  factAdded(n, p);
+  runProcesses(n, p, triggerAdded_.data(), false);
+  releaseArgs(p, triggerAdded_.data());
 }
 
 void Machine::runProcesses(NodeId n, PredId p, const Value* args, bool negative) {

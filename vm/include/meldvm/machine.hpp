@@ -108,6 +108,7 @@ class Machine : private SchedulerView {
   // ---- node runs ----
   void runRule(NodeId n, std::uint32_t rule);
   void finishRuleRun();
+  void publishAdded(NodeId n, PredId p);
   void deferAxiomCandidates(std::uint64_t* cand);
   bool takeAxiomCandidates(std::uint64_t* cand);
   void storeDerivedLinear();  // the linear facts derived for the host, appended in order (§6.4.4)
