@@ -91,6 +91,42 @@ std::optional<std::vector<double>> parseRealList(std::string_view text) {
   return values;
 }
 
+bool sameName(std::string_view a, std::string_view b) {
+  return a.size() == b.size() && std::equal(a.begin(), a.end(), b.begin(), [](char x, char y) {
+           return std::tolower(static_cast<unsigned char>(x)) == std::tolower(static_cast<unsigned char>(y));
+         });
+}
+
+bool inNames(std::string_view name, std::initializer_list<std::string_view> names) {
+  return std::any_of(names.begin(), names.end(), [&](std::string_view n) { return sameName(name, n); });
+}
+
+// Colors: "r,g,b" with components in 0..255 (fractions allowed, rounded: VisibleSim reads them as
+// reals), "#RRGGBB" or "0xRRGGBB". nullopt if malformed or out of range.
+std::optional<std::uint32_t> parseColor(std::string_view text) {
+  text = trim(text);
+  std::string_view hex;
+  if (text.starts_with('#'))
+    hex = text.substr(1);
+  else if (text.starts_with("0x") || text.starts_with("0X"))
+    hex = text.substr(2);
+  if (!hex.empty() || text == "#") {
+    std::uint32_t rgb = 0;
+    const auto [end, ec] = std::from_chars(hex.data(), hex.data() + hex.size(), rgb, 16);
+    if (hex.size() != 6 || ec != std::errc() || end != hex.data() + hex.size()) return std::nullopt;
+    return rgb;
+  }
+  const auto v = parseRealList(text);
+  if (!v || v->size() < 3 || v->size() > 4) return std::nullopt;  // a 4th component: alpha, ignored
+  std::uint32_t rgb = 0;
+  for (std::size_t i = 0; i < 3; ++i) {
+    const double c = (*v)[i];
+    if (c < 0 || c > 255) return std::nullopt;
+    rgb = (rgb << 8) | std::uint32_t(std::lround(c));
+  }
+  return rgb;
+}
+
 std::string cellText(const Cell& c) {
   // Appended piece by piece: "(" + std::string&& trips a false -Wrestrict in GCC 12.
   std::string s = "(";
@@ -134,8 +170,15 @@ class Loader {
                               ": warning: " + message);
   }
   void warnUnknownAttributes(Node n, std::initializer_list<std::string_view> known);
+  // Attribute and element names are matched without regard to case (VisibleSim's own files write
+  // gridsize, gridSize and GridSize alike).
+  static Attr attr(Node n, std::string_view name) {
+    for (Attr a : n.attributes())
+      if (sameName(a.name(), name)) return a;
+    return Attr();
+  }
   Attr required(Node n, const char* name) const {
-    Attr a = n.attribute(name);
+    Attr a = attr(n, name);
     if (!a) fail(posOf(n), "<" + std::string(n.name()) + "> needs attribute '" + name + "'");
     return a;
   }
@@ -144,10 +187,11 @@ class Loader {
   Cell cellAttribute(Node n, Attr a) const;
   std::uint32_t colorAttribute(Node n, Attr a) const;
   std::optional<std::uint32_t> optionalColor(Node n, std::optional<std::uint32_t> fallback) const {
-    Attr a = n.attribute("color");
+    Attr a = attr(n, "color");
     return a ? std::optional<std::uint32_t>(colorAttribute(n, a)) : fallback;
   }
   Cell checkedCell(Node n, Attr a) const;
+  Cell sizeAttribute(Node n, Attr a) const;
   long long positiveInt(Node n, Attr a) const;
 
   // --- Elements ---
@@ -159,6 +203,9 @@ class Loader {
   void readBlock(Node n, std::optional<std::uint32_t> listColor);
   void readBox(Node n, std::optional<std::uint32_t> listColor);
   void readLine(Node n, std::optional<std::uint32_t> listColor);
+  void readVisibleSimBox(Node n, std::optional<std::uint32_t> listColor);
+  void readBitmapLine(Node n, std::optional<std::uint32_t> listColor);
+  void fillBox(Node n, Attr sizeAttr, const Cell& origin, const Cell& size, std::optional<std::uint32_t> color);
   void readSchedule(Node schedule);
   BlockId blockIdAttribute(Node n);
   SimTime timeAttribute(Node n);
@@ -179,7 +226,7 @@ class Loader {
 
 void Loader::warnUnknownAttributes(Node n, std::initializer_list<std::string_view> known) {
   for (Attr a : n.attributes())
-    if (std::find(known.begin(), known.end(), std::string_view(a.name())) == known.end())
+    if (!inNames(a.name(), known))
       warn(posOf(a), "unknown attribute '" + std::string(a.name()) + "' of <" + n.name() + "> ignored");
 }
 
@@ -194,7 +241,7 @@ void Loader::forChildren(Node parent, std::initializer_list<std::string_view> kn
       continue;
     }
     if (child.type() != pugi::node_element) continue;
-    if (std::find(known.begin(), known.end(), std::string_view(child.name())) == known.end()) {
+    if (!inNames(child.name(), known)) {
       warn(posOf(child), "unknown element <" + std::string(child.name()) + "> ignored");
       continue;
     }
@@ -211,6 +258,13 @@ Cell Loader::cellAttribute(Node n, Attr a) const {
   return Cell{std::int32_t((*v)[0]), std::int32_t((*v)[1]), v->size() == 3 ? std::int32_t((*v)[2]) : 0};
 }
 
+Cell Loader::sizeAttribute(Node n, Attr a) const {
+  // A planar size (two components) is one layer deep.
+  Cell size = cellAttribute(n, a);
+  if (std::count(a.value(), a.value() + std::strlen(a.value()), ',') == 1) size.z = 1;
+  return size;
+}
+
 Cell Loader::checkedCell(Node n, Attr a) const {
   const Cell c = cellAttribute(n, a);
   const GridSize& g = world_.grid;
@@ -222,14 +276,9 @@ Cell Loader::checkedCell(Node n, Attr a) const {
 }
 
 std::uint32_t Loader::colorAttribute(Node n, Attr a) const {
-  const auto v = parseIntList(a.value());
-  if (!v || v->size() != 3) badAttribute(n, a, "is not three integers r,g,b in 0..255");
-  std::uint32_t rgb = 0;
-  for (long long c : *v) {
-    if (c < 0 || c > 255) badAttribute(n, a, "has a component outside 0..255");
-    rgb = (rgb << 8) | std::uint32_t(c);
-  }
-  return rgb;
+  const std::optional<std::uint32_t> rgb = parseColor(a.value());
+  if (!rgb) badAttribute(n, a, "is not a color: r,g,b in 0..255, #RRGGBB or 0xRRGGBB");
+  return *rgb;
 }
 
 long long Loader::positiveInt(Node n, Attr a) const {
@@ -249,12 +298,30 @@ WorldDescription Loader::run() {
     fail(map_.at(std::size_t(std::max<std::ptrdiff_t>(r.offset, 0))),
          std::string("malformed XML: ") + r.description());
   Node root = doc.document_element();
-  if (std::string_view(root.name()) != "world")
-    fail(posOf(root), "the root element is <" + std::string(root.name()) + ">, expected <world>");
+  // VisibleSim's newer files wrap <world> in <vs>, beside <visuals>, <vm>, <parameters> ... that
+  // describe its own windows and interpreter: those are skipped.
+  if (sameName(root.name(), "vs")) {
+    Node world;
+    for (Node child : root.children())
+      if (child.type() == pugi::node_element && sameName(child.name(), "world")) {
+        if (world) {
+          warn(posOf(child), "second <world> ignored");
+          continue;
+        }
+        world = child;
+      }
+    if (!world) fail(posOf(root), "<vs> holds no <world>");
+    root = world;
+  } else if (!sameName(root.name(), "world")) {
+    fail(posOf(root), "the root element is <" + std::string(root.name()) + ">, expected <world> or <vs>");
+  }
   for (Node extra = root.next_sibling(); extra; extra = extra.next_sibling())
-    if (extra.type() == pugi::node_element)
+    if (extra.type() == pugi::node_element && !sameName(extra.parent().name(), "vs"))
       warn(posOf(extra), "element <" + std::string(extra.name()) + "> after <world> ignored");
   readWorld(root);
+  // A world without blocks is almost always a file whose block elements we did not understand:
+  // running it would print an empty summary and exit 0.
+  if (world_.blocks.empty()) fail(posOf(root), "the world has no block (no <block>, <blocksBox>, <blockBox> or <blocksLine> in a <blockList>)");
   return std::move(world_);
 }
 
@@ -262,11 +329,11 @@ void Loader::readWorld(Node world) {
   readWorldAttributes(world);
   forChildren(world, {"camera", "spotlight", "blockList", "schedule"}, [&](Node child) {
     const std::string_view name = child.name();
-    if (name == "camera")
+    if (sameName(name, "camera"))
       readKept(child, world_.camera);
-    else if (name == "spotlight")
+    else if (sameName(name, "spotlight"))
       readKept(child, world_.spotlight);
-    else if (name == "blockList")
+    else if (sameName(name, "blockList"))
       readBlockList(child);
     else
       readSchedule(child);
@@ -278,8 +345,8 @@ void Loader::readWorld(Node world) {
 void Loader::readWorldAttributes(Node world) {
   warnUnknownAttributes(world, {"gridSize", "windowSize", "target", "seed", "code", "program"});
   readGridSize(world, required(world, "gridSize"));
-  world_.target = world.attribute("target").value();
-  if (Attr a = world.attribute("seed")) {
+  world_.target = attr(world, "target").value();
+  if (Attr a = attr(world, "seed")) {
     const std::string_view v = trim(a.value());
     std::uint64_t seed = 0;
     const auto [end, ec] = std::from_chars(v.data(), v.data() + v.size(), seed);
@@ -292,8 +359,8 @@ void Loader::readWorldAttributes(Node world) {
     if (!*p || std::filesystem::path(p).is_absolute()) return p;
     return (std::filesystem::path(path_).parent_path() / p).lexically_normal().string();
   };
-  world_.code = resolve(world.attribute("code").value());
-  world_.program = resolve(world.attribute("program").value());
+  world_.code = resolve(attr(world, "code").value());
+  world_.program = resolve(attr(world, "program").value());
 }
 
 void Loader::readGridSize(Node world, Attr a) {
@@ -328,7 +395,7 @@ void Loader::readBlockList(Node list) {
   warnUnknownAttributes(list, {"color", "blockSize", "blocksSize"});
   const std::optional<std::uint32_t> color = optionalColor(list, std::nullopt);
   // Older VisibleSim files spell it blocksSize.
-  Attr size = list.attribute("blockSize") ? list.attribute("blockSize") : list.attribute("blocksSize");
+  Attr size = attr(list, "blockSize") ? attr(list, "blockSize") : attr(list, "blocksSize");
   if (size) {
     const auto v = parseRealList(size.value());
     if (!v || v->size() != 3 || (*v)[0] <= 0 || (*v)[1] <= 0 || (*v)[2] <= 0)
@@ -339,14 +406,21 @@ void Loader::readBlockList(Node list) {
     world_.blockSize = size.value();
     sawBlockList_ = true;
   }
-  forChildren(list, {"block", "blocksBox", "blocksLine"}, [&](Node child) {
+  forChildren(list, {"block", "blocksBox", "blockBox", "blocksLine", "csg"}, [&](Node child) {
     const std::string_view name = child.name();
-    if (name == "block")
+    if (sameName(name, "block"))
       readBlock(child, color);
-    else if (name == "blocksBox")
+    else if (sameName(name, "blocksBox"))
       readBox(child, color);
-    else
+    else if (sameName(name, "blockBox"))
+      readVisibleSimBox(child, color);
+    else if (sameName(name, "blocksLine") && attr(child, "values"))
+      readBitmapLine(child, color);
+    else if (sameName(name, "blocksLine"))
       readLine(child, color);
+    else
+      fail(posOf(child), "<csg> (VisibleSim's constructive solid geometry shapes) is not supported: "
+                         "describe the blocks with <block>, <blocksBox> or <blocksLine>");
   });
 }
 
@@ -361,26 +435,71 @@ void Loader::addBlock(Node n, Attr where, const Cell& c, std::optional<std::uint
     fail(posOf(where), "<" + std::string(n.name()) + ">: cell " + cellText(c) + " already holds block " +
                            std::to_string(it->second) + " (line " + std::to_string(other.pos.line) + ")");
   }
-  world_.blocks.push_back(BlockDescription{c, color, posOf(n)});
+  world_.blocks.push_back(BlockDescription{c, color, posOf(n), {}});
 }
 
 void Loader::readBlock(Node n, std::optional<std::uint32_t> listColor) {
-  warnUnknownAttributes(n, {"position", "color"});
+  warnUnknownAttributes(n, {"position", "color", "orientation", "rotation"});
   Attr position = required(n, "position");
   addBlock(n, position, checkedCell(n, position), optionalColor(n, listColor));
+  // Catoms' orientation (and rotation): kept so that an exported world says it again.
+  for (const char* kept : {"orientation", "rotation"})
+    if (Attr a = attr(n, kept)) world_.blocks.back().kept.emplace_back(kept, a.value());
+}
+
+void Loader::readVisibleSimBox(Node n, std::optional<std::uint32_t> listColor) {
+  // VisibleSim's <blockBox boxOrigin="x,y,z" boxSize="sx,sy,sz">: by default from the origin of
+  // the grid to its far corner.
+  warnUnknownAttributes(n, {"boxOrigin", "boxSize", "color"});
+  const GridSize& g = world_.grid;
+  Attr originAttr = attr(n, "boxOrigin"), sizeAttr = attr(n, "boxSize");
+  const Cell origin = originAttr ? checkedCell(n, originAttr) : Cell{0, 0, 0};
+  const Cell size = sizeAttr ? sizeAttribute(n, sizeAttr) : Cell{g.x - origin.x, g.y - origin.y, g.z - origin.z};
+  // Without boxSize the box ends at the grid's far corner, so only a given size can be wrong.
+  fillBox(n, sizeAttr ? sizeAttr : originAttr, origin, size, optionalColor(n, listColor));
+}
+
+void Loader::readBitmapLine(Node n, std::optional<std::uint32_t> listColor) {
+  // VisibleSim's bitmap rows: <blocksLine line="y" [plane="z"] values="0110..."/>: a block at
+  // x = i for every '1' at index i.
+  warnUnknownAttributes(n, {"line", "plane", "values", "color"});
+  Attr lineAttr = required(n, "line"), values = required(n, "values");
+  Attr planeAttr = attr(n, "plane");
+  const auto y = parseIntList(lineAttr.value());
+  if (!y || y->size() != 1 || (*y)[0] < 0 || (*y)[0] >= world_.grid.y)
+    badAttribute(n, lineAttr, "is not a row of the grid (0.." + std::to_string(world_.grid.y - 1) + ")");
+  long long z = 0;
+  if (planeAttr) {
+    const auto p = parseIntList(planeAttr.value());
+    if (!p || p->size() != 1 || (*p)[0] < 0 || (*p)[0] >= world_.grid.z)
+      badAttribute(n, planeAttr, "is not a plane of the grid (0.." + std::to_string(world_.grid.z - 1) + ")");
+    z = (*p)[0];
+  }
+  const std::string_view bits = trim(values.value());
+  const std::optional<std::uint32_t> color = optionalColor(n, listColor);
+  for (std::size_t x = 0; x < bits.size(); ++x) {
+    if (bits[x] == '0') continue;
+    if (bits[x] != '1') badAttribute(n, values, "holds '" + std::string(1, bits[x]) + "': only 0 and 1 are allowed");
+    if (std::int64_t(x) >= world_.grid.x)
+      badAttribute(n, values, "has a block at x = " + std::to_string(x) + ", outside the grid");
+    addBlock(n, values, Cell{std::int32_t(x), std::int32_t((*y)[0]), std::int32_t(z)}, color);
+  }
 }
 
 void Loader::readBox(Node n, std::optional<std::uint32_t> listColor) {
   warnUnknownAttributes(n, {"origin", "size", "color"});
   Attr originAttr = required(n, "origin"), sizeAttr = required(n, "size");
   const Cell origin = checkedCell(n, originAttr);
-  const Cell size = cellAttribute(n, sizeAttr);
+  const Cell size = sizeAttribute(n, sizeAttr);
+  fillBox(n, sizeAttr, origin, size, optionalColor(n, listColor));
+}
+
+void Loader::fillBox(Node n, Attr sizeAttr, const Cell& origin, const Cell& size, std::optional<std::uint32_t> color) {
   const GridSize& g = world_.grid;
   if (size.x <= 0 || size.y <= 0 || size.z <= 0) badAttribute(n, sizeAttr, "is not three positive integers");
   if (std::int64_t(origin.x) + size.x > g.x || std::int64_t(origin.y) + size.y > g.y ||
       std::int64_t(origin.z) + size.z > g.z)
     badAttribute(n, sizeAttr, "makes the box from " + cellText(origin) + " leave the grid");
-  const std::optional<std::uint32_t> color = optionalColor(n, listColor);
   // x varies fastest, then y, then z: the documented id order of a box.
   for (std::int32_t z = 0; z < size.z; ++z)
     for (std::int32_t y = 0; y < size.y; ++y)

@@ -106,6 +106,9 @@ void exportWorldXml(const Simulation& sim, const WorldDescription& original, std
     pugi::xml_node n = list.append_child("block");
     n.append_attribute("position") = cellText(b.cell).c_str();
     n.append_attribute("color") = colorText(b.color).c_str();
+    // Block ids of the run are those of the description while no block was added during it.
+    if (id < original.blocks.size())
+      for (const auto& [key, value] : original.blocks[id].kept) n.append_attribute(key.c_str()) = value.c_str();
   }
   doc.save(out, "  ", pugi::format_default, pugi::encoding_utf8);
   out << '\n';  // pugixml ends the file without one

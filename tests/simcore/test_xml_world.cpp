@@ -35,6 +35,8 @@ std::string parseError(const std::string& text) {
   return "(no error)";
 }
 
+// A world of one block (a world without blocks is an error) plus `body`.
+const std::string kOneBlock = "<blockList><block position=\"0,0,0\"/></blockList>\n";
 std::string world(const std::string& body, const std::string& attrs = "gridSize=\"4,4,4\"") {
   return "<world " + attrs + ">\n" + body + "</world>\n";
 }
@@ -117,10 +119,10 @@ BOOST_AUTO_TEST_CASE(line_directions_and_planar_forms) {
 
 BOOST_AUTO_TEST_CASE(relative_code_and_program_paths_follow_the_file) {
   const auto d = simcore::parseWorldXml(
-      world("", "gridSize=\"2,2,2\" code=\"lib/c.so\" program=\"../p.meld\""), "worlds/sub/w.xml");
+      world(kOneBlock, "gridSize=\"2,2,2\" code=\"lib/c.so\" program=\"../p.meld\""), "worlds/sub/w.xml");
   BOOST_TEST(d.code == "worlds/sub/lib/c.so");
   BOOST_TEST(d.program == "worlds/p.meld");
-  const auto abs = simcore::parseWorldXml(world("", "gridSize=\"2,2,2\" code=\"/opt/c.so\""), "worlds/w.xml");
+  const auto abs = simcore::parseWorldXml(world(kOneBlock, "gridSize=\"2,2,2\" code=\"/opt/c.so\""), "worlds/w.xml");
   BOOST_TEST(abs.code == "/opt/c.so");
 }
 
@@ -141,7 +143,7 @@ BOOST_AUTO_TEST_CASE(unknown_elements_and_attributes_are_warnings) {
 }
 
 BOOST_AUTO_TEST_CASE(stray_text_is_a_warning) {
-  const auto d = simcore::parseWorldXml(world("  hello\n"), "w.xml");
+  const auto d = simcore::parseWorldXml(world("  hello\n" + kOneBlock), "w.xml");
   BOOST_REQUIRE(d.warnings.size() == 1u);
   BOOST_TEST(d.warnings[0] == "w.xml:2:3: warning: text inside <world> ignored");
 }
@@ -172,7 +174,7 @@ BOOST_AUTO_TEST_CASE(error_malformed_xml) {
 
 BOOST_AUTO_TEST_CASE(error_missing_world_root) {
   BOOST_TEST(loadError("no-world-root.xml") ==
-             kData + "no-world-root.xml:2:1: error: the root element is <universe>, expected <world>");
+             kData + "no-world-root.xml:2:1: error: the root element is <universe>, expected <world> or <vs>");
   BOOST_TEST(parseError("") == "w.xml:1:1: error: no root element: expected <world>");
   BOOST_TEST(parseError("<!-- nothing -->\n") == "w.xml:1:1: error: no root element: expected <world>");
 }
@@ -182,17 +184,17 @@ BOOST_AUTO_TEST_CASE(error_bad_grid_size) {
                                                   "bad-gridsize.xml:2:8: error: attribute 'gridSize' of "
                                                   "<world>: \"4,0,4\" is not three positive integers");
   BOOST_TEST(parseError("<world/>") == "w.xml:1:1: error: <world> needs attribute 'gridSize'");
-  BOOST_TEST(parseError(world("", "gridSize=\"a,b,c\"")) ==
+  BOOST_TEST(parseError(world(kOneBlock, "gridSize=\"a,b,c\"")) ==
              "w.xml:1:8: error: attribute 'gridSize' of <world>: \"a,b,c\" is not three positive integers");
-  BOOST_TEST(parseError(world("", "gridSize=\"1,2,3,4\"")) ==
+  BOOST_TEST(parseError(world(kOneBlock, "gridSize=\"1,2,3,4\"")) ==
              "w.xml:1:8: error: attribute 'gridSize' of <world>: \"1,2,3,4\" is not three positive integers");
-  BOOST_TEST(parseError(world("", "gridSize=\"65536,65536,2\"")) ==
+  BOOST_TEST(parseError(world(kOneBlock, "gridSize=\"65536,65536,2\"")) ==
              "w.xml:1:8: error: attribute 'gridSize' of <world>: \"65536,65536,2\" has more than 2^31 cells");
   BOOST_TEST(
-      parseError(world("", "gridSize=\"4294967296,1,1\"")) ==
+      parseError(world(kOneBlock, "gridSize=\"4294967296,1,1\"")) ==
       "w.xml:1:8: error: attribute 'gridSize' of <world>: \"4294967296,1,1\" is not three positive integers");
   // Exactly 2^31 cells is allowed.
-  BOOST_TEST(simcore::parseWorldXml(world("", "gridSize=\"65536,32768,1\""), "w.xml").grid.y == 32768);
+  BOOST_TEST(simcore::parseWorldXml(world(kOneBlock, "gridSize=\"65536,32768,1\""), "w.xml").grid.y == 32768);
 }
 
 BOOST_AUTO_TEST_CASE(error_bad_numbers) {
@@ -202,14 +204,14 @@ BOOST_AUTO_TEST_CASE(error_bad_numbers) {
           "bad-position.xml:5:12: error: attribute 'position' of <block>: \"1,x,3\" is not three integers");
   BOOST_TEST(loadError("bad-color.xml") == kData +
                                                "bad-color.xml:4:29: error: attribute 'color' of <block>: "
-                                               "\"255,256,0\" has a component outside 0..255");
+                                               "\"255,256,0\" is not a color: r,g,b in 0..255, #RRGGBB or 0xRRGGBB");
   BOOST_TEST(
       parseError(world("<blockList color=\"1,2\"/>\n")) ==
-      "w.xml:2:12: error: attribute 'color' of <blockList>: \"1,2\" is not three integers r,g,b in 0..255");
+      "w.xml:2:12: error: attribute 'color' of <blockList>: \"1,2\" is not a color: r,g,b in 0..255, #RRGGBB or 0xRRGGBB");
   BOOST_TEST(
       parseError(world("<blockList blockSize=\"40,-1,40\"/>\n")) ==
       "w.xml:2:12: error: attribute 'blockSize' of <blockList>: \"40,-1,40\" is not three positive numbers");
-  BOOST_TEST(parseError(world("", "gridSize=\"4,4,4\" seed=\"-3\"")) ==
+  BOOST_TEST(parseError(world(kOneBlock, "gridSize=\"4,4,4\" seed=\"-3\"")) ==
              "w.xml:1:25: error: attribute 'seed' of <world>: \"-3\" is not a non-negative integer");
   BOOST_TEST(
       parseError(
@@ -390,4 +392,98 @@ BOOST_AUTO_TEST_CASE(export_makes_code_paths_absolute) {
   simcore::exportWorldXml(sim, d, out);
   const auto back = simcore::parseWorldXml(out.str(), "/elsewhere/exported.xml");
   BOOST_TEST(back.code == std::string(MELD_SOURCE_DIR) + "/build/release/blockcodes/brownian_flood.so");
+}
+
+// ---- VisibleSim's own forms (issue 10, point 12) ----
+
+BOOST_AUTO_TEST_CASE(visiblesim_vs_root_and_its_other_sections) {
+  const auto d = simcore::parseWorldXml(
+      "<?xml version=\"1.0\"?>\n<vs>\n<visuals><window size=\"800,600\"/></visuals>\n<vm serverport=\"7800\"/>\n"
+      "<parameters/>\n<world gridSize=\"3,3,1\">\n" + kOneBlock + "</world>\n</vs>\n",
+      "w.xml");
+  BOOST_TEST(d.blocks.size() == 1u);
+  BOOST_TEST(d.warnings.empty());
+  BOOST_TEST(parseError("<vs><visuals/></vs>") == "w.xml:1:1: error: <vs> holds no <world>");
+}
+
+BOOST_AUTO_TEST_CASE(visiblesim_bitmap_rows_in_planes) {
+  const auto d = simcore::parseWorldXml(
+      world("<blockList><blocksLine line=\"0\" values=\"0110\"/>"
+            "<blocksLine line=\"2\" plane=\"1\" values=\"1001\"/></blockList>\n",
+            "gridSize=\"4,3,2\""),
+      "w.xml");
+  BOOST_REQUIRE(d.blocks.size() == 4u);
+  BOOST_TEST((d.blocks[0].cell == Cell{1, 0, 0}));
+  BOOST_TEST((d.blocks[1].cell == Cell{2, 0, 0}));
+  BOOST_TEST((d.blocks[2].cell == Cell{0, 2, 1}));
+  BOOST_TEST((d.blocks[3].cell == Cell{3, 2, 1}));
+  BOOST_TEST(parseError(world("<blockList><blocksLine line=\"0\" values=\"01x\"/></blockList>\n")) ==
+             "w.xml:2:33: error: attribute 'values' of <blocksLine>: \"01x\" holds 'x': only 0 and 1 are allowed");
+  BOOST_TEST(parseError(world("<blockList><blocksLine line=\"0\" values=\"000001\"/></blockList>\n")) ==
+             "w.xml:2:33: error: attribute 'values' of <blocksLine>: \"000001\" has a block at x = 5, outside the grid");
+  BOOST_TEST(parseError(world("<blockList><blocksLine line=\"7\" values=\"1\"/></blockList>\n")) ==
+             "w.xml:2:24: error: attribute 'line' of <blocksLine>: \"7\" is not a row of the grid (0..3)");
+}
+
+BOOST_AUTO_TEST_CASE(visiblesim_block_box) {
+  const auto d = simcore::parseWorldXml(
+      world("<blockList><blockBox boxOrigin=\"1,1,0\" boxSize=\"2,2,1\"/></blockList>\n"), "w.xml");
+  BOOST_REQUIRE(d.blocks.size() == 4u);
+  BOOST_TEST((d.blocks[3].cell == Cell{2, 2, 0}));
+  // Without a size the box reaches the far corner of the grid.
+  const auto all = simcore::parseWorldXml(world("<blockList><blockBox/></blockList>\n", "gridSize=\"2,3,2\""), "w.xml");
+  BOOST_TEST(all.blocks.size() == 12u);
+}
+
+BOOST_AUTO_TEST_CASE(colors_in_every_visiblesim_spelling) {
+  const auto d = simcore::parseWorldXml(
+      world("<blockList><block position=\"0,0,0\" color=\"#FF8000\"/><block position=\"1,0,0\" color=\"0x0080ff\"/>"
+            "<block position=\"2,0,0\" color=\"127.6,0.2,255.0\"/><block position=\"3,0,0\" color=\"1,2,3,255\"/>"
+            "</blockList>\n"),
+      "w.xml");
+  BOOST_TEST(d.blocks[0].color.value() == 0xFF8000u);
+  BOOST_TEST(d.blocks[1].color.value() == 0x0080FFu);
+  BOOST_TEST(d.blocks[2].color.value() == 0x8000FFu);
+  BOOST_TEST(d.blocks[3].color.value() == 0x010203u);
+  BOOST_TEST(parseError(world("<blockList><block position=\"0,0,0\" color=\"#12345\"/></blockList>\n")) ==
+             "w.xml:2:36: error: attribute 'color' of <block>: \"#12345\" is not a color: r,g,b in 0..255, "
+             "#RRGGBB or 0xRRGGBB");
+}
+
+BOOST_AUTO_TEST_CASE(the_visiblesim_paper_figure_7_file) {
+  // Lower-case gridsize, two-component grid and positions: the planar form.
+  const auto d = simcore::parseWorldXml(
+      "<world gridsize=\"20,20\">\n<blocklist blocksize=\"25,25,11\">\n<block position=\"5,5\"/>\n"
+      "<block position=\"6,5\" color=\"0,255,0\"/>\n</blocklist>\n</world>\n",
+      "w.xml");
+  BOOST_TEST(d.grid.x == 20);
+  BOOST_TEST(d.grid.z == 1);
+  BOOST_REQUIRE(d.blocks.size() == 2u);
+  BOOST_TEST((d.blocks[1].cell == Cell{6, 5, 0}));
+  BOOST_TEST(d.warnings.empty());
+}
+
+BOOST_AUTO_TEST_CASE(a_world_without_blocks_is_an_error) {
+  BOOST_TEST(parseError(world("<blockList/>\n")) ==
+             "w.xml:1:1: error: the world has no block (no <block>, <blocksBox>, <blockBox> or <blocksLine> "
+             "in a <blockList>)");
+  BOOST_TEST(parseError(world("<blockList><csg content=\"cube([4,4,4]);\"/></blockList>\n")) ==
+             "w.xml:2:12: error: <csg> (VisibleSim's constructive solid geometry shapes) is not supported: "
+             "describe the blocks with <block>, <blocksBox> or <blocksLine>");
+}
+
+BOOST_AUTO_TEST_CASE(catoms_orientation_is_kept_on_export) {
+  const auto d = simcore::parseWorldXml(
+      world("<blockList><block position=\"1,1,1\" orientation=\"3\"/><block position=\"2,1,1\"/></blockList>\n",
+            "gridSize=\"4,4,4\" target=\"catoms3d\""),
+      "w.xml");
+  BOOST_REQUIRE(d.blocks[0].kept.size() == 1u);
+  BOOST_TEST(d.warnings.empty());
+  auto sim = simulationFor(d);
+  std::ostringstream out;
+  simcore::exportWorldXml(*sim, d, out);
+  const auto back = simcore::parseWorldXml(out.str(), "w2.xml");
+  BOOST_REQUIRE(back.blocks[0].kept.size() == 1u);
+  BOOST_TEST(back.blocks[0].kept[0].second == "3");
+  BOOST_TEST(back.blocks[1].kept.empty());
 }

@@ -51,6 +51,8 @@ struct BlockDescription {
   Cell cell;
   std::optional<std::uint32_t> color;  // 0xRRGGBB; nullopt = the target's default color
   SourcePos pos;                       // the <block>, <blocksBox> or <blocksLine> that made it
+  // Attributes written back as read (Catoms' orientation and rotation).
+  std::vector<std::pair<std::string, std::string>> kept;
 };
 
 struct ScheduledTap {
