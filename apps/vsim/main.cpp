@@ -151,17 +151,22 @@ int runVsim(const Options& o) {
     for (const std::string& w : world.warnings) std::cerr << w << '\n';
   const simcore::TargetSpec target = chooseTarget(o, world);
 
-  const std::string codePath = !o.program.empty() ? o.program : !o.code.empty() ? o.code : world.code;
+  // The command line wins; then the world's code= (a C BlockCode), then its program= (Meld).
+  const std::string programPath =
+      !o.program.empty() ? o.program : o.code.empty() && world.code.empty() ? world.program : std::string();
+  const std::string codePath = !programPath.empty() ? programPath : !o.code.empty() ? o.code : world.code;
   if (codePath.empty())
-    throw Failure{
-        kExitUsage,
-        "no block code: give --code LIB.so or --program PROG.meld (or code=\"LIB.so\" in " + o.world + ")"};
+    throw Failure{kExitUsage, "no block code: give --code LIB.so or --program PROG.meld (or code=\"LIB.so\" or "
+                              "program=\"PROG.meld\" in " + o.world + ")"};
+  if (programPath.empty() && (o.dump || o.timePerRule >= 0 || !o.includeDirs.empty()))
+    throw Failure{kExitUsage, "--dump, --time-per-rule and -I go with a Meld program (--program, or program= "
+                              "in the world)"};
   // Declared before the simulation: the code table must outlive it.
   std::optional<simcore::BlockCodeLibrary> library;
   std::unique_ptr<meldvm::Program> meldProgram;
-  if (!o.program.empty()) {
+  if (!programPath.empty()) {
     try {
-      meldProgram = loadMeldProgram(o.program, o.includeDirs);
+      meldProgram = loadMeldProgram(programPath, o.includeDirs);
     } catch (const ProgramLoadError& e) {
       throw Failure{kExitInput, e.what()};
     }
@@ -202,7 +207,7 @@ int runVsim(const Options& o) {
       meld =
           std::make_unique<meldvm::BlockRuntime>(*meldProgram, std::uint32_t(sim.world().blockCount()), mo);
     } catch (const meldvm::BlockProgramError& e) {
-      throw Failure{kExitInput, o.program + ": error: " + e.what()};
+      throw Failure{kExitInput, programPath + ": error: " + e.what()};
     }
     sim.setBlockCode(meld->blockcode());
   } else {

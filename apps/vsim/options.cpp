@@ -13,6 +13,7 @@ Runs the block program LIB.so, or the Meld program PROG (one Meld node per block
 id; a .meld file is compiled first), on every block of the world WORLD.xml (headless) and prints a
 summary: target, blocks, events, simulated and wall time, events/s, the run fingerprint and a
 histogram of the final colors (plus each block's color for worlds of at most 20 blocks).
+Without --code or --program, the world's code= (a C BlockCode) or program= (Meld) is run.
 
 Without --until the run goes on until no event is pending. A block program that never goes
 quiet (timers that re-arm, endless messages) then runs forever: give --until (Ctrl-C stops a run
@@ -22,14 +23,14 @@ options:
   --code LIB.so         block program (C BlockCode .so); overrides the world's code= attribute
   --program PROG        Meld program (.meld, compiled with node ids = block ids, or .mbc from
                         `meldc --robots`); the target's include file is found by `include`
-  --dump                with --program: print every block's final facts (the `meld --dump`
+  --dump                with a Meld program: print every block's final facts (the `meld --dump`
                         format) after the summary
-  --time-per-rule T     with --program: simulated computing time of one rule firing (target
+  --time-per-rule T     with a Meld program: simulated computing time of one rule firing (target
                         default: 10us Blinky/Smart Blocks, 1us Catoms); a node run's messages
                         leave after its rules' time
   --palette visiblesim|lm
                         with --program: colours of setColor2 (default visiblesim: C mod 12)
-  -I DIR                with --program: include directory for the .meld compiler
+  -I DIR                with a Meld program: include directory for the .meld compiler
   --target NAME         blinkyblocks, smartblocks, catoms2d or catoms3d; overrides the world's
                         target= attribute
                         (default when neither says: blinkyblocks)
@@ -216,8 +217,6 @@ Options parseOptions(int argc, char** argv) {
   if (o.world.empty())
     throw UsageError("no world file given (usage: vsim WORLD.xml --code LIB.so; see --help)");
   if (!o.program.empty() && !o.code.empty()) throw UsageError("give --code or --program, not both");
-  if (o.program.empty() && (o.dump || o.timePerRule >= 0 || !o.includeDirs.empty()))
-    throw UsageError("--dump, --time-per-rule and -I go with --program");
   if (traceFormatOrFile) o.trace = true;
   if (o.jsonFile == "-" && o.exportFile == "-")
     throw UsageError("--json and --export cannot both write to stdout");

@@ -54,6 +54,13 @@ std::string endText(const simcore::Simulation& sim, const RunInfo& info) {
   return "?";
 }
 
+// The simulated time the run covered: with --until, a queue that empties early still means the
+// world was simulated (quiet) up to that time.
+simcore::SimTime simulatedTime(const simcore::Simulation& sim, const RunInfo& info) {
+  if (info.until && info.end == RunEnd::QueueEmpty && *info.until > sim.now()) return *info.until;
+  return sim.now();
+}
+
 void row(std::ostream& out, const char* name, const std::string& value) {
   out << format("  %-15s %s\n", name, value.c_str());
 }
@@ -89,7 +96,7 @@ void printSummary(std::ostream& out, const simcore::Simulation& sim, const RunIn
   row(out, "blocks", std::to_string(alive));
   row(out, "seed", std::to_string(sim.seed()));
   row(out, "end", endText(sim, info));
-  row(out, "simulated time", simcore::formatTime(sim.now()));
+  row(out, "simulated time", simcore::formatTime(simulatedTime(sim, info)));
   row(out, "events", std::to_string(s.eventsProcessed));
   row(out, "wall time", format("%.3f s", s.wallSeconds));
   row(out, "events/s", rate(s.eventsPerSecond(), s.wallSeconds));
@@ -138,7 +145,7 @@ void writeJsonReport(std::ostream& out, const simcore::Simulation& sim, const Ru
   jsonField(out, "fes", sim.fesName());
   out << ",\"until_ns\":" << (info.until ? std::to_string(*info.until) : "null");
   jsonField(out, "end", endName(info.end));
-  out << ",\"pending_events\":" << sim.pendingEvents() << ",\"simulated_ns\":" << sim.now()
+  out << ",\"pending_events\":" << sim.pendingEvents() << ",\"simulated_ns\":" << simulatedTime(sim, info)
       << ",\"events\":" << s.eventsProcessed << format(",\"wall_s\":%.6f", s.wallSeconds)
       << format(",\"events_per_s\":%.0f", s.eventsPerSecond());
   jsonField(out, "fingerprint", format("%016" PRIx64, sim.fingerprint()));

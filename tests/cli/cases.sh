@@ -181,6 +181,34 @@ case_until() {
   has "$OUT" "0.500000000 s"
 }
 
+case_until_past_the_end() {
+  # The queue empties at 2.0 s; the world was simulated (quiet) up to --until.
+  run 0 "$WORLDS/meld-gradient-tap.xml" --until 100s
+  has "$OUT" "queue empty"
+  has "$OUT" "100.000000000 s"
+}
+
+case_world_program() {
+  # program= in the world names the Meld program: no --program needed.
+  run 0 "$WORLDS/meld-rainbow.xml"
+  has "$OUT" "meld-vm"
+}
+
+case_visiblesim_world() {
+  # VisibleSim's forms (vs root, gridsize, bitmap rows, blockBox, #RRGGBB) with a Meld program
+  # named by the world: 13 blocks; the 12 connected ones elect id 11 (blue, 11 % 6 = 5), block 12
+  # alone at (0,3,0) leads itself (white).
+  run 0 "$TWORLDS/visiblesim-bitmap.xml" --dump
+  has "$OUT" "blocks          13"
+  has "$OUT" "#0000ff blue               11"
+  has "$OUT" "#ffffff white               2"
+}
+
+case_world_without_blocks() {
+  run 3 "$TWORLDS/no-blocks.xml" --code "$FLOOD"
+  has "$ERR" "no-blocks.xml:4:5: error: <csg> (VisibleSim's constructive solid geometry shapes) is not supported"
+}
+
 case_same_fingerprint() {
   # Twice the same, and the same with every future-event set: the order of events is total.
   for fes in heap heap calendar ladder; do
