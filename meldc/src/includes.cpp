@@ -1,10 +1,12 @@
 #include "meldc/includes.hpp"
 
+#include <algorithm>
 #include <cstdlib>
 #include <filesystem>
 #include <set>
 #include <system_error>
 
+#include "meldc/case_folding.hpp"
 #include "meldc/parser.hpp"
 
 namespace meldc {
@@ -111,13 +113,44 @@ class IncludeLoader {
   bool readOk_ = false;           // the last load() could read its file (errors were in its text)
 };
 
+bool sameType(const ast::TypeExpr& a, const ast::TypeExpr& b) {
+  if (a.kind != b.kind || lower(a.name) != lower(b.name) || a.args.size() != b.args.size()) return false;
+  for (std::size_t i = 0; i < a.args.size(); ++i)
+    if (!sameType(a.args[i], b.args[i])) return false;
+  return true;
+}
+
+// Same predicate, same modifiers, same field types and aggregates (argument names are comments).
+bool sameDeclaration(const ast::PredicateDecl& a, const ast::PredicateDecl& b) {
+  if (lower(a.name) != lower(b.name) || a.linear != b.linear || a.route != b.route || a.action != b.action ||
+      a.imported || b.imported || a.fields.size() != b.fields.size())
+    return false;
+  for (std::size_t i = 0; i < a.fields.size(); ++i)
+    if (a.fields[i].agg != b.fields[i].agg || !sameType(a.fields[i].type, b.fields[i].type)) return false;
+  return true;
+}
+
+// A program that declares `neighbor` or `vacant` itself may still include the target's file,
+// which declares them too: a declaration identical to an earlier one (in merged order) is dropped.
+// Different declarations of one name stay, for the name pass to report.
+void dropIdenticalRedeclarations(ast::Program& p) {
+  std::vector<ast::PredicateDecl> kept;
+  for (ast::PredicateDecl& d : p.predicates) {
+    const bool again = std::any_of(kept.begin(), kept.end(), [&](const ast::PredicateDecl& k) { return sameDeclaration(k, d); });
+    if (!again) kept.push_back(std::move(d));
+  }
+  p.predicates = std::move(kept);
+}
+
 }  // namespace
 
 std::optional<ast::Program> loadProgram(const std::string& mainPath,
                                         const std::vector<std::string>& includeDirs, SourceManager& sources,
                                         Diagnostics& diag) {
   IncludeLoader loader(includeDirs, sources, diag);
-  return loader.load(mainPath, SourceLoc{});
+  std::optional<ast::Program> program = loader.load(mainPath, SourceLoc{});
+  if (program) dropIdenticalRedeclarations(*program);
+  return program;
 }
 
 std::string defaultStdlibDir() {

@@ -80,11 +80,10 @@ void RuleLowering::subgoal(const Term& t, std::optional<std::int64_t> localNode)
     return;
   }
   Reg to = ex.valueAs(home, TypeTable::kNode);
-  if (desc.action) {
-    if (t.delayMs) unsupported(t.loc, "a delay on the action '" + t.name + "'");
+  if (t.delayMs && (*t.delayMs < 0 || *t.delayMs > INT32_MAX)) unsupported(t.loc, "a delay of this length");
+  if (desc.action && !t.delayMs) {
     cb_.op(Opcode::ACTION).w(p->id).w(to).regs(regs);
-  } else if (t.delayMs) {
-    if (*t.delayMs < 0 || *t.delayMs > INT32_MAX) unsupported(t.loc, "a delay of this length");
+  } else if (t.delayMs) {  // a delayed action runs on the sending block after the delay (robots)
     cb_.op(Opcode::SEND_DELAY).w(p->id).w(to).w(std::uint32_t(*t.delayMs)).regs(regs);
   } else {
     cb_.op(Opcode::SEND).w(p->id).w(to).regs(regs);

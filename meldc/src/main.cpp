@@ -9,6 +9,7 @@
 #include "meldc/includes.hpp"
 #include "meldc/lower.hpp"
 #include "meldc/options.hpp"
+#include "meldvm/block_runtime.hpp"
 #include "meldvm/bytecode.hpp"
 
 #ifndef MELDC_VERSION
@@ -76,6 +77,14 @@ int main(int argc, char** argv) {
     } catch (const meldvm::BytecodeError& e) {
       std::cerr << "meldc: internal error: the compiler produced invalid bytecode: " << e.what() << '\n';
       return kExitInternal;
+    }
+    if (options->robots) {  // the check vsim makes when it loads the program
+      try {
+        meldvm::checkRobotProgram(*lowered);
+      } catch (const meldvm::BlockProgramError& e) {
+        std::cerr << options->input << ": error: " << e.what() << '\n';
+        return kExitProgramErrors;
+      }
     }
     if (options->emit == EmitKind::Asm) {
       meldvm::disassemble(*lowered, text);

@@ -18,44 +18,37 @@ std::uint32_t clampByte(std::int32_t v) { return std::uint32_t(v < 0 ? 0 : v > 2
 
 }  // namespace
 
-// The §7 predicates the program declares (kNoPred when it does not mention one).
-struct BlockRuntime::Sensing {
-  PredId neighbor, vacant, neighborCount, tap, accel, shake, at;
-  PredId setcolor, setcolor2, moveto, terminate, writeString;
-};
-
 struct BlockRuntime::BlockState {
   std::int32_t neighbors;  // the count last asserted in neighborCount
   std::int32_t at[3];      // the position last asserted in at
   std::uint8_t terminated;
 };
 
-BlockRuntime::BlockRuntime(const Program& program, std::uint32_t blockCount, BlockRuntimeOptions options)
-    : program_(program), options_(std::move(options)), sensing_(std::make_unique<Sensing>()) {
+RobotPredicates checkRobotProgram(const Program& program) {
   const PredicateTable& preds = program.predicates;
   const TypeId I = TypeTable::kInt, N = TypeTable::kNode;
-  auto find = [&](std::initializer_list<const char*> names, std::vector<TypeId> shape, bool linear,
+  auto find = [&](std::initializer_list<const char*> names, std::vector<TypeId> shape,
                   const char* declaration) -> PredId {
     for (const char* name : names) {
       const PredId p = preds.find(name);
       if (p == preds.size()) continue;
-      if (preds[p].fields != shape || (linear && !preds[p].linear))
+      if (preds[p].fields != shape || preds[p].thread)
         throw BlockProgramError(std::string("predicate '") + preds[p].name + "' must be declared as `" +
                                 declaration + "` to be sensed or executed by the robot (spec §7)");
       return p;
     }
     return Program::kNoPred;
   };
-  Sensing& s = *sensing_;
-  s.neighbor = find({"neighbor"}, {N, I}, false, "type route neighbor(node, node, int).");
-  s.vacant = find({"vacant"}, {I}, false, "type vacant(node, int).");
-  s.neighborCount = find({"neighborCount"}, {I}, false, "type neighborCount(node, int).");
-  s.tap = find({"tap"}, {}, true, "type linear tap(node).");
-  s.accel = find({"accel"}, {I}, true, "type linear accel(node, int).");
-  s.shake = find({"shake"}, {I, I, I}, true, "type linear shake(node, int, int, int).");
-  s.at = find({"at"}, {I, I, I}, false, "type at(node, int, int, int).");
-  s.moveto = find({"moveto"}, {I, I, I}, false, "type linear action moveTo(node, int, int, int).");
-  s.terminate = find({"terminate"}, {}, false, "type linear action terminate(node).");
+  RobotPredicates s;
+  s.neighbor = find({"neighbor"}, {N, I}, "type route neighbor(node, node, int).");
+  s.vacant = find({"vacant"}, {I}, "type vacant(node, int).");
+  s.neighborCount = find({"neighborCount"}, {I}, "type neighborCount(node, int).");
+  s.tap = find({"tap"}, {}, "type linear tap(node).` or `type tap(node).");
+  s.accel = find({"accel"}, {I}, "type linear accel(node, int).` or `type accel(node, int).");
+  s.shake = find({"shake"}, {I, I, I}, "type linear shake(node, int, int, int).` or `type shake(node, int, int, int).");
+  s.at = find({"at"}, {I, I, I}, "type at(node, int, int, int).");
+  s.moveto = find({"moveto"}, {I, I, I}, "type linear action moveTo(node, int, int, int).");
+  s.terminate = find({"terminate"}, {}, "type linear action terminate(node).");
   s.setcolor2 = preds.find("setcolor2") == preds.size() ? Program::kNoPred : preds.find("setcolor2");
   s.setcolor = preds.find("setcolor") == preds.size() ? Program::kNoPred : preds.find("setcolor");
   s.writeString = preds.find("write-string") == preds.size() ? Program::kNoPred : preds.find("write-string");
@@ -70,6 +63,13 @@ BlockRuntime::BlockRuntime(const Program& program, std::uint32_t blockCount, Blo
                               std::to_string(program.nodeSourceIds[i]) + " became @" + std::to_string(i) +
                               "); on robots node ids are block ids: compile it with `meldc --robots`");
   }
+  return s;
+}
+
+BlockRuntime::BlockRuntime(const Program& program, std::uint32_t blockCount, BlockRuntimeOptions options)
+    : program_(program),
+      options_(std::move(options)),
+      sensing_(std::make_unique<Sensing>(checkRobotProgram(program))) {
   if (program.nodeSourceIds.size() > blockCount)
     throw BlockProgramError("the program mentions node @" + std::to_string(program.nodeSourceIds.size() - 1) +
                             " but the world has only " + std::to_string(blockCount) + " blocks");
@@ -80,6 +80,7 @@ BlockRuntime::BlockRuntime(const Program& program, std::uint32_t blockCount, Blo
   mo.host = this;
   mo.nodes = blockCount;
   machine_ = std::make_unique<Machine>(program, mo);
+  const Sensing& s = *sensing_;
   if (s.neighbor != Program::kNoPred && options_.neighborFacts)
     machine_->reserveFacts(s.neighbor, options_.neighborFacts);
   if (s.vacant != Program::kNoPred && options_.vacantFacts)
@@ -197,7 +198,10 @@ void BlockRuntime::event(vs_ctx* ctx, const vs_event& ev) {
         const std::vector<std::uint8_t>& bytes = delayed_[ev.tag];
         decodeFact(bytes.data(), bytes.size(), program_.predicates, machine_->database().heap(), decoded_);
         freeDelayed_.push_back(std::uint32_t(ev.tag));
-        machine_->receive(n, decoded_.pred, decoded_.args.data(), decoded_.negative);
+        if (program_.predicates[decoded_.pred].action)  // a delayed action: its time has come
+          action(n, n, decoded_.pred, decoded_.args.data());
+        else
+          machine_->receive(n, decoded_.pred, decoded_.args.data(), decoded_.negative);
         const auto& fields = program_.predicates[decoded_.pred].fields;
         for (std::size_t i = 0; i < decoded_.args.size(); ++i)
           machine_->database().heap().release(fields[i], decoded_.args[i]);

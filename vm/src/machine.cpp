@@ -406,7 +406,12 @@ void Machine::send(NodeId host, NodeId dest, PredId p, const Value* args, bool n
   if (!db_->alive(dest)) noSuchNode(p, dest);
   const PredicateDesc& d = program_.predicates[p];
   if (d.action) {
-    if (!negative) action(host, dest, p, args);
+    if (negative) return;
+    if (delayMs == 0) return action(host, dest, p, args);
+    // `setColor2(B, 3)@+1s` on a robot: the action runs on this block when the delay is over (its
+    // runtime's timer brings the fact back here).
+    sentLinear_.push_back({host, p, false, std::uint32_t(sentArgs_.size()), delayMs});
+    pushArgs(sentArgs_, p, args);
     return;
   }
   if (host_ && dest != host && !host_->reachable(host, dest)) notANeighbour(p, host, dest);

@@ -48,6 +48,18 @@ class BlockProgramError : public std::runtime_error {
   using std::runtime_error::runtime_error;
 };
 
+// The §7 predicates a program declares, resolved by name (kNoPred when it does not mention one).
+struct RobotPredicates {
+  PredId neighbor, vacant, neighborCount, tap, accel, shake, at;
+  PredId setcolor, setcolor2, moveto, terminate, writeString;
+};
+
+// The one check of a program meant for robots, made by `meldc --robots` and by the runtime alike:
+// the sensing/action predicates it declares have the shapes of §7 (the sensed events tap, accel
+// and shake may be linear, as in the reference, or persistent, as some VisibleSim programs declare
+// them), it has no thread predicates, and its nodes kept their source ids. Throws BlockProgramError.
+RobotPredicates checkRobotProgram(const Program& program);
+
 class BlockRuntime : private MachineHost {
  public:
   // Checks that the sensing/action predicates the program declares have the shapes of §7 and that
@@ -66,7 +78,7 @@ class BlockRuntime : private MachineHost {
   std::uint64_t messages() const { return messages_; }
 
  private:
-  struct Sensing;  // predicate ids of §7, resolved once
+  using Sensing = RobotPredicates;  // predicate ids of §7, resolved once
   struct BlockState;
 
   static void onStart(vs_ctx* ctx);
