@@ -74,6 +74,8 @@ int main(int argc, char** argv) {
   meldvm::MachineOptions mo;
   mo.args = options->programArgs;
   mo.output = &std::cout;
+  mo.seed = options->seed;
+  mo.maxSteps = options->maxSteps;
   const double loadSeconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   const auto runStart = std::chrono::steady_clock::now();
   meldvm::Machine machine(*program, mo);

@@ -1,5 +1,7 @@
 #include "options.hpp"
 
+#include <charconv>
+
 namespace meldapp {
 
 const char* usageText() {
@@ -13,6 +15,10 @@ const char* usageText() {
          "                  memory on standard error\n"
          "  -I DIR          include directory (for .meld input)\n"
          "  -D NAME=VALUE   define the constant NAME (for .meld input)\n"
+         "  --seed S        seed of the random stream of randint, degeneratevector and [:random]\n"
+         "                  (a non-negative integer; the same seed gives the same run)\n"
+         "  --max-steps N   stop with a run-time error after N rule and persistent-rule runs\n"
+         "                  (for programs that may not terminate; default: no limit)\n"
          "  -- ARGS         program arguments, read by @arg1, @arg2, ...\n"
          "  --help          this text\n"
          "  --version       print the version\n"
@@ -44,6 +50,16 @@ std::optional<Options> parseOptions(const std::vector<std::string>& args, std::s
       o.help = true;
     } else if (a == "--version") {
       o.version = true;
+    } else if (a == "--seed" || a == "--max-steps") {
+      auto v = value("a non-negative integer");
+      if (!v) return std::nullopt;
+      std::uint64_t n = 0;
+      const auto [end, ec] = std::from_chars(v->data(), v->data() + v->size(), n);
+      if (v->empty() || ec != std::errc() || end != v->data() + v->size()) {
+        error = a + " expects a non-negative integer, got '" + *v + "'";
+        return std::nullopt;
+      }
+      (a == "--seed" ? o.seed : o.maxSteps) = n;
     } else if (a.rfind("-I", 0) == 0) {
       auto v = value("a directory");
       if (!v) return std::nullopt;

@@ -1,6 +1,7 @@
 // Command line of `meld`: run a Meld program on its own graph (spec §6) and print its database.
 #pragma once
 
+#include <cstdint>
 #include <optional>
 #include <string>
 #include <utility>
@@ -25,6 +26,8 @@ struct Options {
   std::vector<std::string> includeDirs;                      // -I (for .meld)
   std::vector<std::pair<std::string, std::string>> defines;  // -D NAME=VALUE (for .meld)
   std::vector<std::string> programArgs;                      // after `--`: @arg1 ...
+  std::uint64_t seed = 0;      // --seed: the random stream of randint & co. (0: the default one)
+  std::uint64_t maxSteps = 0;  // --max-steps: rule and process runs allowed (0: no limit)
 };
 
 std::optional<Options> parseOptions(const std::vector<std::string>& args, std::string& error);

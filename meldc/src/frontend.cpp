@@ -55,6 +55,13 @@ std::optional<ast::Program> runFrontEnd(const FrontEndInput& input, SourceManage
                                         Diagnostics& diag) {
   std::optional<ast::Program> program = loadProgram(input.path, input.includeDirs, sources, diag);
   if (!program) return std::nullopt;
+  const ast::Program& p = *program;
+  if (p.includes.empty() && p.predicates.empty() && p.rules.empty() && p.consts.empty() && p.funs.empty() &&
+      p.directives.empty() && p.externs.empty() && p.nodeTypes.empty() && p.typeAliases.empty() &&
+      p.exports.empty() && !diag.hasErrors()) {
+    diag.error(SourceLoc{p.mainFile, 1, 1}, "the program is empty: no declaration, rule or fact");
+    return std::nullopt;
+  }
   applyDefines(input, *program, sources, diag);
   if (diag.hasErrors()) return std::nullopt;  // names would only repeat what is already broken
   resolveNames(*program, diag);

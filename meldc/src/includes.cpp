@@ -24,11 +24,14 @@ class IncludeLoader {
   std::optional<ast::Program> load(const std::string& path, SourceLoc from) {
     uint32_t file = 0;
     readOk_ = false;
-    if (!sources_.load(path, file)) {
+    std::error_code ec;
+    const bool directory = fs::is_directory(path, ec);
+    if (directory || !sources_.load(path, file)) {
+      const std::string why = directory ? "': it is a directory, not a Meld file" : "'";
       if (from.valid())
-        diag_.error(from, "cannot read included file '" + path + "'");
+        diag_.error(from, "cannot read included file '" + path + why);
       else
-        diag_.errorNoLoc("cannot read '" + path + "'");
+        diag_.errorNoLoc("cannot read '" + path + why);
       return std::nullopt;
     }
     std::string key = canonical(path);

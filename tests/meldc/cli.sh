@@ -47,6 +47,23 @@ case_bad_define() {
   run 2 valid/gradient.meld -DX=1
   has "$ERR" "bad definition 'X=1'"
 }
+case_directory_input() {
+  run 1 "$WORK"
+  has "$ERR" "it is a directory, not a Meld file"
+}
+case_empty_program() {
+  printf '// nothing but a comment\n' >"$WORK/empty.meld"
+  run 1 --check "$WORK/empty.meld"
+  has "$ERR" "empty.meld:1:1: error: the program is empty: no declaration, rule or fact"
+}
+case_robots_check() {
+  # The check vsim makes when it loads a program for robots, made by meldc --robots too.
+  printf 'type linear tap(node, int).\n' >"$WORK/tap.meld"
+  run 1 --robots "$WORK/tap.meld" -o "$WORK/tap.mbc"
+  has "$ERR" "tap.meld: error: predicate 'tap' must be declared as"
+  printf 'type tap(node).\n' >"$WORK/tap.meld"
+  run 0 --robots "$WORK/tap.meld" -o "$WORK/tap.mbc"
+}
 case_emit_bytecode() {
   # default: FILE.mbc next to the input
   cp valid/gradient.meld "$WORK/g.meld"

@@ -36,11 +36,14 @@ struct World {
   std::unique_ptr<meldvm::BlockRuntime> vm;
 
   World(const std::string& target, const std::vector<simcore::Cell>& cells, const std::string& source,
-        meldvm::BlockRuntimeOptions options = {}, simcore::GridSize grid = {20, 20, 20}) {
+        meldvm::BlockRuntimeOptions options = {}, simcore::GridSize grid = {20, 20, 20},
+        std::uint64_t seed = 1) {
     program = compile(source);
     const auto spec = targets::makeTarget(target);
     BOOST_REQUIRE(spec);
-    sim = std::make_unique<simcore::Simulation>(*spec, grid);
+    simcore::SimulationConfig config;
+    config.seed = seed;
+    sim = std::make_unique<simcore::Simulation>(*spec, grid, config);
     for (const simcore::Cell& c : cells) BOOST_REQUIRE(sim->addBlock(c) != simcore::kNoBlock);
     vm = std::make_unique<meldvm::BlockRuntime>(*program, std::uint32_t(cells.size()), options);
     sim->setBlockCode(vm->blockcode());

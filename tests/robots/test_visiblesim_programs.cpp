@@ -65,3 +65,20 @@ BOOST_AUTO_TEST_CASE(one_robot_check_for_the_compiler_and_the_runtime) {
   const auto persistent = robots::compile("type tap(node).\n");
   BOOST_CHECK_NO_THROW(meldvm::checkRobotProgram(*persistent));
 }
+
+BOOST_AUTO_TEST_CASE(randint_draws_from_the_block_stream) {
+  // Issue 10, point 16: the seed of the run changes the draws; the other blocks do not.
+  const char* program = R"(
+type linear roll(node, int).
+roll(X, randint(1000000)).
+)";
+  auto rolls = [&](int blocks, std::uint64_t seed) {
+    World w("blinkyblocks", robots::line(blocks), program, {}, {20, 20, 20}, seed);
+    w.sim->runUntilEmpty();
+    BOOST_TEST(w.vm->error() == "");
+    return w.facts(0) + "|" + w.facts(1);
+  };
+  BOOST_TEST(rolls(2, 1) == rolls(2, 1));
+  BOOST_TEST(rolls(2, 1) != rolls(2, 2));
+  BOOST_TEST(rolls(2, 7) == rolls(5, 7));  // blocks 0 and 1 draw the same beside three more
+}

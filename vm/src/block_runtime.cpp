@@ -220,6 +220,10 @@ void BlockRuntime::runNode(vs_ctx* ctx) {
   // A run may give its own block new facts (an action's sensing change): run again for those.
   do {
     firedInRun_ = machine_->stats().rulesFired;
+    // randint & co. draw from the block's own stream of the kernel: --seed changes them, and they
+    // do not depend on the order in which blocks run.
+    if (machine_->usesRandom())
+      machine_->reseed((std::uint64_t(ctx->api->random_u32(ctx)) << 32) | ctx->api->random_u32(ctx));
     machine_->runNode(ctx->block);
   } while (machine_->hasWork(ctx->block) && !machine_->stopped());
 }

@@ -24,6 +24,7 @@ Machine::Machine(const Program& program, MachineOptions options)
       rng_(Rng::forThread(0)),
       sched_(program.scheduling) {
   host_ = options_.host;
+  if (options_.seed) rng_.state ^= options_.seed * 0x9e3779b97f4a7c15ull;
   builtinCtx_.rng = &rng_;
   builtinCtx_.sched = this;
   const std::size_t preds = program.predicates.size();
@@ -44,6 +45,17 @@ Machine::Machine(const Program& program, MachineOptions options)
       if (detail::isLoop(code[pc]) && !(code[pc + 3] & kIterThread)) processNeeds_[i].push_back(code[pc + 1]);
     });
   }
+  auto scanRandom = [&](const CodeBlock& b) {
+    detail::forEachInstruction(b.code, [&](std::size_t pc) {
+      const auto op = Opcode(b.code[pc]);
+      if ((op == Opcode::CALL && (b.code[pc + 2] == 1 || b.code[pc + 2] == 32)) ||
+          (op == Opcode::ITER_SORTED && (b.code[pc + 3] & kIterRandom)))
+        usesRandom_ = true;
+    });
+  };
+  for (const Rule& r : program.rules) scanRandom(r.block);
+  for (const Process& p : program.processes) scanRandom(p.block);
+  for (const Function& f : program.functions) scanRandom(f.block);
   for (PredId p = 0; p < preds; ++p) {
     const PredicateDesc& d = program.predicates[p];
     maxArity_ = std::max(maxArity_, d.arity());
@@ -287,7 +299,13 @@ bool Machine::takeAxiomCandidates(std::uint64_t* cand) {
   return any;
 }
 
+void Machine::stepLimitReached() const {
+  throw RuntimeError("stopped after " + std::to_string(options_.maxSteps) +
+                     " rule and process runs (the step limit); the program may not terminate");
+}
+
 void Machine::runRule(NodeId n, std::uint32_t rule) {
+  countStep();
   try {
     interp_->run(program_.rules[rule].block, n);
   } catch (const RuntimeError& e) {

@@ -64,6 +64,7 @@ void Machine::runProcesses(NodeId n, PredId p, const Value* args, bool negative)
     bool ready = true;  // a loop over a predicate without facts here: nothing can fire
     for (PredId q : processNeeds_[i]) ready = ready && db_->factCount(n, q) != 0;
     if (!ready) continue;
+    countStep();
     try {
       interp_->run(program_.processes[i].block, n, negative, p, args);
     } catch (const RuntimeError& e) {

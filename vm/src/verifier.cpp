@@ -209,6 +209,17 @@ void BlockVerifier::semantics() {
       const PredId pred = v_[0];
       const std::uint32_t slot = v_[1], flags = v_[2];
       if (flags & ~std::uint32_t(63)) bad("unknown flag bits " + n2s(flags));
+      // The flags must say what the predicate is: the interpreter trusts them (a linear loop over
+      // persistent facts would consume them, a thread loop needs the thread node).
+      const PredicateDesc& d = p_.predicates[pred];
+      if (bool(flags & kIterLinear) != d.linear)
+        bad(std::string(d.linear ? "a loop over the linear " : "a linear loop over the persistent ") +
+            predText(pred) + (d.linear ? " lacks the linear flag" : ""));
+      if ((flags & kIterConsume) && !d.linear) bad("consumes facts of the persistent " + predText(pred));
+      if (bool(flags & kIterThread) != d.thread)
+        bad(std::string(d.thread ? "a loop over the thread predicate " : "a thread loop over the node predicate ") +
+            predText(pred) + (d.thread ? " lacks the thread flag" : ""));
+      if ((flags & kIterRandom) && op != Opcode::ITER_SORTED) bad("the random flag outside ITER_SORTED");
       if (bound(slot)) bad("slot " + n2s(slot) + " is already bound by an enclosing loop");
       if (op != Opcode::ITER) fieldInRange(pred, v_[3]);
       if (op == Opcode::ITER_KEY)

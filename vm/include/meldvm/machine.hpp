@@ -46,6 +46,10 @@ struct MachineOptions {
   std::ostream* output = nullptr;  // write-string output (nullptr: discarded)
   MachineHost* host = nullptr;     // set: the nodes are driven from outside (receive, runNode)
   NodeId nodes = 0;                // at least this many nodes (with a host: one per block)
+  std::uint64_t seed = 0;          // the random stream of randint & co. (meld --seed)
+  // Rule runs and persistent-process runs allowed before the run stops with a RuntimeError
+  // (0: no limit). Bounds what a program (or a damaged bytecode file) can make the VM do.
+  std::uint64_t maxSteps = 0;
 };
 
 struct MachineStats {
@@ -80,6 +84,10 @@ class Machine : private SchedulerView {
   // Room for that many facts of p (all nodes together), when the driver knows the count.
   void reserveFacts(PredId p, std::size_t facts) { db_->reserve(p, facts); }
   bool stopped() const { return stop_; }
+  // Whether the program draws random numbers (on a robot its stream is the block's own).
+  bool usesRandom() const { return usesRandom_; }
+  // Restarts the random stream from `seed` (a robot does so from its block's stream before a run).
+  void reseed(std::uint64_t seed) { rng_.state = seed; }
 
   void dump(std::ostream& out) const;
   std::string dump() const;
@@ -166,6 +174,12 @@ class Machine : private SchedulerView {
   std::unique_ptr<Interpreter> interp_;
   BuiltinContext builtinCtx_;
   Rng rng_;
+  std::uint64_t steps_ = 0;  // rule and process runs, against options_.maxSteps
+  bool usesRandom_ = false;  // randint, degeneratevector or a [:random] selector
+  void countStep() {
+    if (options_.maxSteps && ++steps_ > options_.maxSteps) stepLimitReached();
+  }
+  [[noreturn]] void stepLimitReached() const;
   SerialScheduler sched_;
   MachineStats stats_;
   bool stop_ = false;
