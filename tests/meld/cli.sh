@@ -45,7 +45,7 @@ case_seed() {
 case_max_steps() {
   printf 'type linear a(node, int).\na(@0, 0).\na(A, N) -o a(A, N + 1).\n' >"$WORK/forever.meld"
   run 4 "$WORK/forever.meld" --max-steps 1000
-  has "$ERR" "stopped after 1000 rule and process runs (the step limit)"
+  has "$ERR" "stopped after 1000 steps (the step limit"
 }
 
 case_directory_input() {

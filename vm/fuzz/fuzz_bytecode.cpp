@@ -1,20 +1,34 @@
-// libFuzzer entry point for the `.mbc` reader: any input must either load (and then survive the
-// writer and the disassembler) or raise BytecodeError; anything else is a bug.
+// libFuzzer entry point for `.mbc` files as `meld` meets them: any input must either be refused by
+// the reader/verifier (BytecodeError) or load, survive the writer (one encoding per program) and the
+// disassembler, and then run on its own graph to an end (quiescence, a RuntimeError, or the step
+// limit); anything else (a crash, a sanitizer report, a trap, a hang) is a bug.
 #include <cstddef>
 #include <cstdint>
 #include <sstream>
 
 #include "meldvm/bytecode.hpp"
+#include "meldvm/machine.hpp"
 
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
+  std::unique_ptr<meldvm::Program> program;
   try {
-    const auto program = meldvm::readBytecode(data, size);
-    // What loads must be what the writer writes: the format has exactly one encoding.
-    const auto again = meldvm::writeBytecode(*program);
-    if (again.size() != size || !std::equal(again.begin(), again.end(), data)) __builtin_trap();
-    std::ostringstream listing;
-    meldvm::disassemble(*program, listing);
+    program = meldvm::readBytecode(data, size);
   } catch (const meldvm::BytecodeError&) {
+    return 0;
+  }
+  // What loads must be what the writer writes: the format has exactly one encoding.
+  const auto again = meldvm::writeBytecode(*program);
+  if (again.size() != size || !std::equal(again.begin(), again.end(), data)) __builtin_trap();
+  std::ostringstream text;
+  meldvm::disassemble(*program, text);
+  meldvm::MachineOptions options;
+  options.maxSteps = 2000;  // a valid program may derive forever: bounded here, not a hang
+  options.output = &text;
+  try {
+    meldvm::Machine machine(*program, options);
+    machine.run();
+    machine.dump(text);
+  } catch (const meldvm::RuntimeError&) {
   }
   return 0;
 }

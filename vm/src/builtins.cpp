@@ -156,6 +156,23 @@ const BuiltinInfo* findBuiltin(std::uint16_t id) {
   return it != std::end(kTable) && it->id == id ? &*it : nullptr;
 }
 
+bool callTypesMatch(const TypeTable& types, const BuiltinInfo& b, std::span<const TypeId> argTypes, TypeId result) {
+  if (argTypes.size() != b.arity) return false;
+  std::optional<TypeId> tvar;
+  for (std::size_t i = 0; i < b.arity; ++i)
+    if (!bind(types, b.args[i], argTypes[i], tvar)) return false;
+  switch (b.result) {
+    case Struct:
+      return result == argTypes[0];
+    case Struct2:
+      return result == argTypes[1];
+    case T:
+      return !tvar || *tvar == result;
+    default:  // a fixed type, or a container of T: the same patterns as the arguments
+      return bind(types, b.result, result, tvar);
+  }
+}
+
 std::optional<TypeId> resolveResult(TypeTable& types, const BuiltinInfo& b, std::span<const TypeId> argTypes,
                                     std::optional<TypeId> hint) {
   if (argTypes.size() != b.arity) return std::nullopt;

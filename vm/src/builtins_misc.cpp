@@ -71,6 +71,8 @@ Value facts_consumed(BuiltinContext& ctx, std::span<const Value>, TypeId) {
 Value array_init(BuiltinContext& ctx, std::span<const Value> a, TypeId result) {
   const std::int32_t n = a[0].asInt();
   if (n < 0) throw error("array_init", "negative size " + std::to_string(n));
+  // Arrays are values (array_set copies): past 2^20 items (8 MB a copy) a size is a runaway value.
+  if (n > (1 << 20)) throw error("array_init", "size " + std::to_string(n) + " is larger than 2^20 items");
   ctx.scratch.assign(std::size_t(n), a[1]);
   return ctx.heap.makeTuple(result, ctx.scratch);
 }

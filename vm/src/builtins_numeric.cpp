@@ -142,9 +142,13 @@ Value float2int(BuiltinContext&, std::span<const Value> a, TypeId) {
 }
 
 Value intpower(BuiltinContext&, std::span<const Value> a, TypeId) {
-  // Repeated multiplication with 32-bit wrap-around; a non-positive exponent gives 1.
-  std::int32_t r = 1;
-  for (std::int32_t i = 0; i < a[1].asInt(); ++i) r = intMul(r, a[0].asInt());
+  // a^b with 32-bit wrap-around (the product of b factors, by squaring: the same value as the
+  // established VM's repeated multiplication, in log b steps); a non-positive exponent gives 1.
+  std::int32_t r = 1, base = a[0].asInt();
+  for (std::int32_t e = a[1].asInt(); e > 0; e >>= 1) {
+    if (e & 1) r = intMul(r, base);
+    base = intMul(base, base);
+  }
   return Value::fromInt(r);
 }
 

@@ -301,7 +301,8 @@ bool Machine::takeAxiomCandidates(std::uint64_t* cand) {
 
 void Machine::stepLimitReached() const {
   throw RuntimeError("stopped after " + std::to_string(options_.maxSteps) +
-                     " rule and process runs (the step limit); the program may not terminate");
+                     " steps (the step limit: rule and process runs, facts visited, firings, nodes "
+                     "created); the program may not terminate");
 }
 
 void Machine::runRule(NodeId n, std::uint32_t rule) {
@@ -497,6 +498,7 @@ void Machine::updated(NodeId host, PredId p, FactRef f, const Value* args, bool 
 }
 
 NodeId Machine::newNode() {
+  countStep();
   const NodeId id = db_->addNodes(1);
   candidates_.resize(candidates_.size() + ruleWords_, 0);
   mail_->addNodes(1);

@@ -43,6 +43,39 @@ const OpcodeInfo& opcodeInfo(Opcode op) {
   return i < kOpcodeCount ? kTable[i] : kInvalid;
 }
 
+namespace {
+
+// The meaning of an instruction that computes a register says so first: "r = ...", "r0 = ...",
+// "int r0 = ...", "list register = ...", "struct r0 of type T = ...". The register written is
+// then the first register operand.
+constexpr int writtenRegisterOf(const OpcodeInfo& info) {
+  std::string_view m = info.meaning;
+  for (std::string_view type : {"int ", "float ", "bool ", "list ", "struct ", "string ", "node "})
+    if (m.starts_with(type)) {
+      m.remove_prefix(type.size());
+      break;
+    }
+  if (!(m.starts_with("r = ") || m.starts_with("r0 = ") || m.starts_with("register = ") ||
+        m.starts_with("r0 of type")))
+    return -1;
+  const std::string_view ops = info.operands;
+  for (std::size_t i = 0; i < ops.size(); ++i)
+    if (std::string_view("rifbnls").find(ops[i]) != std::string_view::npos) return int(i);
+  return -1;
+}
+
+}  // namespace
+
+int writtenRegisterOperand(Opcode op) {
+  static const std::array<int, kOpcodeCount> kWritten = [] {
+    std::array<int, kOpcodeCount> w{};
+    for (std::uint32_t i = 0; i < kOpcodeCount; ++i) w[i] = writtenRegisterOf(kTable[i]);
+    return w;
+  }();
+  const auto i = std::uint32_t(op);
+  return i < kOpcodeCount ? kWritten[i] : -1;
+}
+
 namespace detail {
 
 std::size_t instructionLength(std::span<const std::uint32_t> code, std::size_t pos, std::string& why) {

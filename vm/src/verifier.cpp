@@ -86,6 +86,7 @@ class BlockVerifier {
 
   void operands();
   void semantics();
+  void definiteAssignment();
 
   const Program& p_;
   const CodeBlock& b_;
@@ -184,6 +185,8 @@ void BlockVerifier::operands() {
         if (v >= code_.size())
           bad("jump target " + n2s(v) + " is outside the block (" + n2s(code_.size()) + " words)");
         if (!start_[v]) bad("jump target " + n2s(v) + " is not an instruction boundary");
+        // Forward only: a block then ends after a bounded number of steps (loops go over facts).
+        if (v <= at_) bad("jump target " + n2s(v) + " is not after the instruction");
         jumps_.push_back({at_, v});
         break;
       case '*':
@@ -212,6 +215,7 @@ void BlockVerifier::semantics() {
       // The flags must say what the predicate is: the interpreter trusts them (a linear loop over
       // persistent facts would consume them, a thread loop needs the thread node).
       const PredicateDesc& d = p_.predicates[pred];
+      if (d.action) bad("a loop over the action " + predText(pred) + ": actions are run, never stored");
       if (bool(flags & kIterLinear) != d.linear)
         bad(std::string(d.linear ? "a loop over the linear " : "a linear loop over the persistent ") +
             predText(pred) + (d.linear ? " lacks the linear flag" : ""));
@@ -256,6 +260,11 @@ void BlockVerifier::semantics() {
       break;
     case Opcode::MOVB:
       if (v_[1] > 1) bad("bool immediate " + n2s(v_[1]) + " is not 0 or 1");
+      break;
+    case Opcode::MOVN:
+      // Node literals name initial nodes (created ones exist only as values made at run time).
+      if (v_[1] >= p_.nodeSourceIds.size())
+        bad("node @" + n2s(v_[1]) + " is not one of the program's " + n2s(p_.nodeSourceIds.size()) + " nodes");
       break;
     case Opcode::MOVS:
       sameType(v_[0], TypeTable::kString, "a string constant");
@@ -305,9 +314,15 @@ void BlockVerifier::semantics() {
       sameType(v_[0], fields[v_[2]], "field " + n2s(v_[2]));
       break;
     }
-    case Opcode::CALL:
+    case Opcode::CALL: {
       sameType(v_[0], v_[2], "the call's result type");
+      std::vector<TypeId> argTypes;
+      for (std::uint32_t i = 0; i < count_; ++i) argTypes.push_back(b_.registerTypes[code_[list_ + i]]);
+      const BuiltinInfo* f = findBuiltin(std::uint16_t(v_[1]));
+      if (f && !callTypesMatch(types, *f, argTypes, v_[2]))
+        bad("the arguments or the result type do not fit the built-in " + std::string(f->name));
       break;
+    }
     case Opcode::CALLF: {
       const Function& f = p_.functions[v_[1]];
       sameType(v_[0], f.result, "the result of " + f.name);
@@ -403,10 +418,114 @@ void BlockVerifier::run() {
       at_ = j.from;
       bad("jump to word " + n2s(j.target) + " leaves or enters a loop body");
     }
+  definiteAssignment();
+}
+
+// Pass 3: a register holding a string, struct, array or set is written before it is read on every
+// path (an int, float, bool, node, thread or list register starts as 0 / [], a value; a null
+// object pointer is not). Jumps go forward and loops nest, so one walk in order suffices: the
+// state at an instruction is the intersection over the fall-through and the jumps to it, and a
+// loop's exit sees the state at its ITER (no iteration).
+void BlockVerifier::definiteAssignment() {
+  const std::size_t nregs = b_.registerTypes.size();
+  std::vector<char> needs(nregs, 0);
+  bool any = false;
+  for (std::size_t r = 0; r < nregs; ++r) {
+    const TypeKind k = p_.types.kind(b_.registerTypes[r]);
+    needs[r] = k == TypeKind::String || k == TypeKind::Struct || k == TypeKind::Array || k == TypeKind::Set;
+    any = any || needs[r];
+  }
+  if (!any) return;
+  std::vector<char> cur(nregs, 0);
+  if (kind_ == BlockKind::Function)
+    for (std::size_t i = 0; i < function->params.size() && i < nregs; ++i) cur[i] = 1;
+  std::vector<std::vector<char>> pending(code_.size());
+  auto merge = [&](std::size_t target) {
+    if (pending[target].empty()) {
+      pending[target] = cur;
+    } else {
+      for (std::size_t r = 0; r < nregs; ++r) pending[target][r] = pending[target][r] && cur[r];
+    }
+  };
+  bool live = true;
+  std::string unused;
+  for (at_ = 0; at_ < code_.size(); at_ += detail::instructionLength(code_, at_, unused)) {
+    if (!pending[at_].empty()) {
+      if (live)
+        for (std::size_t r = 0; r < nregs; ++r) cur[r] = cur[r] && pending[at_][r];
+      else
+        cur = pending[at_];
+      live = true;
+    }
+    if (!live) continue;  // unreachable
+    const auto op = Opcode(code_[at_]);
+    const std::string_view letters = opcodeInfo(op).operands;
+    const int written = writtenRegisterOperand(op);
+    std::size_t w = at_ + 1;
+    std::optional<std::size_t> writtenReg;
+    for (std::size_t i = 0; i < letters.size(); ++i) {
+      const char l = letters[i];
+      auto read = [&](std::uint32_t r) {
+        if (needs[r] && !cur[r])
+          bad(regText(r) + " (" + typeName(p_.types, b_.registerTypes[r]) + ") is read before it is written");
+      };
+      if (l == '*') {
+        for (std::uint32_t k = 0; k < code_[w]; ++k) read(code_[w + 1 + k]);
+        break;
+      }
+      if (std::string_view("rifbnls").find(l) != std::string_view::npos) {
+        if (int(i) == written)
+          writtenReg = code_[w];
+        else
+          read(code_[w]);
+      }
+      if (l == 'J') merge(code_[w]);
+      w += l == 'D' ? 2 : 1;
+    }
+    if (writtenReg) cur[*writtenReg] = 1;
+    switch (op) {
+      case Opcode::JMP:
+      case Opcode::NEXT:
+      case Opcode::FIRE:
+      case Opcode::CFIRE:
+      case Opcode::RET:
+        live = false;
+        break;
+      default:
+        break;
+    }
+  }
 }
 
 void checkType(const Program& p, TypeId t, const std::string& what) {
   if (t >= p.types.size()) fail(what + " has unknown type " + n2s(t));
+}
+
+// The predicates the VM itself stores facts of (§4.1.3, §6.2, §6.12) must have the shape it
+// writes: `_init` and `_init_thread` linear without arguments, `thread-list` a persistent list of
+// threads, `leader-thread` a persistent thread.
+void checkSpecialPredicates(const Program& p) {
+  auto check = [&](PredId id, const char* name, bool linear, bool thread, std::vector<TypeId> fields) {
+    if (id == Program::kNoPred || id >= p.predicates.size()) return;
+    const PredicateDesc& d = p.predicates[id];
+    if (d.linear != linear || d.action || d.thread != thread || d.fields != fields)
+      fail(std::string("predicate ") + n2s(id) + " (" + d.name + "): the VM stores " + name +
+           " facts, which this declaration does not fit");
+  };
+  check(p.initPredicate, "_init", true, false, {});
+  const PredId initThread = p.predicates.find("_init_thread");
+  if (initThread < p.predicates.size() && p.predicates[initThread].thread)
+    check(initThread, "_init_thread", true, true, {});
+  const PredId list = p.predicates.find("thread-list");
+  if (list < p.predicates.size() && p.predicates[list].thread) {
+    const PredicateDesc& d = p.predicates[list];
+    if (d.linear || d.action || d.fields.size() != 1 || p.types.kind(d.fields[0]) != TypeKind::List ||
+        p.types.element(d.fields[0]) != TypeTable::kThread)
+      fail("predicate " + n2s(list) + " (thread-list): the VM stores thread-list facts, which this declaration does not fit");
+  }
+  const PredId leader = p.predicates.find("leader-thread");
+  if (leader < p.predicates.size() && p.predicates[leader].thread)
+    check(leader, "leader-thread", false, true, {TypeTable::kThread});
 }
 
 }  // namespace
@@ -415,6 +534,7 @@ void verifyProgram(const Program& p) {
   const std::size_t np = p.predicates.size();
   if (p.initPredicate != Program::kNoPred && p.initPredicate >= np)
     fail("init predicate " + n2s(p.initPredicate) + " is not a predicate");
+  checkSpecialPredicates(p);
   for (const Global& g : p.globals) checkType(p, g.type, "global " + g.name);
   for (const Function& f : p.functions) {
     for (TypeId t : f.params) checkType(p, t, "a parameter of function " + f.name);

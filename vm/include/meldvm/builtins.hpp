@@ -118,6 +118,10 @@ const BuiltinInfo* findBuiltin(std::uint16_t id);
 std::optional<TypeId> resolveResult(TypeTable& types, const BuiltinInfo& b, std::span<const TypeId> argTypes,
                                     std::optional<TypeId> hint = std::nullopt);
 
+// Whether a call with these argument types can have the concrete result type `result` (the
+// verifier's check of a CALL: the interpreter trusts the types of its registers).
+bool callTypesMatch(const TypeTable& types, const BuiltinInfo& b, std::span<const TypeId> argTypes, TypeId result);
+
 // Convenience for tests and the interpreter: look up by name and call.
 Value callBuiltin(BuiltinContext& ctx, std::string_view name, std::span<const Value> args, TypeId result);
 

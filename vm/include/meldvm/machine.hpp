@@ -47,8 +47,9 @@ struct MachineOptions {
   MachineHost* host = nullptr;     // set: the nodes are driven from outside (receive, runNode)
   NodeId nodes = 0;                // at least this many nodes (with a host: one per block)
   std::uint64_t seed = 0;          // the random stream of randint & co. (meld --seed)
-  // Rule runs and persistent-process runs allowed before the run stops with a RuntimeError
-  // (0: no limit). Bounds what a program (or a damaged bytecode file) can make the VM do.
+  // Steps allowed before the run stops with a RuntimeError (0: no limit): a step is a rule run, a
+  // persistent-process run, a fact visited by a loop, a firing (a comprehension's or aggregate's
+  // matches included) or a node created. Bounds what a program (or a damaged bytecode file) can make the VM do.
   std::uint64_t maxSteps = 0;
 };
 
@@ -174,7 +175,7 @@ class Machine : private SchedulerView {
   std::unique_ptr<Interpreter> interp_;
   BuiltinContext builtinCtx_;
   Rng rng_;
-  std::uint64_t steps_ = 0;  // rule and process runs, against options_.maxSteps
+  std::uint64_t steps_ = 0;  // against options_.maxSteps
   bool usesRandom_ = false;  // randint, degeneratevector or a [:random] selector
   void countStep() {
     if (options_.maxSteps && ++steps_ > options_.maxSteps) stepLimitReached();

@@ -32,6 +32,9 @@ struct OpcodeInfo {
 };
 // The table of opcodes.def, indexed by opcode.
 const OpcodeInfo& opcodeInfo(Opcode op);
+// The operand (position in the letters) of the register the instruction computes, -1 if none;
+// derived from the meaning column of opcodes.def ("r0 = ...").
+int writtenRegisterOperand(Opcode op);
 inline constexpr std::uint32_t kOpcodeCount = std::uint32_t(Opcode::Count);
 
 // Flag bits of ITER / ITER_KEY / ITER_SORTED (operand X).
