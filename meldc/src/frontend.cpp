@@ -3,6 +3,7 @@
 #include <cctype>
 
 #include "meldc/bindings.hpp"
+#include "meldc/data_import.hpp"
 #include "meldc/homes.hpp"
 #include "meldc/includes.hpp"
 #include "meldc/localize.hpp"
@@ -64,6 +65,7 @@ std::optional<ast::Program> runFrontEnd(const FrontEndInput& input, SourceManage
   }
   applyDefines(input, *program, sources, diag);
   if (diag.hasErrors()) return std::nullopt;  // names would only repeat what is already broken
+  if (!importData(*program, sources, diag)) return std::nullopt;
   resolveNames(*program, diag);
   if (diag.hasErrors()) return std::nullopt;  // the checks below assume resolved names
   checkBindings(*program, diag);

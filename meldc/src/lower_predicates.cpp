@@ -159,8 +159,7 @@ void directives(Lowering& L) {
             L.prog.indexes.push_back({p->id, std::uint32_t(d.position - 2)});
         break;
       case DirectiveKind::Data:
-        L.diag.error(d.loc, "the 'data' directive (graph import, §4.4) is not supported");
-        break;
+        break;  // imported as constant axioms by the front end (data_import.cpp)
       case DirectiveKind::Priority:
         switch (d.priority) {
           case PriorityKind::OrderAsc:

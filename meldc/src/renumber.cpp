@@ -172,10 +172,7 @@ bool renumberNodes(ast::Program& program, Diagnostics& diag, bool identity) {
   bool ok = true;
   for (const ast::Directive& d : program.directives) {
     if (d.kind == ast::DirectiveKind::Data) {
-      diag.error(d.loc,
-                 "'data' directives are not supported yet: the node set of a data file cannot be "
-                 "numbered (§6.1)");
-      ok = false;
+      clusterStatic = true;  // §6.1: node ids are those of the data file
     } else if (d.kind == ast::DirectiveKind::Priority && d.priority == ast::PriorityKind::ClusterRandom) {
       diag.error(d.loc,
                  "'priority @cluster @random' is not supported: it numbers nodes with a random, "

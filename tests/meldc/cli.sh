@@ -81,7 +81,7 @@ case_emit_asm() {
 case_emit_unsupported() {
   printf 'type edge(node, node).\ndata stanford-snap "g.txt".\n' >"$WORK/d.meld"
   run 1 "$WORK/d.meld"
-  has "$ERR" "d.meld:2:1: error: 'data' directives are not supported yet"
+  has "$ERR" "d.meld:2:1: error: cannot read the data file"
   [ -e "$WORK/d.mbc" ] && fail "no bytecode expected"
   true
 }

@@ -223,10 +223,27 @@ BOOST_AUTO_TEST_CASE(cluster_random_is_reported) {
              p.errors());
 }
 
-BOOST_AUTO_TEST_CASE(data_directive_is_reported) {
-  Single p("type edge(node, node).\ndata stanford-snap-basic \"graph.txt\".\n!edge(@1, @2).\n");
-  BOOST_TEST(!p.program.has_value());
-  BOOST_TEST(
-      p.errors().find("main.meld:2:1: error: 'data' directives are not supported yet") != std::string::npos,
-      p.errors());
+BOOST_AUTO_TEST_CASE(data_directive_keeps_the_ids_of_the_file) {
+  // §6.1: with `data` the node ids are those of the file; ids 0..max all exist.
+  TempDir dir;
+  dir.write("graph.txt", "# comment\n4\t1\n1\t0\n");
+  dir.write("main.meld", "type edge(node, node).\ndata stanford-snap-basic \"graph.txt\".\n!edge(@1, @2).\n");
+  Compiled p(dir, "main.meld");
+  BOOST_TEST(p.ok(), p.errors());
+  BOOST_TEST(p.table() == "0:0 1:1 2:2 3:3 4:4");
+}
+
+BOOST_AUTO_TEST_CASE(data_file_errors_name_the_file_and_line) {
+  TempDir dir;
+  dir.write("graph.txt", "0\t1\n1\tx\n");
+  dir.write("main.meld", "type edge(node, node).\ndata stanford-snap-basic \"graph.txt\".\n");
+  Compiled p(dir, "main.meld");
+  BOOST_TEST(!p.ok());
+  BOOST_TEST(p.errors().find("graph.txt:2: expected `source target`") != std::string::npos, p.errors());
+  Single missing("type edge(node, node).\ndata stanford-snap \"nowhere.txt\".\n");
+  BOOST_TEST(missing.errors().find("main.meld:2:1: error: cannot read the data file") != std::string::npos,
+             missing.errors());
+  Single unknown("type edge(node, node).\ndata stanford-nope \"g.txt\".\n");
+  BOOST_TEST(unknown.errors().find("unknown data template 'stanford-nope'") != std::string::npos,
+             unknown.errors());
 }
