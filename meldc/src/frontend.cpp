@@ -72,7 +72,7 @@ std::optional<ast::Program> runFrontEnd(const FrontEndInput& input, SourceManage
   checkHomes(*program, diag);
   checkTypes(*program, diag);
   if (diag.hasErrors()) return std::nullopt;
-  if (!renumberNodes(*program, diag, input.identityNodes)) return std::nullopt;
+  renumberNodes(*program, input.identityNodes);
   localizeRules(*program, diag);  // rewrites bodies spanning nodes (§6.7)
   if (diag.hasErrors()) return std::nullopt;
   return program;

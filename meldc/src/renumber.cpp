@@ -167,24 +167,18 @@ std::vector<int64_t> numberBreadthFirst(const std::vector<int64_t>& order,
   return out;
 }
 
-bool renumberNodes(ast::Program& program, Diagnostics& diag, bool identity) {
+void renumberNodes(ast::Program& program, bool identity) {
   bool clusterStatic = identity;
-  bool ok = true;
+  bool clusterRandom = false;
   for (const ast::Directive& d : program.directives) {
     if (d.kind == ast::DirectiveKind::Data) {
       clusterStatic = true;  // §6.1: node ids are those of the data file
     } else if (d.kind == ast::DirectiveKind::Priority && d.priority == ast::PriorityKind::ClusterRandom) {
-      diag.error(d.loc,
-                 "'priority @cluster @random' is not supported: it numbers nodes with a random, "
-                 "non-reproducible permutation; use the default breadth-first numbering or "
-                 "'priority @cluster @static'");
-      ok = false;
+      clusterRandom = true;
     } else if (d.kind == ast::DirectiveKind::Priority && d.priority == ast::PriorityKind::ClusterStatic) {
       clusterStatic = true;
     }
   }
-  if (!ok) return false;
-
   LiteralCollector collector;
   collector.program(program);
   std::map<uint32_t, std::vector<int64_t>> perFile = literalsPerFile(collector.literals);
@@ -195,7 +189,7 @@ bool renumberNodes(ast::Program& program, Diagnostics& diag, bool identity) {
     for (const ast::Expr* e : collector.literals) max = std::max(max, e->intValue);
     for (int64_t i = 0; i <= max; ++i) program.nodeTable.push_back({i, i});
     program.renumbered = true;
-    return true;
+    return;
   }
 
   NodeMerger merger(program, perFile);
@@ -208,6 +202,17 @@ bool renumberNodes(ast::Program& program, Diagnostics& diag, bool identity) {
   }
   std::vector<int64_t> order(mainNodes.rbegin(), mainNodes.rend());
   std::vector<int64_t> numbered = numberBreadthFirst(order, routeEdges(program));
+  if (clusterRandom) {
+    // §4.4 `priority @cluster @random`: a random permutation. The established compiler's is not
+    // reproducible; this one is (Fisher-Yates over a fixed splitmix64 stream), so runs agree.
+    std::uint64_t state = 0;
+    for (std::size_t i = numbered.size(); i > 1; --i) {
+      std::uint64_t z = (state += 0x9e3779b97f4a7c15ull);
+      z = (z ^ (z >> 30)) * 0xbf58476d1ce4e5b9ull;
+      z = (z ^ (z >> 27)) * 0x94d049bb133111ebull;
+      std::swap(numbered[i - 1], numbered[(z ^ (z >> 31)) % i]);
+    }
+  }
 
   std::unordered_map<int64_t, int64_t> internal;
   for (size_t i = 0; i < numbered.size(); ++i) {
@@ -216,7 +221,6 @@ bool renumberNodes(ast::Program& program, Diagnostics& diag, bool identity) {
   }
   for (ast::Expr* e : collector.literals) e->intValue = internal.at(e->intValue);
   program.renumbered = true;
-  return true;
 }
 
 }  // namespace meldc

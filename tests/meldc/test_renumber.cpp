@@ -215,12 +215,12 @@ BOOST_AUTO_TEST_CASE(cluster_static_keeps_source_ids) {
   BOOST_TEST(p.program->rules.at(0).head.at(0).args[1].intValue == 1);
 }
 
-BOOST_AUTO_TEST_CASE(cluster_random_is_reported) {
-  Single p("type linear a(node).\npriority @cluster @random.\na(@1).\n");
-  BOOST_TEST(!p.program.has_value());
-  BOOST_TEST(p.errors().find("main.meld:2:1: error: 'priority @cluster @random' is not supported") !=
-                 std::string::npos,
-             p.errors());
+BOOST_AUTO_TEST_CASE(cluster_random_is_a_reproducible_permutation) {
+  const std::string text = "type linear a(node).\npriority @cluster @random.\na(@1). a(@2). a(@5). a(@7).\n";
+  Single p(text), q(text);
+  BOOST_TEST(p.ok(), p.errors());
+  BOOST_TEST(p.table() == q.table());
+  BOOST_TEST(p.table() == "0:2 1:5 2:7 3:1");  // the default numbering would give 0:7 1:5 2:2 3:1
 }
 
 BOOST_AUTO_TEST_CASE(data_directive_keeps_the_ids_of_the_file) {

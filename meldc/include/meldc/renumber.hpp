@@ -22,9 +22,10 @@
 
 namespace meldc {
 
-// Rewrites the node literals of `program` and fills program.nodeTable. Returns false (after
-// reporting to `diag`) when the program asks for a numbering this compiler does not support.
-bool renumberNodes(ast::Program& program, Diagnostics& diag, bool identity = false);
+// Rewrites the node literals of `program` and fills program.nodeTable: breadth-first (§6.1), the
+// identity for `priority @cluster @static`, `data` and `identity` (robots), a reproducible random
+// permutation for `priority @cluster @random`.
+void renumberNodes(ast::Program& program, bool identity = false);
 
 // The pieces of the algorithm, exposed for the tests.
 
