@@ -341,10 +341,13 @@ void BlockVerifier::semantics() {
     case Opcode::DERIVE:
     case Opcode::SEND:
     case Opcode::SEND_DELAY:
+      // Facts of thread predicates live at a thread node: only SEND_THREAD derives them.
+      if (p_.predicates[v_[0]].thread) bad(predText(v_[0]) + " is a thread predicate");
       args(p_.predicates[v_[0]].fields, predText(v_[0]));
       break;
     case Opcode::SEND_THREAD:
       if (!p_.predicates[v_[0]].thread) bad(predText(v_[0]) + " is not a thread predicate");
+      if (p_.predicates[v_[0]].action) bad(predText(v_[0]) + " is an action: a thread has no robot to act on");
       if (p_.types.kind(b_.registerTypes[v_[1]]) != TypeKind::Thread)
         bad("register " + n2s(v_[1]) + " is not a thread");
       args(p_.predicates[v_[0]].fields, predText(v_[0]));
