@@ -7,6 +7,8 @@
 #include <map>
 #include <sstream>
 
+#include "support/splitmix.hpp"
+
 namespace meldc {
 
 using namespace meldc::ast;
@@ -21,18 +23,6 @@ struct Edge {
 struct Graph {
   std::vector<Edge> edges;  // in file order
   std::int64_t maxId = -1;
-};
-
-// The fixed random stream of the templates that draw (see the header).
-struct DataRng {
-  std::uint64_t state = 0;
-  std::uint64_t next() {
-    std::uint64_t z = (state += 0x9e3779b97f4a7c15ull);
-    z = (z ^ (z >> 30)) * 0xbf58476d1ce4e5b9ull;
-    z = (z ^ (z >> 27)) * 0x94d049bb133111ebull;
-    return z ^ (z >> 31);
-  }
-  std::int64_t below(std::int64_t n) { return std::int64_t(next() % std::uint64_t(n)); }
 };
 
 Expr nodeLit(std::int64_t id, SourceLoc loc) {
@@ -86,10 +76,10 @@ class Importer {
     } else if (t == "stanford-snap-search") {
       search(d, g);
     } else {
-      DataRng rng;
+      support::SplitMix64 rng;
       for (const Edge& e : g.edges) {
         std::vector<Expr> args{nodeLit(e.src, loc_), nodeLit(e.dst, loc_)};
-        if (t == "stanford-snap") args.push_back(floatLit(double(1 + rng.below(500)), loc_));
+        if (t == "stanford-snap") args.push_back(floatLit(double(1 + std::int64_t(rng.below(500))), loc_));
         if (t == "stanford-sssp-snap") args.push_back(floatLit(e.weight, loc_));
         fact("edge", args);
         if (t == "stanford-snap-undirected") fact("edge", {nodeLit(e.dst, loc_), nodeLit(e.src, loc_)});
@@ -153,7 +143,7 @@ class Importer {
       return;
     }
     for (const Edge& e : g.edges) fact("edge", {nodeLit(e.src, loc_), nodeLit(e.dst, loc_)});
-    DataRng rng;
+    support::SplitMix64 rng;
     const std::int64_t nodes = g.maxId + 1;
     const std::int64_t perSearch = std::int64_t(double(nodes) * fraction / 100.0);
     std::int64_t searchId = 0;
@@ -162,7 +152,7 @@ class Importer {
       if (double(rng.below(100)) >= fraction) continue;
       std::vector<std::int64_t> targets;
       while (std::int64_t(targets.size()) < perSearch) {
-        const std::int64_t t = rng.below(nodes);
+        const std::int64_t t = std::int64_t(rng.below(std::uint64_t(nodes)));
         if (std::find(targets.begin(), targets.end(), t) == targets.end()) targets.push_back(t);
       }
       Expr list;

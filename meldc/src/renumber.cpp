@@ -1,5 +1,7 @@
 #include "meldc/renumber.hpp"
 
+#include "support/splitmix.hpp"
+
 #include <algorithm>
 #include <deque>
 #include <set>
@@ -205,13 +207,8 @@ void renumberNodes(ast::Program& program, bool identity) {
   if (clusterRandom) {
     // §4.4 `priority @cluster @random`: a random permutation. The established compiler's is not
     // reproducible; this one is (Fisher-Yates over a fixed splitmix64 stream), so runs agree.
-    std::uint64_t state = 0;
-    for (std::size_t i = numbered.size(); i > 1; --i) {
-      std::uint64_t z = (state += 0x9e3779b97f4a7c15ull);
-      z = (z ^ (z >> 30)) * 0xbf58476d1ce4e5b9ull;
-      z = (z ^ (z >> 27)) * 0x94d049bb133111ebull;
-      std::swap(numbered[i - 1], numbered[(z ^ (z >> 31)) % i]);
-    }
+    support::SplitMix64 rng;
+    for (std::size_t i = numbered.size(); i > 1; --i) std::swap(numbered[i - 1], numbered[rng.below(i)]);
   }
 
   std::unordered_map<int64_t, int64_t> internal;

@@ -8,7 +8,7 @@
 #include <vector>
 
 #include "simcore/future_event_set.hpp"
-#include "simcore/huge_page_allocator.hpp"
+#include "support/large_allocator.hpp"
 
 namespace simcore {
 
@@ -37,7 +37,7 @@ class CalendarFes final : public FutureEventSet {
   SimTime estimateWidth();
   bool locateEarliest();
 
-  std::vector<Node, HugePageAllocator<Node>> pool_;
+  std::vector<Node, support::LargeAllocator<Node>> pool_;
   std::uint32_t freeList_ = kNil;
   std::vector<std::uint32_t> tails_;  // last node of each bucket's list
   std::vector<std::uint32_t> buckets_;

@@ -6,7 +6,7 @@
 #include <vector>
 
 #include "simcore/future_event_set.hpp"
-#include "simcore/huge_page_allocator.hpp"
+#include "support/large_allocator.hpp"
 
 namespace simcore {
 
@@ -27,7 +27,7 @@ class HeapFes final : public FutureEventSet {
   void siftUp(std::size_t index, const Event& event);
   void fillHole();
 
-  std::vector<Event, HugePageAllocator<Event>> heap_;
+  std::vector<Event, support::LargeAllocator<Event>> heap_;
   bool rootIsHole_ = false;
 };
 

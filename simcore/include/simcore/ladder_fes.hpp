@@ -10,7 +10,7 @@
 #include <vector>
 
 #include "simcore/future_event_set.hpp"
-#include "simcore/huge_page_allocator.hpp"
+#include "support/large_allocator.hpp"
 
 namespace simcore {
 
@@ -44,7 +44,7 @@ class LadderFes final : public FutureEventSet {
   SimTime rungEnd_ = 0;
   SimTime width_ = 1;
   // Top: unsorted events with time >= rungEnd_.
-  std::vector<Event, HugePageAllocator<Event>> top_;
+  std::vector<Event, support::LargeAllocator<Event>> top_;
   SimTime topMin_ = kTimeInfinity, topMax_ = 0;
   std::size_t size_ = 0;
 };

@@ -160,15 +160,15 @@ class Simulation {
   World world_;
   int faceCount_;
   EventQueue queue_;
-  std::vector<FaceState, HugePageAllocator<FaceState>> faces_;
+  std::vector<FaceState, support::LargeAllocator<FaceState>> faces_;
   std::vector<std::uint32_t> faceGroup_;
   std::uint64_t messagesInFlight_ = 0;        // sent, not yet delivered nor dropped
   std::vector<std::uint16_t> facesInFlight_;  // per block: bit f set while face f has messages in flight
   std::vector<MessageSlot> messages_;
   std::uint32_t freeMessage_ = kNoBlock;
-  std::vector<MotionSlot, HugePageAllocator<MotionSlot>> motions_;
+  std::vector<MotionSlot, support::LargeAllocator<MotionSlot>> motions_;
   std::uint32_t freeMotion_ = kNoBlock;
-  std::vector<TimerSlot, HugePageAllocator<TimerSlot>> timers_;
+  std::vector<TimerSlot, support::LargeAllocator<TimerSlot>> timers_;
   std::uint32_t freeTimer_ = kNoBlock;
   std::vector<std::int32_t> displayValues_;         // per block (targets with a display)
   std::vector<std::array<std::int32_t, 3>> accel_;  // latest reading per block (targets with one)
@@ -183,7 +183,7 @@ class Simulation {
 
   const vs_blockcode* code_ = nullptr;
   std::uint32_t stateSize_ = 0;
-  std::vector<unsigned char, HugePageAllocator<unsigned char>> stateStorage_;
+  std::vector<unsigned char, support::LargeAllocator<unsigned char>> stateStorage_;
   unsigned char* stateBase_ = nullptr;
   bool started_ = false;
 

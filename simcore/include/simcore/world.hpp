@@ -8,7 +8,7 @@
 #include <string>
 #include <vector>
 
-#include "simcore/huge_page_allocator.hpp"
+#include "support/large_allocator.hpp"
 #include "simcore/lattice.hpp"
 
 namespace simcore {
@@ -29,7 +29,7 @@ struct Block {
 };
 static_assert(sizeof(Block) == 32);
 
-using BlockVector = std::vector<Block, HugePageAllocator<Block>>;
+using BlockVector = std::vector<Block, support::LargeAllocator<Block>>;
 
 class World {
  public:
@@ -115,7 +115,7 @@ class World {
   std::unique_ptr<Lattice> lattice_;
   GridSize size_;
   int faceCount_;
-  std::vector<std::uint32_t, HugePageAllocator<std::uint32_t>> grid_;
+  std::vector<std::uint32_t, support::LargeAllocator<std::uint32_t>> grid_;
   BlockVector blocks_;
   std::vector<std::uint8_t> alive_;
 };

@@ -29,6 +29,7 @@
 #include "meldvm/heap.hpp"
 #include "meldvm/types.hpp"
 #include "meldvm/value.hpp"
+#include "support/splitmix.hpp"
 
 namespace meldvm {
 
@@ -47,17 +48,10 @@ class SchedulerView {
   virtual std::int32_t threadCount() const = 0;  // VM threads (the partition_* functions)
 };
 
-// The random stream of one VM thread: splitmix64, seeded per thread, so that serial runs are
-// reproducible (§5.6 randint).
-struct Rng {
-  std::uint64_t state;
-  static Rng forThread(ThreadId t) { return Rng{0x6d656c64ull * 0x9e3779b97f4a7c15ull + t}; }
-  std::uint64_t next() {
-    std::uint64_t z = (state += 0x9e3779b97f4a7c15ull);
-    z = (z ^ (z >> 30)) * 0xbf58476d1ce4e5b9ull;
-    z = (z ^ (z >> 27)) * 0x94d049bb133111ebull;
-    return z ^ (z >> 31);
-  }
+// The random stream of one VM thread (the project's SplitMix64), seeded per thread, so that serial
+// runs are reproducible (§5.6 randint).
+struct Rng : support::SplitMix64 {
+  static Rng forThread(ThreadId t) { return Rng{{0x6d656c64ull * support::kGolden + t}}; }
 };
 
 struct BuiltinContext {
