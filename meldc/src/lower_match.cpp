@@ -137,6 +137,23 @@ void RuleLowering::pattern(std::uint32_t slot, std::uint32_t field, TypeId type,
   cb_.op(Opcode::TEST).w(slot).w(field).w(v).to(fail);
 }
 
+std::optional<std::uint32_t> RuleLowering::indexedKey(const SubgoalPlan& s) {
+  const meldvm::PredicateDesc& desc = L_.desc(*s.pred);
+  if (desc.thread || desc.aggregated()) return std::nullopt;
+  for (const meldvm::IndexRequest& ix : L_.prog.indexes) {
+    if (ix.predicate != s.pred->id || ix.field + 1 >= s.term->args.size()) continue;
+    const Expr& arg = s.term->args[ix.field + 1];
+    const TypeId t = desc.fields[ix.field];
+    // Keys the index compares by their bits, as the TEST it replaces would: scalars, not floats.
+    using meldvm::TypeTable;
+    const bool scalar = t == TypeTable::kInt || t == TypeTable::kNode || t == TypeTable::kBool;
+    const bool bound = arg.kind == ExprKind::Var ? ex.env.count(arg.name) > 0
+                                                 : !isPattern(arg) && arg.kind != ExprKind::Anon && ex.bound(arg);
+    if (scalar && bound) return ix.field;
+  }
+  return std::nullopt;
+}
+
 void RuleLowering::match(const BodyPlan& plan, std::uint32_t firstSlot, Label outerFail, Mode mode,
                          bool prebound, const std::function<void()>& onMatch) {
   std::vector<Pending> saved = std::move(pending_);
@@ -178,6 +195,7 @@ void RuleLowering::match(const BodyPlan& plan, std::uint32_t firstSlot, Label ou
       if (mode == Mode::Rule && consumableAbove) flags |= meldvm::kIterReturnOnFire;
       Loop loop{cb_.label(), cb_.label()};
       std::optional<std::uint32_t> sortField;
+      keyField.reset();
       if (plan.selector) {
         for (size_t a = 1; a < s.term->args.size(); ++a) {
           const Expr& arg = s.term->args[a];
@@ -191,6 +209,12 @@ void RuleLowering::match(const BodyPlan& plan, std::uint32_t firstSlot, Label ou
       if (sortField) {
         if (plan.selector->kind == SelectorKind::Random) flags |= meldvm::kIterRandom;
         cb_.op(Opcode::ITER_SORTED).w(s.pred->id).w(slot).w(flags).w(*sortField).to(loop.after);
+      } else if (std::optional<std::uint32_t> field = indexedKey(s)) {
+        // `index p/N` (§4.4) on an argument already bound here: the loop visits only the facts
+        // with that key, through the store's index, instead of testing every fact of the node.
+        const Reg key = ex.valueAs(s.term->args[*field + 1], desc.fields[*field]);
+        cb_.op(Opcode::ITER_KEY).w(s.pred->id).w(slot).w(flags).w(*field).w(key).to(loop.after);
+        keyField = field;
       } else {
         cb_.op(Opcode::ITER).w(s.pred->id).w(slot).w(flags).to(loop.after);
       }
@@ -200,7 +224,9 @@ void RuleLowering::match(const BodyPlan& plan, std::uint32_t firstSlot, Label ou
     consumableAbove |= s.consumableClass();
     if (s.thread) threadHome(s.term->args[0], fail);
     for (size_t a = 1; a < s.term->args.size(); ++a)
-      pattern(slot, std::uint32_t(a - 1), desc.fields.at(a - 1), s.term->args[a], fail);
+      if (!(keyField && *keyField == a - 1 && !(prebound && i == 0)))  // the index matched it already
+        pattern(slot, std::uint32_t(a - 1), desc.fields.at(a - 1), s.term->args[a], fail);
+    keyField.reset();
     flush(fail);
   }
   for (const Pending& p : pending_)

@@ -56,6 +56,8 @@ class RuleLowering {
   void pattern(std::uint32_t slot, std::uint32_t field, meldvm::TypeId type, const ast::Expr& arg,
                Label fail);
   void destructure(Reg r, const ast::Expr& pat, Label fail);
+  // The field of an `index` directive whose argument is already bound here (ITER_KEY), if any.
+  std::optional<std::uint32_t> indexedKey(const SubgoalPlan& s);
   void comprehension(const ast::Term& t, std::uint32_t slot);
   void aggregate(const ast::Term& t, std::uint32_t slot);
   void instruction(const ast::Term& t, Instruction which);
@@ -70,6 +72,7 @@ class RuleLowering {
   std::string hostVar_;
   Reg host_ = 0;
   std::vector<Pending> pending_;
+  std::optional<std::uint32_t> keyField;  // the loop being lowered matches this field by its index
 };
 
 }  // namespace meldc

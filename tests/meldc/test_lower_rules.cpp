@@ -187,8 +187,14 @@ BOOST_AUTO_TEST_CASE(indexed_predicates_are_matched_last) {
   BOOST_TEST(l.p().indexes[0].predicate == l.pred("v"));
   BOOST_TEST(l.p().indexes[0].field == 0u);
   const auto iters = only(l.rule(1), Opcode::ITER);
+  BOOST_REQUIRE_EQUAL(iters.size(), 1u);
   BOOST_TEST(iters.at(0).operands.at(0) == l.pred("k"));
-  BOOST_TEST(iters.at(1).operands.at(0) == l.pred("v"));
+  // K is bound by k when v is matched: the index finds v's facts with that key (ITER_KEY field 0).
+  const auto keyed = only(l.rule(1), Opcode::ITER_KEY);
+  BOOST_REQUIRE_EQUAL(keyed.size(), 1u);
+  BOOST_TEST(keyed.at(0).operands.at(0) == l.pred("v"));
+  BOOST_TEST(keyed.at(0).operands.at(3) == 0u);
+  BOOST_TEST(only(l.rule(1), Opcode::TEST).empty());  // no test left for the key
 }
 
 BOOST_AUTO_TEST_CASE(list_patterns_destructure) {

@@ -45,6 +45,18 @@ Machine::Machine(const Program& program, MachineOptions options)
       if (detail::isLoop(code[pc]) && !(code[pc + 3] & kIterThread)) processNeeds_[i].push_back(code[pc + 1]);
     });
   }
+  // Indexes (§4.4 `index p/N`, and the look-ups of ITER_KEY): requested before any fact is stored.
+  keyIndexes_.resize(preds);
+  for (const IndexRequest& ix : program.indexes)
+    if (ix.predicate < preds && ix.field < program.predicates[ix.predicate].arity())
+      requestKeyIndex(ix.predicate, ix.field);
+  auto scanKeys = [&](const CodeBlock& b) {
+    detail::forEachInstruction(b.code, [&](std::size_t pc) {
+      if (Opcode(b.code[pc]) == Opcode::ITER_KEY) requestKeyIndex(b.code[pc + 1], b.code[pc + 4]);
+    });
+  };
+  for (const Rule& r : program.rules) scanKeys(r.block);
+  for (const Process& p : program.processes) scanKeys(p.block);
   auto scanRandom = [&](const CodeBlock& b) {
     detail::forEachInstruction(b.code, [&](std::size_t pc) {
       const auto op = Opcode(b.code[pc]);
@@ -297,6 +309,10 @@ bool Machine::takeAxiomCandidates(std::uint64_t* cand) {
     axiomCandidates_[w] = 0;
   }
   return any;
+}
+
+void Machine::requestKeyIndex(PredId p, std::uint32_t field) {
+  if (keyIndex(p, field) == ~0u) keyIndexes_[p].emplace_back(field, db_->requestIndex(p, field));
 }
 
 void Machine::stepLimitReached() const {

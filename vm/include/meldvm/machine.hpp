@@ -85,6 +85,13 @@ class Machine : private SchedulerView {
   // Room for that many facts of p (all nodes together), when the driver knows the count.
   void reserveFacts(PredId p, std::size_t facts) { db_->reserve(p, facts); }
   bool stopped() const { return stop_; }
+  // The store's index on field `field` of `p` (requested at construction for every `index`
+  // directive and every ITER_KEY of the program).
+  std::uint32_t keyIndex(PredId p, std::uint32_t field) const {
+    for (const auto& [f, handle] : keyIndexes_[p])
+      if (f == field) return handle;
+    return ~0u;
+  }
   // Whether the program draws random numbers (on a robot its stream is the block's own).
   bool usesRandom() const { return usesRandom_; }
   // Restarts the random stream from `seed` (a robot does so from its block's stream before a run).
@@ -176,6 +183,8 @@ class Machine : private SchedulerView {
   BuiltinContext builtinCtx_;
   Rng rng_;
   std::uint64_t steps_ = 0;  // against options_.maxSteps
+  std::vector<std::vector<std::pair<std::uint32_t, std::uint32_t>>> keyIndexes_;  // per predicate: (field, handle)
+  void requestKeyIndex(PredId p, std::uint32_t field);
   bool usesRandom_ = false;  // randint, degeneratevector or a [:random] selector
   void countStep() {
     if (options_.maxSteps && ++steps_ > options_.maxSteps) stepLimitReached();
