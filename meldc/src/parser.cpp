@@ -73,10 +73,18 @@ bool validUtf8(uint32_t file, const SourceManager& sources, Diagnostics& diag) {
   const std::string& text = sources.file(file).text;
   uint32_t line = 1, col = 1;
   for (size_t i = 0; i < text.size();) {
+    // Strict UTF-8 (RFC 3629): no overlong forms, no surrogates, nothing past U+10FFFF — the
+    // lexer's converter throws on those.
     unsigned char c = static_cast<unsigned char>(text[i]);
-    size_t len = c < 0x80 ? 1 : (c >> 5) == 0x6 ? 2 : (c >> 4) == 0xE ? 3 : (c >> 3) == 0x1E ? 4 : 0;
+    size_t len = c < 0x80 ? 1 : (c >= 0xC2 && c <= 0xDF) ? 2 : (c >= 0xE0 && c <= 0xEF) ? 3 : (c >= 0xF0 && c <= 0xF4) ? 4 : 0;
     bool ok = len != 0 && i + len <= text.size();
-    for (size_t k = 1; ok && k < len; ++k) ok = (static_cast<unsigned char>(text[i + k]) & 0xC0) == 0x80;
+    if (ok && len > 1) {
+      const unsigned char second = static_cast<unsigned char>(text[i + 1]);
+      const unsigned char low = c == 0xE0 ? 0xA0 : c == 0xF0 ? 0x90 : 0x80;
+      const unsigned char high = c == 0xED ? 0x9F : c == 0xF4 ? 0x8F : 0xBF;
+      ok = second >= low && second <= high;
+    }
+    for (size_t k = 2; ok && k < len; ++k) ok = (static_cast<unsigned char>(text[i + k]) & 0xC0) == 0x80;
     if (!ok) {
       diag.error(SourceLoc{file, line, col}, "the file is not valid UTF-8 text (bad byte here)");
       return false;
