@@ -81,8 +81,9 @@ simcore::TargetSpec chooseTarget(const Options& o, const simcore::WorldDescripti
   if (world.target.empty()) return *targets::makeTarget("blinkyblocks");
   auto spec = targets::makeTarget(world.target);
   if (!spec)
-    throw Failure{kExitInput,
-                  world.path + ": error: unknown target '" + world.target + "' (targets: " + names + ")"};
+    throw Failure{kExitInput, simcore::XmlWorldError(world.path, world.targetPos.line, world.targetPos.column,
+                                                     "unknown target '" + world.target + "' (targets: " + names + ")")
+                                  .what()};
   return *spec;
 }
 

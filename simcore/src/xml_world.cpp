@@ -345,7 +345,10 @@ void Loader::readWorld(Node world) {
 void Loader::readWorldAttributes(Node world) {
   warnUnknownAttributes(world, {"gridSize", "windowSize", "target", "seed", "code", "program"});
   readGridSize(world, required(world, "gridSize"));
-  world_.target = attr(world, "target").value();
+  if (Attr t = attr(world, "target")) {
+    world_.target = std::string(trim(t.value()));
+    world_.targetPos = posOf(t);
+  }
   if (Attr a = attr(world, "seed")) {
     const std::string_view v = trim(a.value());
     std::uint64_t seed = 0;

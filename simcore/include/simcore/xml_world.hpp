@@ -76,7 +76,8 @@ struct KeptElement {
 
 struct WorldDescription {
   std::string path;    // the file read (or the name given to parseWorldXml)
-  std::string target;  // as written ("" if absent); not validated here
+  std::string target;  // as written, blanks trimmed ("" if absent); not validated here
+  SourcePos targetPos;  // of the target attribute, for the front end's message
   GridSize grid;
   std::optional<std::uint32_t> listColor;  // color="..." of the first <blockList>
   std::string blockSize;                   // blockSize="..." of the first <blockList>, validated
