@@ -130,7 +130,7 @@ case_broken_world() {
 
 case_unknown_target_world() {
   run 3 "$TWORLDS/bad-target.xml" --code "$FLOOD"
-  has "$ERR" "bad-target.xml:3:26: error: unknown target 'catoms9d'"
+  has "$ERR" "bad-target.xml:3:25: error: unknown target 'catoms9d'"
 }
 
 case_code_missing() {
