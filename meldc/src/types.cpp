@@ -192,8 +192,21 @@ class Checker {
       return true;
     }
     if (y.kind == K::Num) return unify(b, a);
-    if (x.kind == K::AnyStruct && (y.kind == K::Struct || y.kind == K::AnyStruct)) {
+    // AnyStruct is the argument of the *struct built-ins (§5.6): a struct of floats. Its fields
+    // become float (an int literal adapts, an int variable is a mismatch).
+    if (x.kind == K::AnyStruct && y.kind == K::AnyStruct) {
       x.parent = b;
+      return true;
+    }
+    if (x.kind == K::AnyStruct && y.kind == K::Struct) {
+      const std::vector<int> fields = y.args;  // a copy: make() may grow the store
+      for (int f : fields) {  // checked first: a failed unification must leave both types as they were
+        const K k = node(f).kind;
+        if (k != K::Var && k != K::Num && k != K::Float) return false;
+      }
+      types_[static_cast<size_t>(a)].parent = b;
+      for (int f : fields)
+        if (!unify(f, make(K::Float))) return false;
       return true;
     }
     if (y.kind == K::AnyStruct && x.kind == K::Struct) return unify(b, a);
@@ -230,7 +243,7 @@ class Checker {
       case K::Array:
         return "array " + text(n.args[0]);
       case K::AnyStruct:
-        return "struct";
+        return "struct of floats";
       case K::Struct: {
         std::string s = ":(";
         for (size_t i = 0; i < n.args.size(); ++i) s += (i ? ", " : "") + text(n.args[i]);
