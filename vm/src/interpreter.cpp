@@ -158,8 +158,8 @@ bool Interpreter::loop(Frame& f, std::uint32_t pc) {
   slot.flags = flags;
   slot.fixed = nullptr;
 
+  machine_.countStep();  // each loop run: a join that never fires is work too
   auto visit = [&](FactRef fact) -> bool {  // false: stop the loop
-    machine_.countStep();  // a join that never fires is work too
     if (linear && skipFact(f, s, p, fact)) return true;
     slot.fact = fact;
     if (exec(f, body) == Status::Fired) {
@@ -224,11 +224,9 @@ Interpreter::Status Interpreter::exec(Frame& f, std::uint32_t pc) {
       case Opcode::FIRE:
         fire(f, c[1]);
         machine_.stats_.rulesFired++;
-        machine_.countStep();
         return Status::Fired;
       case Opcode::CFIRE:
         fire(f, c[1]);
-        machine_.countStep();
         return Status::NotFired;
       case Opcode::RET:
         return Status::Return;

@@ -24,6 +24,7 @@ Machine::Machine(const Program& program, MachineOptions options)
       rng_(Rng::forThread(0)),
       sched_(program.scheduling) {
   host_ = options_.host;
+  stepsLeft_ = options_.maxSteps ? options_.maxSteps + 1 : UINT64_MAX;
   if (options_.seed) rng_.state ^= options_.seed * 0x9e3779b97f4a7c15ull;
   builtinCtx_.rng = &rng_;
   builtinCtx_.sched = this;
@@ -317,8 +318,8 @@ void Machine::requestKeyIndex(PredId p, std::uint32_t field) {
 
 void Machine::stepLimitReached() const {
   throw RuntimeError("stopped after " + std::to_string(options_.maxSteps) +
-                     " steps (the step limit: rule and process runs, facts visited, firings, nodes "
-                     "created); the program may not terminate");
+                     " steps (the step limit: rule, process and loop runs, nodes created); the "
+                     "program may not terminate");
 }
 
 void Machine::runRule(NodeId n, std::uint32_t rule) {

@@ -48,8 +48,8 @@ struct MachineOptions {
   NodeId nodes = 0;                // at least this many nodes (with a host: one per block)
   std::uint64_t seed = 0;          // the random stream of randint & co. (meld --seed)
   // Steps allowed before the run stops with a RuntimeError (0: no limit): a step is a rule run, a
-  // persistent-process run, a fact visited by a loop, a firing (a comprehension's or aggregate's
-  // matches included) or a node created. Bounds what a program (or a damaged bytecode file) can make the VM do.
+  // persistent-process run, a loop run (an inner loop runs once per fact of the loops around it)
+  // or a node created; the work between two steps is bounded by the facts of one node. Bounds what a program (or a damaged bytecode file) can make the VM do.
   std::uint64_t maxSteps = 0;
 };
 
@@ -182,14 +182,14 @@ class Machine : private SchedulerView {
   std::unique_ptr<Interpreter> interp_;
   BuiltinContext builtinCtx_;
   Rng rng_;
-  std::uint64_t steps_ = 0;  // against options_.maxSteps
+  std::uint64_t stepsLeft_;  // options_.maxSteps counted down (no limit: more than a run takes)
   std::vector<std::vector<std::pair<std::uint32_t, std::uint32_t>>> keyIndexes_;  // per predicate: (field, handle)
   void requestKeyIndex(PredId p, std::uint32_t field);
   bool usesRandom_ = false;  // randint, degeneratevector or a [:random] selector
   void countStep() {
-    if (options_.maxSteps && ++steps_ > options_.maxSteps) stepLimitReached();
+    if (__builtin_expect(--stepsLeft_ == 0, 0)) stepLimitReached();
   }
-  [[noreturn]] void stepLimitReached() const;
+  [[noreturn, gnu::cold, gnu::noinline]] void stepLimitReached() const;
   SerialScheduler sched_;
   MachineStats stats_;
   bool stop_ = false;
