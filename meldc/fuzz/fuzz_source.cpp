@@ -11,7 +11,7 @@
 #include <string>
 
 #include "meldc/compile.hpp"
-#include "meldvm/machine.hpp"
+#include "run_bounded.hpp"
 
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
   // The front end reads files (includes are resolved next to them): one scratch file per process.
@@ -29,15 +29,6 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
   } catch (const meldc::InternalCompilerError&) {
     __builtin_trap();
   }
-  if (!program) return 0;
-  meldvm::MachineOptions options;
-  options.maxSteps = 2000;
-  options.output = &messages;
-  try {
-    meldvm::Machine machine(*program, options);
-    machine.run();
-    machine.dump(messages);
-  } catch (const meldvm::RuntimeError&) {
-  }
+  if (program) meldfuzz::runBounded(*program, messages);
   return 0;
 }

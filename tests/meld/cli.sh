@@ -7,21 +7,8 @@ WORK=$(mktemp -d)
 trap 'rm -rf "$WORK"' EXIT
 OUT="$WORK/stdout"
 ERR="$WORK/stderr"
-
-fail() {
-  echo "FAIL: $*"
-  echo "--- stdout"; cat "$OUT"
-  echo "--- stderr"; cat "$ERR"
-  exit 1
-}
-run() {
-  want=$1
-  shift
-  "$MELD" "$@" >"$OUT" 2>"$ERR" </dev/null
-  rc=$?
-  [ "$rc" -eq "$want" ] || fail "meld $*: exit code $rc, expected $want"
-}
-has() { grep -F -q -e "$2" "$1" || fail "$(basename "$1") lacks '$2'"; }
+BIN=$MELD
+. "$(dirname "$0")/../common/cli_helpers.sh"
 
 cat >"$WORK/roll.meld" <<'MELD'
 type linear roll(node, int).

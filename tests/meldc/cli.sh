@@ -9,21 +9,8 @@ trap 'rm -rf "$WORK"' EXIT
 unset MELD_STDLIB
 OUT="$WORK/stdout"
 ERR="$WORK/stderr"
-
-fail() {
-  echo "FAIL: $*"
-  echo "--- stdout"; cat "$OUT"
-  echo "--- stderr"; cat "$ERR"
-  exit 1
-}
-run() {
-  want=$1
-  shift
-  "$MELDC" "$@" >"$OUT" 2>"$ERR" </dev/null
-  rc=$?
-  [ "$rc" -eq "$want" ] || fail "meldc $*: exit code $rc, expected $want"
-}
-has() { grep -F -q -e "$2" "$1" || fail "$(basename "$1") lacks '$2'"; }
+BIN=$MELDC
+. "$(dirname "$0")/../common/cli_helpers.sh"
 
 case_help() {
   run 0 --help

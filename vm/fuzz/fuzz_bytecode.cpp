@@ -7,7 +7,7 @@
 #include <sstream>
 
 #include "meldvm/bytecode.hpp"
-#include "meldvm/machine.hpp"
+#include "run_bounded.hpp"
 
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
   std::unique_ptr<meldvm::Program> program;
@@ -21,14 +21,6 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
   if (again.size() != size || !std::equal(again.begin(), again.end(), data)) __builtin_trap();
   std::ostringstream text;
   meldvm::disassemble(*program, text);
-  meldvm::MachineOptions options;
-  options.maxSteps = 2000;  // a valid program may derive forever: bounded here, not a hang
-  options.output = &text;
-  try {
-    meldvm::Machine machine(*program, options);
-    machine.run();
-    machine.dump(text);
-  } catch (const meldvm::RuntimeError&) {
-  }
+  meldfuzz::runBounded(*program, text);
   return 0;
 }

@@ -1,0 +1,24 @@
+// What the fuzz entry points do with a program that loaded or compiled: run it on its own graph to
+// an end — quiescence, a RuntimeError, or the step limit (a valid program may derive forever:
+// bounded here, not a hang) — and dump its database.
+#pragma once
+
+#include <ostream>
+
+#include "meldvm/machine.hpp"
+
+namespace meldfuzz {
+
+inline void runBounded(const meldvm::Program& program, std::ostream& out) {
+  meldvm::MachineOptions options;
+  options.maxSteps = 2000;
+  options.output = &out;
+  try {
+    meldvm::Machine machine(program, options);
+    machine.run();
+    machine.dump(out);
+  } catch (const meldvm::RuntimeError&) {
+  }
+}
+
+}  // namespace meldfuzz
