@@ -63,13 +63,16 @@ void onAlarm(int) {
   std::_Exit(3);
 }
 
+#if defined(__SANITIZE_ADDRESS__)
 void onDeath() { saveCurrent("crash"); }
-
+#else
+// Without the sanitizers' death callback: save the input, then die of the same signal.
 void onCrashSignal(int sig) {
   saveCurrent("crash");
   std::signal(sig, SIG_DFL);
   std::raise(sig);
 }
+#endif
 
 unsigned timeoutSeconds = 30;
 
@@ -185,7 +188,6 @@ int main(int argc, char** argv) {
 #if defined(__SANITIZE_ADDRESS__)
   __sanitizer_set_death_callback(onDeath);
 #else
-  (void)onDeath;
   for (int sig : {SIGSEGV, SIGBUS, SIGFPE, SIGILL, SIGABRT}) std::signal(sig, onCrashSignal);
 #endif
   std::vector<std::vector<std::uint8_t>> seeds;
