@@ -19,27 +19,9 @@ OUT="$WORK/stdout"
 ERR="$WORK/stderr"
 : >"$OUT"
 : >"$ERR"
-
-fail() {
-  echo "FAIL: $*" >&2
-  echo "--- stdout" >&2
-  cat "$OUT" >&2
-  echo "--- stderr" >&2
-  cat "$ERR" >&2
-  exit 1
-}
-
-# run RC ARGS...: runs vsim with no stdin, checks the exit code.
-run() {
-  want=$1
-  shift
-  "$VSIM" "$@" >"$OUT" 2>"$ERR" </dev/null
-  rc=$?
-  [ "$rc" -eq "$want" ] || fail "vsim $*: exit code $rc, expected $want"
-}
-
-# has FILE TEXT: FILE contains TEXT (a fixed string).
-has() { grep -F -q -e "$2" "$1" || fail "$(basename "$1") lacks '$2'"; }
+BIN=$VSIM
+# fail, run RC ARGS... and has FILE TEXT
+. "$SRC/tests/common/cli_helpers.sh"
 
 # stable FILE: the output without the lines that change between runs or machines.
 stable() { grep -v -E '^  (world|block code|wall time|events/s) ' "$1"; }
