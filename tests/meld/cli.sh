@@ -35,6 +35,18 @@ case_max_steps() {
   has "$ERR" "stopped after 1000 steps (the step limit"
 }
 
+case_deep_recursion() {
+  # A runaway recursive `fun` is a run-time error, not a stack overflow (found by fuzzing under
+  # ASan); a deep but bounded one still runs.
+  printf 'type linear a(node, int).\nfun down(int X) : int = if X <= 0 then 0 else 1 + down(X - 1) end.\na(@0, down(100000000)).\n' >"$WORK/rec.meld"
+  run 4 "$WORK/rec.meld"
+  has "$ERR" "function 'down' nested"
+  has "$ERR" "runaway recursion?"
+  printf 'type linear a(node, int).\nfun down(int X) : int = if X <= 0 then 0 else 1 + down(X - 1) end.\na(@0, down(500)).\n' >"$WORK/ok.meld"
+  run 0 "$WORK/ok.meld" --dump
+  has "$OUT" "a(500)"
+}
+
 case_directory_input() {
   run 1 "$WORK"
   has "$ERR" "it is a directory, not a Meld file"

@@ -13,7 +13,9 @@ namespace meldvm {
 namespace {
 constexpr std::size_t kRegChunk = 1 << 16;
 constexpr std::size_t kSlotChunk = 1 << 12;
-constexpr std::uint32_t kMaxDepth = 10000;  // nested function calls
+// Nested `fun` calls recurse on the C++ stack: stop before the usual 8 MiB of the main thread are
+// used up (a sanitized build takes several times more stack per call than an optimized one).
+constexpr std::ptrdiff_t kMaxCallStackBytes = std::ptrdiff_t(6) << 20;
 
 double immDouble(const std::uint32_t* c) {
   const std::uint64_t bits = std::uint64_t(c[0]) | (std::uint64_t(c[1]) << 32);
@@ -547,10 +549,14 @@ Interpreter::Status Interpreter::exec(Frame& f, std::uint32_t pc) {
 
 Value Interpreter::callFunction(std::uint32_t fn, const Value* args, NodeId host) {
   const Function& func = program_.functions[fn];
-  if (++depth_ > kMaxDepth) {
-    depth_ = 0;
-    throw RuntimeError("function '" + func.name + "' nested deeper than 10000 calls");
-  }
+  const char probe = 0;
+  if (depth_ == 0) stackTop_ = &probe;
+  const auto used = std::intptr_t(reinterpret_cast<std::uintptr_t>(stackTop_)) -
+                    std::intptr_t(reinterpret_cast<std::uintptr_t>(&probe));  // the stack grows down
+  if (used > kMaxCallStackBytes)
+    throw RuntimeError("function '" + func.name + "' nested " + std::to_string(depth_) +
+                       " calls deep: more stack than 6 MiB (runaway recursion?)");
+  ++depth_;
   const Alloc a = enter(func.block);
   Frame f{&func.block, func.block.code.data(), a.regs, a.slots, boxedOf(func.block).data(), host, false};
   const std::size_t n = func.params.size();

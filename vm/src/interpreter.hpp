@@ -102,7 +102,8 @@ class Interpreter {
   Database& db_;
   Heap& heap_;
   BuiltinContext& ctx_;
-  std::uint32_t depth_ = 0;
+  std::uint32_t depth_ = 0;         // nested function calls
+  const char* stackTop_ = nullptr;  // a local of the outermost call, for the stack budget
 
   std::vector<std::unique_ptr<Value[]>> regChunks_;
   std::vector<std::unique_ptr<Slot[]>> slotChunks_;
