@@ -318,8 +318,8 @@ void Machine::requestKeyIndex(PredId p, std::uint32_t field) {
 
 void Machine::stepLimitReached() const {
   throw RuntimeError("stopped after " + std::to_string(options_.maxSteps) +
-                     " steps (the step limit: rule, process and loop runs, nodes created); the "
-                     "program may not terminate");
+                     " steps (the step limit: rule, process and loop runs, linear facts derived, "
+                     "nodes created); the program may not terminate");
 }
 
 void Machine::runRule(NodeId n, std::uint32_t rule) {
@@ -342,6 +342,7 @@ void Machine::finishRuleRun() {
 }
 
 void Machine::storeDerivedLinear() {
+  countSteps(linearOut_.size());  // a run that doubles the node's facts is bounded too
   for (const PendingFact& e : linearOut_) {
     const Value* args = linearOutArgs_.data() + e.args;
     db_->addLinear(e.node, e.pred, args);

@@ -48,8 +48,8 @@ struct MachineOptions {
   NodeId nodes = 0;                // at least this many nodes (with a host: one per block)
   std::uint64_t seed = 0;          // the random stream of randint & co. (meld --seed)
   // Steps allowed before the run stops with a RuntimeError (0: no limit): a step is a rule run, a
-  // persistent-process run, a loop run (an inner loop runs once per fact of the loops around it)
-  // or a node created; the work between two steps is bounded by the facts of one node. Bounds what a program (or a damaged bytecode file) can make the VM do.
+  // persistent-process run, a loop run (an inner loop runs once per fact of the loops around it),
+  // a linear fact stored for the node that derived it, or a node created. Bounds what a program (or a damaged bytecode file) can make the VM do.
   std::uint64_t maxSteps = 0;
 };
 
@@ -188,6 +188,10 @@ class Machine : private SchedulerView {
   bool usesRandom_ = false;  // randint, degeneratevector or a [:random] selector
   void countStep() {
     if (__builtin_expect(--stepsLeft_ == 0, 0)) stepLimitReached();
+  }
+  void countSteps(std::uint64_t n) {  // n steps at once (the facts a rule run derived)
+    if (__builtin_expect(n >= stepsLeft_, 0)) stepLimitReached();
+    stepsLeft_ -= n;
   }
   [[noreturn, gnu::cold, gnu::noinline]] void stepLimitReached() const;
   SerialScheduler sched_;
