@@ -25,27 +25,17 @@ struct Graph {
   std::int64_t maxId = -1;
 };
 
-Expr nodeLit(std::int64_t id, SourceLoc loc) {
+Expr literal(ExprKind kind, SourceLoc loc, std::int64_t i = 0, double f = 0.0) {
   Expr e;
-  e.kind = ExprKind::Node;
+  e.kind = kind;
   e.loc = loc;
-  e.intValue = id;
+  e.intValue = i;
+  e.floatValue = f;
   return e;
 }
-Expr intLit(std::int64_t v, SourceLoc loc) {
-  Expr e;
-  e.kind = ExprKind::Int;
-  e.loc = loc;
-  e.intValue = v;
-  return e;
-}
-Expr floatLit(double v, SourceLoc loc) {
-  Expr e;
-  e.kind = ExprKind::Float;
-  e.loc = loc;
-  e.floatValue = v;
-  return e;
-}
+Expr nodeLit(std::int64_t id, SourceLoc loc) { return literal(ExprKind::Node, loc, id); }
+Expr intLit(std::int64_t v, SourceLoc loc) { return literal(ExprKind::Int, loc, v); }
+Expr floatLit(double v, SourceLoc loc) { return literal(ExprKind::Float, loc, 0, v); }
 
 class Importer {
  public:

@@ -25,7 +25,7 @@ Machine::Machine(const Program& program, MachineOptions options)
       sched_(program.scheduling) {
   host_ = options_.host;
   stepsLeft_ = options_.maxSteps ? options_.maxSteps + 1 : UINT64_MAX;
-  if (options_.seed) rng_.state ^= options_.seed * 0x9e3779b97f4a7c15ull;
+  if (options_.seed) rng_.state ^= support::splitmix64(options_.seed);
   builtinCtx_.rng = &rng_;
   builtinCtx_.sched = this;
   const std::size_t preds = program.predicates.size();
@@ -51,24 +51,20 @@ Machine::Machine(const Program& program, MachineOptions options)
   for (const IndexRequest& ix : program.indexes)
     if (ix.predicate < preds && ix.field < program.predicates[ix.predicate].arity())
       requestKeyIndex(ix.predicate, ix.field);
-  auto scanKeys = [&](const CodeBlock& b) {
-    detail::forEachInstruction(b.code, [&](std::size_t pc) {
-      if (Opcode(b.code[pc]) == Opcode::ITER_KEY) requestKeyIndex(b.code[pc + 1], b.code[pc + 4]);
-    });
-  };
-  for (const Rule& r : program.rules) scanKeys(r.block);
-  for (const Process& p : program.processes) scanKeys(p.block);
-  auto scanRandom = [&](const CodeBlock& b) {
+  // One walk over the code: the indexes ITER_KEY looks facts up in, and whether the program draws
+  // random numbers (randint, degeneratevector, a [:random] selector).
+  auto scan = [&](const CodeBlock& b) {
     detail::forEachInstruction(b.code, [&](std::size_t pc) {
       const auto op = Opcode(b.code[pc]);
+      if (op == Opcode::ITER_KEY) requestKeyIndex(b.code[pc + 1], b.code[pc + 4]);
       if ((op == Opcode::CALL && (b.code[pc + 2] == 1 || b.code[pc + 2] == 32)) ||
           (op == Opcode::ITER_SORTED && (b.code[pc + 3] & kIterRandom)))
         usesRandom_ = true;
     });
   };
-  for (const Rule& r : program.rules) scanRandom(r.block);
-  for (const Process& p : program.processes) scanRandom(p.block);
-  for (const Function& f : program.functions) scanRandom(f.block);
+  for (const Rule& r : program.rules) scan(r.block);
+  for (const Process& p : program.processes) scan(p.block);
+  for (const Function& f : program.functions) scan(f.block);
   for (PredId p = 0; p < preds; ++p) {
     const PredicateDesc& d = program.predicates[p];
     maxArity_ = std::max(maxArity_, d.arity());
