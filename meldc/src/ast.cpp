@@ -50,7 +50,27 @@ void Program::append(Program&& other) {
   moveAppend(externs, other.externs);
   moveAppend(consts, other.consts);
   moveAppend(funs, other.funs);
+  groundFacts.append(std::move(other.groundFacts), static_cast<std::uint32_t>(rules.size()));
   moveAppend(rules, other.rules);
+}
+
+void GroundFacts::append(GroundFacts&& other, std::uint32_t rulesBefore) {
+  std::vector<std::uint32_t> nameIds;
+  for (const std::string& n : other.names) {
+    std::uint32_t id = 0;
+    while (id < names.size() && names[id] != n) ++id;  // a handful of names per program
+    if (id == names.size()) names.push_back(n);
+    nameIds.push_back(id);
+  }
+  const auto argsBefore = static_cast<std::uint32_t>(args.size());
+  for (GroundFact f : other.facts) {
+    f.name = nameIds[f.name];
+    f.firstArg += argsBefore;
+    f.position += rulesBefore;
+    facts.push_back(f);
+  }
+  args.insert(args.end(), other.args.begin(), other.args.end());
+  other = GroundFacts{};
 }
 
 }  // namespace meldc::ast

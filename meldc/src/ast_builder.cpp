@@ -91,6 +91,8 @@ Program AstBuilder::buildProgram(MeldParser::ProgramContext* ctx) {
 
 Expr AstBuilder::buildExpr(MeldParser::ExprContext* ctx) { return expr(ctx); }
 
+void AstBuilder::noteStatement() { section_ = kStatement; }
+
 void AstBuilder::topItem(MeldParser::TopItemContext* ctx, Program& program) {
   int section = kStatement;
   if (ctx->includeDecl())

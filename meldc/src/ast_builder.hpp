@@ -21,6 +21,9 @@ class AstBuilder : public meldgen::MeldBaseVisitor {
   // One top-level item at a time, into `program` (the file parsed item by item).
   void addTopItem(meldgen::MeldParser::TopItemContext* ctx, ast::Program& program) { topItem(ctx, program); }
   ast::Expr buildExpr(meldgen::MeldParser::ExprContext* ctx);
+  // A statement that the parser read without ANTLR (a ground fact) stands here: items of earlier
+  // sections after it are out of order.
+  void noteStatement();
 
   // Expressions and conditions.
   antlrcpp::Any visitMulExpr(meldgen::MeldParser::MulExprContext* ctx) override;

@@ -4,6 +4,7 @@
 
 #include "meldc/bindings.hpp"
 #include "meldc/data_import.hpp"
+#include "meldc/ground_facts.hpp"
 #include "meldc/homes.hpp"
 #include "meldc/includes.hpp"
 #include "meldc/localize.hpp"
@@ -54,17 +55,19 @@ void applyDefines(const FrontEndInput& input, ast::Program& program, SourceManag
 
 std::optional<ast::Program> runFrontEnd(const FrontEndInput& input, SourceManager& sources,
                                         Diagnostics& diag) {
-  std::optional<ast::Program> program = loadProgram(input.path, input.includeDirs, sources, diag);
+  std::optional<ast::Program> program =
+      loadProgram(input.path, input.includeDirs, sources, diag, input.groundFacts);
   if (!program) return std::nullopt;
   const ast::Program& p = *program;
-  if (p.includes.empty() && p.predicates.empty() && p.rules.empty() && p.consts.empty() && p.funs.empty() &&
-      p.directives.empty() && p.externs.empty() && p.nodeTypes.empty() && p.typeAliases.empty() &&
-      p.exports.empty() && !diag.hasErrors()) {
+  if (p.includes.empty() && p.predicates.empty() && p.rules.empty() && p.groundFacts.empty() &&
+      p.consts.empty() && p.funs.empty() && p.directives.empty() && p.externs.empty() &&
+      p.nodeTypes.empty() && p.typeAliases.empty() && p.exports.empty() && !diag.hasErrors()) {
     diag.error(SourceLoc{p.mainFile, 1, 1}, "the program is empty: no declaration, rule or fact");
     return std::nullopt;
   }
   applyDefines(input, *program, sources, diag);
   if (diag.hasErrors()) return std::nullopt;  // names would only repeat what is already broken
+  admitGroundFacts(*program, sources);        // the checks below see the facts they have to check
   if (!importData(*program, sources, diag)) return std::nullopt;
   resolveNames(*program, diag);
   if (diag.hasErrors()) return std::nullopt;  // the checks below assume resolved names

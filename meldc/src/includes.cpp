@@ -17,8 +17,9 @@ namespace {
 
 class IncludeLoader {
  public:
-  IncludeLoader(const std::vector<std::string>& dirs, SourceManager& sources, Diagnostics& diag)
-      : dirs_(dirs), sources_(sources), diag_(diag) {}
+  IncludeLoader(const std::vector<std::string>& dirs, SourceManager& sources, Diagnostics& diag,
+                bool groundFacts)
+      : dirs_(dirs), sources_(sources), diag_(diag), groundFacts_(groundFacts) {}
 
   // Loads and merges one file; `from` is the include that names it (invalid for the main file).
   std::optional<ast::Program> load(const std::string& path, SourceLoc from) {
@@ -38,7 +39,7 @@ class IncludeLoader {
     active_.insert(key);
     seen_.insert(key);
     readOk_ = true;
-    std::optional<ast::Program> program = parseFile(file, sources_, diag_);
+    std::optional<ast::Program> program = parseFile(file, sources_, diag_, groundFacts_);
     if (!program) {
       active_.erase(key);
       return std::nullopt;
@@ -111,6 +112,7 @@ class IncludeLoader {
   const std::vector<std::string>& dirs_;
   SourceManager& sources_;
   Diagnostics& diag_;
+  bool groundFacts_;
   std::set<std::string> active_;  // files on the current include chain
   std::set<std::string> seen_;    // every file loaded so far
   bool readOk_ = false;           // the last load() could read its file (errors were in its text)
@@ -139,7 +141,8 @@ bool sameDeclaration(const ast::PredicateDecl& a, const ast::PredicateDecl& b) {
 void dropIdenticalRedeclarations(ast::Program& p) {
   std::vector<ast::PredicateDecl> kept;
   for (ast::PredicateDecl& d : p.predicates) {
-    const bool again = std::any_of(kept.begin(), kept.end(), [&](const ast::PredicateDecl& k) { return sameDeclaration(k, d); });
+    const bool again = std::any_of(kept.begin(), kept.end(),
+                                   [&](const ast::PredicateDecl& k) { return sameDeclaration(k, d); });
     if (!again) kept.push_back(std::move(d));
   }
   p.predicates = std::move(kept);
@@ -149,8 +152,8 @@ void dropIdenticalRedeclarations(ast::Program& p) {
 
 std::optional<ast::Program> loadProgram(const std::string& mainPath,
                                         const std::vector<std::string>& includeDirs, SourceManager& sources,
-                                        Diagnostics& diag) {
-  IncludeLoader loader(includeDirs, sources, diag);
+                                        Diagnostics& diag, bool groundFacts) {
+  IncludeLoader loader(includeDirs, sources, diag, groundFacts);
   std::optional<ast::Program> program = loader.load(mainPath, SourceLoc{});
   if (program) dropIdenticalRedeclarations(*program);
   return program;

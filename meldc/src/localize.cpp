@@ -111,6 +111,7 @@ class Localizer {
     if (generatedRules_.empty()) return;  // nothing spans nodes: leave the program untouched
     p_.rules.clear();
     for (Rule& r : generatedRules_) p_.rules.push_back(std::move(r));
+    for (GroundFact& f : p_.groundFacts.facts) f.position += static_cast<uint32_t>(generatedRules_.size());
     for (Rule& r : rules) p_.rules.push_back(std::move(r));
     for (PredicateDecl& d : helpers_) p_.predicates.push_back(std::move(d));
     for (PredicateDecl& d : inverses_) p_.predicates.push_back(std::move(d));

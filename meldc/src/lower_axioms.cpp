@@ -20,9 +20,11 @@ using meldvm::Opcode;
 
 namespace {
 
+// A constant axiom: a fact of a statement, or a ground fact (ast/ground_fact.hpp).
 struct Axiom {
-  const Rule* statement;
-  const Term* fact;
+  const Rule* statement = nullptr;
+  const Term* fact = nullptr;
+  const GroundFact* ground = nullptr;
 };
 
 bool literal(const Lowering& L, const Expr& e) {
@@ -219,59 +221,185 @@ void computedHomeAxiom(Lowering& L, CodeBuilder& cb, const Rule& r, const Term& 
   cb.place(skip);
 }
 
+// A ground fact at its home: its literals in registers, then DERIVE, as RuleLowering::subgoal
+// lowers the same fact written as a statement.
+void groundAxiom(Lowering& L, CodeBuilder& cb, const GroundFact& f, const PredInfo& p) {
+  const GroundFacts& facts = L.ast.groundFacts;
+  const meldvm::PredicateDesc& desc = L.desc(p);
+  std::vector<Reg> regs;
+  regs.reserve(f.argCount);
+  for (std::size_t i = 1; i < f.argCount; ++i) {
+    const GroundArg& a = facts.arg(f, i);
+    const meldvm::TypeId type = desc.fields.at(i - 1);
+    const Reg r = cb.reg(type);
+    switch (a.kind) {
+      case GroundArg::Kind::Int:
+        if (type == meldvm::TypeTable::kFloat)
+          cb.op(Opcode::MOVF).w(r).dbl(double(a.i));
+        else
+          cb.emit(Opcode::MOVI, {r, std::uint32_t(std::int32_t(a.i))});
+        break;
+      case GroundArg::Kind::Float:
+        cb.op(Opcode::MOVF).w(r).dbl(a.f);
+        break;
+      case GroundArg::Kind::Node:
+        cb.emit(Opcode::MOVN, {r, std::uint32_t(a.i)});
+        break;
+      case GroundArg::Kind::String: {
+        const std::string& text = L.sources.file(f.loc.file).text;
+        cb.emit(Opcode::MOVS, {r, L.string(text.substr(a.offset + 1, a.length - 2u))});
+        break;
+      }
+      case GroundArg::Kind::Bool:
+        cb.emit(Opcode::MOVB, {r, a.i ? 1u : 0u});
+        break;
+    }
+    regs.push_back(r);
+  }
+  cb.op(Opcode::DERIVE).w(p.id).regs(regs);
+}
+
+// The axioms of one node: those needing evaluation in reverse source order, then the literal
+// facts grouped by predicate (groups in order of first occurrence, source order within a group).
+std::vector<Axiom> nodeAxiomOrder(Lowering& L, const std::vector<Axiom>& axioms,
+                                  const std::vector<std::string>& groundNames) {
+  std::vector<Axiom> evaluated;
+  std::vector<std::pair<std::size_t, Axiom>> literals;  // group, axiom
+  std::vector<std::string> order;
+  for (const Axiom& a : axioms) {
+    const std::string* name = a.ground ? &groundNames[a.ground->name] : nullptr;
+    std::string key;
+    if (!a.ground) {
+      const PredInfo* p = L.pred(a.fact->name);
+      bool isLiteral = p && p->instruction == Instruction::None && conditions(*a.statement).empty();
+      for (size_t i = 1; i < a.fact->args.size() && isLiteral; ++i) isLiteral = literal(L, a.fact->args[i]);
+      if (!isLiteral) {
+        evaluated.push_back(a);
+        continue;
+      }
+      key = lower(a.fact->name);
+      name = &key;
+    }
+    const std::size_t group = std::find(order.begin(), order.end(), *name) - order.begin();
+    if (group == order.size()) order.push_back(*name);
+    literals.emplace_back(group, a);
+  }
+  std::reverse(evaluated.begin(), evaluated.end());
+  std::stable_sort(literals.begin(), literals.end(),
+                   [](const auto& x, const auto& y) { return x.first < y.first; });
+  for (const auto& [group, a] : literals) evaluated.push_back(a);
+  return evaluated;
+}
+
+}  // namespace
+
+namespace {
+
+// Axioms of constant homes, per node (internal id): in program order.
+using ConstantAxioms = std::vector<std::vector<Axiom>>;
+
+// One statement that is an axiom: its facts of variable and computed homes into rule 0 (`cb`),
+// those of thread predicates to `threadAxioms`, those of constant homes to `constant`.
+void statementAxioms(Lowering& L, CodeBuilder& cb, const Rule& r, ConstantAxioms& constant,
+                     std::vector<ThreadAxioms>& threadAxioms,
+                     std::map<std::string, std::set<std::int64_t>>& subtypes) {
+  checkFactOnly(r);
+  std::vector<const Term*> variable, thread, computed;
+  for (const Term& t : r.head) {
+    if (t.kind != TermKind::Subgoal || t.args.empty()) continue;
+    if (isThreadFact(L, t)) {
+      thread.push_back(&t);
+    } else if (std::optional<std::int64_t> node = constantNode(L, t.args[0])) {
+      if (*node >= 0 && std::size_t(*node) < constant.size())
+        constant[std::size_t(*node)].push_back(Axiom{&r, &t});
+    } else if (t.args[0].kind == ExprKind::Var) {
+      variable.push_back(&t);
+    } else {
+      computed.push_back(&t);
+    }
+  }
+  if (!thread.empty()) threadAxioms.push_back(ThreadAxioms{&r, std::move(thread)});
+  for (const Term* t : computed) computedHomeAxiom(L, cb, r, *t);
+  if (variable.empty()) return;
+  // Every variable home stands for the node running rule 0.
+  RuleLowering rl(L, cb, variable.front()->args[0].name);
+  rl.bindHost();
+  const Reg host = rl.ex.env.at(variable.front()->args[0].name);
+  for (const Term* t : variable) rl.ex.env[t->args[0].name] = host;
+  CodeBuilder::Label skip = cb.label();
+  evaluateConditions(rl, cb, r, skip);
+  for (const Term* t : variable) {
+    // §6.2: only on the nodes of the predicate's subtype, if it has one.
+    const PredInfo* p = L.pred(t->name);
+    const TypeExpr* home = p && p->decl ? &p->decl->fields.at(0).type : nullptr;
+    const bool subtype = home && home->kind == TypeKind::Named &&
+                         L.vmType(*home) == meldvm::TypeTable::kNode && !isAlias(L, *home);
+    CodeBuilder::Label next = cb.label();
+    if (subtype) guardSubtype(cb, host, subtypes[lower(home->name)], next);
+    rl.subgoal(*t);
+    cb.place(next);
+  }
+  cb.place(skip);
+}
+
+// The axiom block of one node.
+void nodeAxiomBlock(Lowering& L, std::int64_t node, const std::vector<Axiom>& axioms,
+                    const std::vector<std::string>& groundNames,
+                    const std::vector<const PredInfo*>& groundPreds) {
+  CodeBuilder block;
+  try {
+    for (const Axiom& a : nodeAxiomOrder(L, axioms, groundNames)) {
+      if (a.ground) {
+        groundAxiom(L, block, *a.ground, *groundPreds[a.ground->name]);
+        continue;
+      }
+      RuleLowering rl(L, block, "");
+      CodeBuilder::Label skip = block.label();
+      evaluateConditions(rl, block, *a.statement, skip);
+      rl.subgoal(*a.fact, node);
+      block.place(skip);
+    }
+    block.op(Opcode::RET);
+    L.prog.nodeAxioms[size_t(node)] = std::uint32_t(L.prog.axiomBlocks.size());
+    L.prog.axiomBlocks.push_back(block.finish("axioms of node " + std::to_string(node)));
+  } catch (const LowerError& e) {
+    L.diag.error(e.loc, e.what());
+  }
+}
+
 }  // namespace
 
 void lowerAxioms(Lowering& L) {
-  std::map<std::int64_t, std::vector<Axiom>> constant;  // per node, in source order
-  std::vector<ThreadAxioms> threadAxioms;               // for rule 1, in program order
-  CodeBuilder cb;
   const PredInfo* init = L.pred("_init");
   if (!init) return;
+  ConstantAxioms constant(L.prog.nodeAxioms.size());
+  std::vector<ThreadAxioms> threadAxioms;  // for rule 1, in program order
+  CodeBuilder cb;
   const InitLoop loop = openInitLoop(cb, init->id, 0);
   cb.op(Opcode::AXIOMS);
   std::map<std::string, std::set<std::int64_t>> subtypes = subtypeNodes(L);
-  for (const Rule& r : L.ast.rules) {
-    if (!isAxiom(L, r)) continue;
-    try {
-      checkFactOnly(r);
-      std::vector<const Term*> variable, thread, computed;
-      for (const Term& t : r.head) {
-        if (t.kind != TermKind::Subgoal || t.args.empty()) continue;
-        if (isThreadFact(L, t))
-          thread.push_back(&t);
-        else if (std::optional<std::int64_t> node = constantNode(L, t.args[0]))
-          constant[*node].push_back(Axiom{&r, &t});
-        else if (t.args[0].kind == ExprKind::Var)
-          variable.push_back(&t);
-        else
-          computed.push_back(&t);
-      }
-      if (!thread.empty()) threadAxioms.push_back(ThreadAxioms{&r, std::move(thread)});
-      for (const Term* t : computed) computedHomeAxiom(L, cb, r, *t);
-      if (variable.empty()) continue;
-      // Every variable home stands for the node running rule 0.
-      RuleLowering rl(L, cb, variable.front()->args[0].name);
-      rl.bindHost();
-      const Reg host = rl.ex.env.at(variable.front()->args[0].name);
-      for (const Term* t : variable) rl.ex.env[t->args[0].name] = host;
-      CodeBuilder::Label skip = cb.label();
-      evaluateConditions(rl, cb, r, skip);
-      for (const Term* t : variable) {
-        // §6.2: only on the nodes of the predicate's subtype, if it has one.
-        const PredInfo* p = L.pred(t->name);
-        const TypeExpr* home = p && p->decl ? &p->decl->fields.at(0).type : nullptr;
-        const bool subtype = home && home->kind == TypeKind::Named &&
-                             L.vmType(*home) == meldvm::TypeTable::kNode && !isAlias(L, *home);
-        CodeBuilder::Label next = cb.label();
-        if (subtype) guardSubtype(cb, host, subtypes[lower(home->name)], next);
-        rl.subgoal(*t);
-        cb.place(next);
-      }
-      cb.place(skip);
-    } catch (const LowerError& e) {
-      L.diag.error(e.loc, e.what());
-    }
+  const GroundFacts& ground = L.ast.groundFacts;
+  std::vector<std::string> groundNames;  // lower case, per GroundFacts::names
+  std::vector<const PredInfo*> groundPreds;
+  for (const std::string& n : ground.names) {
+    groundNames.push_back(lower(n));
+    groundPreds.push_back(L.pred(n));  // admitted facts have a declared predicate
   }
+  forEachStatement(
+      L.ast,
+      [&](const Rule& r) {
+        if (!isAxiom(L, r)) return;
+        try {
+          statementAxioms(L, cb, r, constant, threadAxioms, subtypes);
+        } catch (const LowerError& e) {
+          L.diag.error(e.loc, e.what());
+        }
+      },
+      [&](const GroundFact& f) {
+        const std::int64_t node = ground.arg(f, 0).i;
+        if (node >= 0 && std::size_t(node) < constant.size())
+          constant[std::size_t(node)].push_back(Axiom{nullptr, nullptr, &f});
+      });
   L.prog.rules.insert(L.prog.rules.begin(), closeInitLoop(cb, loop, init->id, "_init -o axioms"));
   if (L.threads) {
     try {
@@ -280,44 +408,9 @@ void lowerAxioms(Lowering& L) {
       L.diag.error(e.loc, e.what());
     }
   }
-
-  for (auto& [node, axioms] : constant) {
-    if (node < 0 || size_t(node) >= L.prog.nodeAxioms.size()) continue;
-    std::vector<Axiom> evaluated, literals;
-    for (const Axiom& a : axioms) {
-      const PredInfo* p = L.pred(a.fact->name);
-      bool isLiteral = p && p->instruction == Instruction::None && conditions(*a.statement).empty();
-      for (size_t i = 1; i < a.fact->args.size() && isLiteral; ++i) isLiteral = literal(L, a.fact->args[i]);
-      (isLiteral ? literals : evaluated).push_back(a);
-    }
-    std::reverse(evaluated.begin(), evaluated.end());
-    // Literal facts: grouped by predicate in order of first occurrence (stable within a group).
-    std::vector<std::string> order;
-    for (const Axiom& a : literals)
-      if (std::find(order.begin(), order.end(), lower(a.fact->name)) == order.end())
-        order.push_back(lower(a.fact->name));
-    std::stable_sort(literals.begin(), literals.end(), [&](const Axiom& x, const Axiom& y) {
-      return std::find(order.begin(), order.end(), lower(x.fact->name)) <
-             std::find(order.begin(), order.end(), lower(y.fact->name));
-    });
-    CodeBuilder block;
-    try {
-      for (const std::vector<Axiom>* group : {&evaluated, &literals}) {
-        for (const Axiom& a : *group) {
-          RuleLowering rl(L, block, "");
-          CodeBuilder::Label skip = block.label();
-          evaluateConditions(rl, block, *a.statement, skip);
-          rl.subgoal(*a.fact, node);
-          block.place(skip);
-        }
-      }
-      block.op(Opcode::RET);
-      L.prog.nodeAxioms[size_t(node)] = std::uint32_t(L.prog.axiomBlocks.size());
-      L.prog.axiomBlocks.push_back(block.finish("axioms of node " + std::to_string(node)));
-    } catch (const LowerError& e) {
-      L.diag.error(e.loc, e.what());
-    }
-  }
+  for (std::size_t node = 0; node < constant.size(); ++node)
+    if (!constant[node].empty())
+      nodeAxiomBlock(L, std::int64_t(node), constant[node], groundNames, groundPreds);
 }
 
 }  // namespace meldc

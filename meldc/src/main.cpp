@@ -6,6 +6,7 @@
 
 #include "meldc/ast_dump.hpp"
 #include "meldc/frontend.hpp"
+#include "meldc/ground_facts.hpp"
 #include "meldc/includes.hpp"
 #include "meldc/lower.hpp"
 #include "meldc/options.hpp"
@@ -66,6 +67,7 @@ int main(int argc, char** argv) {
 
   std::ostringstream text;
   if (options->emit == EmitKind::Ast) {
+    materializeGroundFacts(*program, sources);  // the dump shows every fact as a statement
     dumpProgram(*program, sources, text);
   } else if (options->emit == EmitKind::Nodes) {
     for (const ast::NodeId& n : program->nodeTable) text << n.internal << ' ' << n.source << '\n';

@@ -1,7 +1,5 @@
 #include "meldc/renumber.hpp"
 
-#include "support/splitmix.hpp"
-
 #include <algorithm>
 #include <deque>
 #include <set>
@@ -11,28 +9,45 @@
 #include <unordered_set>
 
 #include "meldc/case_folding.hpp"
+#include "support/splitmix.hpp"
 
 namespace meldc {
 
 namespace {
 
-// Every node literal of the program, with a pointer for the rewrite.
+// A node literal of the program: where it is written, and its value for the rewrite.
+struct NodeLiteral {
+  SourceLoc loc;
+  int64_t* value;
+};
+
+// Every node literal of the program, in program order.
 class LiteralCollector {
  public:
-  std::vector<ast::Expr*> literals;
+  std::vector<NodeLiteral> literals;
 
   void program(ast::Program& p) {
     for (ast::ConstDecl& c : p.consts) expr(c.value);
     for (ast::FunDecl& f : p.funs) expr(f.body);
-    for (ast::Rule& r : p.rules) {
-      terms(r.body);
-      terms(r.head);
-    }
+    ast::GroundFacts& ground = p.groundFacts;
+    forEachStatement(
+        p,
+        [&](ast::Rule& r) {
+          terms(r.body);
+          terms(r.head);
+        },
+        [&](const ast::GroundFact& f) {
+          for (size_t i = 0; i < f.argCount; ++i) {
+            ast::GroundArg& a = ground.args[f.firstArg + i];
+            if (a.kind == ast::GroundArg::Kind::Node)
+              literals.push_back({SourceLoc{f.loc.file, a.line, a.col}, &a.i});
+          }
+        });
   }
 
  private:
   void expr(ast::Expr& e) {
-    if (e.kind == ast::ExprKind::Node) literals.push_back(&e);
+    if (e.kind == ast::ExprKind::Node) literals.push_back({e.loc, &e.intValue});
     for (ast::Expr& a : e.args) expr(a);
   }
   void terms(std::vector<ast::Term>& ts) {
@@ -54,20 +69,22 @@ bool contains(const std::vector<int64_t>& v, int64_t x) {
 }
 
 // §6.1 step 1: per file, the distinct literal values in order of first textual occurrence.
-std::map<uint32_t, std::vector<int64_t>> literalsPerFile(const std::vector<ast::Expr*>& literals) {
-  std::vector<const ast::Expr*> sorted(literals.begin(), literals.end());
-  std::stable_sort(sorted.begin(), sorted.end(), [](const ast::Expr* a, const ast::Expr* b) {
-    return std::tie(a->loc.file, a->loc.line, a->loc.col) < std::tie(b->loc.file, b->loc.line, b->loc.col);
-  });
+std::map<uint32_t, std::vector<int64_t>> literalsPerFile(const std::vector<NodeLiteral>& literals) {
+  auto before = [](const NodeLiteral& a, const NodeLiteral& b) {
+    return std::tie(a.loc.file, a.loc.line, a.loc.col) < std::tie(b.loc.file, b.loc.line, b.loc.col);
+  };
+  std::vector<NodeLiteral> sorted(literals.begin(), literals.end());
+  if (!std::is_sorted(sorted.begin(), sorted.end(), before))
+    std::stable_sort(sorted.begin(), sorted.end(), before);
   std::map<uint32_t, std::vector<int64_t>> out;
   std::unordered_set<int64_t> seen;  // the values of the current file (`sorted` groups the files)
   uint32_t file = 0;
-  for (const ast::Expr* e : sorted) {
-    if (e->loc.file != file) {
+  for (const NodeLiteral& e : sorted) {
+    if (e.loc.file != file) {
       seen.clear();
-      file = e->loc.file;
+      file = e.loc.file;
     }
-    if (seen.insert(e->intValue).second) out[e->loc.file].push_back(e->intValue);
+    if (seen.insert(*e.value).second) out[e.loc.file].push_back(*e.value);
   }
   return out;
 }
@@ -104,21 +121,34 @@ std::map<int64_t, std::vector<int64_t>> routeEdges(const ast::Program& p) {
   for (const ast::PredicateDecl& d : p.predicates)
     if (d.route) routes.insert(lower(d.name));
   std::map<int64_t, std::deque<int64_t>> edges;
-  for (const ast::Rule& r : p.rules) {
-    if (r.kind != ast::RuleKind::Fact || !r.body.empty()) continue;
-    bool constant = !r.head.empty() && std::all_of(r.head.begin(), r.head.end(), [](const ast::Term& t) {
-      return t.kind == ast::TermKind::Subgoal && !t.args.empty() && t.args[0].kind == ast::ExprKind::Node;
-    });
-    if (!constant) continue;
-    for (const ast::Term& t : r.head) {
-      if (!routes.count(lower(t.name))) continue;
-      for (size_t i = 1; i < t.args.size(); ++i) {
-        if (t.args[i].kind != ast::ExprKind::Node) continue;
-        edges[t.args[0].intValue].push_front(t.args[i].intValue);
-        break;
-      }
-    }
-  }
+  std::vector<char> routeName;  // per ground fact name
+  for (const std::string& n : p.groundFacts.names) routeName.push_back(routes.count(lower(n)) ? 1 : 0);
+  forEachStatement(
+      p,
+      [&](const ast::Rule& r) {
+        if (r.kind != ast::RuleKind::Fact || !r.body.empty()) return;
+        bool constant = !r.head.empty() && std::all_of(r.head.begin(), r.head.end(), [](const ast::Term& t) {
+          return t.kind == ast::TermKind::Subgoal && !t.args.empty() && t.args[0].kind == ast::ExprKind::Node;
+        });
+        if (!constant) return;
+        for (const ast::Term& t : r.head) {
+          if (!routes.count(lower(t.name))) continue;
+          for (size_t i = 1; i < t.args.size(); ++i) {
+            if (t.args[i].kind != ast::ExprKind::Node) continue;
+            edges[t.args[0].intValue].push_front(t.args[i].intValue);
+            break;
+          }
+        }
+      },
+      [&](const ast::GroundFact& f) {
+        if (!routeName[f.name]) return;
+        for (size_t i = 1; i < f.argCount; ++i) {
+          const ast::GroundArg& a = p.groundFacts.arg(f, i);
+          if (a.kind != ast::GroundArg::Kind::Node) continue;
+          edges[p.groundFacts.arg(f, 0).i].push_front(a.i);
+          break;
+        }
+      });
   std::map<int64_t, std::vector<int64_t>> out;
   for (auto& [from, to] : edges) out[from].assign(to.begin(), to.end());
   return out;
@@ -188,7 +218,7 @@ void renumberNodes(ast::Program& program, bool identity) {
   program.nodeTable.clear();
   if (clusterStatic) {
     int64_t max = -1;
-    for (const ast::Expr* e : collector.literals) max = std::max(max, e->intValue);
+    for (const NodeLiteral& e : collector.literals) max = std::max(max, *e.value);
     for (int64_t i = 0; i <= max; ++i) program.nodeTable.push_back({i, i});
     program.renumbered = true;
     return;
@@ -216,7 +246,7 @@ void renumberNodes(ast::Program& program, bool identity) {
     internal[numbered[i]] = static_cast<int64_t>(i);
     program.nodeTable.push_back({static_cast<int64_t>(i), numbered[i]});
   }
-  for (ast::Expr* e : collector.literals) e->intValue = internal.at(e->intValue);
+  for (const NodeLiteral& e : collector.literals) *e.value = internal.at(*e.value);
   program.renumbered = true;
 }
 

@@ -5,6 +5,7 @@
 
 #include "meldc/ast_dump.hpp"
 #include "meldc/frontend.hpp"
+#include "meldc/ground_facts.hpp"
 #include "meldc/localize.hpp"
 #include "temp_dir.hpp"
 
@@ -21,6 +22,9 @@ struct Compiled : TempDir {
 
   explicit Compiled(const std::string& text) {
     program = runFrontEnd(FrontEndInput{write("main.meld", text), {}, {}}, sources, diag);
+    // Literal facts come out compact (ground_fact.hpp): as statements again, the tests read every
+    // fact in `rules`.
+    if (program) materializeGroundFacts(*program, sources);
   }
   bool ok() const { return program.has_value() && !diag.hasErrors(); }
   std::string errors() const { return messages.str(); }

@@ -7,6 +7,7 @@
 #include <sstream>
 
 #include "meldc/frontend.hpp"
+#include "meldc/ground_facts.hpp"
 #include "meldc/renumber.hpp"
 #include "temp_dir.hpp"
 
@@ -24,6 +25,9 @@ struct Compiled {
 
   Compiled(const TempDir& files, const std::string& main) {
     program = runFrontEnd(FrontEndInput{(files.path / main).string(), {}, {}}, sources, diag);
+    // Literal facts come out compact (ground_fact.hpp): as statements again, the tests read every
+    // fact in `rules`.
+    if (program) materializeGroundFacts(*program, sources);
   }
   bool ok() const { return program.has_value() && !diag.hasErrors(); }
   std::string errors() const { return messages.str(); }

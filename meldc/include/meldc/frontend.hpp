@@ -23,6 +23,9 @@ struct FrontEndInput {
   // Robots (§7.3): node ids are block ids, so literals keep their source ids and every id up to
   // the largest literal exists, as with `priority @cluster @static`.
   bool identityNodes = false;
+  // Facts of literals only take the compact path (ast/ground_fact.hpp); off, every fact is an
+  // ast::Rule from the parser on.
+  bool groundFacts = true;
 };
 
 // Returns the checked program, or nullopt when there were errors (all reported to `diag`).

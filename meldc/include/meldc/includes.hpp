@@ -19,9 +19,10 @@ namespace meldc {
 
 // Returns nullopt only when the main file cannot be read or parsed at all; otherwise a program
 // (possibly missing the parts of broken included files; errors are in `diag`).
+// `groundFacts`: as for parseFile (parser.hpp).
 std::optional<ast::Program> loadProgram(const std::string& mainPath,
                                         const std::vector<std::string>& includeDirs, SourceManager& sources,
-                                        Diagnostics& diag);
+                                        Diagnostics& diag, bool groundFacts = false);
 
 // The standard library folder searched after the -I directories: the value of the environment
 // variable MELD_STDLIB when it is set (an empty value means no standard library folder), otherwise

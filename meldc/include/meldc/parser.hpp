@@ -15,7 +15,10 @@ namespace meldc {
 // Returns nullopt when the file has lexical or syntax errors (all of them are reported).
 // Errors found while building the AST (bad aggregate shape, section order, ...) are reported too;
 // the returned program is then incomplete but well-formed.
-std::optional<ast::Program> parseFile(uint32_t file, const SourceManager& sources, Diagnostics& diag);
+// With `groundFacts`, the facts of literals only are read by a fast scanner into
+// Program::groundFacts instead of into rules (ast/ground_fact.hpp).
+std::optional<ast::Program> parseFile(uint32_t file, const SourceManager& sources, Diagnostics& diag,
+                                      bool groundFacts = false);
 
 // Parses the whole text of `file` as one expression (used for -DNAME=VALUE).
 std::optional<ast::Expr> parseExpression(uint32_t file, const SourceManager& sources, Diagnostics& diag);

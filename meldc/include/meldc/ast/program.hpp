@@ -8,13 +8,14 @@
 #include <vector>
 
 #include "meldc/ast/decl.hpp"
+#include "meldc/ast/ground_fact.hpp"
 #include "meldc/ast/rule.hpp"
 
 namespace meldc::ast {
 
 struct IncludeDecl {  // include #path
   SourceLoc loc;
-  std::string path;  // as written, blanks and a trailing // comment removed
+  std::string path;              // as written, blanks and a trailing // comment removed
   std::optional<uint32_t> file;  // the SourceManager file it loaded (unset: skipped or failed)
 };
 
@@ -36,6 +37,8 @@ struct Program {
   std::vector<ConstDecl> consts;
   std::vector<FunDecl> funs;
   std::vector<Rule> rules;  // rules and facts in source order
+  // Facts of literals only, kept compact (ground_fact.hpp); each knows its place among `rules`.
+  GroundFacts groundFacts;
 
   uint32_t mainFile = 0;  // SourceManager index of the main file (set by include merging)
   // Set by node renumbering (renumber.hpp): the initial nodes ordered by internal id. Node
@@ -46,5 +49,17 @@ struct Program {
   // Appends everything of `other` after the items already here (not mainFile / nodeTable).
   void append(Program&& other);
 };
+
+// Visits the statements in program order: the rules, and each ground fact just before the rule it
+// stands before. `P` is Program or const Program.
+template <class P, class OnRule, class OnFact>
+void forEachStatement(P& program, OnRule onRule, OnFact onFact) {
+  auto& facts = program.groundFacts.facts;
+  std::size_t next = 0;
+  for (std::size_t i = 0; i <= program.rules.size(); ++i) {
+    for (; next < facts.size() && facts[next].position <= i; ++next) onFact(facts[next]);
+    if (i < program.rules.size()) onRule(program.rules[i]);
+  }
+}
 
 }  // namespace meldc::ast
