@@ -1,5 +1,5 @@
 // vsim --program: a Meld program as the block program of every block (the VM behind the block
-// ABI, vm/include/meldvm/block_runtime.hpp).
+// ABI, vm/robots/include/meldvm/block_runtime.hpp).
 #pragma once
 
 #include <memory>

@@ -1,0 +1,344 @@
+// `.mbc` bytes -> Program. Every read is bounds-checked against the enclosing section, every count
+// is checked against the bytes left before anything is allocated for it, and the result goes
+// through verifyProgram, so malformed input ends in a BytecodeError, never in a crash.
+#include <bit>
+#include <cstring>
+#include <fstream>
+#include <iterator>
+
+#include "meldvm/bytecode.hpp"
+#include "meldvm/bytecode_internal.hpp"
+
+namespace meldvm {
+
+namespace {
+
+using namespace detail;
+
+class Cursor {
+ public:
+  Cursor(const std::uint8_t* data, std::size_t size) : data_(data), end_(size) {}
+
+  std::size_t pos() const { return pos_; }
+  std::size_t left() const { return end_ - pos_; }
+
+  [[noreturn]] void fail(const std::string& what) const {
+    throw BytecodeError("bad bytecode: " + what + " at byte " + std::to_string(pos_), pos_);
+  }
+  void need(std::size_t n, const char* what) const {
+    if (n > left())
+      throw BytecodeError("truncated " + std::string(what) + " at byte " + std::to_string(pos_), pos_);
+  }
+
+  std::uint32_t word(const char* what) {
+    need(4, what);
+    const std::uint8_t* b = data_ + pos_;
+    pos_ += 4;
+    return std::uint32_t(b[0]) | std::uint32_t(b[1]) << 8 | std::uint32_t(b[2]) << 16 |
+           std::uint32_t(b[3]) << 24;
+  }
+  std::uint64_t u64(const char* what) {
+    need(8, what);
+    const std::uint64_t lo = word(what);
+    return lo | std::uint64_t(word(what)) << 32;
+  }
+  double f64(const char* what) { return std::bit_cast<double>(u64(what)); }
+
+  // A count of items that take at least `minBytes` each: one that cannot fit in what is left of the
+  // section is refused here, so no caller ever sizes memory from an unchecked number.
+  std::uint32_t count(const char* what, std::size_t minBytes) {
+    const std::uint32_t n = word(what);
+    if (n > left() / minBytes) {
+      pos_ -= 4;
+      fail(std::string(what) + " count " + std::to_string(n) + " exceeds the " + std::to_string(left()) +
+           " bytes left");
+    }
+    return n;
+  }
+  std::vector<std::uint32_t> words(const char* what) {
+    const std::uint32_t n = count(what, 4);
+    std::vector<std::uint32_t> v;
+    v.reserve(n);
+    for (std::uint32_t i = 0; i < n; ++i) v.push_back(word(what));
+    return v;
+  }
+  std::string str(const char* what) {
+    const std::uint32_t n = count(what, 1);
+    const std::size_t padded = (std::size_t(n) + 3) & ~std::size_t(3);
+    need(padded, what);
+    std::string s(reinterpret_cast<const char*>(data_ + pos_), n);
+    // Zero padding only, so that an accepted file is exactly what the writer makes of it.
+    for (std::size_t i = n; i < padded; ++i)
+      if (data_[pos_ + i] != 0) {
+        pos_ += i;
+        fail(std::string("non-zero padding after ") + what);
+      }
+    pos_ += padded;
+    return s;
+  }
+  CodeBlock block() {
+    CodeBlock b;
+    b.label = str("block label");
+    b.registerTypes = words("register types");
+    b.slots = word("slot count");
+    b.code = words("code");
+    return b;
+  }
+
+  // Reads of a section stay within its declared length.
+  std::size_t enter(std::size_t len) {
+    const std::size_t outer = end_;
+    end_ = pos_ + len;
+    return outer;
+  }
+  void leave(std::size_t outer, const char* section) {
+    if (pos_ != end_) fail(std::to_string(left()) + " unread bytes at the end of section " + section);
+    end_ = outer;
+  }
+
+ private:
+  const std::uint8_t* data_;
+  std::size_t pos_ = 0;
+  std::size_t end_;
+};
+
+void readTypes(Cursor& c, TypeTable& types) {
+  const std::uint32_t n = c.count("type", 4);
+  if (n < types.size())
+    c.fail("type count " + std::to_string(n) + " below the " + std::to_string(types.size()) +
+           " built-in types");
+  for (TypeId t = 0; t < n; ++t) {
+    const std::uint32_t kind = c.word("type kind");
+    if (t < types.size() && kind != std::uint32_t(types.kind(t)))
+      c.fail("built-in type " + std::to_string(t) + " has kind " + std::to_string(kind));
+    if (t < types.size()) continue;
+    // Types refer only to earlier ids (the writer writes in id order, interning creates them so).
+    const auto ref = [&](const char* what) {
+      const std::uint32_t e = c.word(what);
+      if (e >= t)
+        c.fail("type " + std::to_string(t) + " refers to type " + std::to_string(e) +
+               " not defined before it");
+      return e;
+    };
+    TypeId got;
+    switch (kind) {
+      case std::uint32_t(TypeKind::List):
+        got = types.list(ref("list element type"));
+        break;
+      case std::uint32_t(TypeKind::Array):
+        got = types.array(ref("array element type"));
+        break;
+      case std::uint32_t(TypeKind::Set):
+        got = types.set(ref("set element type"));
+        break;
+      case std::uint32_t(TypeKind::Struct): {
+        const std::uint32_t fc = c.count("struct field", 4);
+        std::vector<TypeId> fields;
+        fields.reserve(fc);
+        for (std::uint32_t i = 0; i < fc; ++i) fields.push_back(ref("struct field type"));
+        got = types.structOf(fields);
+        break;
+      }
+      default:
+        c.fail("type " + std::to_string(t) + " has kind " + std::to_string(kind) +
+               " (not list, array, set or struct)");
+    }
+    if (got != t) c.fail("type " + std::to_string(t) + " duplicates type " + std::to_string(got));
+  }
+}
+
+void readPredicates(Cursor& c, Program& p) {
+  const std::uint32_t n = c.count("predicate", 4 * 5);
+  for (std::uint32_t i = 0; i < n; ++i) {
+    PredicateDesc d;
+    d.name = c.str("predicate name");
+    d.fields = c.words("predicate fields");
+    for (TypeId t : d.fields)
+      if (t >= p.types.size()) c.fail("predicate " + d.name + " has unknown field type " + std::to_string(t));
+    const std::uint32_t flags = c.word("predicate flags");
+    if (flags & ~kPredFlagsAll) c.fail("predicate " + d.name + " has unknown flag bits");
+    d.linear = flags & kPredLinear;
+    d.route = flags & kPredRoute;
+    d.reverseRoute = flags & kPredReverseRoute;
+    d.action = flags & kPredAction;
+    d.thread = flags & kPredThread;
+    d.compact = flags & kPredCompact;
+    const std::uint32_t agg = c.word("aggregate kind");
+    if (agg > std::uint32_t(AggregateKind::Sum))
+      c.fail("predicate " + d.name + " has unknown aggregate kind");
+    d.aggregate = AggregateKind(agg);
+    d.aggregateField = c.word("aggregate field");
+    try {
+      p.predicates.add(std::move(d));
+    } catch (const std::exception& e) {
+      c.fail(e.what());
+    }
+  }
+  p.initPredicate = c.word("init predicate");
+}
+
+void readSection(Cursor& c, std::uint32_t tag, Program& p) {
+  switch (tag) {
+    case kSecTypes:
+      readTypes(c, p.types);
+      break;
+    case kSecPredicates:
+      readPredicates(c, p);
+      break;
+    case kSecNodes: {
+      const std::uint32_t n = c.count("node", 8);
+      p.nodeSourceIds.reserve(n);
+      for (std::uint32_t i = 0; i < n; ++i) p.nodeSourceIds.push_back(std::int64_t(c.u64("node source id")));
+      break;
+    }
+    case kSecStrings: {
+      const std::uint32_t n = c.count("string", 4);
+      for (std::uint32_t i = 0; i < n; ++i) p.strings.push_back(c.str("string constant"));
+      break;
+    }
+    case kSecGlobals: {
+      const std::uint32_t n = c.count("global", 8);
+      for (std::uint32_t i = 0; i < n; ++i) {
+        Global g;
+        g.name = c.str("global name");
+        g.type = c.word("global type");
+        p.globals.push_back(std::move(g));
+      }
+      p.globalsInit = c.block();
+      break;
+    }
+    case kSecFunctions: {
+      const std::uint32_t n = c.count("function", 4 * 7);
+      for (std::uint32_t i = 0; i < n; ++i) {
+        Function f;
+        f.name = c.str("function name");
+        f.params = c.words("function parameters");
+        f.result = c.word("function result type");
+        f.block = c.block();
+        p.functions.push_back(std::move(f));
+      }
+      break;
+    }
+    case kSecExterns: {
+      const std::uint32_t n = c.count("extern", 4 * 3);
+      for (std::uint32_t i = 0; i < n; ++i) {
+        Extern e;
+        e.name = c.str("extern name");
+        e.params = c.words("extern parameters");
+        e.result = c.word("extern result type");
+        p.externs.push_back(std::move(e));
+      }
+      break;
+    }
+    case kSecRules: {
+      const std::uint32_t n = c.count("rule", 4 * 5);
+      for (std::uint32_t i = 0; i < n; ++i) {
+        Rule r;
+        r.block = c.block();
+        r.bodyPredicates = c.words("body predicates");
+        p.rules.push_back(std::move(r));
+      }
+      break;
+    }
+    case kSecProcesses: {
+      const std::uint32_t n = c.count("process", 4 * 5);
+      for (std::uint32_t i = 0; i < n; ++i) {
+        Process pr;
+        pr.trigger = c.word("process trigger");
+        pr.block = c.block();
+        p.processes.push_back(std::move(pr));
+      }
+      break;
+    }
+    case kSecAxioms: {
+      p.nodeAxioms = c.words("node axioms");
+      const std::uint32_t n = c.count("axiom block", 4 * 4);
+      for (std::uint32_t i = 0; i < n; ++i) p.axiomBlocks.push_back(c.block());
+      break;
+    }
+    case kSecScheduling: {
+      SchedulingOptions& o = p.scheduling;
+      const std::uint32_t order = c.word("priority order");
+      if (order > std::uint32_t(PriorityOrder::Asc))
+        c.fail("unknown priority order " + std::to_string(order));
+      o.order = PriorityOrder(order);
+      const std::uint32_t flags = c.word("scheduling flags");
+      if (flags & ~kSchedFlagsAll) c.fail("unknown scheduling flag bits");
+      o.hasInitialPriority = flags & kSchedInitial;
+      o.hasDefaultPriority = flags & kSchedDefault;
+      o.noInitialPriorities = flags & kSchedNoInitial;
+      o.staticNodes = flags & kSchedStatic;
+      o.initialPriority = c.f64("initial priority");
+      o.defaultPriority = c.f64("default priority");
+      o.hasNoPriority = flags & kSchedNoPriority;
+      if (o.hasNoPriority) o.noPriority = c.f64("no-priority value");
+      break;
+    }
+    case kSecIndexes: {
+      const std::uint32_t n = c.count("index", 8);
+      for (std::uint32_t i = 0; i < n; ++i) {
+        IndexRequest ix;
+        ix.predicate = c.word("index predicate");
+        ix.field = c.word("index field");
+        p.indexes.push_back(ix);
+      }
+      p.highestArg = c.word("highest argument");
+      break;
+    }
+  }
+}
+
+}  // namespace
+
+std::unique_ptr<Program> readBytecode(const std::uint8_t* data, std::size_t size) {
+  Cursor c(data, size);
+  c.need(4, "magic");
+  if (std::memcmp(data, kMagic, 4) != 0) c.fail("not a Meld bytecode file (magic is not MBC1)");
+  c.word("magic");
+  const std::uint32_t version = c.word("version");
+  if (version != kBytecodeVersion)
+    c.fail("bytecode version " + std::to_string(version) + " is not supported (expected version " +
+           std::to_string(kBytecodeVersion) + ")");
+  const std::uint32_t sections = c.word("section count");
+  if (sections != kSectionCount)
+    c.fail("section count " + std::to_string(sections) + " (expected " + std::to_string(kSectionCount) + ")");
+
+  auto p = std::make_unique<Program>();
+  for (std::uint32_t want = 1; want <= kSectionCount; ++want) {
+    const std::uint32_t tag = c.word("section tag");
+    if (tag == 0 || tag > kSectionCount) c.fail("unknown section tag " + std::to_string(tag));
+    if (tag != want)
+      c.fail(std::string("section ") + sectionName(tag) + " out of order (expected section " +
+             sectionName(want) + ")");
+    const std::uint32_t len = c.word("section length");
+    if (len % 4 != 0) c.fail(std::string("section ") + sectionName(tag) + " length is not a multiple of 4");
+    c.need(len, sectionName(tag));
+    const std::size_t outer = c.enter(len);
+    readSection(c, tag, *p);
+    c.leave(outer, sectionName(tag));
+  }
+  if (c.left() != 0) c.fail(std::to_string(c.left()) + " bytes of trailing garbage after the last section");
+  verifyProgram(*p);
+  return p;
+}
+
+std::unique_ptr<Program> readBytecodeFile(const std::string& path) {
+  std::ifstream in(path, std::ios::binary);
+  if (!in) throw BytecodeError("cannot open " + path, 0);
+  std::vector<std::uint8_t> bytes;
+  // libstdc++ reports some read errors (e.g. the path is a directory) by throwing from the stream
+  // buffer even without exceptions() set.
+  try {
+    bytes.assign(std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>());
+  } catch (const std::exception& e) {
+    throw BytecodeError("cannot read " + path + ": " + e.what(), 0);
+  }
+  if (in.bad()) throw BytecodeError("cannot read " + path, 0);
+  try {
+    return readBytecode(bytes.data(), bytes.size());
+  } catch (const BytecodeError& e) {
+    throw BytecodeError(path + ": " + e.what(), e.offset());
+  }
+}
+
+}  // namespace meldvm

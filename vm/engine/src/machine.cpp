@@ -1,0 +1,574 @@
+#include "meldvm/machine.hpp"
+
+#include <ostream>
+#include <sstream>
+
+#include "interpreter.hpp"
+#include "meldvm/arith.hpp"
+#include "meldvm/bytecode_internal.hpp"
+#include "meldvm/dump.hpp"
+#include "meldvm/mailboxes.hpp"
+
+namespace meldvm {
+
+namespace {
+const Value kNoArgs[1] = {};  // arguments of _init and just-moved (home only)
+}  // namespace
+
+Machine::Machine(const Program& program, MachineOptions options)
+    : program_(program),
+      options_(std::move(options)),
+      heap_(program.types),
+      db_(std::make_unique<Database>(program.predicates, heap_)),
+      builtinCtx_(heap_),
+      rng_(Rng::forThread(0)),
+      sched_(program.scheduling) {
+  host_ = options_.host;
+  stepsLeft_ = options_.maxSteps ? options_.maxSteps + 1 : UINT64_MAX;
+  if (options_.seed) rng_.state ^= support::splitmix64(options_.seed);
+  builtinCtx_.rng = &rng_;
+  builtinCtx_.sched = this;
+  const std::size_t preds = program.predicates.size();
+  rulesOf_.resize(preds);
+  processesOf_.resize(preds);
+  queuedPersistent_.assign(preds, 0);
+  for (std::uint32_t r = 0; r < program.rules.size(); ++r)
+    for (PredId p : program.rules[r].bodyPredicates) rulesOf_[p].push_back(r);
+  for (std::uint32_t i = 0; i < program.processes.size(); ++i)
+    processesOf_[program.processes[i].trigger].push_back(i);
+  // The predicates a process's loops read at the node (a persistent rule's body has no head
+  // comprehension or aggregate, so every loop is a body subgoal): with one of them empty there,
+  // the process cannot fire, and runProcesses skips it. Thread facts live elsewhere: not listed.
+  processNeeds_.resize(program.processes.size());
+  for (std::uint32_t i = 0; i < program.processes.size(); ++i) {
+    const std::vector<std::uint32_t>& code = program.processes[i].block.code;
+    detail::forEachInstruction(code, [&](std::size_t pc) {
+      if (detail::isLoop(code[pc]) && !(code[pc + 3] & kIterThread)) processNeeds_[i].push_back(code[pc + 1]);
+    });
+  }
+  // Indexes (§4.4 `index p/N`, and the look-ups of ITER_KEY): requested before any fact is stored.
+  keyIndexes_.resize(preds);
+  for (const IndexRequest& ix : program.indexes)
+    if (ix.predicate < preds && ix.field < program.predicates[ix.predicate].arity())
+      requestKeyIndex(ix.predicate, ix.field);
+  // One walk over the code: the indexes ITER_KEY looks facts up in, and whether the program draws
+  // random numbers (randint, degeneratevector, a [:random] selector).
+  auto scan = [&](const CodeBlock& b) {
+    detail::forEachInstruction(b.code, [&](std::size_t pc) {
+      const auto op = Opcode(b.code[pc]);
+      if (op == Opcode::ITER_KEY) requestKeyIndex(b.code[pc + 1], b.code[pc + 4]);
+      if ((op == Opcode::CALL && (b.code[pc + 2] == 1 || b.code[pc + 2] == 32)) ||
+          (op == Opcode::ITER_SORTED && (b.code[pc + 3] & kIterRandom)))
+        usesRandom_ = true;
+    });
+  };
+  for (const Rule& r : program.rules) scan(r.block);
+  for (const Process& p : program.processes) scan(p.block);
+  for (const Function& f : program.functions) scan(f.block);
+  for (PredId p = 0; p < preds; ++p) {
+    const PredicateDesc& d = program.predicates[p];
+    maxArity_ = std::max(maxArity_, d.arity());
+    queuedPersistent_[p] = !d.linear && (!processesOf_[p].empty() || d.aggregated());
+    bool boxed = false;
+    for (TypeId t : d.fields) boxed = boxed || program.types.boxed(t);
+    boxedField_.push_back(boxed);
+    isLinear_.push_back(d.linear);
+    arity_.push_back(d.arity());
+  }
+  isThreadPred_.assign(preds, 0);
+  for (PredId p = 0; p < preds; ++p) {
+    isThreadPred_[p] = program.predicates[p].thread;
+    hasThreads_ = hasThreads_ || isThreadPred_[p];
+  }
+  for (std::uint32_t r = 0; r < program.rules.size(); ++r) {
+    bool node = false, thread = false;
+    for (PredId p : program.rules[r].bodyPredicates) (isThreadPred_[p] ? thread : node) = true;
+    if (node && thread) mixedRules_.push_back(r);
+    isMixedRule_.push_back(node && thread);
+  }
+  justMoved_ = program.predicates.find("just-moved");
+  if (justMoved_ == program.predicates.size()) justMoved_ = Program::kNoPred;
+  ruleWords_ = std::uint32_t((program.rules.size() + 63) / 64);
+  if (ruleWords_ == 0) ruleWords_ = 1;
+  for (const std::string& s : program.strings) strings_.push_back(heap_.makeString(s));
+  for (const std::string& a : options_.args) args_.push_back(heap_.makeString(a));
+  globals_.assign(program.globals.size(), Value());
+  interp_ = std::make_unique<Interpreter>(*this, program_, *db_, builtinCtx_);
+  std::vector<std::vector<ArgWidth>> shapes(preds);
+  for (PredId p = 0; p < preds; ++p)
+    for (TypeId t : program.predicates[p].fields) shapes[p].push_back(argWidth(program.types.kind(t)));
+  mail_ = std::make_unique<Mailboxes>(shapes);
+  linearOutArgs_.reserve(1024);
+  persistentArgs_.reserve(1024);
+}
+
+Machine::~Machine() {
+  // The databases go first (they hold references into the heap), then what the machine owns.
+  for (const PendingFact& e : persistentQueue_) releaseArgs(e.pred, persistentArgs_.data() + e.args);
+  for (const PendingFact& e : sentPersistent_) releaseArgs(e.pred, sentArgs_.data() + e.args);
+  for (const PendingFact& e : sentLinear_) releaseArgs(e.pred, sentArgs_.data() + e.args);
+  mail_->forEachPending([&](PredId p, const Value* args) { releaseArgs(p, args); });
+  for (std::size_t g = 0; g < globals_.size(); ++g) heap_.release(program_.globals[g].type, globals_[g]);
+  for (Value s : strings_) heap_.release(TypeTable::kString, s);
+  for (Value a : args_) heap_.release(TypeTable::kString, a);
+  interp_.reset();
+  db_.reset();
+}
+
+std::size_t Machine::bytesInUse() const {
+  return db_->bytesReserved() + heap_.bytesReserved() + mail_->bytesReserved() +
+         candidates_.capacity() * sizeof(std::uint64_t) + created_.capacity() + (sched_.nodeCount() + 1) * 32;
+}
+
+bool Machine::hasWork(NodeId n) const { return !mail_->empty(n); }
+
+// ---- set-up and the scheduler loop ----
+
+void Machine::start() {
+  if (started_) return;
+  started_ = true;
+  const NodeId n = std::max<NodeId>(NodeId(program_.nodeSourceIds.size()), options_.nodes);
+  initialNodes_ = n;
+  // §6.12: with thread predicates, the one VM thread has a node of its own, id n, allocated before
+  // any node `exists` creates.
+  const NodeId all = hasThreads_ ? n + 1 : n;
+  if (hasThreads_) threadNode_ = n;
+  db_->addNodes(all);
+  candidates_.assign(std::size_t(all) * ruleWords_, 0);
+  axiomCandidates_.assign(ruleWords_, 0);
+  mail_->addNodes(all);
+  created_.assign(all, 0);
+  if (!program_.globalsInit.code.empty()) {
+    try {
+      interp_->run(program_.globalsInit, 0);
+    } catch (const std::exception& e) {
+      fail(e, 0, "the constants");
+    }
+  }
+  reserveForAxioms();
+  if (program_.initPredicate != Program::kNoPred) {
+    for (NodeId i = 0; i < n; ++i) {
+      db_->addLinear(i, program_.initPredicate, kNoArgs);
+      factAdded(i, program_.initPredicate);
+    }
+  }
+  sched_.start(n);
+  if (hasThreads_) {
+    sched_.addNode();  // the thread node has a scheduler entry but is served apart (run())
+    startThreadNode();
+  }
+}
+
+void Machine::reserveForAxioms() {
+  // Every DERIVE of an axiom block stores one fact (the blocks are straight-line code): room for
+  // them all up front spares the fact tables and their hash tables growing step by step while
+  // millions of axioms go in.
+  std::vector<std::size_t> facts(program_.predicates.size(), 0);
+  for (const CodeBlock& b : program_.axiomBlocks)
+    detail::forEachInstruction(b.code, [&](std::size_t pc) {
+      if (Opcode(b.code[pc]) == Opcode::DERIVE) ++facts[b.code[pc + 1]];
+    });
+  for (PredId p = 0; p < facts.size(); ++p)
+    if (facts[p] != 0 && !program_.predicates[p].action) db_->reserve(p, facts[p]);
+}
+
+void Machine::startThreadNode() {
+  const PredicateTable& preds = program_.predicates;
+  auto find = [&](const char* name) {
+    const PredId p = preds.find(name);
+    return p < preds.size() && preds[p].thread ? p : Program::kNoPred;
+  };
+  const Value self = Value::fromThread(0);
+  if (const PredId p = find("_init_thread"); p != Program::kNoPred) {
+    db_->addLinear(threadNode_, p, kNoArgs);
+    factAdded(threadNode_, p);
+  }
+  // The special facts of one thread: the list of all threads and the leader; no other threads.
+  if (const PredId p = find("thread-list"); p != Program::kNoPred) {
+    const Value list = heap_.makeList(preds[p].fields[0], std::span<const Value>(&self, 1));
+    db_->derive(threadNode_, p, &list);
+    heap_.release(preds[p].fields[0], list);
+    factAdded(threadNode_, p);
+  }
+  if (const PredId p = find("leader-thread"); p != Program::kNoPred) {
+    db_->derive(threadNode_, p, &self);
+    factAdded(threadNode_, p);
+  }
+}
+
+void Machine::run() {
+  start();
+  // §6.11: the heap, then the FIFO, then the thread node.
+  for (NodeId node; !stop_;) {
+    if (sched_.pop(node))
+      runNode(node);
+    else if (threadNode_ != kNoNode && (hasWork(threadNode_) || hasCandidate(threadNode_)))
+      runNode(threadNode_);
+    else
+      break;
+  }
+  if (!stop_) collectGarbageNodes();
+}
+
+void Machine::receive(NodeId n, PredId p, const Value* args, bool negative) {
+  start();
+  if (n >= db_->nodeCount())
+    throw RuntimeError("fact for node @" + std::to_string(n) + ", which does not exist");
+  post(n, p, args, negative);
+}
+
+std::uint64_t Machine::runNode(NodeId n) {
+  start();
+  const std::uint64_t firedBefore = stats_.rulesFired;
+  // The FIFO says which nodes run next: fetch their mailbox entries and list heads three runs
+  // ahead, then their first messages and first facts two runs ahead, so that a run rarely waits
+  // for memory when it starts.
+  NodeId ahead;
+  if (sched_.peek(2, ahead)) {
+    sched_.prefetch(ahead);
+    mail_->prefetchBox(ahead);
+    db_->prefetchNode(ahead);
+    __builtin_prefetch(candidates_.data() + std::size_t(ahead) * ruleWords_);
+  }
+  if (sched_.peek(1, ahead)) {
+    mail_->prefetchMessages(ahead);
+    db_->prefetchNodeFacts(ahead);
+  }
+  running_ = n;
+  inRun_ = true;
+  runDerived_ = runConsumed_ = 0;
+  axiomsDeferred_ = false;
+  ++stats_.nodeRuns;
+  deliverIncoming(n);
+  processPersistent();
+  std::uint64_t* cand = candidates_.data() + std::size_t(n) * ruleWords_;
+  // §6.12: while a normal node runs, its thread's facts are visible: rules over node and thread
+  // facts are checked again (the thread's facts may have changed since this node last ran), and
+  // the thread node's own candidates (rule 1, rules over thread facts only) compete with the
+  // node's by rule number, running on the thread node.
+  const bool withThread = threadNode_ != kNoNode && n != threadNode_;
+  if (withThread)
+    for (std::uint32_t r : mixedRules_)
+      if (allPresent(n, r)) cand[r / 64] |= std::uint64_t(1) << (r % 64);
+  while (!stop_) {
+    const std::uint64_t* threadCand =
+        withThread ? candidates_.data() + std::size_t(threadNode_) * ruleWords_ : nullptr;
+    std::uint32_t rule = ~0u;
+    NodeId host = n;
+    for (std::uint32_t w = 0; w < ruleWords_ && rule == ~0u; ++w) {
+      const std::uint64_t bits = cand[w] | (threadCand ? threadCand[w] : 0);
+      if (!bits) continue;
+      rule = w * 64 + std::uint32_t(__builtin_ctzll(bits));
+      if (!(cand[w] & (std::uint64_t(1) << (rule % 64)))) host = threadNode_;
+    }
+    if (rule == ~0u) {
+      if (!takeAxiomCandidates(cand)) break;
+      continue;
+    }
+    std::uint64_t* hostCand = candidates_.data() + std::size_t(host) * ruleWords_;
+    hostCand[rule / 64] &= ~(std::uint64_t(1) << (rule % 64));
+    if (rule == 0) std::copy(cand, cand + ruleWords_, axiomCandidates_.begin());
+    runRule(host, rule);
+    finishRuleRun();
+    cand = candidates_.data() + std::size_t(n) * ruleWords_;  // exists may have grown the array
+    if (rule == 0) deferAxiomCandidates(cand);
+  }
+  inRun_ = false;
+  flushOutgoing();
+  applyPriorityRequests();
+  if (!host_ && n != threadNode_) sched_.finished(n, hasWork(n));
+  return stats_.rulesFired - firedBefore;
+}
+
+// The established VM stores a node's axioms when rule 0 runs, but the rules they enable are tried
+// only after the rules enabled by the facts the node had already received: a node whose first
+// run finds messages waiting handles them before its own axioms (§6.2, §6.11).
+void Machine::deferAxiomCandidates(std::uint64_t* cand) {
+  for (std::uint32_t w = 0; w < ruleWords_; ++w) {
+    const std::uint64_t fresh = cand[w] & ~axiomCandidates_[w];
+    axiomCandidates_[w] = fresh;
+    cand[w] &= ~fresh;
+  }
+  axiomsDeferred_ = true;
+}
+
+bool Machine::takeAxiomCandidates(std::uint64_t* cand) {
+  if (!axiomsDeferred_) return false;
+  axiomsDeferred_ = false;
+  bool any = false;
+  for (std::uint32_t w = 0; w < ruleWords_; ++w) {
+    for (std::uint64_t bits = axiomCandidates_[w]; bits; bits &= bits - 1) {
+      const std::uint32_t r = w * 64 + std::uint32_t(__builtin_ctzll(bits));
+      if (allPresent(running_, r)) {
+        cand[w] |= std::uint64_t(1) << (r % 64);
+        any = true;
+      }
+    }
+    axiomCandidates_[w] = 0;
+  }
+  return any;
+}
+
+void Machine::requestKeyIndex(PredId p, std::uint32_t field) {
+  if (keyIndex(p, field) == ~0u) keyIndexes_[p].emplace_back(field, db_->requestIndex(p, field));
+}
+
+void Machine::stepLimitReached() const {
+  throw RuntimeError("stopped after " + std::to_string(options_.maxSteps) +
+                     " steps (the step limit: rule, process and loop runs, linear facts derived, "
+                     "nodes created); the program may not terminate");
+}
+
+void Machine::runRule(NodeId n, std::uint32_t rule) {
+  countStep();
+  try {
+    interp_->run(program_.rules[rule].block, n);
+  } catch (const RuntimeError& e) {
+    fail(e, n, "rule " + std::to_string(rule) + " (" + program_.rules[rule].block.label + ")");
+  }
+}
+
+void Machine::finishRuleRun() {
+  for (const Consumed& c : consumed_) {
+    db_->consume(c.node, c.pred, c.fact);
+    factRemoved(c.node, c.pred);
+  }
+  consumed_.clear();
+  storeDerivedLinear();
+  processPersistent();
+}
+
+void Machine::storeDerivedLinear() {
+  countSteps(linearOut_.size());  // a run that doubles the node's facts is bounded too
+  for (const PendingFact& e : linearOut_) {
+    const Value* args = linearOutArgs_.data() + e.args;
+    db_->addLinear(e.node, e.pred, args);
+    releaseArgs(e.pred, args);
+    factAdded(e.node, e.pred);
+  }
+  linearOut_.clear();
+  linearOutArgs_.clear();
+}
+
+void Machine::fail(const std::exception& e, NodeId n, const std::string& where) const {
+  throw RuntimeError("runtime error at node @" + std::to_string(n) + " in " + where + ": " + e.what());
+}
+
+// ---- candidate rules (§6.4.2) ----
+
+bool Machine::allPresent(NodeId n, std::uint32_t rule) const {
+  for (PredId q : program_.rules[rule].bodyPredicates)
+    if (db_->factCount(isThreadPred_[q] ? threadNode_ : n, q) == 0) return false;
+  return true;
+}
+
+bool Machine::hasCandidate(NodeId n) const {
+  const std::uint64_t* cand = candidates_.data() + std::size_t(n) * ruleWords_;
+  for (std::uint32_t w = 0; w < ruleWords_; ++w)
+    if (cand[w]) return true;
+  return false;
+}
+
+void Machine::factAdded(NodeId n, PredId p) {
+  // A thread fact makes the thread node's own rules candidates, and the rules mixing node and
+  // thread facts of the node that is running (others check them when they start a run).
+  std::uint64_t* cand = candidates_.data() + std::size_t(n) * ruleWords_;
+  for (std::uint32_t r : rulesOf_[p])
+    if (allPresent(n, r)) cand[r / 64] |= std::uint64_t(1) << (r % 64);
+  if (n != threadNode_ || !inRun_ || running_ == threadNode_) return;
+  std::uint64_t* runningCand = candidates_.data() + std::size_t(running_) * ruleWords_;
+  for (std::uint32_t r : rulesOf_[p])
+    if (isMixedRule_[r] && allPresent(running_, r)) runningCand[r / 64] |= std::uint64_t(1) << (r % 64);
+}
+
+void Machine::factRemoved(NodeId n, PredId p) {
+  if (db_->factCount(n, p) != 0) return;
+  std::uint64_t* cand = candidates_.data() + std::size_t(n) * ruleWords_;
+  for (std::uint32_t r : rulesOf_[p]) cand[r / 64] &= ~(std::uint64_t(1) << (r % 64));
+}
+
+// ---- what the interpreter calls ----
+
+void Machine::retainArgs(PredId p, const Value* args) {
+  const PredicateDesc& d = program_.predicates[p];
+  for (std::uint32_t i = 0; i < d.arity(); ++i) heap_.retain(d.fields[i], args[i]);
+}
+
+void Machine::releaseArgs(PredId p, const Value* args) {
+  if (!boxedField_[p]) return;
+  const PredicateDesc& d = program_.predicates[p];
+  for (std::uint32_t i = 0; i < d.arity(); ++i) heap_.release(d.fields[i], args[i]);
+}
+
+void Machine::derive(NodeId host, PredId p, const Value* args, bool negative) {
+  const PredicateDesc& d = program_.predicates[p];
+  if (d.action) {
+    if (!negative) action(host, host, p, args);
+    return;
+  }
+  if (!negative) {
+    ++stats_.factsDerived;
+    ++runDerived_;
+  }
+  if (d.linear) {
+    if (negative) return;  // linear facts are never undone (§6.8)
+    linearOut_.push_back({host, p, false, std::uint32_t(linearOutArgs_.size())});
+    pushArgs(linearOutArgs_, p, args);
+    return;
+  }
+  if (queuedPersistent_[p]) {
+    persistentQueue_.push_back({host, p, negative, std::uint32_t(persistentArgs_.size())});
+    pushArgs(persistentArgs_, p, args);
+    return;
+  }
+  const Change c = negative ? db_->retract(host, p, args) : db_->derive(host, p, args);
+  if (c.added) factAdded(host, p);
+  if (c.removed) factRemoved(host, p);
+}
+
+void Machine::send(NodeId host, NodeId dest, PredId p, const Value* args, bool negative,
+                   std::uint32_t delayMs) {
+  // Delays need simulated time: only a host has it; on the VM's own graph a delayed fact is sent
+  // at once.
+  if (!host_) delayMs = 0;
+  if (dest == host && delayMs == 0) return derive(host, p, args, negative);
+  if (dest >= db_->nodeCount()) noSuchNode(p, dest);
+  if (!host_) {  // posted when the run ends (flushOutgoing): fetch what the post will touch
+    mail_->prefetchBox(dest);
+    sched_.prefetch(dest);
+  }
+  if (!db_->alive(dest)) noSuchNode(p, dest);
+  const PredicateDesc& d = program_.predicates[p];
+  if (d.action) {
+    if (negative) return;
+    if (delayMs == 0) return action(host, dest, p, args);
+    // `setColor2(B, 3)@+1s` on a robot: the action runs on this block when the delay is over (its
+    // runtime's timer brings the fact back here).
+    sentLinear_.push_back({host, p, false, std::uint32_t(sentArgs_.size()), delayMs});
+    pushArgs(sentArgs_, p, args);
+    return;
+  }
+  if (host_ && dest != host && !host_->reachable(host, dest)) notANeighbour(p, host, dest);
+  if (d.linear && negative) return;
+  if (!negative) {
+    ++stats_.factsDerived;
+    ++runDerived_;
+  }
+  ++stats_.factsSent;
+  (d.linear ? sentLinear_ : sentPersistent_)
+      .push_back({dest, p, negative, std::uint32_t(sentArgs_.size()), delayMs});
+  pushArgs(sentArgs_, p, args);
+}
+
+void Machine::noSuchNode(PredId p, NodeId dest) const {
+  throw RuntimeError("fact " + program_.predicates[p].name + " sent to node @" + std::to_string(dest) +
+                     ", which does not exist");
+}
+
+void Machine::notANeighbour(PredId p, NodeId host, NodeId dest) const {
+  throw RuntimeError("fact " + program_.predicates[p].name + " for node @" + std::to_string(dest) +
+                     ", which is not a neighbour of @" + std::to_string(host));
+}
+
+void Machine::sendThread(NodeId host, ThreadId t, PredId p, const Value* args, bool negative) {
+  if (t != 0 || threadNode_ == kNoNode)
+    throw RuntimeError("fact " + program_.predicates[p].name + " for thread #T" + std::to_string(t) +
+                       ", which does not exist (the VM runs one thread)");
+  // One thread: its node is visible to every node's rules, so its facts are stored directly, as
+  // facts of the host are (linear ones when the rule run ends, persistent ones through the queue).
+  if (!negative) ++stats_.factsDerived, ++runDerived_;
+  const PredicateDesc& d = program_.predicates[p];
+  if (d.linear) {
+    if (negative) return;
+    linearOut_.push_back({threadNode_, p, false, std::uint32_t(linearOutArgs_.size())});
+    pushArgs(linearOutArgs_, p, args);
+    return;
+  }
+  persistentQueue_.push_back({threadNode_, p, negative, std::uint32_t(persistentArgs_.size())});
+  pushArgs(persistentArgs_, p, args);
+  (void)host;
+}
+
+void Machine::action(NodeId from, NodeId dest, PredId p, const Value* args) {
+  if (host_) return host_->action(from, dest, p, args);
+  // On the VM's own graph only write-string has a visible effect (§4.1.3); the robot runtime
+  // executes the others (colours, motion).
+  const PredicateDesc& d = program_.predicates[p];
+  if (d.name == "write-string" && options_.output && d.arity() == 1)
+    *options_.output << stringOf(args[0]) << '\n';
+}
+
+void Machine::consumed(NodeId n, PredId p, FactRef f) {
+  db_->markConsumed(p, f);
+  consumed_.push_back({n, p, f});
+  ++stats_.factsConsumed;
+  ++runConsumed_;
+}
+
+void Machine::updated(NodeId host, PredId p, FactRef f, const Value* args, bool moveToBack) {
+  db_->updateLinear(host, p, f, args, moveToBack);
+  factAdded(host, p);  // as consume + derive (§6.4.5): the rule may run again
+  ++stats_.factsDerived;
+  ++runDerived_;
+}
+
+NodeId Machine::newNode() {
+  countStep();
+  const NodeId id = db_->addNodes(1);
+  candidates_.resize(candidates_.size() + ruleWords_, 0);
+  mail_->addNodes(1);
+  created_.push_back(1);
+  sched_.addNode();
+  if (program_.initPredicate != Program::kNoPred) {
+    db_->addLinear(id, program_.initPredicate, kNoArgs);
+    factAdded(id, program_.initPredicate);
+  }
+  if (host_) throw RuntimeError("exists: a robot cannot create nodes (every node is a block)");
+  sched_.wake(id);
+  return id;
+}
+
+// ---- end of the run ----
+
+void Machine::collectGarbageNodes() {
+  // §6.10: a created node with no facts that no fact refers to is deleted.
+  std::vector<NodeId> empty;
+  for (NodeId n = initialNodes_; n < db_->nodeCount(); ++n) {
+    if (!created_[n] || !db_->alive(n)) continue;
+    bool hasFacts = false;
+    for (PredId p = 0; p < program_.predicates.size() && !hasFacts; ++p) hasFacts = db_->factCount(n, p) != 0;
+    if (!hasFacts) empty.push_back(n);
+  }
+  if (empty.empty()) return;
+  std::vector<std::uint8_t> referenced(db_->nodeCount(), 0);
+  for (NodeId n = 0; n < db_->nodeCount(); ++n) {
+    if (!db_->alive(n)) continue;
+    for (PredId p = 0; p < program_.predicates.size(); ++p) {
+      const PredicateDesc& d = program_.predicates[p];
+      for (FactRef f = db_->first(n, p); f != kNoFact; f = db_->next(p, f)) {
+        const Value* a = db_->args(p, f);
+        for (std::uint32_t i = 0; i < d.arity(); ++i) {
+          const TypeId t = d.fields[i];
+          if (program_.types.kind(t) == TypeKind::Node) {
+            referenced[a[i].asNode()] = 1;
+          } else if (program_.types.kind(t) == TypeKind::List &&
+                     program_.types.kind(program_.types.element(t)) == TypeKind::Node) {
+            for (Value l = a[i]; !l.isNil(); l = listTail(l)) referenced[listHead(l).asNode()] = 1;
+          }
+        }
+      }
+    }
+  }
+  for (NodeId n : empty)
+    if (!referenced[n]) db_->removeNode(n);
+}
+
+void Machine::dump(std::ostream& out) const { dumpDatabase(out, *db_); }
+
+std::string Machine::dump() const {
+  std::ostringstream s;
+  dump(s);
+  return s.str();
+}
+
+}  // namespace meldvm
