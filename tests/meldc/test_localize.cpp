@@ -186,12 +186,23 @@ BOOST_AUTO_TEST_CASE(two_neighbours_get_one_helper_each) {
   BOOST_TEST(c.rule(3) == "!__mangledname1(A), !__mangledname2(A) -o !nearEnding(A)");
 }
 
-BOOST_AUTO_TEST_CASE(two_route_hops_are_rejected) {
+BOOST_AUTO_TEST_CASE(a_chain_of_route_hops_is_localized_hop_by_hop) {
+  // Moved to B, where C is still a neighbour away: C's part becomes a helper sent to B.
   Compiled c(std::string(kNeighbor) + "!neighbor(A, B), !neighbor(B, C), !ending(C) -o !nearEnding(A).\n");
-  BOOST_TEST(!c.ok());
-  BOOST_TEST(c.errors().find("main.meld:5:43: error: body reaches more than one hop through routes (not "
-                             "supported)") != std::string::npos,
-             c.errors());
+  BOOST_REQUIRE_MESSAGE(c.ok(), c.errors());
+  BOOST_REQUIRE(c.rules() == 3u);
+  BOOST_TEST(c.rule(1) == "!___robhgien(C, B), !ending(C) -o !__mangledname1(B) (generated)");
+  BOOST_TEST(c.rule(2) == "!__mangledname1(B), !___robhgien(B, A) -o !nearEnding(A)");
+}
+
+BOOST_AUTO_TEST_CASE(split_parts_are_localized_again_depth_first) {
+  Compiled c(std::string(kNeighbor) +
+             "!middle(A), !neighbor(A, B), !neighbor(B, C), !ending(C) -o !nearEnding(A).\n");
+  BOOST_REQUIRE_MESSAGE(c.ok(), c.errors());
+  BOOST_REQUIRE(c.rules() == 4u);
+  BOOST_TEST(c.rule(1) == "!___robhgien(C, B), !ending(C) -o !__mangledname2(B) (generated)");
+  BOOST_TEST(c.rule(2) == "!__mangledname2(B), !___robhgien(B, A) -o !__mangledname1(A) (generated)");
+  BOOST_TEST(c.rule(3) == "!__mangledname1(A), !middle(A) -o !nearEnding(A)");
 }
 
 // Without bodies spanning nodes (a route used only at the host included) nothing changes.

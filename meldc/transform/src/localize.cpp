@@ -1,6 +1,7 @@
 #include "meldc/localize.hpp"
 
 #include <algorithm>
+#include <deque>
 #include <map>
 #include <optional>
 #include <set>
@@ -21,6 +22,7 @@ namespace {
 
 using VarSet = std::set<std::string>;
 using VarList = std::vector<std::string>;
+using VarTypes = std::map<std::string, TypeExpr>;
 
 // Variables of an expression in textual order, repeats included (`let` variables are local).
 void exprVars(const Expr& e, VarList& out) {
@@ -147,8 +149,16 @@ class Localizer {
   static const std::string* homeVar(const Term& t) {
     return !t.args.empty() && t.args[0].kind == ExprKind::Var ? &t.args[0].name : nullptr;
   }
+  // The node variable a route subgoal leads to from its home variable (null for anything else).
+  const std::string* routeTarget(const Term& t) const {
+    const PredInfo* pi = info(t);
+    if (!pi || !pi->routeEdge || !homeVar(t) || t.args.size() < 2 || t.args[1].kind != ExprKind::Var) return nullptr;
+    return &t.args[1].name;
+  }
 
-  Rule rule(const Rule& r) {
+  // `inherited`: the variable types of the rule this one was split from (its expressions are
+  // copies the type checker never saw).
+  Rule rule(const Rule& r, const VarTypes* inherited = nullptr) {
     if (r.kind == RuleKind::Fact) return r;
     const std::string* host = nullptr;
     for (const Term& t : r.body)
@@ -161,13 +171,25 @@ class Localizer {
     // Candidate edges: route subgoals at the host, one per neighbour variable (the first wins).
     std::vector<Edge> candidates;
     for (size_t i = 0; i < r.body.size(); ++i) {
-      const Term& t = r.body[i];
-      const PredInfo* pi = info(t);
-      if (!pi || !pi->routeEdge || !homeVar(t) || *homeVar(t) != *host) continue;
-      if (t.args.size() < 2 || t.args[1].kind != ExprKind::Var || t.args[1].name == *host) continue;
-      bool known = std::any_of(candidates.begin(), candidates.end(),
-                               [&](const Edge& e) { return e.neighbour == t.args[1].name; });
-      if (!known) candidates.push_back(Edge{i, t.args[1].name, {}});
+      const std::string* to = routeTarget(r.body[i]);
+      if (!to || *homeVar(r.body[i]) != *host || *to == *host) continue;
+      bool known = std::any_of(candidates.begin(), candidates.end(), [&](const Edge& e) { return e.neighbour == *to; });
+      if (!known) candidates.push_back(Edge{i, *to, {}});
+    }
+    // Nodes further away (§6.7: reachable through route subgoals) belong to the edge of the
+    // neighbour they are reached through; that part of the body is localized again from there.
+    std::map<std::string, size_t> through;  // node variable -> candidate edge
+    for (size_t c = 0; c < candidates.size(); ++c) through.emplace(candidates[c].neighbour, c);
+    for (bool grew = true; grew;) {
+      grew = false;
+      for (const Term& t : r.body) {
+        const std::string* to = routeTarget(t);
+        if (!to || *to == *host || through.count(*to)) continue;
+        if (auto from = through.find(*homeVar(t)); from != through.end()) {
+          through.emplace(*to, from->second);
+          grew = true;
+        }
+      }
     }
 
     // Sides of the body items: host, an edge (its neighbour), or undecided (conditions).
@@ -178,14 +200,13 @@ class Localizer {
       if (!info(t)) candidateOf[i] = kUndecided;
       const std::string* h = nodeFact(t) ? homeVar(t) : nullptr;
       if (!h || *h == *host) continue;
-      auto it = std::find_if(candidates.begin(), candidates.end(),
-                             [&](const Edge& e) { return e.neighbour == *h; });
-      if (it == candidates.end()) {
-        unreachable(r, t, *host);
+      auto it = through.find(*h);
+      if (it == through.end()) {
+        unreachable(t, *host);
         return r;
       }
-      candidateOf[i] = static_cast<int>(it - candidates.begin());
-      used[static_cast<size_t>(candidateOf[i])] = true;
+      candidateOf[i] = static_cast<int>(it->second);
+      used[it->second] = true;
     }
     std::vector<Edge> edges;
     std::vector<int> edgeOf(candidates.size(), kHost);  // a route without facts beyond stays
@@ -226,9 +247,9 @@ class Localizer {
       // Only the route at the host: the whole rule runs at the neighbour (§6.7).
       Rule moved = r;
       moved.body[edges[0].route] = inverseSubgoal(r, r.body[edges[0].route]);
-      return moved;
+      return rule(moved, inherited ? inherited : &ruleTypes(r));
     }
-    return split(r, side, edges, *host);
+    return split(r, side, edges, *host, inherited ? *inherited : ruleTypes(r));
   }
 
   // Conditions go to a neighbour when everything they use is bound there and something is not
@@ -269,8 +290,8 @@ class Localizer {
     }
   }
 
-  Rule split(const Rule& r, const std::vector<int>& side, const std::vector<Edge>& edges,
-             const std::string& host) {
+  // The inferred type of every variable of `r` (kept in typesOfRules_: a moved rule refers to them).
+  const VarTypes& ruleTypes(const Rule& r) {
     if (!typing_) {
       // Expression types of the still unchanged program (it passed the type check: silent).
       SourceManager none;
@@ -278,13 +299,17 @@ class Localizer {
       Diagnostics quiet(none, ignored);
       typing_ = inferTypes(p_, quiet);
     }
-    std::map<std::string, TypeExpr> types;  // a variable nothing typed is an int, as in the checker
-    VarList order;                          // first occurrences: body, then head
+    VarTypes& types = typesOfRules_.emplace_back();  // a variable nothing typed is an int, as in the checker
     for (const std::vector<Term>* ts : {&r.body, &r.head})
-      for (const Term& t : *ts) {
-        eachExpr(t, [&](const Expr& e) { varTypes(e, *typing_, types); });
-        termVars(t, order);
-      }
+      for (const Term& t : *ts) eachExpr(t, [&](const Expr& e) { varTypes(e, *typing_, types); });
+    return types;
+  }
+
+  Rule split(const Rule& r, const std::vector<int>& side, const std::vector<Edge>& edges, const std::string& host,
+             VarTypes types) {
+    VarList order;  // first occurrences: body, then head
+    for (const std::vector<Term>* ts : {&r.body, &r.head})
+      for (const Term& t : *ts) termVars(t, order);
     Rule out = r;
     out.body.clear();
     for (size_t e = 0; e < edges.size(); ++e) {
@@ -331,10 +356,13 @@ class Localizer {
       for (size_t i = 0; i < r.body.size(); ++i)
         if (side[i] == edge && i != edges[e].route) remote.body.push_back(r.body[i]);
       remote.head.push_back(subgoal(r.loc, mark, helper.name, args));
-      generatedRules_.push_back(std::move(remote));
-
-      out.body.push_back(subgoal(r.loc, mark, helper.name, std::move(args)));
+      preds_[lower(helper.name)] = PredInfo{nullptr, linear, false, false};
+      const std::string helperName = helper.name;
       helpers_.push_back(std::move(helper));
+      // Nodes beyond the neighbour: its rule spans nodes in turn (helpers numbered depth first).
+      generatedRules_.push_back(rule(remote, &types));
+
+      out.body.push_back(subgoal(r.loc, mark, helperName, std::move(args)));
     }
     for (size_t i = 0; i < r.body.size(); ++i)
       if (side[i] == kHost) out.body.push_back(r.body[i]);
@@ -363,6 +391,8 @@ class Localizer {
     std::swap(d.fields[0], d.fields[1]);
     // A plain mirror of the route facts: an aggregate field is already aggregated at the route.
     for (FieldDecl& f : d.fields) f.agg = FieldAgg::None;
+    // A fact at the neighbour when the rule it moved to is localized again, never an edge there.
+    preds_[lower(d.name)] = PredInfo{nullptr, d.linear, false, false};
     inverses_.push_back(d);
 
     // r(X0, X1, R...) -o ___inv(X1, X0, R...), persistent for a persistent route.
@@ -384,22 +414,11 @@ class Localizer {
     return it->second;
   }
 
-  // A subgoal at a node that is no neighbour of the host: two route hops, or a route whose
-  // neighbour is not its second argument (the homes check accepts any node argument).
-  void unreachable(const Rule& r, const Term& t, const std::string& host) {
-    const std::string& home = *homeVar(t);
-    for (const Term& u : r.body) {
-      const PredInfo* pi = info(u);
-      if (!pi || !pi->decl || !pi->decl->route || !homeVar(u) || *homeVar(u) == host) continue;
-      for (size_t i = 1; i < u.args.size(); ++i)
-        if (u.args[i].kind == ExprKind::Var && u.args[i].name == home) {
-          diag_.error(t.args[0].loc, "body reaches more than one hop through routes (not supported)");
-          return;
-        }
-    }
-    diag_.error(t.args[0].loc, "cannot localize this rule: '" + t.name + "' is at '" + home +
-                                   "', which is not the second argument of a route fact at the host '" +
-                                   host + "'");
+  // A subgoal at a node that no chain of route subgoals leads to from the host.
+  void unreachable(const Term& t, const std::string& host) {
+    diag_.error(t.args[0].loc, "cannot localize this rule: '" + t.name + "' is at '" + *homeVar(t) +
+                                   "', which no route subgoal leads to from the host '" + host +
+                                   "' (a route leads from its first argument to its second)");
   }
 
   Program& p_;
@@ -412,6 +431,7 @@ class Localizer {
   std::vector<PredicateDecl> inverses_;
   int mangled_ = 0;
   std::optional<Typing> typing_;
+  std::deque<VarTypes> typesOfRules_;
 };
 
 }  // namespace

@@ -24,9 +24,12 @@
 // in creation order (inverse rule on first use of its route, then the helper rule); generated
 // predicates are appended to the table: helpers in creation order, then inverse routes.
 //
-// Bodies needing two route hops (X -> Y -> Z) are rejected with "body reaches more than one hop
-// through routes (not supported)": they are rare and cl-meld's result for them is not specified.
-// Programs without multi-node bodies are left exactly as they are.
+// Nodes further away (X -> Y -> Z through route subgoals, §6.7 "reachable from the host") go with
+// the edge of the host's neighbour they are reached through: the rule moved to Y, or the helper
+// rule at Y, still spans nodes and is localized again from Y, as cl-meld does edge by edge. Its
+// helpers are numbered depth first (the edge's helper, then those of the nodes beyond it); the
+// deeper generated rules come before the one at Y. Programs without multi-node bodies are left
+// exactly as they are.
 #pragma once
 
 #include "meldc/ast/program.hpp"
