@@ -191,7 +191,8 @@ BOOST_AUTO_TEST_CASE(thread_facts_round_trip_through_bytecode) {
 BOOST_AUTO_TEST_CASE(a_delayed_thread_fact_is_an_error) {
   Lowered l("type linear a(node).\ntype linear w(thread, int).\na(@0).\na(A) -o w(@thread, 1)@+10ms.\n");
   BOOST_TEST(!l.program);
-  BOOST_TEST(l.errors().find("a delay on the thread fact 'w' is not supported") != std::string::npos);
+  BOOST_TEST(l.errors().find("t.meld:4:9: error: a delay ('@+...') on the thread fact 'w': thread facts are delivered at once") !=
+             std::string::npos);
 }
 
 BOOST_AUTO_TEST_CASE(a_thread_fact_rederived_identically_is_kept) {

@@ -125,7 +125,10 @@ bool isAlias(const Lowering& L, const TypeExpr& t) {
 void checkFactOnly(const Rule& r) {
   for (const Term& t : r.head)
     if (t.kind != TermKind::Subgoal && t.kind != TermKind::Constraint)
-      unsupported(t.loc, "this construct in a fact (axiom)");
+      throw LowerError(
+          t.loc,
+          "a fact (a statement without body facts, §5.1) holds facts, constraints and assignments "
+          "only: this needs a rule");
 }
 
 // A fact of a thread predicate whose home is not a node literal: instantiated in every thread node

@@ -23,9 +23,6 @@ struct LowerError : std::runtime_error {
   LowerError(SourceLoc l, const std::string& message) : std::runtime_error(message), loc(l) {}
   SourceLoc loc;
 };
-[[noreturn]] inline void unsupported(SourceLoc loc, const std::string& what) {
-  throw LowerError(loc, what + " is not supported");
-}
 
 // Instruction predicates (§4.1.3, §5.7): no facts, each head occurrence is one opcode.
 enum class Instruction {

@@ -95,7 +95,7 @@ Reg ExprLowerer::value(const Expr& e) {
       return it->second;
     }
     case ExprKind::Anon:
-      unsupported(e.loc, "'_' as a value");
+      throw LowerError(e.loc, "'_' has no value: it only matches anything in a body pattern (§5.2)");
     case ExprKind::Int: {
       Folded f;
       f.i = e.intValue;
@@ -264,7 +264,7 @@ Reg ExprLowerer::arithmetic(const Expr& e) {
       op = isFloat ? Opcode::DIVF : Opcode::DIVI;
       break;
     case BinOp::Mod:
-      if (isFloat) unsupported(e.loc, "'%' on float values");
+      if (isFloat) throw LowerError(e.loc, "'%' takes int operands only (§5.5, §3.2)");
       op = Opcode::MODI;
       break;
     default:
@@ -286,7 +286,8 @@ Reg ExprLowerer::compareValue(const Expr& e) {
     return r;
   }
   const bool isFloat = t == TypeTable::kFloat;
-  if (!isFloat && t != TypeTable::kInt) unsupported(e.loc, "ordering comparison of non-numeric values");
+  if (!isFloat && t != TypeTable::kInt)
+    throw LowerError(e.loc, "'<', '<=', '>' and '>=' compare int or float values only (§3.2)");
   Opcode op = Opcode::LTI;
   switch (e.op) {
     case BinOp::Lt:
@@ -395,7 +396,9 @@ Reg ExprLowerer::callRegs(const std::string& name, const std::vector<Reg>& regs,
   for (const BuiltinFunction& b : builtinFunctions()) known |= b.name == key;
   if (known) {
     const meldvm::BuiltinInfo* b = meldvm::findBuiltin(std::string_view(key));
-    if (!b) unsupported(loc, "built-in function '" + key + "' (not implemented by the VM)");
+    if (!b)
+      throw LowerError(loc,
+                       "internal error: the built-in function '" + key + "' is missing from the VM's table");
     std::vector<TypeId> types;
     for (Reg r : regs) types.push_back(cb_.typeOf(r));
     // The VM resolves the polymorphic result the same way; no hidden type argument is passed.

@@ -40,7 +40,9 @@ void RuleLowering::instruction(const Term& t, Instruction which) {
       break;
   }
   if (t.args.size() != types.size()) throw LowerError(t.loc, "internal error: instruction arity");
-  if (t.delayMs) unsupported(t.loc, "a delay on '" + t.name + "'");
+  if (t.delayMs)
+    throw LowerError(
+        t.loc, "'" + t.name + "' is an instruction: it acts when the head runs and takes no delay ('@+...')");
   for (size_t i = 0; i < t.args.size(); ++i) regs.push_back(ex.valueAs(t.args[i], types[i]));
   static const std::map<Instruction, Opcode> ops = {
       {Instruction::SetPriority, Opcode::SET_PRIORITY},
@@ -67,7 +69,11 @@ void RuleLowering::subgoal(const Term& t, std::optional<std::int64_t> localNode)
   for (size_t i = 1; i < t.args.size(); ++i) regs.push_back(ex.valueAs(t.args[i], desc.fields[i - 1]));
   const Expr& home = t.args[0];
   if (desc.thread) {  // stored at the thread node of the thread the home names (§6.12)
-    if (t.delayMs) unsupported(t.loc, "a delay on the thread fact '" + t.name + "'");
+    if (t.delayMs)
+      throw LowerError(
+          t.loc, "a delay ('@+...') on the thread fact '" + t.name +
+                     "': thread facts are delivered at once (§5.3.1: the reference VM stops on a delayed "
+                     "send to a thread)");
     const Reg to = ex.valueAs(home, TypeTable::kThread);  // may emit code: before the opcode
     cb_.op(Opcode::SEND_THREAD).w(p->id).w(to).regs(regs);
     return;
@@ -80,7 +86,8 @@ void RuleLowering::subgoal(const Term& t, std::optional<std::int64_t> localNode)
     return;
   }
   Reg to = ex.valueAs(home, TypeTable::kNode);
-  if (t.delayMs && (*t.delayMs < 0 || *t.delayMs > INT32_MAX)) unsupported(t.loc, "a delay of this length");
+  if (t.delayMs && (*t.delayMs < 0 || *t.delayMs > INT32_MAX))
+    throw LowerError(t.loc, "a delay longer than 2147483647 ms");
   if (desc.action && !t.delayMs) {
     cb_.op(Opcode::ACTION).w(p->id).w(to).regs(regs);
   } else if (t.delayMs) {  // a delayed action runs on the sending block after the delay (robots)
@@ -107,7 +114,11 @@ void RuleLowering::head(const std::vector<Term>& items, const BodyPlan* plan, st
         subgoal(t);
         break;
       case TermKind::Constraint:
-        if (!assignment(t)) unsupported(t.loc, "a condition in a rule head (only assignments 'X = e')");
+        if (!assignment(t))
+          throw LowerError(
+              t.loc,
+              "a condition cannot stand in a head: a head holds facts, assignments 'X = e' of a new "
+              "variable, comprehensions, aggregates, 'exists' and '(if ... end)' (§5.3)");
         break;
       case TermKind::Exists:
         for (const VarDecl& v : t.vars) {

@@ -205,7 +205,9 @@ void RuleLowering::match(const BodyPlan& plan, std::uint32_t firstSlot, Label ou
         std::set<std::string> vars;
         for (size_t a = 1; a < s.term->args.size(); ++a) ExprLowerer::variables(s.term->args[a], vars);
         if (!sortField && vars.count(plan.selector->var))
-          unsupported(s.term->loc, "a selector variable inside a list or struct pattern");
+          throw LowerError(s.term->loc, "a selector orders the facts by an argument (§5.4): '" +
+                                            plan.selector->var + "' must be an argument of '" + s.term->name +
+                                            "', not inside a list or struct");
       }
       if (sortField) {
         if (plan.selector->kind == SelectorKind::Random) flags |= meldvm::kIterRandom;

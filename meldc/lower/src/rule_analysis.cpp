@@ -83,7 +83,7 @@ std::string hostVariable(const Lowering& L, const Rule& rule) {
   for (const Term& t : rule.body) {
     if (!isPredicateSubgoal(L, t) || L.desc(*L.pred(t.name)).thread) continue;
     if (t.args.empty() || t.args[0].kind != ExprKind::Var)
-      unsupported(t.loc, "a body fact whose home is not a variable");
+      throw LowerError(t.loc, "the home of a body fact must be a variable, the rule's host (§5.2)");
     return t.args[0].name;
   }
   for (const Term& t : rule.body)
@@ -101,7 +101,7 @@ BodyPlan planBody(const Lowering& L, const std::vector<Term>& body, const std::v
       if (t.kind == TermKind::Subgoal || t.kind == TermKind::Constraint)
         plan.conditions.push_back(&t);
       else
-        unsupported(t.loc, "this construct in a rule body");
+        throw LowerError(t.loc, "a rule body holds facts, constraints and assignments only (§5.2)");
       continue;
     }
     SubgoalPlan s;
@@ -116,9 +116,11 @@ BodyPlan planBody(const Lowering& L, const std::vector<Term>& body, const std::v
     const bool homeOk = s.thread ? !t.args.empty() && (home == ExprKind::Var || home == ExprKind::Anon)
                                  : home == ExprKind::Var && t.args[0].name == host;
     if (!homeOk)
-      unsupported(t.args.empty() ? t.loc : t.args[0].loc,
-                  s.thread ? "a thread fact whose home is not a variable"
-                           : "a body fact at another node than the rule's host (after localization)");
+      throw LowerError(
+          t.args.empty() ? t.loc : t.args[0].loc,
+          s.thread
+              ? "the home of a thread fact in a body must be a thread variable (§6.12)"
+              : "'" + t.name + "' is at another node than the rule's host and no route leads there (§6.7)");
     textual.push_back(s);
   }
 

@@ -152,7 +152,8 @@ class Localizer {
   // The node variable a route subgoal leads to from its home variable (null for anything else).
   const std::string* routeTarget(const Term& t) const {
     const PredInfo* pi = info(t);
-    if (!pi || !pi->routeEdge || !homeVar(t) || t.args.size() < 2 || t.args[1].kind != ExprKind::Var) return nullptr;
+    if (!pi || !pi->routeEdge || !homeVar(t) || t.args.size() < 2 || t.args[1].kind != ExprKind::Var)
+      return nullptr;
     return &t.args[1].name;
   }
 
@@ -173,7 +174,8 @@ class Localizer {
     for (size_t i = 0; i < r.body.size(); ++i) {
       const std::string* to = routeTarget(r.body[i]);
       if (!to || *homeVar(r.body[i]) != *host || *to == *host) continue;
-      bool known = std::any_of(candidates.begin(), candidates.end(), [&](const Edge& e) { return e.neighbour == *to; });
+      bool known = std::any_of(candidates.begin(), candidates.end(),
+                               [&](const Edge& e) { return e.neighbour == *to; });
       if (!known) candidates.push_back(Edge{i, *to, {}});
     }
     // Nodes further away (§6.7: reachable through route subgoals) belong to the edge of the
@@ -305,8 +307,8 @@ class Localizer {
     return types;
   }
 
-  Rule split(const Rule& r, const std::vector<int>& side, const std::vector<Edge>& edges, const std::string& host,
-             VarTypes types) {
+  Rule split(const Rule& r, const std::vector<int>& side, const std::vector<Edge>& edges,
+             const std::string& host, VarTypes types) {
     VarList order;  // first occurrences: body, then head
     for (const std::vector<Term>* ts : {&r.body, &r.head})
       for (const Term& t : *ts) termVars(t, order);

@@ -13,8 +13,8 @@
 
 namespace meldc {
 
-// Returns nullptr when the program uses something the back end cannot compile (reported to
-// `diag` as "... is not supported").
+// Returns nullptr when the back end finds an error the checks leave to it (a construct out of its
+// place, §5.2/§5.3; reported to `diag` with its position).
 std::unique_ptr<meldvm::Program> lowerProgram(const ast::Program& program, SourceManager& sources,
                                               Diagnostics& diag);
 

@@ -8,8 +8,8 @@
 //   3. P := reverse(nodes(main file));
 //   4. breadth-first numbering over the constant axioms of route predicates (default), or
 //      `priority @cluster @static`: id = source id, and every id 0..max exists.
-// `priority @cluster @random` (a non-reproducible permutation in cl-meld) and `data` directives
-// (node set read from a graph file) are reported as not supported.
+// `priority @cluster @random`: a permutation from a fixed random stream (cl-meld's is not
+// reproducible); `data` directives: ids of the graph file, numbered like `@cluster @static`.
 // Literals that come from -DNAME=VALUE definitions are added at the end of nodes(main file).
 #pragma once
 
