@@ -6,6 +6,7 @@
 #include <string>
 
 #include "meldc/ast/program.hpp"
+#include "meldc/ast/symbol.hpp"
 #include "meldc/ast_dump.hpp"
 #include "meldc/diagnostics.hpp"
 #include "meldc/names.hpp"
@@ -21,6 +22,7 @@ struct Parsed {
   explicit Parsed(const std::string& text, bool names = false) {
     uint32_t file = sources.add("t.meld", text);
     program = meldc::parseFile(file, sources, diag);
+    if (program) meldc::ast::internNames(*program);  // as the front end does before the checks
     if (program && names && !diag.hasErrors()) meldc::resolveNames(*program, diag);
   }
   bool ok() const { return program.has_value() && !diag.hasErrors(); }

@@ -1,13 +1,12 @@
 #include "meldc/bindings.hpp"
 
-#include <cctype>
 #include <set>
 #include <string>
+#include <unordered_set>
 #include <vector>
 
 #include "meldc/ast/expr_vars.hpp"
 #include "meldc/builtins.hpp"
-#include "meldc/case_folding.hpp"
 
 namespace meldc {
 
@@ -39,8 +38,8 @@ const Expr* assignedVar(const Term& t, const VarSet& bound) {
 class Checker {
  public:
   Checker(const Program& p, Diagnostics& diag) : diag_(diag) {
-    for (const BuiltinPredicate& b : builtinPredicates()) predicates_.insert(std::string(b.name));
-    for (const PredicateDecl& d : p.predicates) predicates_.insert(lower(d.name));
+    for (const BuiltinPredicate& b : builtinPredicates()) predicates_.insert(p.symbols.find(b.name));
+    for (const PredicateDecl& d : p.predicates) predicates_.insert(d.sym);
   }
 
   void rule(const Rule& r) {
@@ -90,7 +89,7 @@ class Checker {
     std::vector<const Expr*> tests;
     for (const Term& t : items) {
       if (t.kind != TermKind::Subgoal) continue;
-      bool predicate = predicates_.count(lower(t.name)) > 0;  // else a boolean function call
+      bool predicate = predicates_.count(t.sym) > 0;  // else a boolean function call
       for (const Expr& a : t.args) {
         if (predicate)
           patternVars(a, bound, tests);
@@ -215,7 +214,7 @@ class Checker {
   }
 
   Diagnostics& diag_;
-  std::set<std::string> predicates_;
+  std::unordered_set<Symbol> predicates_;
 };
 
 }  // namespace

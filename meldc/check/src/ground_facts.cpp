@@ -5,7 +5,6 @@
 #include <vector>
 
 #include "meldc/builtins.hpp"
-#include "meldc/case_folding.hpp"
 
 namespace meldc {
 
@@ -16,20 +15,18 @@ using ast::GroundArg;
 // The declaration a fact of `name` may be checked against here, or null when the usual checks
 // must see the fact (unknown or twice declared, a built-in, imported, an action).
 std::vector<const ast::PredicateDecl*> plainDeclarations(const ast::Program& p) {
-  std::unordered_map<std::string, int> count;
-  std::unordered_map<std::string, const ast::PredicateDecl*> decl;
+  std::unordered_map<ast::Symbol, int> count;
+  std::unordered_map<ast::Symbol, const ast::PredicateDecl*> decl;
   for (const ast::PredicateDecl& d : p.predicates) {
-    const std::string key = lower(d.name);
-    ++count[key];
-    decl[key] = &d;
+    ++count[d.sym];
+    decl[d.sym] = &d;
   }
-  for (const BuiltinPredicate& b : builtinPredicates()) count[std::string(b.name)] += 2;
+  for (const BuiltinPredicate& b : builtinPredicates()) count[p.symbols.find(b.name)] += 2;
   std::vector<const ast::PredicateDecl*> out;
-  for (const std::string& name : p.groundFacts.names) {
-    const std::string key = lower(name);
-    auto it = decl.find(key);
+  for (const ast::Symbol name : p.groundFacts.nameSyms) {
+    auto it = decl.find(name);
     const ast::PredicateDecl* d = it == decl.end() ? nullptr : it->second;
-    const bool plain = d && count[key] == 1 && !d->imported && !d->action && !d->generated &&
+    const bool plain = d && count[name] == 1 && !d->imported && !d->action && !d->generated &&
                        !d->fields.empty() && d->fields[0].type.kind == ast::TypeKind::Node;
     out.push_back(plain ? d : nullptr);
   }
@@ -99,6 +96,7 @@ ast::Rule groundFactRule(const ast::GroundFacts& facts, const ast::GroundFact& f
   t.loc = fact.loc;
   t.mark = fact.persistentMark ? ast::Mark::Persistent : ast::Mark::None;
   t.name = facts.name(fact);
+  if (fact.name < facts.nameSyms.size()) t.sym = facts.nameSyms[fact.name];
   t.nameLoc = SourceLoc{fact.loc.file, fact.loc.line, fact.nameCol};
   for (std::size_t i = 0; i < fact.argCount; ++i) {
     const GroundArg& a = facts.arg(fact, i);

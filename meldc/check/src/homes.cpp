@@ -1,12 +1,10 @@
 #include "meldc/homes.hpp"
 
-#include <cctype>
-#include <map>
 #include <set>
 #include <string>
+#include <unordered_map>
 
 #include "meldc/builtins.hpp"
-#include "meldc/case_folding.hpp"
 
 namespace meldc {
 
@@ -22,17 +20,17 @@ struct PredKind {
 class Checker {
  public:
   Checker(const Program& p, Diagnostics& diag) : diag_(diag) {
-    for (const BuiltinPredicate& b : builtinPredicates()) preds_[std::string(b.name)] = {false, b.thread};
-    std::map<std::string, const TypeExpr*> aliases;
-    for (const TypeAliasDecl& a : p.typeAliases) aliases[lower(a.name)] = &a.type;
+    for (const BuiltinPredicate& b : builtinPredicates()) preds_[p.symbols.find(b.name)] = {false, b.thread};
+    std::unordered_map<Symbol, const TypeExpr*> aliases;
+    for (const TypeAliasDecl& a : p.typeAliases) aliases[a.sym] = &a.type;
     for (const PredicateDecl& d : p.predicates) {
       const TypeExpr* home = d.fields.empty() ? nullptr : &d.fields[0].type;
       for (int guard = 0; home && home->kind == TypeKind::Named && guard < 64; ++guard) {
-        auto it = aliases.find(lower(home->name));
+        auto it = aliases.find(home->sym);
         if (it == aliases.end()) break;
         home = it->second;
       }
-      preds_[lower(d.name)] = {d.route, home && home->kind == TypeKind::Thread};
+      preds_[d.sym] = {d.route, home && home->kind == TypeKind::Thread};
     }
   }
 
@@ -65,7 +63,7 @@ class Checker {
 
  private:
   const PredKind* kind(const Term& t) const {
-    auto it = preds_.find(lower(t.name));
+    auto it = preds_.find(t.sym);
     return it == preds_.end() ? nullptr : &it->second;
   }
   bool isNodeFact(const Term& t) const {
@@ -78,7 +76,7 @@ class Checker {
   }
 
   Diagnostics& diag_;
-  std::map<std::string, PredKind> preds_;
+  std::unordered_map<Symbol, PredKind> preds_;
 };
 
 }  // namespace

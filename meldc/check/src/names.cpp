@@ -5,6 +5,8 @@
 #include <map>
 #include <set>
 #include <string>
+#include <unordered_map>
+#include <unordered_set>
 #include <vector>
 
 #include "meldc/ast_dump.hpp"
@@ -79,28 +81,26 @@ class Resolver {
 
   void declareTypes() {
     for (const NodeTypeDecl& n : p_.nodeTypes) {
-      std::string key = lower(n.name);
-      if (auto it = typeNames_.find(key); it != typeNames_.end())
+      if (auto it = typeNames_.find(n.sym); it != typeNames_.end())
         duplicate(n.loc, "type", n.name, it->second);
       else {
-        typeNames_[key] = n.loc;
-        nodeTypes_.insert(key);
+        typeNames_[n.sym] = n.loc;
+        nodeTypes_.insert(n.sym);
       }
     }
     for (const TypeAliasDecl& a : p_.typeAliases) {
-      std::string key = lower(a.name);
-      if (auto it = typeNames_.find(key); it != typeNames_.end())
+      if (auto it = typeNames_.find(a.sym); it != typeNames_.end())
         duplicate(a.loc, "type", a.name, it->second);
       else {
-        typeNames_[key] = a.loc;
-        aliases_[key] = &a.type;
+        typeNames_[a.sym] = a.loc;
+        aliases_[a.sym] = &a.type;
       }
     }
     for (const TypeAliasDecl& a : p_.typeAliases) checkType(a.type);
   }
 
   void checkType(const TypeExpr& t) {
-    if (t.kind == TypeKind::Named && !typeNames_.count(lower(t.name)))
+    if (t.kind == TypeKind::Named && !typeNames_.count(t.sym))
       diag_.error(t.loc, "unknown type '" + t.name + "'");
     for (const TypeExpr& a : t.args) checkType(a);
   }
@@ -109,7 +109,7 @@ class Resolver {
   const TypeExpr& resolveAlias(const TypeExpr& t) const {
     const TypeExpr* cur = &t;
     for (int guard = 0; cur->kind == TypeKind::Named && guard < 64; ++guard) {
-      auto it = aliases_.find(lower(cur->name));
+      auto it = aliases_.find(cur->sym);
       if (it == aliases_.end()) break;
       cur = it->second;
     }
@@ -128,11 +128,10 @@ class Resolver {
       info.arity = static_cast<size_t>(b.arity);
       info.linear = b.kind == BuiltinPredKind::Linear;
       info.instruction = b.kind == BuiltinPredKind::Instruction;
-      preds_[info.name] = info;
+      preds_[p_.symbols.find(b.name)] = info;
     }
     for (const PredicateDecl& d : p_.predicates) {
-      std::string key = lower(d.name);
-      auto it = preds_.find(key);
+      auto it = preds_.find(d.sym);
       if (it != preds_.end() && it->second.decl) {
         duplicate(d.nameLoc, "predicate", d.name, it->second.decl->nameLoc);
         continue;
@@ -143,7 +142,7 @@ class Resolver {
       info.arity = d.fields.size();
       info.linear = d.linear;
       info.decl = &d;
-      preds_[key] = info;
+      preds_[d.sym] = info;
       checkPredicate(d);
     }
   }
@@ -156,8 +155,8 @@ class Resolver {
     for (const FieldDecl& f : d.fields) checkType(f.type);
     const TypeExpr& home = resolveAlias(d.fields[0].type);
     bool homeOk = home.kind == TypeKind::Node || home.kind == TypeKind::Thread ||
-                  (home.kind == TypeKind::Named && nodeTypes_.count(lower(home.name)));
-    if (!homeOk && (home.kind != TypeKind::Named || typeNames_.count(lower(home.name))))
+                  (home.kind == TypeKind::Named && nodeTypes_.count(home.sym));
+    if (!homeOk && (home.kind != TypeKind::Named || typeNames_.count(home.sym)))
       diag_.error(d.fields[0].loc, "the first argument of '" + d.name +
                                        "' is its home and must be a node, a node type or a thread, not '" +
                                        toString(d.fields[0].type) + "'");
@@ -184,54 +183,56 @@ class Resolver {
 
   void declareFunctions() {
     for (const BuiltinFunction& b : builtinFunctions())
-      builtinFuns_[std::string(b.name)] = FunInfo{std::string(b.name), static_cast<size_t>(b.arity), {}};
+      builtinFuns_[p_.symbols.find(b.name)] = FunInfo{std::string(b.name), static_cast<size_t>(b.arity), {}};
     for (const ExternDecl& e : p_.externs) {
       checkType(e.result);
       for (const FieldDecl& f : e.params) checkType(f.type);
-      std::string key = lower(e.name);
-      if (auto it = externs_.find(key); it != externs_.end())
+      if (auto it = externs_.find(e.sym); it != externs_.end())
         duplicate(e.loc, "extern", e.name, it->second.loc);
       else
-        externs_[key] = FunInfo{e.name, e.params.size(), e.loc};
+        externs_[e.sym] = FunInfo{e.name, e.params.size(), e.loc};
     }
     for (const ConstDecl& c : p_.consts) {
-      std::string key = lower(c.name);
-      if (auto it = consts_.find(key); it != consts_.end())
+      if (auto it = consts_.find(c.sym); it != consts_.end())
         duplicate(c.loc, "constant", c.name, it->second);
       else
-        consts_[key] = c.loc;
+        consts_[c.sym] = c.loc;
     }
     for (const FunDecl& f : p_.funs) {
-      std::string key = lower(f.name);
-      if (auto it = funs_.find(key); it != funs_.end())
+      if (auto it = funs_.find(f.sym); it != funs_.end())
         duplicate(f.loc, "function", f.name, it->second.loc);
       else
-        funs_[key] = FunInfo{f.name, f.params.size(), f.loc};
+        funs_[f.sym] = FunInfo{f.name, f.params.size(), f.loc};
     }
   }
 
-  const PredInfo* predicate(const std::string& name) const {
-    auto it = preds_.find(lower(name));
+  const PredInfo* predicate(Symbol name) const {
+    auto it = preds_.find(name);
     return it == preds_.end() ? nullptr : &it->second;
   }
 
   // User functions first, then built-in externals, then declared externs (§5.5).
-  const FunInfo* function(const std::string& name) const {
-    std::string key = lower(name);
-    if (auto it = funs_.find(key); it != funs_.end()) return &it->second;
-    if (auto it = builtinFuns_.find(key); it != builtinFuns_.end()) return &it->second;
-    if (auto it = externs_.find(key); it != externs_.end()) return &it->second;
+  const FunInfo* function(Symbol name) const {
+    if (auto it = funs_.find(name); it != funs_.end()) return &it->second;
+    if (auto it = builtinFuns_.find(name); it != builtinFuns_.end()) return &it->second;
+    if (auto it = externs_.find(name); it != externs_.end()) return &it->second;
     return nullptr;
   }
 
+  // The closest predicate name within two edits; on a tie the first in alphabetical order.
   std::string suggestion(const std::string& name) const {
-    std::string key = lower(name), best;
+    const std::string key = lower(name);
+    const std::string* bestKey = nullptr;
+    std::string best;
     size_t bestDistance = 3;
-    for (const auto& [k, info] : preds_) {
+    for (const auto& [sym, info] : preds_) {
+      const std::string& k = p_.symbols.text(sym);
       if (k.empty() || k[0] == '_') continue;
       size_t d = editDistance(key, k);
-      if (d < bestDistance && d < key.size()) {
+      if (d >= key.size()) continue;
+      if (d < bestDistance || (d == bestDistance && bestKey && k < *bestKey)) {
         bestDistance = d;
+        bestKey = &k;
         best = info.name;
       }
     }
@@ -240,16 +241,16 @@ class Resolver {
 
   void checkDirectives() {
     for (const Directive& d : p_.directives) {
-      auto requirePredicate = [&](const std::string& name, SourceLoc loc,
+      auto requirePredicate = [&](Symbol sym, const std::string& name, SourceLoc loc,
                                   const char* what) -> const PredInfo* {
-        const PredInfo* info = predicate(name);
+        const PredInfo* info = predicate(sym);
         if (!info)
           diag_.error(loc, "unknown predicate '" + name + "' in " + what + " directive" + suggestion(name));
         return info;
       };
       switch (d.kind) {
         case DirectiveKind::Index:
-          if (const PredInfo* info = requirePredicate(d.name, d.nameLoc, "index")) {
+          if (const PredInfo* info = requirePredicate(d.sym, d.name, d.nameLoc, "index")) {
             if (d.position < 1 || static_cast<size_t>(d.position) > info->arity)
               diag_.error(d.nameLoc, "index field " + std::to_string(d.position) + " does not exist: '" +
                                          info->name + "' has " + plural(info->arity, "argument") +
@@ -257,12 +258,12 @@ class Resolver {
           }
           break;
         case DirectiveKind::Compact:
-          requirePredicate(d.name, d.nameLoc, "compact");
+          requirePredicate(d.sym, d.name, d.nameLoc, "compact");
           break;
         case DirectiveKind::Priority:
           if (d.priority == PriorityKind::Lower || d.priority == PriorityKind::Higher) {
-            requirePredicate(d.name, d.nameLoc, "priority");
-            requirePredicate(d.other, d.otherLoc, "priority");
+            requirePredicate(d.sym, d.name, d.nameLoc, "priority");
+            requirePredicate(d.otherSym, d.other, d.otherLoc, "priority");
           }
           break;
         default:
@@ -300,7 +301,7 @@ class Resolver {
       case TermKind::Aggregate:
         for (const AggSpec& s : t.specs) {
           if (s.op != AggOp::Custom) continue;
-          const FunInfo* f = function(s.function);
+          const FunInfo* f = function(s.functionSym);
           if (!f)
             diag_.error(s.loc, "unknown function '" + s.function + "' in custom aggregate");
           else if (f->arity != 2)
@@ -322,11 +323,11 @@ class Resolver {
 
   void subgoal(const Term& t, bool inBody, bool fact) {
     for (const Expr& a : t.args) expr(a, nullptr);
-    const PredInfo* info = predicate(t.name);
+    const PredInfo* info = predicate(t.sym);
     if (!info) {
       // In a body, `f(X, Y)` may be a boolean-valued function call (a constraint).
       if (inBody && t.mark == Mark::None && !t.delayMs) {
-        if (const FunInfo* f = function(t.name)) {
+        if (const FunInfo* f = function(t.sym)) {
           checkCall(t.nameLoc, *f, t.args.size());
           return;
         }
@@ -345,7 +346,7 @@ class Resolver {
       diag_.error(t.nameLoc, "'" + info->name + "' is an instruction; it can only be used in a head");
       return;
     }
-    if (fact && lower(t.name) == "schedule-next")
+    if (fact && p_.symbols.text(t.sym) == "schedule-next")
       diag_.error(t.nameLoc, "'schedule-next' cannot be used in a fact (axiom)");
     if (info->instruction) return;
     if (!inBody && t.mark == Mark::Reuse) {
@@ -377,7 +378,7 @@ class Resolver {
   void expr(const Expr& e, std::set<std::string>* scope) {
     switch (e.kind) {
       case ExprKind::Const:
-        if (!consts_.count(lower(e.name))) {
+        if (!consts_.count(e.sym)) {
           std::string hint;
           if (e.name.find('-') != std::string::npos)
             hint = "; '-' is part of names, write '" + e.name.substr(0, e.name.find('-')) + " - " +
@@ -386,9 +387,9 @@ class Resolver {
         }
         return;
       case ExprKind::Call: {
-        const FunInfo* f = function(e.name);
+        const FunInfo* f = function(e.sym);
         if (!f) {
-          std::string hint = predicate(e.name) ? "; '" + e.name + "' is a predicate, not a function" : "";
+          std::string hint = predicate(e.sym) ? "; '" + e.name + "' is a predicate, not a function" : "";
           diag_.error(e.loc, "unknown function '" + e.name + "'" + hint);
         } else {
           checkCall(e.loc, *f, e.args.size());
@@ -415,12 +416,12 @@ class Resolver {
 
   const Program& p_;
   Diagnostics& diag_;
-  std::map<std::string, SourceLoc> typeNames_;
-  std::set<std::string> nodeTypes_;
-  std::map<std::string, const TypeExpr*> aliases_;
-  std::map<std::string, PredInfo> preds_;
-  std::map<std::string, FunInfo> funs_, builtinFuns_, externs_;
-  std::map<std::string, SourceLoc> consts_;
+  std::unordered_map<Symbol, SourceLoc> typeNames_;
+  std::unordered_set<Symbol> nodeTypes_;
+  std::unordered_map<Symbol, const TypeExpr*> aliases_;
+  std::unordered_map<Symbol, PredInfo> preds_;
+  std::unordered_map<Symbol, FunInfo> funs_, builtinFuns_, externs_;
+  std::unordered_map<Symbol, SourceLoc> consts_;
 };
 
 }  // namespace

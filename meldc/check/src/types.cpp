@@ -140,11 +140,11 @@ class Checker {
   Checker(const Program& p, Diagnostics& diag, Typing* out = nullptr) : p_(p), diag_(diag), out_(out) {}
 
   void run() {
-    for (const TypeAliasDecl& a : p_.typeAliases) aliases_[lower(a.name)] = &a.type;
-    for (const PredicateDecl& d : p_.predicates) preds_[lower(d.name)] = &d;
-    for (const FunDecl& f : p_.funs) funs_[lower(f.name)] = &f;
-    for (const ExternDecl& e : p_.externs) externs_[lower(e.name)] = &e;
-    for (const ConstDecl& c : p_.consts) constDecls_[lower(c.name)] = &c;
+    for (const TypeAliasDecl& a : p_.typeAliases) aliases_[a.sym] = &a.type;
+    for (const PredicateDecl& d : p_.predicates) preds_[d.sym] = &d;
+    for (const FunDecl& f : p_.funs) funs_[f.sym] = &f;
+    for (const ExternDecl& e : p_.externs) externs_[e.sym] = &e;
+    for (const ConstDecl& c : p_.consts) constDecls_[c.sym] = &c;
     for (const ConstDecl& c : p_.consts) constType(c);
     for (const FunDecl& f : p_.funs) fun(f);
     for (const Rule& r : p_.rules) rule(r);
@@ -275,7 +275,7 @@ class Checker {
       case TypeKind::Thread:
         return make(K::Thread);
       case TypeKind::Named: {
-        auto it = aliases_.find(lower(t.name));
+        auto it = aliases_.find(t.sym);
         if (it == aliases_.end() || depth > 64) return make(K::Node);  // a node subtype
         return fromDecl(*it->second, depth + 1);
       }
@@ -344,17 +344,17 @@ class Checker {
   }
 
   // The signature of a function call: user function, built-in, extern (§5.5); nullopt if unknown.
-  std::optional<Signature> functionSignature(const std::string& name) {
-    std::string key = lower(name);
-    if (auto it = funs_.find(key); it != funs_.end()) {
+  std::optional<Signature> functionSignature(Symbol name) {
+    if (auto it = funs_.find(name); it != funs_.end()) {
       Signature sig;
       for (const FunParam& param : it->second->params) sig.params.push_back(fromDecl(param.type));
       sig.result = fromDecl(it->second->result);
       return sig;
     }
-    if (auto it = builtinFunctionSignatures().find(key); it != builtinFunctionSignatures().end())
+    if (auto it = builtinFunctionSignatures().find(p_.symbols.text(name));
+        it != builtinFunctionSignatures().end())
       return signature(it->second);
-    if (auto it = externs_.find(key); it != externs_.end()) {
+    if (auto it = externs_.find(name); it != externs_.end()) {
       Signature sig;
       for (const FieldDecl& f : it->second->params) sig.params.push_back(fromDecl(f.type));
       sig.result = fromDecl(it->second->result);
@@ -364,14 +364,14 @@ class Checker {
   }
 
   // Field types of a predicate; nullopt if unknown (instruction or undeclared).
-  std::optional<std::vector<int>> predicateFields(const std::string& name) {
-    std::string key = lower(name);
-    if (auto it = preds_.find(key); it != preds_.end()) {
+  std::optional<std::vector<int>> predicateFields(Symbol name) {
+    if (auto it = preds_.find(name); it != preds_.end()) {
       std::vector<int> fields;
       for (const FieldDecl& f : it->second->fields) fields.push_back(fromDecl(f.type));
       return fields;
     }
-    if (auto it = builtinPredicateSignatures().find(key); it != builtinPredicateSignatures().end())
+    if (auto it = builtinPredicateSignatures().find(p_.symbols.text(name));
+        it != builtinPredicateSignatures().end())
       return signature(it->second).params;
     return std::nullopt;
   }
@@ -400,10 +400,9 @@ class Checker {
   }
 
   int constType(const ConstDecl& c) {
-    std::string key = lower(c.name);
-    if (auto it = constTypes_.find(key); it != constTypes_.end()) return it->second;
+    if (auto it = constTypes_.find(c.sym); it != constTypes_.end()) return it->second;
     int t = fresh();
-    constTypes_[key] = t;  // a cycle sees an unknown type
+    constTypes_[c.sym] = t;  // a cycle sees an unknown type
     Scope scope;
     int v = expr(c.value, scope);
     if (!unify(t, v)) diag_.error(c.value.loc, "constant '" + c.name + "' has conflicting types");
@@ -425,9 +424,9 @@ class Checker {
     return t;
   }
 
-  void call(const Expr& e, const std::vector<Expr>& args, const std::string& name, Scope& scope,
+  void call(const Expr& e, const std::vector<Expr>& args, const std::string& name, Symbol sym, Scope& scope,
             int& result) {
-    std::optional<Signature> sig = functionSignature(name);
+    std::optional<Signature> sig = functionSignature(sym);
     std::vector<int> argTypes;
     for (const Expr& a : args) argTypes.push_back(expr(a, scope));
     if (!sig || sig->params.size() != args.size()) {
@@ -473,12 +472,12 @@ class Checker {
       case ExprKind::Thread:
         return make(K::Thread);
       case ExprKind::Const: {
-        auto it = constDecls_.find(lower(e.name));
+        auto it = constDecls_.find(e.sym);
         return it == constDecls_.end() ? fresh() : constType(*it->second);
       }
       case ExprKind::Call: {
         int result = -1;
-        call(e, e.args, e.name, scope, result);
+        call(e, e.args, e.name, e.sym, scope, result);
         return result;
       }
       case ExprKind::Convert: {
@@ -606,14 +605,14 @@ class Checker {
   }
 
   void subgoal(const Term& t, Scope& scope, bool inBody) {
-    std::optional<std::vector<int>> fields = predicateFields(t.name);
+    std::optional<std::vector<int>> fields = predicateFields(t.sym);
     if (!fields) {
       // A body subgoal that is a function call: a boolean constraint.
-      if (inBody && functionSignature(t.name)) {
+      if (inBody && functionSignature(t.sym)) {
         int result = -1;
         Expr dummy;
         dummy.loc = t.loc;
-        call(dummy, t.args, t.name, scope, result);
+        call(dummy, t.args, t.name, t.sym, scope, result);
         if (!unify(result, make(K::Bool)))
           diag_.error(t.loc,
                       "a condition must be a bool, but '" + t.name + "' returns '" + text(result) + "'");
@@ -703,7 +702,7 @@ class Checker {
           result = item;
           break;
         case AggOp::Custom: {
-          std::optional<Signature> sig = functionSignature(s.function);
+          std::optional<Signature> sig = functionSignature(s.functionSym);
           int start = expr(s.start, scope);
           if (sig && sig->params.size() == 2) {
             if (!unify(sig->params[0], item) || !unify(sig->params[1], item) || !unify(sig->result, item))
@@ -786,12 +785,12 @@ class Checker {
   std::unordered_map<const Expr*, int> exprTypes_;
   std::unordered_map<const AggSpec*, int> aggItemTypes_;
   std::vector<TypeNode> types_;
-  std::map<std::string, const TypeExpr*> aliases_;
-  std::map<std::string, const PredicateDecl*> preds_;
-  std::map<std::string, const FunDecl*> funs_;
-  std::map<std::string, const ExternDecl*> externs_;
-  std::map<std::string, const ConstDecl*> constDecls_;
-  std::map<std::string, int> constTypes_;
+  std::unordered_map<Symbol, const TypeExpr*> aliases_;
+  std::unordered_map<Symbol, const PredicateDecl*> preds_;
+  std::unordered_map<Symbol, const FunDecl*> funs_;
+  std::unordered_map<Symbol, const ExternDecl*> externs_;
+  std::unordered_map<Symbol, const ConstDecl*> constDecls_;
+  std::unordered_map<Symbol, int> constTypes_;
 };
 
 }  // namespace

@@ -1,8 +1,7 @@
 #include "meldc/frontend.hpp"
 
-#include <cctype>
-
 #include "meldc/bindings.hpp"
+#include "meldc/case_folding.hpp"
 #include "meldc/data_import.hpp"
 #include "meldc/ground_facts.hpp"
 #include "meldc/homes.hpp"
@@ -16,14 +15,6 @@
 namespace meldc {
 
 namespace {
-
-bool sameName(const std::string& a, const std::string& b) {
-  if (a.size() != b.size()) return false;
-  for (size_t i = 0; i < a.size(); ++i)
-    if (std::tolower(static_cast<unsigned char>(a[i])) != std::tolower(static_cast<unsigned char>(b[i])))
-      return false;
-  return true;
-}
 
 // -DNAME=VALUE: VALUE is parsed as an expression (diagnostics name the source "-DNAME").
 void applyDefines(const FrontEndInput& input, ast::Program& program, SourceManager& sources,
@@ -67,8 +58,9 @@ std::optional<ast::Program> runFrontEnd(const FrontEndInput& input, SourceManage
   }
   applyDefines(input, *program, sources, diag);
   if (diag.hasErrors()) return std::nullopt;  // names would only repeat what is already broken
-  admitGroundFacts(*program, sources);        // the checks below see the facts they have to check
   if (!importData(*program, sources, diag)) return std::nullopt;
+  ast::internNames(*program);           // names are folded once, here
+  admitGroundFacts(*program, sources);  // the checks below see the facts they have to check
   resolveNames(*program, diag);
   if (diag.hasErrors()) return std::nullopt;  // the checks below assume resolved names
   checkBindings(*program, diag);

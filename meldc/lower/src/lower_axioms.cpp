@@ -11,7 +11,6 @@
 #include <set>
 
 #include "lower_rule.hpp"
-#include "meldc/case_folding.hpp"
 
 namespace meldc {
 
@@ -36,7 +35,7 @@ bool literal(const Lowering& L, const Expr& e) {
     case ExprKind::Node:
       return true;
     case ExprKind::Const:
-      return L.folded.count(lower(e.name)) > 0;
+      return L.folded.count(e.sym) > 0;
     case ExprKind::List:
     case ExprKind::Struct:
       return std::all_of(e.args.begin(), e.args.end(), [&](const Expr& a) { return literal(L, a); });
@@ -79,16 +78,16 @@ void evaluateConditions(RuleLowering& rl, CodeBuilder& cb, const Rule& r, CodeBu
 
 // §3.1: a node literal has the subtype of the places it is used at (the home or a field declared
 // with that subtype). Returns subtype name (lower case) -> internal ids of its nodes.
-std::map<std::string, std::set<std::int64_t>> subtypeNodes(const Lowering& L) {
-  std::map<std::string, std::set<std::int64_t>> out;
+std::map<Symbol, std::set<std::int64_t>> subtypeNodes(const Lowering& L) {
+  std::map<Symbol, std::set<std::int64_t>> out;
   std::function<void(const std::vector<Term>&)> walk = [&](const std::vector<Term>& terms) {
     for (const Term& t : terms) {
       if (t.kind == TermKind::Subgoal)
-        if (const PredInfo* p = L.pred(t.name); p && p->decl)
+        if (const PredInfo* p = L.pred(t.sym); p && p->decl)
           for (size_t i = 0; i < t.args.size() && i < p->decl->fields.size(); ++i) {
             const TypeExpr& type = p->decl->fields[i].type;
             if (t.args[i].kind == ExprKind::Node && type.kind == TypeKind::Named)
-              out[lower(type.name)].insert(t.args[i].intValue);
+              out[type.sym].insert(t.args[i].intValue);
           }
       walk(t.body);
       walk(t.perMatch);
@@ -118,7 +117,7 @@ void guardSubtype(CodeBuilder& cb, Reg host, const std::set<std::int64_t>& nodes
 
 bool isAlias(const Lowering& L, const TypeExpr& t) {
   for (const TypeAliasDecl& a : L.ast.typeAliases)
-    if (lower(a.name) == lower(t.name)) return true;
+    if (a.sym == t.sym) return true;
   return false;
 }
 
@@ -134,7 +133,7 @@ void checkFactOnly(const Rule& r) {
 // A fact of a thread predicate whose home is not a node literal: instantiated in every thread node
 // by rule 1 (§6.2, §6.12) instead of in every node by rule 0.
 bool isThreadFact(const Lowering& L, const Term& t) {
-  const PredInfo* p = L.pred(t.name);
+  const PredInfo* p = L.pred(t.sym);
   return p && p->id != meldvm::Program::kNoPred && L.desc(*p).thread &&
          (t.args[0].kind == ExprKind::Var || t.args[0].kind == ExprKind::Thread);
 }
@@ -176,7 +175,7 @@ struct ThreadAxioms {
 // stands for that thread.
 meldvm::Rule threadInitRule(Lowering& L, const std::vector<ThreadAxioms>& axioms) {
   CodeBuilder cb;
-  const PredInfo* init = L.pred("_init_thread");
+  const PredInfo* init = L.builtinPred("_init_thread");
   if (!init) throw LowerError({}, "internal error: thread predicates without _init_thread");
   const InitLoop loop = openInitLoop(cb, init->id, meldvm::kIterThread);
   const Reg self = cb.reg(meldvm::TypeTable::kThread);
@@ -265,26 +264,24 @@ void groundAxiom(Lowering& L, CodeBuilder& cb, const GroundFact& f, const PredIn
 // The axioms of one node: those needing evaluation in reverse source order, then the literal
 // facts grouped by predicate (groups in order of first occurrence, source order within a group).
 std::vector<Axiom> nodeAxiomOrder(Lowering& L, const std::vector<Axiom>& axioms,
-                                  const std::vector<std::string>& groundNames) {
+                                  const std::vector<Symbol>& groundNames) {
   std::vector<Axiom> evaluated;
   std::vector<std::pair<std::size_t, Axiom>> literals;  // group, axiom
-  std::vector<std::string> order;
+  std::vector<Symbol> order;
   for (const Axiom& a : axioms) {
-    const std::string* name = a.ground ? &groundNames[a.ground->name] : nullptr;
-    std::string key;
+    Symbol name = a.ground ? groundNames[a.ground->name] : Symbol{};
     if (!a.ground) {
-      const PredInfo* p = L.pred(a.fact->name);
+      const PredInfo* p = L.pred(a.fact->sym);
       bool isLiteral = p && p->instruction == Instruction::None && conditions(*a.statement).empty();
       for (size_t i = 1; i < a.fact->args.size() && isLiteral; ++i) isLiteral = literal(L, a.fact->args[i]);
       if (!isLiteral) {
         evaluated.push_back(a);
         continue;
       }
-      key = lower(a.fact->name);
-      name = &key;
+      name = a.fact->sym;
     }
-    const std::size_t group = std::find(order.begin(), order.end(), *name) - order.begin();
-    if (group == order.size()) order.push_back(*name);
+    const std::size_t group = std::find(order.begin(), order.end(), name) - order.begin();
+    if (group == order.size()) order.push_back(name);
     literals.emplace_back(group, a);
   }
   std::reverse(evaluated.begin(), evaluated.end());
@@ -305,7 +302,7 @@ using ConstantAxioms = std::vector<std::vector<Axiom>>;
 // those of thread predicates to `threadAxioms`, those of constant homes to `constant`.
 void statementAxioms(Lowering& L, CodeBuilder& cb, const Rule& r, ConstantAxioms& constant,
                      std::vector<ThreadAxioms>& threadAxioms,
-                     std::map<std::string, std::set<std::int64_t>>& subtypes) {
+                     std::map<Symbol, std::set<std::int64_t>>& subtypes) {
   checkFactOnly(r);
   std::vector<const Term*> variable, thread, computed;
   for (const Term& t : r.head) {
@@ -333,12 +330,12 @@ void statementAxioms(Lowering& L, CodeBuilder& cb, const Rule& r, ConstantAxioms
   evaluateConditions(rl, cb, r, skip);
   for (const Term* t : variable) {
     // §6.2: only on the nodes of the predicate's subtype, if it has one.
-    const PredInfo* p = L.pred(t->name);
+    const PredInfo* p = L.pred(t->sym);
     const TypeExpr* home = p && p->decl ? &p->decl->fields.at(0).type : nullptr;
     const bool subtype = home && home->kind == TypeKind::Named &&
                          L.vmType(*home) == meldvm::TypeTable::kNode && !isAlias(L, *home);
     CodeBuilder::Label next = cb.label();
-    if (subtype) guardSubtype(cb, host, subtypes[lower(home->name)], next);
+    if (subtype) guardSubtype(cb, host, subtypes[home->sym], next);
     rl.subgoal(*t);
     cb.place(next);
   }
@@ -347,8 +344,7 @@ void statementAxioms(Lowering& L, CodeBuilder& cb, const Rule& r, ConstantAxioms
 
 // The axiom block of one node.
 void nodeAxiomBlock(Lowering& L, std::int64_t node, const std::vector<Axiom>& axioms,
-                    const std::vector<std::string>& groundNames,
-                    const std::vector<const PredInfo*>& groundPreds) {
+                    const std::vector<Symbol>& groundNames, const std::vector<const PredInfo*>& groundPreds) {
   CodeBuilder block;
   try {
     for (const Axiom& a : nodeAxiomOrder(L, axioms, groundNames)) {
@@ -373,21 +369,18 @@ void nodeAxiomBlock(Lowering& L, std::int64_t node, const std::vector<Axiom>& ax
 }  // namespace
 
 void lowerAxioms(Lowering& L) {
-  const PredInfo* init = L.pred("_init");
+  const PredInfo* init = L.builtinPred("_init");
   if (!init) return;
   ConstantAxioms constant(L.prog.nodeAxioms.size());
   std::vector<ThreadAxioms> threadAxioms;  // for rule 1, in program order
   CodeBuilder cb;
   const InitLoop loop = openInitLoop(cb, init->id, 0);
   cb.op(Opcode::AXIOMS);
-  std::map<std::string, std::set<std::int64_t>> subtypes = subtypeNodes(L);
+  std::map<Symbol, std::set<std::int64_t>> subtypes = subtypeNodes(L);
   const GroundFacts& ground = L.ast.groundFacts;
-  std::vector<std::string> groundNames;  // lower case, per GroundFacts::names
+  const std::vector<Symbol>& groundNames = ground.nameSyms;
   std::vector<const PredInfo*> groundPreds;
-  for (const std::string& n : ground.names) {
-    groundNames.push_back(lower(n));
-    groundPreds.push_back(L.pred(n));  // admitted facts have a declared predicate
-  }
+  for (const Symbol n : groundNames) groundPreds.push_back(L.pred(n));  // admitted facts: declared
   forEachStatement(
       L.ast,
       [&](const Rule& r) {

@@ -7,6 +7,8 @@
 #include <optional>
 #include <stdexcept>
 #include <string>
+#include <string_view>
+#include <unordered_map>
 #include <vector>
 
 #include "meldc/ast/program.hpp"
@@ -69,17 +71,18 @@ struct Lowering {
   meldvm::Program& prog;
   Typing typing;
 
-  std::map<std::string, PredInfo> preds;           // lower-case name
-  std::map<std::string, Folded> folded;            // folded constants
-  std::map<std::string, std::uint32_t> globals;    // constants computed at start-up: global id
-  std::map<std::string, std::uint32_t> functions;  // user functions: function id
-  std::map<std::string, std::uint32_t> externs;    // user externs: extern id
-  std::map<std::string, std::uint32_t> strings;    // string constant -> index
+  std::unordered_map<ast::Symbol, PredInfo> preds;
+  std::unordered_map<ast::Symbol, Folded> folded;            // folded constants
+  std::unordered_map<ast::Symbol, std::uint32_t> globals;    // constants computed at start-up: global id
+  std::unordered_map<ast::Symbol, std::uint32_t> functions;  // user functions: function id
+  std::unordered_map<ast::Symbol, std::uint32_t> externs;    // user externs: extern id
+  std::map<std::string, std::uint32_t> strings;              // string constant -> index
   // The program has thread predicates (§6.12): `_init_thread` exists and rule 1 initialises the
   // thread node, so user rules start at 2 (§6.4.1).
   bool threads = false;
 
-  const PredInfo* pred(const std::string& name) const;
+  const PredInfo* pred(ast::Symbol name) const;
+  const PredInfo* builtinPred(std::string_view name) const;  // `_init`, `_init_thread`
   const meldvm::PredicateDesc& desc(const PredInfo& p) const { return prog.predicates[p.id]; }
   meldvm::TypeId vmType(const ast::TypeExpr& t);
   meldvm::TypeId typeOf(const ast::Expr& e);  // inferred type of an expression

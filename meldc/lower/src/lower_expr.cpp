@@ -1,7 +1,6 @@
 #include "lower_expr.hpp"
 
 #include "meldc/builtins.hpp"
-#include "meldc/case_folding.hpp"
 #include "meldvm/builtins.hpp"
 
 namespace meldc {
@@ -146,7 +145,7 @@ Reg ExprLowerer::value(const Expr& e) {
       return r;
     }
     case ExprKind::Const: {
-      const std::string key = lower(e.name);
+      const Symbol key = e.sym;
       if (auto it = L_.folded.find(key); it != L_.folded.end()) return folded(it->second, L_.typeOf(e));
       if (auto it = L_.globals.find(key); it != L_.globals.end()) {
         Reg r = cb_.reg(L_.prog.globals.at(it->second).type);
@@ -156,7 +155,7 @@ Reg ExprLowerer::value(const Expr& e) {
       throw LowerError(e.loc, "constant '" + e.name + "' has no value (it depends on itself?)");
     }
     case ExprKind::Call:
-      return call(e.name, e.args, e.loc, L_.typeOf(e));
+      return call(e.sym, e.args, e.loc, L_.typeOf(e));
     case ExprKind::Convert: {
       Reg a = valueAs(e.args.at(0), TypeTable::kInt);
       Reg r = cb_.reg(TypeTable::kFloat);
@@ -164,7 +163,7 @@ Reg ExprLowerer::value(const Expr& e) {
       return r;
     }
     case ExprKind::Binary:
-      if (e.op == BinOp::Append) return call("lappend", e.args, e.loc, L_.typeOf(e));
+      if (e.op == BinOp::Append) return call(L_.ast.symbols.find("lappend"), e.args, e.loc, L_.typeOf(e));
       return arithmetic(e);
     case ExprKind::Compare:
       if (!nilTest(e)) return compareValue(e);
@@ -181,10 +180,11 @@ Reg ExprLowerer::value(const Expr& e) {
       return r;
     }
     case ExprKind::In:  // X in L = lexists(L, X)
-      return call("lexists", std::vector<const Expr*>{&e.args.at(1), &e.args.at(0)}, e.loc, TypeTable::kBool);
+      return call(L_.ast.symbols.find("lexists"), std::vector<const Expr*>{&e.args.at(1), &e.args.at(0)},
+                  e.loc, TypeTable::kBool);
     case ExprKind::Ins:  // L1 ins L2 = lexistss(L2, L1)
-      return call("lexistss", std::vector<const Expr*>{&e.args.at(1), &e.args.at(0)}, e.loc,
-                  TypeTable::kBool);
+      return call(L_.ast.symbols.find("lexistss"), std::vector<const Expr*>{&e.args.at(1), &e.args.at(0)},
+                  e.loc, TypeTable::kBool);
     case ExprKind::If: {
       Reg r = cb_.reg(L_.typeOf(e));
       Label otherwise = cb_.label(), done = cb_.label();
@@ -360,32 +360,29 @@ void ExprLowerer::testEqual(Reg r, const Expr& e, Label fail) {
   cb_.op(Opcode::JF).w(b).to(fail);
 }
 
-Reg ExprLowerer::call(const std::string& name, const std::vector<Expr>& args, SourceLoc loc,
-                      TypeId resultHint) {
+Reg ExprLowerer::call(Symbol name, const std::vector<Expr>& args, SourceLoc loc, TypeId resultHint) {
   std::vector<const Expr*> ptrs;
   for (const Expr& a : args) ptrs.push_back(&a);
   return call(name, ptrs, loc, resultHint);
 }
 
-Reg ExprLowerer::call(const std::string& name, const std::vector<const Expr*>& args, SourceLoc loc,
-                      TypeId resultHint) {
+Reg ExprLowerer::call(Symbol name, const std::vector<const Expr*>& args, SourceLoc loc, TypeId resultHint) {
   std::vector<Reg> regs;
   for (const Expr* a : args) regs.push_back(value(*a));
   return callRegs(name, regs, loc, resultHint);
 }
 
-Reg ExprLowerer::callRegs(const std::string& name, const std::vector<Reg>& regs, SourceLoc loc,
-                          TypeId resultHint) {
-  const std::string key = lower(name);
+Reg ExprLowerer::callRegs(Symbol name, const std::vector<Reg>& regs, SourceLoc loc, TypeId resultHint) {
+  const std::string& key = L_.ast.symbols.text(name);  // folded
   auto checkArgs = [&](const std::vector<TypeId>& params) {
     if (params.size() != regs.size()) throw LowerError(loc, "internal error: wrong argument count");
     for (size_t i = 0; i < regs.size(); ++i)
       if (cb_.typeOf(regs[i]) != params[i])
-        throw LowerError(loc, "internal error: argument " + std::to_string(i + 1) + " of '" + name +
+        throw LowerError(loc, "internal error: argument " + std::to_string(i + 1) + " of '" + key +
                                   "' has type '" + L_.prog.types.name(cb_.typeOf(regs[i])) + "'");
   };
   // User functions first, then built-ins, then externs (§5.5).
-  if (auto it = L_.functions.find(key); it != L_.functions.end()) {
+  if (auto it = L_.functions.find(name); it != L_.functions.end()) {
     const meldvm::Function& f = L_.prog.functions.at(it->second);
     checkArgs(f.params);
     Reg r = cb_.reg(f.result);
@@ -407,14 +404,14 @@ Reg ExprLowerer::callRegs(const std::string& name, const std::vector<Reg>& regs,
     cb_.op(Opcode::CALL).w(r).w(b->id).w(cb_.typeOf(r)).regs(regs);
     return r;
   }
-  if (auto it = L_.externs.find(key); it != L_.externs.end()) {
+  if (auto it = L_.externs.find(name); it != L_.externs.end()) {
     const meldvm::Extern& x = L_.prog.externs.at(it->second);
     checkArgs(x.params);
     Reg r = cb_.reg(x.result);
     cb_.op(Opcode::CALLX).w(r).w(it->second).regs(regs);
     return r;
   }
-  throw LowerError(loc, "internal error: unknown function '" + name + "'");
+  throw LowerError(loc, "internal error: unknown function '" + key + "'");
 }
 
 }  // namespace meldc

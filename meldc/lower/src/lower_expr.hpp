@@ -29,14 +29,12 @@ class ExprLowerer {
   void jumpIfFalse(const ast::Expr& cond, Label target);
   void jumpIfTrue(const ast::Expr& cond, Label target);
   // A boolean-valued call used as a condition (`queens_violation(Y, L)` in a body).
-  Reg call(const std::string& name, const std::vector<const ast::Expr*>& args, SourceLoc loc,
+  Reg call(ast::Symbol name, const std::vector<const ast::Expr*>& args, SourceLoc loc,
            meldvm::TypeId resultHint);
-  Reg call(const std::string& name, const std::vector<ast::Expr>& args, SourceLoc loc,
-           meldvm::TypeId resultHint);
+  Reg call(ast::Symbol name, const std::vector<ast::Expr>& args, SourceLoc loc, meldvm::TypeId resultHint);
 
   // A call with its arguments already in registers (custom aggregates).
-  Reg callRegs(const std::string& name, const std::vector<Reg>& regs, SourceLoc loc,
-               meldvm::TypeId resultHint);
+  Reg callRegs(ast::Symbol name, const std::vector<Reg>& regs, SourceLoc loc, meldvm::TypeId resultHint);
 
   Reg folded(const Folded& f, meldvm::TypeId want);
   // Compares register `r` with the expression: jumps to `fail` when they differ.

@@ -7,7 +7,6 @@
 
 #include "code_builder.hpp"
 #include "lower_expr.hpp"
-#include "meldc/case_folding.hpp"
 
 namespace meldc {
 
@@ -102,7 +101,7 @@ std::optional<Folded> foldConstant(Lowering& L, const Expr& e) {
       f.i = std::int64_t(L.prog.nodeSourceIds.size());
       return f;
     case ExprKind::Const: {
-      auto it = L.folded.find(lower(e.name));
+      auto it = L.folded.find(e.sym);
       if (it == L.folded.end()) return std::nullopt;
       return it->second;
     }
@@ -130,14 +129,14 @@ void lowerConstantsAndFunctions(Lowering& L) {
     fn.name = f.name;
     for (const FunParam& p : f.params) fn.params.push_back(L.vmType(p.type));
     fn.result = L.vmType(f.result);
-    L.functions[lower(f.name)] = std::uint32_t(L.prog.functions.size());
+    L.functions[f.sym] = std::uint32_t(L.prog.functions.size());
     L.prog.functions.push_back(std::move(fn));
   }
   // Constants in program order: a constant folds when everything it uses folded before it.
   CodeBuilder init;
   ExprLowerer ex(L, init);
   for (const ConstDecl& c : L.ast.consts) {
-    const std::string key = lower(c.name);
+    const Symbol key = c.sym;
     try {
       if (std::optional<Folded> f = foldConstant(L, c.value)) {
         L.folded[key] = *f;

@@ -60,7 +60,7 @@ void RuleLowering::instruction(const Term& t, Instruction which) {
 }
 
 void RuleLowering::subgoal(const Term& t, std::optional<std::int64_t> localNode) {
-  const PredInfo* p = L_.pred(t.name);
+  const PredInfo* p = L_.pred(t.sym);
   if (!p) throw LowerError(t.loc, "internal error: unknown predicate '" + t.name + "'");
   if (p->instruction != Instruction::None) return instruction(t, p->instruction);
   const meldvm::PredicateDesc& desc = L_.desc(*p);
@@ -102,7 +102,7 @@ void RuleLowering::head(const std::vector<Term>& items, const BodyPlan* plan, st
   for (const Term& t : items) {
     if (plan && plan->dropped.count(&t)) continue;
     if (plan && plan->updateHead == &t) {
-      const meldvm::PredicateDesc& desc = L_.desc(*L_.pred(t.name));
+      const meldvm::PredicateDesc& desc = L_.desc(*L_.pred(t.sym));
       std::vector<Reg> regs;
       for (size_t i = 1; i < t.args.size(); ++i) regs.push_back(ex.valueAs(t.args[i], desc.fields.at(i - 1)));
       const std::uint32_t flags = plan->moveToBack ? std::uint32_t(meldvm::kUpdateMoveToBack) : 0u;
@@ -224,7 +224,7 @@ void RuleLowering::aggregate(const Term& t, std::uint32_t slot) {
           cb_.emit(Opcode::MINI, {a.acc, a.acc, v});
           break;
         case AggOp::Custom: {
-          Reg r = ex.callRegs(a.spec->function, {a.acc, v}, a.spec->loc, a.item);
+          Reg r = ex.callRegs(a.spec->functionSym, {a.acc, v}, a.spec->loc, a.item);
           cb_.emit(Opcode::MOV, {a.acc, r});
           break;
         }

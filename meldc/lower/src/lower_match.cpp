@@ -50,7 +50,7 @@ void RuleLowering::flush(Label fail) {
         bool ready = true;
         for (const Expr& a : p.term->args) ready &= ex.bound(a);
         if (!ready) continue;
-        Reg r = ex.call(p.term->name, p.term->args, p.term->loc, meldvm::TypeTable::kBool);
+        Reg r = ex.call(p.term->sym, p.term->args, p.term->loc, meldvm::TypeTable::kBool);
         cb_.op(Opcode::JF).w(r).to(fail);
       }
       p.done = progress = true;

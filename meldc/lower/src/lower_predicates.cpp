@@ -2,10 +2,10 @@
 // directives, indexes and user externs. Also the small helpers of Lowering.
 #include <algorithm>
 #include <functional>
+#include <unordered_set>
 
 #include "lower_context.hpp"
 #include "meldc/builtins.hpp"
-#include "meldc/case_folding.hpp"
 
 namespace meldc {
 
@@ -57,8 +57,8 @@ meldvm::AggregateKind aggregateKind(FieldAgg a) {
   return meldvm::AggregateKind::None;
 }
 
-void addPredicate(Lowering& L, meldvm::PredicateDesc desc, const PredicateDecl* decl, SourceLoc loc) {
-  std::string key = lower(desc.name);
+void addPredicate(Lowering& L, Symbol key, meldvm::PredicateDesc desc, const PredicateDecl* decl,
+                  SourceLoc loc) {
   try {
     PredInfo info;
     info.id = L.prog.predicates.add(std::move(desc));
@@ -71,17 +71,17 @@ void addPredicate(Lowering& L, meldvm::PredicateDesc desc, const PredicateDecl* 
 
 void predicates(Lowering& L) {
   // Compact predicates (§4.4) and the names the program uses.
-  std::map<std::string, bool> compact;
+  std::unordered_set<Symbol> compact;
   for (const Directive& d : L.ast.directives)
-    if (d.kind == DirectiveKind::Compact) compact[lower(d.name)] = true;
-  std::map<std::string, SourceLoc> used;
+    if (d.kind == DirectiveKind::Compact) compact.insert(d.sym);
+  std::unordered_set<Symbol> used;
   for (const Rule& r : L.ast.rules) {
-    auto note = [&](const Term& t) { used.emplace(lower(t.name), t.loc); };
+    auto note = [&](const Term& t) { used.insert(t.sym); };
     forEachSubgoal(r.body, note);
     forEachSubgoal(r.head, note);
   }
-  std::map<std::string, const PredicateDecl*> declared;
-  for (const PredicateDecl& d : L.ast.predicates) declared[lower(d.name)] = &d;
+  std::unordered_set<Symbol> declared;
+  for (const PredicateDecl& d : L.ast.predicates) declared.insert(d.sym);
   auto threadHome = [&](const PredicateDecl& d) {
     return !d.fields.empty() && L.vmType(d.fields[0].type) == meldvm::TypeTable::kThread;
   };
@@ -90,19 +90,21 @@ void predicates(Lowering& L) {
   // then do thread nodes (and `_init_thread`, rule 1) exist.
   for (const PredicateDecl& d : L.ast.predicates) L.threads |= threadHome(d);
   for (const BuiltinPredicate& b : builtinPredicates())
-    L.threads |= b.thread && used.count(std::string(b.name)) && !declared.count(std::string(b.name));
+    L.threads |=
+        b.thread && used.count(L.ast.symbols.find(b.name)) && !declared.count(L.ast.symbols.find(b.name));
 
   // cl-meld's order (§9.3): _init, the used built-ins in table order, the declarations in
   // program order (generated predicates of localization come last there).
   for (const BuiltinPredicate& b : builtinPredicates()) {
     std::string name(b.name);
+    const Symbol sym = L.ast.symbols.find(name);
     if (b.kind == BuiltinPredKind::Instruction) {
-      L.preds[name] = PredInfo{meldvm::Program::kNoPred, instructionOf(name), nullptr};
+      L.preds[sym] = PredInfo{meldvm::Program::kNoPred, instructionOf(name), nullptr};
       continue;
     }
-    if (declared.count(name)) continue;  // a declaration redefines the built-in
+    if (declared.count(sym)) continue;  // a declaration redefines the built-in
     const bool always = name == "_init" || (name == "_init_thread" && L.threads);
-    if (!always && !used.count(name)) continue;
+    if (!always && !used.count(sym)) continue;
     meldvm::PredicateDesc desc;
     desc.name = name;
     desc.linear = b.kind == BuiltinPredKind::Linear;
@@ -124,7 +126,7 @@ void predicates(Lowering& L) {
       desc.fields = {meldvm::TypeTable::kThread, meldvm::TypeTable::kInt};
     else if (name == "leader-thread")
       desc.fields = {meldvm::TypeTable::kThread};
-    addPredicate(L, std::move(desc), nullptr, {});
+    addPredicate(L, sym, std::move(desc), nullptr, {});
   }
   for (const PredicateDecl& d : L.ast.predicates) {
     if (d.fields.empty()) continue;
@@ -136,7 +138,7 @@ void predicates(Lowering& L) {
     desc.reverseRoute = d.reverseRoute;  // generated ___xxx inverse routes (§6.7)
     desc.thread = threadHome(d);         // facts live at thread nodes (§6.12)
     // cl-meld stores only persistent facts compactly; on a linear predicate the directive is moot.
-    desc.compact = compact.count(lower(d.name)) > 0 && !d.linear;
+    desc.compact = compact.count(d.sym) > 0 && !d.linear;
     for (size_t i = 1; i < d.fields.size(); ++i) {
       desc.fields.push_back(L.vmType(d.fields[i].type));
       if (d.fields[i].agg != FieldAgg::None) {
@@ -144,9 +146,9 @@ void predicates(Lowering& L) {
         desc.aggregateField = std::uint32_t(i - 1);
       }
     }
-    addPredicate(L, std::move(desc), &d, d.nameLoc);
+    addPredicate(L, d.sym, std::move(desc), &d, d.nameLoc);
   }
-  if (const PredInfo* init = L.pred("_init")) L.prog.initPredicate = init->id;
+  if (const PredInfo* init = L.builtinPred("_init")) L.prog.initPredicate = init->id;
 }
 
 void directives(Lowering& L) {
@@ -155,7 +157,7 @@ void directives(Lowering& L) {
     switch (d.kind) {
       case DirectiveKind::Index:
         if (d.position >= 2)
-          if (const PredInfo* p = L.pred(d.name); p && p->id != meldvm::Program::kNoPred)
+          if (const PredInfo* p = L.pred(d.sym); p && p->id != meldvm::Program::kNoPred)
             L.prog.indexes.push_back({p->id, std::uint32_t(d.position - 2)});
         break;
       case DirectiveKind::Data:
@@ -198,10 +200,12 @@ void directives(Lowering& L) {
 
 }  // namespace
 
-const PredInfo* Lowering::pred(const std::string& name) const {
-  auto it = preds.find(lower(name));
+const PredInfo* Lowering::pred(Symbol name) const {
+  auto it = preds.find(name);
   return it == preds.end() ? nullptr : &it->second;
 }
+
+const PredInfo* Lowering::builtinPred(std::string_view name) const { return pred(ast.symbols.find(name)); }
 
 meldvm::TypeId Lowering::vmType(const TypeExpr& t) {
   using meldvm::TypeTable;
@@ -232,7 +236,7 @@ meldvm::TypeId Lowering::vmType(const TypeExpr& t) {
     }
     case TypeKind::Named:
       for (const TypeAliasDecl& a : ast.typeAliases)
-        if (lower(a.name) == lower(t.name)) return vmType(a.type);
+        if (a.sym == t.sym) return vmType(a.type);
       return TypeTable::kNode;  // a node subtype
   }
   return TypeTable::kInt;
@@ -268,7 +272,7 @@ void lowerDeclarations(Lowering& L) {
     x.name = e.name;
     for (const FieldDecl& f : e.params) x.params.push_back(L.vmType(f.type));
     x.result = L.vmType(e.result);
-    L.externs[lower(e.name)] = std::uint32_t(L.prog.externs.size());
+    L.externs[e.sym] = std::uint32_t(L.prog.externs.size());
     L.prog.externs.push_back(std::move(x));
   }
 }

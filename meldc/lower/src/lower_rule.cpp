@@ -109,7 +109,7 @@ void lowerRules(Lowering& L) {
   };
   for (const Analyzed& a : rules) {
     if (a.persistent) continue;
-    if (!group.empty() && bodyPredicateNames(group.front()->plan) != bodyPredicateNames(a.plan)) flushGroup();
+    if (!group.empty() && bodyPredicates(group.front()->plan) != bodyPredicates(a.plan)) flushGroup();
     group.push_back(&a);
   }
   flushGroup();

@@ -2,8 +2,6 @@
 
 #include <algorithm>
 
-#include "meldc/case_folding.hpp"
-
 namespace meldc {
 
 using namespace meldc::ast;
@@ -27,8 +25,8 @@ bool hasAggregateOrComprehension(const std::vector<Term>& head) {
 
 // A head item that derives a fact of `pred` at the node (or thread) held by variable `home`
 // without delay.
-bool derivesAt(const Term& h, const std::string& pred, const std::string& home) {
-  return h.kind == TermKind::Subgoal && lower(h.name) == pred && !h.delayMs && !h.args.empty() &&
+bool derivesAt(const Term& h, Symbol pred, const std::string& home) {
+  return h.kind == TermKind::Subgoal && h.sym == pred && !h.delayMs && !h.args.empty() &&
          h.args[0].kind == ExprKind::Var && h.args[0].name == home;
 }
 
@@ -45,7 +43,7 @@ bool sameExpr(const Expr& a, const Expr& b) {
       break;
     case ExprKind::Const:
     case ExprKind::Call:
-      if (lower(a.name) != lower(b.name)) return false;
+      if (a.sym != b.sym) return false;
       break;
     case ExprKind::Let:
       if (a.name != b.name) return false;
@@ -75,13 +73,13 @@ bool sameExpr(const Expr& a, const Expr& b) {
 
 bool isPredicateSubgoal(const Lowering& L, const Term& t) {
   if (t.kind != TermKind::Subgoal) return false;
-  const PredInfo* p = L.pred(t.name);
+  const PredInfo* p = L.pred(t.sym);
   return p && p->id != meldvm::Program::kNoPred;
 }
 
 std::string hostVariable(const Lowering& L, const Rule& rule) {
   for (const Term& t : rule.body) {
-    if (!isPredicateSubgoal(L, t) || L.desc(*L.pred(t.name)).thread) continue;
+    if (!isPredicateSubgoal(L, t) || L.desc(*L.pred(t.sym)).thread) continue;
     if (t.args.empty() || t.args[0].kind != ExprKind::Var)
       throw LowerError(t.loc, "the home of a body fact must be a variable, the rule's host (§5.2)");
     return t.args[0].name;
@@ -106,7 +104,7 @@ BodyPlan planBody(const Lowering& L, const std::vector<Term>& body, const std::v
     }
     SubgoalPlan s;
     s.term = &t;
-    s.pred = L.pred(t.name);
+    s.pred = L.pred(t.sym);
     s.linear = L.desc(*s.pred).linear;
     s.thread = L.desc(*s.pred).thread;
     s.reused = t.mark == Mark::Reuse;
@@ -129,7 +127,7 @@ BodyPlan planBody(const Lowering& L, const std::vector<Term>& body, const std::v
   std::vector<bool> used(head.size(), false);
   for (SubgoalPlan& s : textual) {
     if (!s.linear || s.reused || s.term->args[0].kind != ExprKind::Var) continue;
-    const std::string name = lower(s.term->name);
+    const Symbol name = s.term->sym;
     for (size_t h = 0; h < head.size(); ++h) {
       if (used[h] || !derivesAt(head[h], name, s.term->args[0].name) ||
           head[h].args.size() != s.term->args.size())
@@ -163,12 +161,12 @@ BodyPlan planBody(const Lowering& L, const std::vector<Term>& body, const std::v
   if (!allowUpdate) return plan;
   for (size_t h = 0; h < head.size() && !plan.updateHead; ++h) {
     if (used[h] || head[h].kind != TermKind::Subgoal) continue;
-    const std::string name = lower(head[h].name);
+    const Symbol name = head[h].sym;
     // Not for thread facts: UPDATE rewrites a fact of the host's store.
     if (!derivesAt(head[h], name, host)) continue;
     std::vector<size_t> consumed;
     for (size_t i = 0; i < plan.subgoals.size(); ++i)
-      if (plan.subgoals[i].consumed() && lower(plan.subgoals[i].term->name) == name) consumed.push_back(i);
+      if (plan.subgoals[i].consumed() && plan.subgoals[i].term->sym == name) consumed.push_back(i);
     if (consumed.empty()) continue;
     plan.updateHead = &head[h];
     plan.updateIndex = consumed.front();  // the outermost such loop
@@ -187,9 +185,9 @@ bool isPersistentRule(const BodyPlan& plan, const Rule& rule) {
   return persistent && !hasAggregateOrComprehension(rule.head);
 }
 
-std::vector<std::string> bodyPredicateNames(const BodyPlan& plan) {
-  std::vector<std::string> names;
-  for (const SubgoalPlan& s : plan.subgoals) names.push_back(lower(s.term->name));
+std::vector<Symbol> bodyPredicates(const BodyPlan& plan) {
+  std::vector<Symbol> names;
+  for (const SubgoalPlan& s : plan.subgoals) names.push_back(s.term->sym);
   std::sort(names.begin(), names.end());
   return names;
 }

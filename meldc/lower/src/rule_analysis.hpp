@@ -49,7 +49,7 @@ BodyPlan planBody(const Lowering& L, const std::vector<ast::Term>& body, const s
 bool isPersistentRule(const BodyPlan& plan, const ast::Rule& rule);
 
 // §6.15: the key of rule merging, the multiset of body predicate names.
-std::vector<std::string> bodyPredicateNames(const BodyPlan& plan);
+std::vector<ast::Symbol> bodyPredicates(const BodyPlan& plan);
 
 bool sameExpr(const ast::Expr& a, const ast::Expr& b);
 bool isPredicateSubgoal(const Lowering& L, const ast::Term& t);

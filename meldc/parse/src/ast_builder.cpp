@@ -5,17 +5,14 @@
 #include <cstdlib>
 #include <string>
 
+#include "meldc/case_folding.hpp"
+
 namespace meldc {
 
 using meldgen::MeldParser;
 using namespace meldc::ast;
 
 namespace {
-
-std::string lower(std::string s) {
-  for (char& c : s) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
-  return s;
-}
 
 enum Section { kInclude, kDefinition, kDirective, kExtern, kConst, kFun, kStatement };
 
@@ -167,9 +164,9 @@ void AstBuilder::topItem(MeldParser::TopItemContext* ctx, Program& program) {
 
 void AstBuilder::definition(MeldParser::DefinitionContext* ctx, Program& program) {
   if (auto* d = dynamic_cast<MeldParser::NodeTypeDefContext*>(ctx)) {
-    program.nodeTypes.push_back(NodeTypeDecl{loc(d), d->name()->getText()});
+    program.nodeTypes.push_back(NodeTypeDecl{loc(d), d->name()->getText(), {}});
   } else if (auto* d = dynamic_cast<MeldParser::TypeAliasDefContext*>(ctx)) {
-    program.typeAliases.push_back(TypeAliasDecl{loc(d), d->name()->getText(), type(d->typeExpr())});
+    program.typeAliases.push_back(TypeAliasDecl{loc(d), d->name()->getText(), type(d->typeExpr()), {}});
   } else if (auto* d = dynamic_cast<MeldParser::PredicateDefContext*>(ctx)) {
     PredicateDecl decl;
     decl.loc = loc(d);

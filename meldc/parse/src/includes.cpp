@@ -119,7 +119,7 @@ class IncludeLoader {
 };
 
 bool sameType(const ast::TypeExpr& a, const ast::TypeExpr& b) {
-  if (a.kind != b.kind || lower(a.name) != lower(b.name) || a.args.size() != b.args.size()) return false;
+  if (a.kind != b.kind || !sameName(a.name, b.name) || a.args.size() != b.args.size()) return false;
   for (std::size_t i = 0; i < a.args.size(); ++i)
     if (!sameType(a.args[i], b.args[i])) return false;
   return true;
@@ -127,7 +127,7 @@ bool sameType(const ast::TypeExpr& a, const ast::TypeExpr& b) {
 
 // Same predicate, same modifiers, same field types and aggregates (argument names are comments).
 bool sameDeclaration(const ast::PredicateDecl& a, const ast::PredicateDecl& b) {
-  if (lower(a.name) != lower(b.name) || a.linear != b.linear || a.route != b.route || a.action != b.action ||
+  if (!sameName(a.name, b.name) || a.linear != b.linear || a.route != b.route || a.action != b.action ||
       a.imported || b.imported || a.fields.size() != b.fields.size())
     return false;
   for (std::size_t i = 0; i < a.fields.size(); ++i)

@@ -7,6 +7,7 @@
 
 #include "MeldLexer.h"
 #include "MeldParser.h"
+#include "meldc/case_folding.hpp"
 
 namespace meldc {
 
@@ -19,11 +20,6 @@ using Vocab = antlr4::dfa::Vocabulary;
 std::string symbolic(const Vocab& v, size_t type) { return std::string(v.getSymbolicName(type)); }
 
 bool isKeyword(const Vocab& v, size_t type) { return symbolic(v, type).rfind("K_", 0) == 0; }
-
-std::string lower(std::string s) {
-  for (char& c : s) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
-  return s;
-}
 
 std::string shorten(const std::string& text) { return text.size() > 40 ? text.substr(0, 37) + "..." : text; }
 

@@ -11,7 +11,6 @@
 
 #include "meldc/ast/expr_vars.hpp"
 #include "meldc/builtins.hpp"
-#include "meldc/case_folding.hpp"
 #include "meldc/types.hpp"
 
 namespace meldc {
@@ -69,16 +68,6 @@ Expr var(SourceLoc loc, const std::string& name) {
   return e;
 }
 
-Term subgoal(SourceLoc loc, Mark mark, const std::string& name, std::vector<Expr> args) {
-  Term t;
-  t.kind = TermKind::Subgoal;
-  t.loc = t.nameLoc = loc;
-  t.mark = mark;
-  t.name = name;
-  t.args = std::move(args);
-  return t;
-}
-
 struct PredInfo {
   const PredicateDecl* decl = nullptr;  // null for built-ins
   bool linear = false;
@@ -93,8 +82,8 @@ class Localizer {
  public:
   Localizer(Program& p, Diagnostics& diag) : p_(p), diag_(diag) {
     for (const BuiltinPredicate& b : builtinPredicates())
-      preds_[std::string(b.name)] = {nullptr, b.kind == BuiltinPredKind::Linear, b.thread, false};
-    for (const TypeAliasDecl& a : p.typeAliases) aliases_[lower(a.name)] = &a.type;
+      preds_[p.symbols.find(b.name)] = {nullptr, b.kind == BuiltinPredKind::Linear, b.thread, false};
+    for (const TypeAliasDecl& a : p.typeAliases) aliases_[a.sym] = &a.type;
     for (const PredicateDecl& d : p.predicates) {
       PredInfo info{&d, d.linear, false, false};
       if (!d.fields.empty()) info.thread = resolve(d.fields[0].type).kind == TypeKind::Thread;
@@ -102,7 +91,7 @@ class Localizer {
         TypeKind k = resolve(d.fields[1].type).kind;
         info.routeEdge = k == TypeKind::Node || k == TypeKind::Named;  // Named: a node subtype
       }
-      preds_[lower(d.name)] = info;
+      preds_[d.sym] = info;
     }
   }
 
@@ -129,7 +118,7 @@ class Localizer {
   const TypeExpr& resolve(const TypeExpr& t) const {
     const TypeExpr* r = &t;
     for (int guard = 0; r->kind == TypeKind::Named && guard < 64; ++guard) {
-      auto it = aliases_.find(lower(r->name));
+      auto it = aliases_.find(r->sym);
       if (it == aliases_.end()) break;
       r = it->second;
     }
@@ -138,7 +127,7 @@ class Localizer {
 
   const PredInfo* info(const Term& t) const {
     if (t.kind != TermKind::Subgoal) return nullptr;
-    auto it = preds_.find(lower(t.name));
+    auto it = preds_.find(t.sym);
     return it == preds_.end() ? nullptr : &it->second;
   }
   // A subgoal of a predicate stored at a node (not a thread fact, not a boolean function call).
@@ -159,6 +148,18 @@ class Localizer {
 
   // `inherited`: the variable types of the rule this one was split from (its expressions are
   // copies the type checker never saw).
+  // A generated subgoal; its name joins the program's symbols.
+  Term subgoal(SourceLoc loc, Mark mark, const std::string& name, std::vector<Expr> args) {
+    Term t;
+    t.kind = TermKind::Subgoal;
+    t.loc = t.nameLoc = loc;
+    t.mark = mark;
+    t.name = name;
+    t.sym = p_.symbols.intern(name);
+    t.args = std::move(args);
+    return t;
+  }
+
   Rule rule(const Rule& r, const VarTypes* inherited = nullptr) {
     if (r.kind == RuleKind::Fact) return r;
     const std::string* host = nullptr;
@@ -341,7 +342,8 @@ class Localizer {
       helper.linear = linear;
       helper.generated = true;
       std::vector<Expr> args{var(r.loc, host)};
-      helper.fields.push_back(FieldDecl{r.loc, FieldAgg::None, TypeExpr{TypeKind::Node, r.loc, {}, {}}, {}});
+      helper.fields.push_back(
+          FieldDecl{r.loc, FieldAgg::None, TypeExpr{TypeKind::Node, r.loc, {}, {}, {}}, {}});
       for (const std::string& v : vars) {
         TypeExpr type = types[v];
         type.loc = r.loc;
@@ -357,8 +359,9 @@ class Localizer {
       remote.body.push_back(inverseSubgoal(r, r.body[edges[e].route]));
       for (size_t i = 0; i < r.body.size(); ++i)
         if (side[i] == edge && i != edges[e].route) remote.body.push_back(r.body[i]);
+      helper.sym = p_.symbols.intern(helper.name);
+      preds_[helper.sym] = PredInfo{nullptr, linear, false, false};
       remote.head.push_back(subgoal(r.loc, mark, helper.name, args));
-      preds_[lower(helper.name)] = PredInfo{nullptr, linear, false, false};
       const std::string helperName = helper.name;
       helpers_.push_back(std::move(helper));
       // Nodes beyond the neighbour: its rule spans nodes in turn (helpers numbered depth first).
@@ -376,12 +379,13 @@ class Localizer {
   Term inverseSubgoal(const Rule& r, const Term& route) {
     Term t = route;
     t.name = inverse(*info(route)->decl, r.loc);
+    t.sym = p_.symbols.intern(t.name);
     std::swap(t.args[0], t.args[1]);
     return t;
   }
 
   std::string inverse(const PredicateDecl& route, SourceLoc ruleLoc) {
-    auto [it, fresh] = inverseNames_.try_emplace(lower(route.name));
+    auto [it, fresh] = inverseNames_.try_emplace(route.sym);
     if (!fresh) return it->second;
     it->second = "___" + std::string(route.name.rbegin(), route.name.rend());
     PredicateDecl d = route;
@@ -394,7 +398,8 @@ class Localizer {
     // A plain mirror of the route facts: an aggregate field is already aggregated at the route.
     for (FieldDecl& f : d.fields) f.agg = FieldAgg::None;
     // A fact at the neighbour when the rule it moved to is localized again, never an edge there.
-    preds_[lower(d.name)] = PredInfo{nullptr, d.linear, false, false};
+    d.sym = p_.symbols.intern(d.name);
+    preds_[d.sym] = PredInfo{nullptr, d.linear, false, false};
     inverses_.push_back(d);
 
     // r(X0, X1, R...) -o ___inv(X1, X0, R...), persistent for a persistent route.
@@ -425,9 +430,9 @@ class Localizer {
 
   Program& p_;
   Diagnostics& diag_;
-  std::map<std::string, const TypeExpr*> aliases_;
-  std::map<std::string, PredInfo> preds_;
-  std::map<std::string, std::string> inverseNames_;  // lower-case route name -> inverse name
+  std::unordered_map<Symbol, const TypeExpr*> aliases_;
+  std::unordered_map<Symbol, PredInfo> preds_;
+  std::unordered_map<Symbol, std::string> inverseNames_;  // route -> inverse name
   std::vector<Rule> generatedRules_;
   std::vector<PredicateDecl> helpers_;
   std::vector<PredicateDecl> inverses_;

@@ -8,7 +8,6 @@
 #include <unordered_map>
 #include <unordered_set>
 
-#include "meldc/case_folding.hpp"
 #include "support/splitmix.hpp"
 
 namespace meldc {
@@ -117,12 +116,12 @@ class NodeMerger {
 
 // §6.1 step 4: E from the constant axioms of route predicates, in merged program order.
 std::map<int64_t, std::vector<int64_t>> routeEdges(const ast::Program& p) {
-  std::unordered_set<std::string> routes;
+  std::unordered_set<ast::Symbol> routes;
   for (const ast::PredicateDecl& d : p.predicates)
-    if (d.route) routes.insert(lower(d.name));
+    if (d.route) routes.insert(d.sym);
   std::map<int64_t, std::deque<int64_t>> edges;
   std::vector<char> routeName;  // per ground fact name
-  for (const std::string& n : p.groundFacts.names) routeName.push_back(routes.count(lower(n)) ? 1 : 0);
+  for (const ast::Symbol n : p.groundFacts.nameSyms) routeName.push_back(routes.count(n) ? 1 : 0);
   forEachStatement(
       p,
       [&](const ast::Rule& r) {
@@ -132,7 +131,7 @@ std::map<int64_t, std::vector<int64_t>> routeEdges(const ast::Program& p) {
         });
         if (!constant) return;
         for (const ast::Term& t : r.head) {
-          if (!routes.count(lower(t.name))) continue;
+          if (!routes.count(t.sym)) continue;
           for (size_t i = 1; i < t.args.size(); ++i) {
             if (t.args[i].kind != ast::ExprKind::Node) continue;
             edges[t.args[0].intValue].push_front(t.args[i].intValue);

@@ -1,4 +1,6 @@
-// Meld names compare case-insensitively (language reference §1.3): every pass folds with this.
+// Meld names compare case-insensitively (language reference §1.3). The front end folds every name
+// of the AST once into a Symbol (ast/symbol.hpp); these are for the places before that (include
+// merging, -D definitions) and for keywords in messages.
 #pragma once
 
 #include <cctype>
@@ -11,6 +13,14 @@ inline std::string lower(std::string_view s) {
   std::string out(s);
   for (char& c : out) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
   return out;
+}
+
+inline bool sameName(std::string_view a, std::string_view b) {
+  if (a.size() != b.size()) return false;
+  for (std::size_t i = 0; i < a.size(); ++i)
+    if (std::tolower(static_cast<unsigned char>(a[i])) != std::tolower(static_cast<unsigned char>(b[i])))
+      return false;
+  return true;
 }
 
 }  // namespace meldc

@@ -21,7 +21,7 @@ struct Typing {
   std::unordered_map<const ast::Expr*, ast::TypeExpr> exprs;
   // Aggregate constructs (§5.3.4): the type of one aggregated value (the spec variable in the body).
   std::unordered_map<const ast::AggSpec*, ast::TypeExpr> aggItems;
-  std::map<std::string, ast::TypeExpr> consts;  // lower-case constant name -> its type
+  std::unordered_map<ast::Symbol, ast::TypeExpr> consts;  // constant -> its type
   const ast::TypeExpr* of(const ast::Expr& e) const {
     auto it = exprs.find(&e);
     return it == exprs.end() ? nullptr : &it->second;

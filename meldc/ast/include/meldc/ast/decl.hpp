@@ -15,12 +15,14 @@ namespace meldc::ast {
 struct NodeTypeDecl {  // node page.
   SourceLoc loc;
   std::string name;
+  Symbol sym;
 };
 
 struct TypeAliasDecl {  // type int number.
   SourceLoc loc;
   std::string name;
   TypeExpr type;
+  Symbol sym;
 };
 
 enum class FieldAgg { None, Min, Max, Sum, First };
@@ -36,6 +38,7 @@ struct FieldDecl {
 struct PredicateDecl {
   SourceLoc loc;
   std::string name;
+  Symbol sym;
   SourceLoc nameLoc;
   bool linear = false;
   bool route = false;
@@ -74,6 +77,7 @@ struct Directive {
   SourceLoc loc;
   DirectiveKind kind = DirectiveKind::Index;
   std::string name;  // Index/Compact/Data: predicate or template; Priority a<b: a
+  Symbol sym;
   SourceLoc nameLoc;
   int64_t position = 0;               // Index: 1-based field counting the home argument
   std::string text;                   // Data: file; Allocator: allocator name
@@ -81,12 +85,14 @@ struct Directive {
   PriorityKind priority = PriorityKind::Static;
   double value = 0.0;  // @initial / @default / @no_priority
   std::string other;   // Priority a<b: b
+  Symbol otherSym;
   SourceLoc otherLoc;
 };
 
 struct ExternDecl {  // extern int myfun(int, float).
   SourceLoc loc;
   std::string name;
+  Symbol sym;
   TypeExpr result;
   std::vector<FieldDecl> params;
 };
@@ -94,6 +100,7 @@ struct ExternDecl {  // extern int myfun(int, float).
 struct ConstDecl {  // const name = expr.
   SourceLoc loc;
   std::string name;
+  Symbol sym;
   Expr value;
   bool fromCommandLine = false;  // -DNAME=VALUE
 };
@@ -107,6 +114,7 @@ struct FunParam {
 struct FunDecl {  // fun name(int X, ...) : type = expr.
   SourceLoc loc;
   std::string name;
+  Symbol sym;
   std::vector<FunParam> params;
   TypeExpr result;
   Expr body;

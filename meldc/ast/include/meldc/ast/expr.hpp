@@ -6,6 +6,7 @@
 #include <string>
 #include <vector>
 
+#include "meldc/ast/symbol.hpp"
 #include "meldc/source.hpp"
 
 namespace meldc::ast {
@@ -45,6 +46,7 @@ struct Expr {
   ExprKind kind = ExprKind::Anon;
   SourceLoc loc;
   std::string name;
+  Symbol sym;        // Const, Call: the folded name (internNames)
   std::string text;  // literal spelling of numbers
   int64_t intValue = 0;
   double floatValue = 0.0;

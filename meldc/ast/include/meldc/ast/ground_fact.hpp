@@ -46,6 +46,7 @@ struct GroundFact {
 
 struct GroundFacts {
   std::vector<std::string> names;  // predicate names as written
+  std::vector<Symbol> nameSyms;    // their symbols (internNames), once interned
   std::vector<GroundFact> facts;   // in program order
   std::vector<GroundArg> args;
 

@@ -39,6 +39,8 @@ struct Program {
   std::vector<Rule> rules;  // rules and facts in source order
   // Facts of literals only, kept compact (ground_fact.hpp); each knows its place among `rules`.
   GroundFacts groundFacts;
+  // Every name of the program folded once (symbol.hpp); filled by internNames.
+  SymbolTable symbols;
 
   uint32_t mainFile = 0;  // SourceManager index of the main file (set by include merging)
   // Set by node renumbering (renumber.hpp): the initial nodes ordered by internal id. Node

@@ -29,7 +29,8 @@ struct AggSpec {
   SourceLoc loc;
   AggOp op = AggOp::Sum;
   std::string function;  // Custom: the folding function
-  Expr start;            // Custom: start value
+  Symbol functionSym;
+  Expr start;  // Custom: start value
   std::string var;
 };
 
@@ -43,6 +44,7 @@ struct Term {
   // Subgoal: [mark] name(args) [@+Nms]
   Mark mark = Mark::None;
   std::string name;
+  Symbol sym;  // the folded name
   SourceLoc nameLoc;
   std::vector<Expr> args;
   std::optional<int64_t> delayMs;

@@ -4,6 +4,7 @@
 #include <string>
 #include <vector>
 
+#include "meldc/ast/symbol.hpp"
 #include "meldc/source.hpp"
 
 namespace meldc::ast {
@@ -15,6 +16,7 @@ struct TypeExpr {
   SourceLoc loc;
   std::string name;            // Named: a type alias or a node subtype
   std::vector<TypeExpr> args;  // List/Set/Array: one element type; Struct: the fields
+  Symbol sym;                  // Named: the folded name
 };
 
 }  // namespace meldc::ast
