@@ -17,6 +17,8 @@
 #include <sstream>
 #include <unordered_map>
 
+#include "simcore/csg.hpp"
+
 namespace simcore {
 
 XmlWorldError::XmlWorldError(std::string file, int line, int column, std::string message)
@@ -205,6 +207,8 @@ class Loader {
   void readLine(Node n, std::optional<std::uint32_t> listColor);
   void readVisibleSimBox(Node n, std::optional<std::uint32_t> listColor);
   void readBitmapLine(Node n, std::optional<std::uint32_t> listColor);
+  void readCsg(Node n, std::optional<std::uint32_t> listColor);
+  bool boolAttribute(Node n, const char* name, bool fallback) const;
   void fillBox(Node n, Attr sizeAttr, const Cell& origin, const Cell& size, std::optional<std::uint32_t> color);
   void readSchedule(Node schedule);
   BlockId blockIdAttribute(Node n);
@@ -321,7 +325,8 @@ WorldDescription Loader::run() {
   readWorld(root);
   // A world without blocks is almost always a file whose block elements we did not understand:
   // running it would print an empty summary and exit 0.
-  if (world_.blocks.empty()) fail(posOf(root), "the world has no block (no <block>, <blocksBox>, <blockBox> or <blocksLine> in a <blockList>)");
+  if (world_.blocks.empty() && !world_.csg)
+    fail(posOf(root), "the world has no block (no <block>, <blocksBox>, <blockBox>, <blocksLine> or <csg> in a <blockList>)");
   return std::move(world_);
 }
 
@@ -422,8 +427,7 @@ void Loader::readBlockList(Node list) {
     else if (sameName(name, "blocksLine"))
       readLine(child, color);
     else
-      fail(posOf(child), "<csg> (VisibleSim's constructive solid geometry shapes) is not supported: "
-                         "describe the blocks with <block>, <blocksBox> or <blocksLine>");
+      readCsg(child, color);
   });
 }
 
@@ -574,7 +578,35 @@ void Loader::readSchedule(Node schedule) {
   });
 }
 
+void Loader::readCsg(Node n, std::optional<std::uint32_t> listColor) {
+  warnUnknownAttributes(n, {"content", "boundingBox", "offset", "orientation", "color"});
+  if (world_.csg) {
+    warn(posOf(n), "second <csg> ignored (a world has one solid, as in VisibleSim)");
+    return;
+  }
+  Attr content = required(n, "content");
+  try {
+    const CsgSolid solid = CsgSolid::parse(content.value());
+    for (const std::string& w : solid.warnings()) warn(posOf(content), "<csg>: " + w);
+  } catch (const CsgError& e) {
+    fail(posOfPointer(content.value() + std::min(e.offset(), std::strlen(content.value()))),
+         std::string("<csg content>: ") + e.what());
+  }
+  world_.csg = CsgDescription{content.value(), boolAttribute(n, "boundingBox", true), boolAttribute(n, "offset", true),
+                              optionalColor(n, listColor), posOf(n)};
+}
+
+bool Loader::boolAttribute(Node n, const char* name, bool fallback) const {
+  Attr a = attr(n, name);
+  if (!a) return fallback;
+  const std::string_view v = trim(a.value());
+  if (v == "true" || v == "1") return true;
+  if (v == "false" || v == "0") return false;
+  badAttribute(n, a, "is neither true nor false");
+}
+
 void Loader::checkScheduledBlocks() {
+  if (world_.csg) return;  // the solid's blocks are only known with the lattice: checked when populating
   const std::size_t count = world_.blocks.size();
   for (const auto& [id, pos] : scheduledBlocks_)
     if (id >= count)

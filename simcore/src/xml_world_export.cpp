@@ -3,6 +3,7 @@
 #include <ostream>
 #include <pugixml.hpp>
 
+#include "simcore/csg.hpp"
 #include "simcore/simulation.hpp"
 #include "simcore/xml_world.hpp"
 
@@ -39,6 +40,46 @@ void checkScheduled(const WorldDescription& d, const Simulation& sim, BlockId bl
 
 }  // namespace
 
+namespace {
+
+// VisibleSim's loop over the grid: z, then y, then x; a cell is a block when its sample point,
+// moved so that the solid's bounding box starts at the grid's corner, is inside.
+void addCsgBlocks(const WorldDescription& d, const CsgDescription& c, Simulation& sim) {
+  CsgSolid solid = [&] {
+    try {
+      return CsgSolid::parse(c.content);
+    } catch (const CsgError& e) {  // the loader checked it; only a description made by code gets here
+      throw XmlWorldError(d.path, c.pos.line, c.pos.column, std::string("<csg content>: ") + e.what());
+    }
+  }();
+  const Lattice& lattice = sim.world().lattice();
+  const GridSize g = sim.world().size();
+  constexpr std::uint64_t kMaxSampled = std::uint64_t(1) << 28;
+  if (std::uint64_t(g.x) * std::uint64_t(g.y) * std::uint64_t(g.z) > kMaxSampled)
+    throw XmlWorldError(
+        d.path, c.pos.line, c.pos.column,
+        "a <csg> solid is sampled at every cell of the grid: at most 2^28 cells, this grid has more");
+  CsgBox box = c.boundingBox ? solid.boundingBox() : CsgBox{};
+  const Vec3 shift{box.min.x - (c.offset ? 1 : 0), box.min.y - (c.offset ? 1 : 0),
+                   box.min.z - (c.offset ? 1 : 0)};
+  for (std::int32_t z = 0; z < g.z; ++z)
+    for (std::int32_t y = 0; y < g.y; ++y)
+      for (std::int32_t x = 0; x < g.x; ++x) {
+        const Cell cell{x, y, z};
+        if (!lattice.isValidCell(cell) || sim.world().settledAt(cell) != kNoBlock) continue;
+        const Vec3 at = lattice.csgPoint(cell);
+        std::optional<std::uint32_t> color = c.color;
+        if (!solid.inside(Vec3{at.x + shift.x, at.y + shift.y, at.z + shift.z}, color)) continue;
+        if (sim.addBlock(cell, color.value_or(sim.target().defaultColor)) == kNoBlock)
+          throw XmlWorldError(d.path, c.pos.line, c.pos.column, refusal(sim.world(), cell));
+      }
+  if (sim.world().blockCount() == 0)
+    throw XmlWorldError(d.path, c.pos.line, c.pos.column,
+                        "the <csg> solid holds no cell of the grid, and the world has no other block");
+}
+
+}  // namespace
+
 void populateSimulation(const WorldDescription& d, Simulation& sim) {
   // Ids in the schedule are indices in d.blocks; they stay valid only if we number from 0.
   if (sim.world().blockCount() != 0)
@@ -47,6 +88,7 @@ void populateSimulation(const WorldDescription& d, Simulation& sim) {
   for (const BlockDescription& b : d.blocks)
     if (sim.addBlock(b.cell, b.color.value_or(sim.target().defaultColor)) == kNoBlock)
       throw XmlWorldError(d.path, b.pos.line, b.pos.column, refusal(sim.world(), b.cell));
+  if (d.csg) addCsgBlocks(d, *d.csg, sim);
   for (const ScheduledTap& t : d.taps) {
     checkScheduled(d, sim, t.block, t.pos, sim.target().hasTap, "tap sensor");
     sim.scheduleTap(t.block, t.time);
@@ -108,7 +150,8 @@ void exportWorldXml(const Simulation& sim, const WorldDescription& original, std
     n.append_attribute("color") = colorText(b.color).c_str();
     // Block ids of the run are those of the description while no block was added during it.
     if (id < original.blocks.size())
-      for (const auto& [key, value] : original.blocks[id].kept) n.append_attribute(key.c_str()) = value.c_str();
+      for (const auto& [key, value] : original.blocks[id].kept)
+        n.append_attribute(key.c_str()) = value.c_str();
   }
   doc.save(out, "  ", pugi::format_default, pugi::encoding_utf8);
   out << '\n';  // pugixml ends the file without one

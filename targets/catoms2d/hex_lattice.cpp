@@ -15,4 +15,11 @@ simcore::Vec3 HexLattice::cellCenter(const simcore::Cell& c) const {
   return simcore::Vec3{double(c.x) + (oddRow(c) ? 0.5 : 0.0), double(c.y), double(c.z) * kRowHeight};
 }
 
+// VisibleSim's hexagonal lattice puts every cell at y = 2.5 for its CSG solids.
+simcore::Vec3 HexLattice::csgPoint(const simcore::Cell& c) const {
+  simcore::Vec3 p = cellCenter(c);
+  p.y = 2.5;
+  return p;
+}
+
 }  // namespace targets

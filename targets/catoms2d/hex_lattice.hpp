@@ -36,6 +36,7 @@ class HexLattice final : public simcore::Lattice {
   }
   int oppositeFace(const simcore::Cell&, int face) const override { return (face + 3) % kFaces; }
   simcore::Vec3 cellCenter(const simcore::Cell& c) const override;
+  simcore::Vec3 csgPoint(const simcore::Cell& c) const override;
   // Only the plane y = 0 belongs to the lattice.
   bool isValidCell(const simcore::Cell& c) const override { return c.y == 0; }
   bool isPlanar() const override { return true; }

@@ -24,4 +24,12 @@ simcore::Vec3 FccLattice::cellCenter(const simcore::Cell& c) const {
   return simcore::Vec3{double(c.x) + shift, double(c.y) + shift, double(c.z) * kLayerHeight};
 }
 
+// VisibleSim's FCC lattice, for its CSG solids: cells half a unit further in x and y, half a layer
+// higher.
+simcore::Vec3 FccLattice::csgPoint(const simcore::Cell& c) const {
+  static const double kLayerHeight = std::sqrt(2.0) / 2.0;
+  const simcore::Vec3 p = cellCenter(c);
+  return simcore::Vec3{p.x + 0.5, p.y + 0.5, (double(c.z) + 0.5) * kLayerHeight};
+}
+
 }  // namespace targets

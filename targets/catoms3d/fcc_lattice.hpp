@@ -44,6 +44,7 @@ class FccLattice final : public simcore::Lattice {
   }
   int oppositeFace(const simcore::Cell&, int face) const override { return (face + 6) % kFaces; }
   simcore::Vec3 cellCenter(const simcore::Cell& c) const override;
+  simcore::Vec3 csgPoint(const simcore::Cell& c) const override;
   bool isPlanar() const override { return false; }
 
  private:

@@ -188,7 +188,20 @@ case_visiblesim_world() {
 
 case_world_without_blocks() {
   run 3 "$TWORLDS/no-blocks.xml" --code "$FLOOD"
-  has "$ERR" "no-blocks.xml:4:5: error: <csg> (VisibleSim's constructive solid geometry shapes) is not supported"
+  has "$ERR" "no-blocks.xml:2:1: error: the world has no block (no <block>, <blocksBox>, <blockBox>, <blocksLine> or <csg> in a <blockList>)"
+}
+
+case_csg_world() {
+  # VisibleSim's <csg> solid: the dome example (worked out in its comment) with its own program.
+  run 0 "$WORLDS/blinky-csg-dome.xml" --dump
+  has "$OUT" "blocks          315"
+}
+
+case_csg_errors() {
+  run 3 "$TWORLDS/csg-outside.xml" --code "$FLOOD"
+  has "$ERR" "csg-outside.xml:4:5: error: the <csg> solid holds no cell of the grid, and the world has no other block"
+  run 3 "$TWORLDS/csg-syntax.xml" --code "$FLOOD"
+  has "$ERR" "csg-syntax.xml:4:53: error: <csg content>: unknown variable 'radius'"
 }
 
 case_same_fingerprint() {

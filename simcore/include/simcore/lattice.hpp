@@ -32,6 +32,9 @@ class Lattice {
   virtual int oppositeFace(const Cell& cell, int face) const = 0;
   // Centre of the cell in world units of one block size.
   virtual Vec3 cellCenter(const Cell& cell) const = 0;
+  // Where VisibleSim's CSG solids sample the cell (its "unscaled world position"): the centre,
+  // except where VisibleSim's lattice places cells otherwise (Catoms 2D and 3D).
+  virtual Vec3 csgPoint(const Cell& cell) const { return cellCenter(cell); }
   // Whether a block may occupy this cell (always, except for lattices with parity rules).
   virtual bool isValidCell(const Cell&) const { return true; }
   // Whether the lattice is two-dimensional (z must be 0 for square; y for hexagonal x-z).

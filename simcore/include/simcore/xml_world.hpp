@@ -74,6 +74,17 @@ struct KeptElement {
   std::vector<std::pair<std::string, std::string>> attributes;
 };
 
+// VisibleSim's <csg content="..." boundingBox="true" offset="true"/>: a solid whose inside becomes
+// blocks (csg.hpp). Expanded by populateSimulation, which knows the lattice: a cell is a block when
+// its VisibleSim position (Lattice::csgPoint), moved by the solid's bounding box corner (and by
+// (-1, -1, -1) with offset), is inside; cells already holding a block are left alone.
+struct CsgDescription {
+  std::string content;
+  bool boundingBox = true, offset = true;
+  std::optional<std::uint32_t> color;  // of the block list, for the parts outside any color()
+  SourcePos pos;                       // of the <csg> element
+};
+
 struct WorldDescription {
   std::string path;    // the file read (or the name given to parseWorldXml)
   std::string target;  // as written, blanks trimmed ("" if absent); not validated here
@@ -83,6 +94,7 @@ struct WorldDescription {
   std::string blockSize;                   // blockSize="..." of the first <blockList>, validated
   KeptElement camera, spotlight;
   std::vector<BlockDescription> blocks;  // in document order = dense block ids
+  std::optional<CsgDescription> csg;     // its blocks come after `blocks`
   std::optional<std::uint64_t> seed;
   std::string code;     // C BlockCode .so; relative paths resolved against the file's folder
   std::string program;  // Meld program; resolved likewise
@@ -96,8 +108,8 @@ WorldDescription loadWorldXml(const std::string& path);
 // The same from text in memory; `pathForMessages` names it in messages and resolves relative paths.
 WorldDescription parseWorldXml(std::string_view text, const std::string& pathForMessages);
 
-// Adds the blocks (in order, so ids match the description) to a simulation that has none yet, and
-// schedules the taps and accelerometer readings. Throws XmlWorldError at the offending element
+// Adds the blocks (in order, so ids match the description; then those of the <csg> solid) to a
+// simulation that has none yet, and schedules the taps and accelerometer readings. Throws XmlWorldError at the offending element
 // (cell outside the simulation's grid, tap on an unknown block, tap on a target without tap ...).
 void populateSimulation(const WorldDescription& world, Simulation& sim);
 
