@@ -296,9 +296,9 @@ std::unique_ptr<Program> readBytecode(const std::uint8_t* data, std::size_t size
   if (std::memcmp(data, kMagic, 4) != 0) c.fail("not a Meld bytecode file (magic is not MBC1)");
   c.word("magic");
   const std::uint32_t version = c.word("version");
-  if (version != kBytecodeVersion)
-    c.fail("bytecode version " + std::to_string(version) + " is not supported (expected version " +
-           std::to_string(kBytecodeVersion) + ")");
+  if (version < kOldestBytecodeVersion || version > kBytecodeVersion)
+    c.fail("bytecode version " + std::to_string(version) + " is not supported (this VM reads versions " +
+           std::to_string(kOldestBytecodeVersion) + " to " + std::to_string(kBytecodeVersion) + ")");
   const std::uint32_t sections = c.word("section count");
   if (sections != kSectionCount)
     c.fail("section count " + std::to_string(sections) + " (expected " + std::to_string(kSectionCount) + ")");

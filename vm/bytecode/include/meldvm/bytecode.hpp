@@ -21,7 +21,11 @@
 
 namespace meldvm {
 
-inline constexpr std::uint32_t kBytecodeVersion = 1;
+// Version 2 added RET_IF_UPDATED (a merged rule stops after an in-place update) and the
+// scheduling flag of `priority @no_priority`. Every change so far only adds: the reader also takes
+// version 1 files, which use neither, and an older VM refuses a version 2 file by its version.
+inline constexpr std::uint32_t kBytecodeVersion = 2;
+inline constexpr std::uint32_t kOldestBytecodeVersion = 1;
 
 class BytecodeError : public std::runtime_error {
  public:
