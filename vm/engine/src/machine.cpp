@@ -22,74 +22,17 @@ Machine::Machine(const Program& program, MachineOptions options)
       db_(std::make_unique<Database>(program.predicates, heap_)),
       builtinCtx_(heap_),
       rng_(Rng::forThread(0)),
-      sched_(program.scheduling) {
+      sched_(program.scheduling),
+      tables_(program) {
   host_ = options_.host;
   stepsLeft_ = options_.maxSteps ? options_.maxSteps + 1 : UINT64_MAX;
   if (options_.seed) rng_.state ^= support::splitmix64(options_.seed);
   builtinCtx_.rng = &rng_;
   builtinCtx_.sched = this;
   const std::size_t preds = program.predicates.size();
-  rulesOf_.resize(preds);
-  processesOf_.resize(preds);
-  queuedPersistent_.assign(preds, 0);
-  for (std::uint32_t r = 0; r < program.rules.size(); ++r)
-    for (PredId p : program.rules[r].bodyPredicates) rulesOf_[p].push_back(r);
-  for (std::uint32_t i = 0; i < program.processes.size(); ++i)
-    processesOf_[program.processes[i].trigger].push_back(i);
-  // The predicates a process's loops read at the node (a persistent rule's body has no head
-  // comprehension or aggregate, so every loop is a body subgoal): with one of them empty there,
-  // the process cannot fire, and runProcesses skips it. Thread facts live elsewhere: not listed.
-  processNeeds_.resize(program.processes.size());
-  for (std::uint32_t i = 0; i < program.processes.size(); ++i) {
-    const std::vector<std::uint32_t>& code = program.processes[i].block.code;
-    detail::forEachInstruction(code, [&](std::size_t pc) {
-      if (detail::isLoop(code[pc]) && !(code[pc + 3] & kIterThread)) processNeeds_[i].push_back(code[pc + 1]);
-    });
-  }
   // Indexes (§4.4 `index p/N`, and the look-ups of ITER_KEY): requested before any fact is stored.
   keyIndexes_.resize(preds);
-  for (const IndexRequest& ix : program.indexes)
-    if (ix.predicate < preds && ix.field < program.predicates[ix.predicate].arity())
-      requestKeyIndex(ix.predicate, ix.field);
-  // One walk over the code: the indexes ITER_KEY looks facts up in, and whether the program draws
-  // random numbers (randint, degeneratevector, a [:random] selector).
-  auto scan = [&](const CodeBlock& b) {
-    detail::forEachInstruction(b.code, [&](std::size_t pc) {
-      const auto op = Opcode(b.code[pc]);
-      if (op == Opcode::ITER_KEY) requestKeyIndex(b.code[pc + 1], b.code[pc + 4]);
-      if ((op == Opcode::CALL && (b.code[pc + 2] == 1 || b.code[pc + 2] == 32)) ||
-          (op == Opcode::ITER_SORTED && (b.code[pc + 3] & kIterRandom)))
-        usesRandom_ = true;
-    });
-  };
-  for (const Rule& r : program.rules) scan(r.block);
-  for (const Process& p : program.processes) scan(p.block);
-  for (const Function& f : program.functions) scan(f.block);
-  for (PredId p = 0; p < preds; ++p) {
-    const PredicateDesc& d = program.predicates[p];
-    maxArity_ = std::max(maxArity_, d.arity());
-    queuedPersistent_[p] = !d.linear && (!processesOf_[p].empty() || d.aggregated());
-    bool boxed = false;
-    for (TypeId t : d.fields) boxed = boxed || program.types.boxed(t);
-    boxedField_.push_back(boxed);
-    isLinear_.push_back(d.linear);
-    arity_.push_back(d.arity());
-  }
-  isThreadPred_.assign(preds, 0);
-  for (PredId p = 0; p < preds; ++p) {
-    isThreadPred_[p] = program.predicates[p].thread;
-    hasThreads_ = hasThreads_ || isThreadPred_[p];
-  }
-  for (std::uint32_t r = 0; r < program.rules.size(); ++r) {
-    bool node = false, thread = false;
-    for (PredId p : program.rules[r].bodyPredicates) (isThreadPred_[p] ? thread : node) = true;
-    if (node && thread) mixedRules_.push_back(r);
-    isMixedRule_.push_back(node && thread);
-  }
-  justMoved_ = program.predicates.find("just-moved");
-  if (justMoved_ == program.predicates.size()) justMoved_ = Program::kNoPred;
-  ruleWords_ = std::uint32_t((program.rules.size() + 63) / 64);
-  if (ruleWords_ == 0) ruleWords_ = 1;
+  for (const auto& [p, field] : tables_.keyLookups) requestKeyIndex(p, field);
   for (const std::string& s : program.strings) strings_.push_back(heap_.makeString(s));
   for (const std::string& a : options_.args) args_.push_back(heap_.makeString(a));
   globals_.assign(program.globals.size(), Value());
@@ -131,11 +74,11 @@ void Machine::start() {
   initialNodes_ = n;
   // §6.12: with thread predicates, the one VM thread has a node of its own, id n, allocated before
   // any node `exists` creates.
-  const NodeId all = hasThreads_ ? n + 1 : n;
-  if (hasThreads_) threadNode_ = n;
+  const NodeId all = tables_.hasThreads ? n + 1 : n;
+  if (tables_.hasThreads) threadNode_ = n;
   db_->addNodes(all);
-  candidates_.assign(std::size_t(all) * ruleWords_, 0);
-  axiomCandidates_.assign(ruleWords_, 0);
+  candidates_.assign(std::size_t(all) * tables_.ruleWords, 0);
+  axiomCandidates_.assign(tables_.ruleWords, 0);
   mail_->addNodes(all);
   created_.assign(all, 0);
   if (!program_.globalsInit.code.empty()) {
@@ -153,7 +96,7 @@ void Machine::start() {
     }
   }
   sched_.start(n);
-  if (hasThreads_) {
+  if (tables_.hasThreads) {
     sched_.addNode();  // the thread node has a scheduler entry but is served apart (run())
     startThreadNode();
   }
@@ -228,7 +171,7 @@ std::uint64_t Machine::runNode(NodeId n) {
     sched_.prefetch(ahead);
     mail_->prefetchBox(ahead);
     db_->prefetchNode(ahead);
-    __builtin_prefetch(candidates_.data() + std::size_t(ahead) * ruleWords_);
+    __builtin_prefetch(candidates_.data() + std::size_t(ahead) * tables_.ruleWords);
   }
   if (sched_.peek(1, ahead)) {
     mail_->prefetchMessages(ahead);
@@ -241,21 +184,21 @@ std::uint64_t Machine::runNode(NodeId n) {
   ++stats_.nodeRuns;
   deliverIncoming(n);
   processPersistent();
-  std::uint64_t* cand = candidates_.data() + std::size_t(n) * ruleWords_;
+  std::uint64_t* cand = candidates_.data() + std::size_t(n) * tables_.ruleWords;
   // §6.12: while a normal node runs, its thread's facts are visible: rules over node and thread
   // facts are checked again (the thread's facts may have changed since this node last ran), and
   // the thread node's own candidates (rule 1, rules over thread facts only) compete with the
   // node's by rule number, running on the thread node.
   const bool withThread = threadNode_ != kNoNode && n != threadNode_;
   if (withThread)
-    for (std::uint32_t r : mixedRules_)
+    for (std::uint32_t r : tables_.mixedRules)
       if (allPresent(n, r)) cand[r / 64] |= std::uint64_t(1) << (r % 64);
   while (!stop_) {
     const std::uint64_t* threadCand =
-        withThread ? candidates_.data() + std::size_t(threadNode_) * ruleWords_ : nullptr;
+        withThread ? candidates_.data() + std::size_t(threadNode_) * tables_.ruleWords : nullptr;
     std::uint32_t rule = ~0u;
     NodeId host = n;
-    for (std::uint32_t w = 0; w < ruleWords_ && rule == ~0u; ++w) {
+    for (std::uint32_t w = 0; w < tables_.ruleWords && rule == ~0u; ++w) {
       const std::uint64_t bits = cand[w] | (threadCand ? threadCand[w] : 0);
       if (!bits) continue;
       rule = w * 64 + std::uint32_t(__builtin_ctzll(bits));
@@ -265,12 +208,12 @@ std::uint64_t Machine::runNode(NodeId n) {
       if (!takeAxiomCandidates(cand)) break;
       continue;
     }
-    std::uint64_t* hostCand = candidates_.data() + std::size_t(host) * ruleWords_;
+    std::uint64_t* hostCand = candidates_.data() + std::size_t(host) * tables_.ruleWords;
     hostCand[rule / 64] &= ~(std::uint64_t(1) << (rule % 64));
-    if (rule == 0) std::copy(cand, cand + ruleWords_, axiomCandidates_.begin());
+    if (rule == 0) std::copy(cand, cand + tables_.ruleWords, axiomCandidates_.begin());
     runRule(host, rule);
     finishRuleRun();
-    cand = candidates_.data() + std::size_t(n) * ruleWords_;  // exists may have grown the array
+    cand = candidates_.data() + std::size_t(n) * tables_.ruleWords;  // exists may have grown the array
     if (rule == 0) deferAxiomCandidates(cand);
   }
   inRun_ = false;
@@ -284,7 +227,7 @@ std::uint64_t Machine::runNode(NodeId n) {
 // only after the rules enabled by the facts the node had already received: a node whose first
 // run finds messages waiting handles them before its own axioms (§6.2, §6.11).
 void Machine::deferAxiomCandidates(std::uint64_t* cand) {
-  for (std::uint32_t w = 0; w < ruleWords_; ++w) {
+  for (std::uint32_t w = 0; w < tables_.ruleWords; ++w) {
     const std::uint64_t fresh = cand[w] & ~axiomCandidates_[w];
     axiomCandidates_[w] = fresh;
     cand[w] &= ~fresh;
@@ -296,7 +239,7 @@ bool Machine::takeAxiomCandidates(std::uint64_t* cand) {
   if (!axiomsDeferred_) return false;
   axiomsDeferred_ = false;
   bool any = false;
-  for (std::uint32_t w = 0; w < ruleWords_; ++w) {
+  for (std::uint32_t w = 0; w < tables_.ruleWords; ++w) {
     for (std::uint64_t bits = axiomCandidates_[w]; bits; bits &= bits - 1) {
       const std::uint32_t r = w * 64 + std::uint32_t(__builtin_ctzll(bits));
       if (allPresent(running_, r)) {
@@ -358,13 +301,13 @@ void Machine::fail(const std::exception& e, NodeId n, const std::string& where) 
 
 bool Machine::allPresent(NodeId n, std::uint32_t rule) const {
   for (PredId q : program_.rules[rule].bodyPredicates)
-    if (db_->factCount(isThreadPred_[q] ? threadNode_ : n, q) == 0) return false;
+    if (db_->factCount(tables_.isThreadPred[q] ? threadNode_ : n, q) == 0) return false;
   return true;
 }
 
 bool Machine::hasCandidate(NodeId n) const {
-  const std::uint64_t* cand = candidates_.data() + std::size_t(n) * ruleWords_;
-  for (std::uint32_t w = 0; w < ruleWords_; ++w)
+  const std::uint64_t* cand = candidates_.data() + std::size_t(n) * tables_.ruleWords;
+  for (std::uint32_t w = 0; w < tables_.ruleWords; ++w)
     if (cand[w]) return true;
   return false;
 }
@@ -372,19 +315,20 @@ bool Machine::hasCandidate(NodeId n) const {
 void Machine::factAdded(NodeId n, PredId p) {
   // A thread fact makes the thread node's own rules candidates, and the rules mixing node and
   // thread facts of the node that is running (others check them when they start a run).
-  std::uint64_t* cand = candidates_.data() + std::size_t(n) * ruleWords_;
-  for (std::uint32_t r : rulesOf_[p])
+  std::uint64_t* cand = candidates_.data() + std::size_t(n) * tables_.ruleWords;
+  for (std::uint32_t r : tables_.rulesOf[p])
     if (allPresent(n, r)) cand[r / 64] |= std::uint64_t(1) << (r % 64);
   if (n != threadNode_ || !inRun_ || running_ == threadNode_) return;
-  std::uint64_t* runningCand = candidates_.data() + std::size_t(running_) * ruleWords_;
-  for (std::uint32_t r : rulesOf_[p])
-    if (isMixedRule_[r] && allPresent(running_, r)) runningCand[r / 64] |= std::uint64_t(1) << (r % 64);
+  std::uint64_t* runningCand = candidates_.data() + std::size_t(running_) * tables_.ruleWords;
+  for (std::uint32_t r : tables_.rulesOf[p])
+    if (tables_.isMixedRule[r] && allPresent(running_, r))
+      runningCand[r / 64] |= std::uint64_t(1) << (r % 64);
 }
 
 void Machine::factRemoved(NodeId n, PredId p) {
   if (db_->factCount(n, p) != 0) return;
-  std::uint64_t* cand = candidates_.data() + std::size_t(n) * ruleWords_;
-  for (std::uint32_t r : rulesOf_[p]) cand[r / 64] &= ~(std::uint64_t(1) << (r % 64));
+  std::uint64_t* cand = candidates_.data() + std::size_t(n) * tables_.ruleWords;
+  for (std::uint32_t r : tables_.rulesOf[p]) cand[r / 64] &= ~(std::uint64_t(1) << (r % 64));
 }
 
 // ---- what the interpreter calls ----
@@ -395,7 +339,7 @@ void Machine::retainArgs(PredId p, const Value* args) {
 }
 
 void Machine::releaseArgs(PredId p, const Value* args) {
-  if (!boxedField_[p]) return;
+  if (!tables_.boxedField[p]) return;
   const PredicateDesc& d = program_.predicates[p];
   for (std::uint32_t i = 0; i < d.arity(); ++i) heap_.release(d.fields[i], args[i]);
 }
@@ -416,7 +360,7 @@ void Machine::derive(NodeId host, PredId p, const Value* args, bool negative) {
     pushArgs(linearOutArgs_, p, args);
     return;
   }
-  if (queuedPersistent_[p]) {
+  if (tables_.queuedPersistent[p]) {
     persistentQueue_.push_back({host, p, negative, std::uint32_t(persistentArgs_.size())});
     pushArgs(persistentArgs_, p, args);
     return;
@@ -515,7 +459,7 @@ void Machine::updated(NodeId host, PredId p, FactRef f, const Value* args, bool 
 NodeId Machine::newNode() {
   countStep();
   const NodeId id = db_->addNodes(1);
-  candidates_.resize(candidates_.size() + ruleWords_, 0);
+  candidates_.resize(candidates_.size() + tables_.ruleWords, 0);
   mail_->addNodes(1);
   created_.push_back(1);
   sched_.addNode();

@@ -44,7 +44,7 @@ void Machine::coordination(Opcode op, NodeId n, double value) {
     case Opcode::SET_CPU:
       // One thread: the node stays where it is and is pinned; just-moved arrives at once (§5.7).
       sched_.setStatic(n, true);
-      if (justMoved_ != Program::kNoPred) send(running_, n, justMoved_, kNoArgs, false);
+      if (tables_.justMoved != Program::kNoPred) send(running_, n, tables_.justMoved, kNoArgs, false);
       break;
     default:
       break;

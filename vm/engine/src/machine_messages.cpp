@@ -6,8 +6,8 @@
 namespace meldvm {
 
 void Machine::post(NodeId dest, PredId p, const Value* args, bool negative) {
-  if (boxedField_[p]) retainArgs(p, args);
-  linearPosted_ |= isLinear_[p];
+  if (tables_.boxedField[p]) retainArgs(p, args);
+  linearPosted_ |= tables_.isLinear[p];
   mail_->post(dest, p, negative, args);
   if (!host_ && !(inRun_ && dest == running_)) sched_.wake(dest);
 }
@@ -55,8 +55,8 @@ void Machine::deliverIncoming(NodeId n) {
     mail_->forEach(
         n,
         [&](PredId p) {
-          persistent = persistent || !isLinear_[p];
-          return isLinear_[p] != 0;
+          persistent = persistent || !tables_.isLinear[p];
+          return tables_.isLinear[p] != 0;
         },
         [&](PredId p, bool, const Value* args) {
           db_->addLinear(n, p, args);
@@ -65,7 +65,7 @@ void Machine::deliverIncoming(NodeId n) {
         });
   if (persistent)
     mail_->forEach(
-        n, [&](PredId p) { return isLinear_[p] == 0; },
+        n, [&](PredId p) { return tables_.isLinear[p] == 0; },
         [&](PredId p, bool negative, const Value* args) { applyPersistent(n, p, args, negative); });
   mail_->release(n);
 }

@@ -33,7 +33,7 @@ void Machine::publishChange(NodeId n, PredId p, const Change& c) {
   // Own copies: the processes change the store, whose scratch the Change points into.
   triggerRemoved_.assign(c.removedArgs.begin(), c.removedArgs.end());
   triggerAdded_.assign(c.addedArgs.begin(), c.addedArgs.end());
-  if (boxedField_[p]) {
+  if (tables_.boxedField[p]) {
     if (c.removed) retainArgs(p, triggerRemoved_.data());
     if (c.added) retainArgs(p, triggerAdded_.data());
   }
@@ -60,9 +60,9 @@ void Machine::publishAdded(NodeId n, PredId p) {
 }
 
 void Machine::runProcesses(NodeId n, PredId p, const Value* args, bool negative) {
-  for (std::uint32_t i : processesOf_[p]) {
+  for (std::uint32_t i : tables_.processesOf[p]) {
     bool ready = true;  // a loop over a predicate without facts here: nothing can fire
-    for (PredId q : processNeeds_[i]) ready = ready && db_->factCount(n, q) != 0;
+    for (PredId q : tables_.processNeeds[i]) ready = ready && db_->factCount(n, q) != 0;
     if (!ready) continue;
     countStep();
     try {

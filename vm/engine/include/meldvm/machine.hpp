@@ -19,6 +19,7 @@
 #include "meldvm/heap.hpp"
 #include "meldvm/large_allocator.hpp"
 #include "meldvm/program.hpp"
+#include "meldvm/program_tables.hpp"
 #include "meldvm/serial_scheduler.hpp"
 #include "meldvm/value_buffer.hpp"
 
@@ -49,7 +50,8 @@ struct MachineOptions {
   std::uint64_t seed = 0;          // the random stream of randint & co. (meld --seed)
   // Steps allowed before the run stops with a RuntimeError (0: no limit): a step is a rule run, a
   // persistent-process run, a loop run (an inner loop runs once per fact of the loops around it),
-  // a linear fact stored for the node that derived it, or a node created. Bounds what a program (or a damaged bytecode file) can make the VM do.
+  // a linear fact stored for the node that derived it, or a node created. Bounds what a program (or a damaged
+  // bytecode file) can make the VM do.
   std::uint64_t maxSteps = 0;
 };
 
@@ -93,7 +95,7 @@ class Machine : private SchedulerView {
     return ~0u;
   }
   // Whether the program draws random numbers (on a robot its stream is the block's own).
-  bool usesRandom() const { return usesRandom_; }
+  bool usesRandom() const { return tables_.usesRandom; }
   // Restarts the random stream from `seed` (a robot does so from its block's stream before a run).
   void reseed(std::uint64_t seed) { rng_.state = seed; }
 
@@ -134,7 +136,7 @@ class Machine : private SchedulerView {
   // win), and then this is all there is to do.
   void applyPersistent(NodeId n, PredId p, const Value* args, bool negative) {
     const Change c = db_->changePersistent(n, p, args, !negative);
-    if (boxedField_[p]) releaseArgs(p, args);  // the references of the queue entry or message
+    if (tables_.boxedField[p]) releaseArgs(p, args);  // the references of the queue entry or message
     if (c.removed || c.added) publishChange(n, p, c);
   }
   // Runs the processes of the visible fact that disappeared (negative mode) and of the one that
@@ -166,8 +168,8 @@ class Machine : private SchedulerView {
   // Owned copies of argument lists (boxed values retained).
   // Appends the arguments to `to` (boxed values retained); returns their offset.
   std::uint32_t pushArgs(ValueBuffer& to, PredId p, const Value* args) {
-    if (boxedField_[p]) retainArgs(p, args);
-    return to.append(args, arity_[p]);
+    if (tables_.boxedField[p]) retainArgs(p, args);
+    return to.append(args, tables_.arity[p]);
   }
   [[gnu::noinline]] void retainArgs(PredId p, const Value* args);
   // The run-time errors of send(), out of line.
@@ -183,9 +185,9 @@ class Machine : private SchedulerView {
   BuiltinContext builtinCtx_;
   Rng rng_;
   std::uint64_t stepsLeft_;  // options_.maxSteps counted down (no limit: more than a run takes)
-  std::vector<std::vector<std::pair<std::uint32_t, std::uint32_t>>> keyIndexes_;  // per predicate: (field, handle)
+  std::vector<std::vector<std::pair<std::uint32_t, std::uint32_t>>>
+      keyIndexes_;  // per predicate: (field, handle)
   void requestKeyIndex(PredId p, std::uint32_t field);
-  bool usesRandom_ = false;  // randint, degeneratevector or a [:random] selector
   void countStep() {
     if (__builtin_expect(--stepsLeft_ == 0, 0)) stepLimitReached();
   }
@@ -195,34 +197,20 @@ class Machine : private SchedulerView {
   }
   [[noreturn, gnu::cold, gnu::noinline]] void stepLimitReached() const;
   SerialScheduler sched_;
+  const ProgramTables tables_;  // per predicate and per rule, from the program
   MachineStats stats_;
   bool stop_ = false;
   static constexpr NodeId kNoNode = 0xFFFFFFFFu;
-  bool hasThreads_ = false;
   NodeId threadNode_ = kNoNode;  // the node of the one VM thread (§6.12)
-  std::vector<std::uint8_t> isThreadPred_;
-  std::vector<std::uint32_t> mixedRules_;  // bodies with node and thread facts
-  std::vector<std::uint8_t> isMixedRule_;  // per rule
   bool started_ = false;
   MachineHost* host_ = nullptr;
   NodeId running_ = 0;
   bool inRun_ = false;
   NodeId initialNodes_ = 0;
 
-  // Per predicate: the rules with it in their body, its processes, flags.
-  std::vector<std::vector<std::uint32_t>> rulesOf_;
-  std::vector<std::vector<std::uint32_t>> processesOf_;
-  std::vector<std::vector<PredId>> processNeeds_;  // per process: predicates its loops read
-  std::vector<std::uint8_t> queuedPersistent_;     // has processes or an aggregate: derive via the queue
-  std::vector<std::uint8_t> boxedField_;           // per predicate: some field is boxed
-  std::vector<std::uint8_t> isLinear_;             // per predicate
-  bool linearPosted_ = false;                      // some linear fact went into a mailbox
-  std::vector<std::uint32_t> arity_;               // per predicate (home excluded)
-  std::uint32_t maxArity_ = 1;
-  PredId justMoved_ = Program::kNoPred;
+  bool linearPosted_ = false;  // some linear fact went into a mailbox
 
   // Candidate rules per node: a bitset of rulesWords_ words per node.
-  std::uint32_t ruleWords_ = 1;
   LargeVector<std::uint64_t> candidates_;
   // Rules that the facts of rule 0 (the node's axioms) made candidates: they join the candidate
   // set only once the node has no other candidate (runNode).

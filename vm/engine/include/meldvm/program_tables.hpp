@@ -1,0 +1,39 @@
+// What the Machine looks up per predicate and per rule at every step, derived once from the
+// Program: read-only while it runs.
+#pragma once
+
+#include <cstdint>
+#include <utility>
+#include <vector>
+
+#include "meldvm/program.hpp"
+
+namespace meldvm {
+
+struct ProgramTables {
+  explicit ProgramTables(const Program& program);
+
+  // Per predicate.
+  std::vector<std::vector<std::uint32_t>> rulesOf;      // the rules with it in their body
+  std::vector<std::vector<std::uint32_t>> processesOf;  // its processes (persistent rules, §6.5)
+  std::vector<std::uint8_t> queuedPersistent;           // has processes or an aggregate: derive via the queue
+  std::vector<std::uint8_t> boxedField;                 // some field is boxed
+  std::vector<std::uint8_t> isLinear;
+  std::vector<std::uint8_t> isThreadPred;
+  std::vector<std::uint32_t> arity;  // home excluded
+  std::uint32_t maxArity = 1;
+  // Per process: the predicates its loops read at the node (with one of them empty there, the
+  // process cannot fire). Thread facts live elsewhere: not listed.
+  std::vector<std::vector<PredId>> processNeeds;
+  // Rules whose bodies have node and thread facts (§6.12), and the flag per rule.
+  std::vector<std::uint32_t> mixedRules;
+  std::vector<std::uint8_t> isMixedRule;
+  bool hasThreads = false;
+  bool usesRandom = false;      // randint, degeneratevector or a [:random] selector
+  std::uint32_t ruleWords = 1;  // 64-bit words of a node's candidate-rule bitset
+  PredId justMoved = Program::kNoPred;
+  // (predicate, field) pairs looked up by key: `index p/N` directives and ITER_KEY loops.
+  std::vector<std::pair<PredId, std::uint32_t>> keyLookups;
+};
+
+}  // namespace meldvm

@@ -1,0 +1,76 @@
+#include "meldvm/program_tables.hpp"
+
+#include <algorithm>
+
+#include "meldvm/bytecode_internal.hpp"
+
+namespace meldvm {
+
+namespace {
+
+void perPredicate(ProgramTables& t, const Program& program) {
+  const std::size_t preds = program.predicates.size();
+  t.rulesOf.resize(preds);
+  t.processesOf.resize(preds);
+  for (std::uint32_t r = 0; r < program.rules.size(); ++r)
+    for (PredId p : program.rules[r].bodyPredicates) t.rulesOf[p].push_back(r);
+  for (std::uint32_t i = 0; i < program.processes.size(); ++i)
+    t.processesOf[program.processes[i].trigger].push_back(i);
+  for (PredId p = 0; p < preds; ++p) {
+    const PredicateDesc& d = program.predicates[p];
+    t.maxArity = std::max(t.maxArity, d.arity());
+    t.queuedPersistent.push_back(!d.linear && (!t.processesOf[p].empty() || d.aggregated()));
+    bool boxed = false;
+    for (TypeId type : d.fields) boxed = boxed || program.types.boxed(type);
+    t.boxedField.push_back(boxed);
+    t.isLinear.push_back(d.linear);
+    t.arity.push_back(d.arity());
+    t.isThreadPred.push_back(d.thread);
+    t.hasThreads = t.hasThreads || d.thread;
+  }
+  t.justMoved = program.predicates.find("just-moved");
+  if (t.justMoved == preds) t.justMoved = Program::kNoPred;
+}
+
+// One walk over the code: what processes read, the key look-ups, whether random numbers are drawn.
+void scanCode(ProgramTables& t, const Program& program) {
+  t.processNeeds.resize(program.processes.size());
+  for (std::uint32_t i = 0; i < program.processes.size(); ++i) {
+    const std::vector<std::uint32_t>& code = program.processes[i].block.code;
+    detail::forEachInstruction(code, [&](std::size_t pc) {
+      if (detail::isLoop(code[pc]) && !(code[pc + 3] & kIterThread))
+        t.processNeeds[i].push_back(code[pc + 1]);
+    });
+  }
+  for (const IndexRequest& ix : program.indexes)
+    if (ix.predicate < program.predicates.size() && ix.field < program.predicates[ix.predicate].arity())
+      t.keyLookups.emplace_back(ix.predicate, ix.field);
+  auto scan = [&](const CodeBlock& b) {
+    detail::forEachInstruction(b.code, [&](std::size_t pc) {
+      const auto op = Opcode(b.code[pc]);
+      if (op == Opcode::ITER_KEY) t.keyLookups.emplace_back(b.code[pc + 1], b.code[pc + 4]);
+      if ((op == Opcode::CALL && (b.code[pc + 2] == 1 || b.code[pc + 2] == 32)) ||
+          (op == Opcode::ITER_SORTED && (b.code[pc + 3] & kIterRandom)))
+        t.usesRandom = true;
+    });
+  };
+  for (const Rule& r : program.rules) scan(r.block);
+  for (const Process& p : program.processes) scan(p.block);
+  for (const Function& f : program.functions) scan(f.block);
+}
+
+}  // namespace
+
+ProgramTables::ProgramTables(const Program& program) {
+  perPredicate(*this, program);
+  scanCode(*this, program);
+  for (std::uint32_t r = 0; r < program.rules.size(); ++r) {
+    bool node = false, thread = false;
+    for (PredId p : program.rules[r].bodyPredicates) (isThreadPred[p] ? thread : node) = true;
+    if (node && thread) mixedRules.push_back(r);
+    isMixedRule.push_back(node && thread);
+  }
+  ruleWords = std::max<std::uint32_t>(1, std::uint32_t((program.rules.size() + 63) / 64));
+}
+
+}  // namespace meldvm
