@@ -340,7 +340,7 @@ class FactReader {
     if (it != names_.end()) return it->second;
     const auto id = static_cast<std::uint32_t>(out_.names.size());
     out_.names.emplace_back(name);
-    names_.emplace(out_.names.back(), id);  // the view points into `text_`, which outlives this
+    names_.emplace(name, id);  // the view points into `text_`, which outlives this reader
     return id;
   }
 
