@@ -35,6 +35,13 @@ case_max_steps() {
   has "$ERR" "stopped after 1000 steps (the step limit"
 }
 
+case_aggregate_cascade() {
+  # Passing values of sum aggregates must not cascade (issue 10, point 11): a few thousand steps,
+  # where without the established VM's cancellation rule it took over two million.
+  run 0 "$(dirname "$0")/programs/layered-training.meld" --stats --max-steps 5000
+  has "$ERR" "facts derived: 751"
+}
+
 case_deep_recursion() {
   # A runaway recursive `fun` is a run-time error, not a stack overflow (found by fuzzing under
   # ASan); a deep but bounded one still runs.

@@ -47,7 +47,9 @@ Machine::Machine(const Program& program, MachineOptions options)
 
 Machine::~Machine() {
   // The databases go first (they hold references into the heap), then what the machine owns.
-  for (const PendingFact& e : persistentQueue_) releaseArgs(e.pred, persistentArgs_.data() + e.args);
+  for (std::size_t i = persistentHead_; i < persistentQueue_.size(); ++i)
+    if (!persistentQueue_[i].cancelled)
+      releaseArgs(persistentQueue_[i].pred, persistentArgs_.data() + persistentQueue_[i].args);
   for (const PendingFact& e : sentPersistent_) releaseArgs(e.pred, sentArgs_.data() + e.args);
   for (const PendingFact& e : sentLinear_) releaseArgs(e.pred, sentArgs_.data() + e.args);
   mail_->forEachPending([&](PredId p, const Value* args) { releaseArgs(p, args); });
@@ -361,8 +363,7 @@ void Machine::derive(NodeId host, PredId p, const Value* args, bool negative) {
     return;
   }
   if (tables_.queuedPersistent[p]) {
-    persistentQueue_.push_back({host, p, negative, std::uint32_t(persistentArgs_.size())});
-    pushArgs(persistentArgs_, p, args);
+    queuePersistent(host, p, args, negative);
     return;
   }
   const Change c = negative ? db_->retract(host, p, args) : db_->derive(host, p, args);
@@ -428,8 +429,7 @@ void Machine::sendThread(NodeId host, ThreadId t, PredId p, const Value* args, b
     pushArgs(linearOutArgs_, p, args);
     return;
   }
-  persistentQueue_.push_back({threadNode_, p, negative, std::uint32_t(persistentArgs_.size())});
-  pushArgs(persistentArgs_, p, args);
+  queuePersistent(threadNode_, p, args, negative);
   (void)host;
 }
 

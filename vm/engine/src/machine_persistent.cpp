@@ -2,6 +2,7 @@
 // persistent rules (processes) they trigger.
 #include "interpreter.hpp"
 #include "meldvm/machine.hpp"
+#include "meldvm/value_ops.hpp"
 
 namespace meldvm {
 
@@ -12,6 +13,13 @@ void Machine::processPersistent() {
                         persistentArgs_.data() + persistentQueue_[i].args);
   while (persistentHead_ < persistentQueue_.size()) {
     const PendingFact e = persistentQueue_[persistentHead_++];
+    if (e.cancelled) continue;
+    if (e.negative) {
+      --queuedRetractions_;
+    } else if (queuedRetractions_ != 0 && cancelledByLaterRetraction(e)) {
+      releaseArgs(e.pred, persistentArgs_.data() + e.args);
+      continue;
+    }
     const NodeId n = e.node;  // the running node, or the thread node for thread facts (§6.12)
     // Fetch the hash buckets of an entry a few places ahead: most entries take less time than a
     // memory access.
@@ -25,6 +33,30 @@ void Machine::processPersistent() {
   persistentQueue_.clear();
   persistentArgs_.clear();
   persistentHead_ = 0;
+}
+
+// The established VM's rule (§6.8): a derivation whose retraction already waits later in the queue
+// runs neither; both are dropped. An aggregate that moves through several values while its inputs
+// arrive leaves such pairs behind for the facts derived from its passing values: dropping them
+// keeps those values from cascading through the rules downstream (a three-layer neural network
+// trained this way derived without bound; issue 10, point 11).
+bool Machine::cancelledByLaterRetraction(const PendingFact& e) {
+  const PredicateDesc& d = program_.predicates[e.pred];
+  const Value* args = persistentArgs_.data() + e.args;
+  for (std::size_t i = persistentHead_; i < persistentQueue_.size(); ++i) {
+    PendingFact& q = persistentQueue_[i];
+    if (!q.negative || q.cancelled || q.pred != e.pred || q.node != e.node) continue;
+    const Value* other = persistentArgs_.data() + q.args;
+    bool same = true;
+    for (std::size_t k = 0; k < d.fields.size() && same; ++k)
+      same = valuesEqualFast(program_.types, d.fields[k], args[k], other[k]);
+    if (!same) continue;
+    q.cancelled = true;
+    --queuedRetractions_;
+    releaseArgs(q.pred, other);
+    return true;
+  }
+  return false;
 }
 
 // A persistent derivation or retraction changed what is visible at node n (§6.5, §6.8): run the

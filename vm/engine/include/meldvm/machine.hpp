@@ -164,7 +164,14 @@ class Machine : private SchedulerView {
     bool negative;
     std::uint32_t args;         // offset in the owning buffer's value array
     std::uint32_t delayMs = 0;  // sent facts: the `@+N` delay
+    bool cancelled = false;     // queued: met its retraction before it ran (processPersistent)
   };
+  bool cancelledByLaterRetraction(const PendingFact& e);
+  void queuePersistent(NodeId n, PredId p, const Value* args, bool negative) {
+    persistentQueue_.push_back({n, p, negative, std::uint32_t(persistentArgs_.size())});
+    pushArgs(persistentArgs_, p, args);
+    queuedRetractions_ += negative;
+  }
   // Owned copies of argument lists (boxed values retained).
   // Appends the arguments to `to` (boxed values retained); returns their offset.
   std::uint32_t pushArgs(ValueBuffer& to, PredId p, const Value* args) {
@@ -230,6 +237,7 @@ class Machine : private SchedulerView {
   ValueBuffer linearOutArgs_;
   std::vector<PendingFact> persistentQueue_;  // FIFO (§6.5)
   std::size_t persistentHead_ = 0;
+  std::size_t queuedRetractions_ = 0;  // negative entries of the queue not yet run
   ValueBuffer persistentArgs_;
   // Facts sent to other nodes during a node run, posted when it ends: the persistent ones first
   // (the established VM posts them at once, so they precede every linear fact of the same run,
