@@ -40,6 +40,7 @@ struct PredInfo {
   size_t arity = 0;
   bool linear = false;
   bool instruction = false;
+  bool action = false;
   const PredicateDecl* decl = nullptr;  // null for built-ins
 };
 
@@ -128,6 +129,7 @@ class Resolver {
       info.arity = static_cast<size_t>(b.arity);
       info.linear = b.kind == BuiltinPredKind::Linear;
       info.instruction = b.kind == BuiltinPredKind::Instruction;
+      info.action = b.action;
       preds_[p_.symbols.find(b.name)] = info;
     }
     for (const PredicateDecl& d : p_.predicates) {
@@ -141,6 +143,7 @@ class Resolver {
       info.name = d.name;
       info.arity = d.fields.size();
       info.linear = d.linear;
+      info.action = d.action;
       info.decl = &d;
       preds_[d.sym] = info;
       checkPredicate(d);
@@ -344,6 +347,12 @@ class Resolver {
       diag_.error(t.loc, "a delay ('@+...') is only allowed on facts derived in a head");
     if (inBody && info->instruction) {
       diag_.error(t.nameLoc, "'" + info->name + "' is an instruction; it can only be used in a head");
+      return;
+    }
+    if (inBody && info->action) {
+      diag_.error(t.nameLoc, "'" + info->name +
+                                 "' is an action: it is run when derived, never stored, so it can "
+                                 "only stand in a head (§7.2)");
       return;
     }
     if (fact && p_.symbols.text(t.sym) == "schedule-next")
