@@ -9,6 +9,9 @@
 // Every input must return within the timeout (default 30 s): a hang writes `hang-N` to DIR (default
 // the current folder) and aborts; a crash under the sanitizers writes `crash-N` first (the death
 // callback). The last line says how many inputs ran.
+#include <fcntl.h>
+#include <unistd.h>
+
 #include <algorithm>
 #include <chrono>
 #include <csignal>
@@ -22,8 +25,6 @@
 #include <iterator>
 #include <random>
 #include <string>
-#include <fcntl.h>
-#include <unistd.h>
 #include <vector>
 
 #if defined(__SANITIZE_ADDRESS__)
@@ -93,7 +94,8 @@ std::vector<std::uint8_t> readFile(const std::filesystem::path& file) {
 void replay(const std::vector<std::uint8_t>& bytes, bool mutate) {
   feed(bytes);
   if (!mutate) return;
-  for (std::size_t n = 0; n < bytes.size(); ++n) feed(std::vector<std::uint8_t>(bytes.begin(), bytes.begin() + n));
+  for (std::size_t n = 0; n < bytes.size(); ++n)
+    feed(std::vector<std::uint8_t>(bytes.begin(), bytes.begin() + n));
   std::vector<std::uint8_t> changed = bytes;
   for (std::size_t i = 0; i < bytes.size(); ++i) {
     for (std::uint8_t x : {0x01, 0x80, 0xff}) {
@@ -107,8 +109,8 @@ void replay(const std::vector<std::uint8_t>& bytes, bool mutate) {
 // One random change of `b` (which may come out empty); `other` is a second seed for splices.
 void mutateOnce(std::vector<std::uint8_t>& b, const std::vector<std::uint8_t>& other, std::mt19937_64& rng) {
   auto pick = [&](std::size_t n) { return n ? std::size_t(rng() % n) : 0; };
-  static const std::uint8_t interesting[] = {0, 1, 0x7f, 0x80, 0xff, '(', ')', ',', '.', '[', ']', '<', '>',
-                                             '"', '@', '-', '!', '0', '9', ' ', '\n', '/', '*', '|'};
+  static const std::uint8_t interesting[] = {0,   1,   0x7f, 0x80, 0xff, '(', ')', ',', '.',  '[', ']', '<',
+                                             '>', '"', '@',  '-',  '!',  '0', '9', ' ', '\n', '/', '*', '|'};
   switch (rng() % 7) {
     case 0:  // flip a bit
       if (!b.empty()) b[pick(b.size())] ^= std::uint8_t(1u << (rng() % 8));
@@ -129,7 +131,8 @@ void mutateOnce(std::vector<std::uint8_t>& b, const std::vector<std::uint8_t>& o
     case 4: {  // repeat a range
       if (b.empty() || b.size() > (1u << 20)) break;
       const std::size_t at = pick(b.size()), n = 1 + pick(std::min<std::size_t>(64, b.size() - at));
-      const std::vector<std::uint8_t> piece(b.begin() + std::ptrdiff_t(at), b.begin() + std::ptrdiff_t(at + n));
+      const std::vector<std::uint8_t> piece(b.begin() + std::ptrdiff_t(at),
+                                            b.begin() + std::ptrdiff_t(at + n));
       b.insert(b.begin() + std::ptrdiff_t(pick(b.size() + 1)), piece.begin(), piece.end());
       break;
     }
@@ -169,6 +172,8 @@ int main(int argc, char** argv) {
       seed = std::strtoull(argv[++i], nullptr, 10);
     } else if (arg == "--out" && i + 1 < argc) {
       outDir = argv[++i];
+      std::error_code ec;  // made here: the crash handler can only open files, not make folders
+      std::filesystem::create_directories(outDir, ec);
     } else if (arg == "--timeout" && i + 1 < argc) {
       timeoutSeconds = unsigned(std::atoi(argv[++i]));
     } else if (std::filesystem::is_directory(arg)) {
@@ -180,7 +185,8 @@ int main(int argc, char** argv) {
   }
   std::sort(files.begin(), files.end());
   if (files.empty()) {
-    std::fprintf(stderr, "usage: %s [--mutate | --random SECONDS [--seed S]] [--out DIR] [--timeout T] FILE|DIR...\n",
+    std::fprintf(stderr,
+                 "usage: %s [--mutate | --random SECONDS [--seed S]] [--out DIR] [--timeout T] FILE|DIR...\n",
                  argv[0]);
     return 2;
   }
