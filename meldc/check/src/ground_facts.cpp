@@ -1,5 +1,6 @@
 #include "meldc/ground_facts.hpp"
 
+#include <algorithm>
 #include <cstdlib>
 #include <unordered_map>
 #include <vector>
@@ -62,9 +63,8 @@ bool admitted(const ast::GroundFacts& facts, const ast::GroundFact& f, const ast
 template <class Keep>
 void materializeUnless(ast::Program& p, const SourceManager& sources, Keep keep) {
   ast::GroundFacts& facts = p.groundFacts;
-  bool all = true;
-  for (const ast::GroundFact& f : facts.facts) all = all && keep(f);
-  if (all) return;
+  // Usually every fact stays compact: one pass that stops at the first exception decides it.
+  if (std::all_of(facts.facts.begin(), facts.facts.end(), keep)) return;
   std::vector<ast::Rule> rules;
   rules.reserve(p.rules.size());
   std::vector<ast::GroundFact> kept;
