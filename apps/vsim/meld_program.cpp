@@ -1,6 +1,7 @@
 #include "meld_program.hpp"
 
-#include <iostream>
+#include <ostream>
+#include <sstream>
 
 #include "meldc/compile.hpp"
 #include "meldc/source.hpp"
@@ -9,7 +10,8 @@
 namespace vsim {
 
 std::unique_ptr<meldvm::Program> loadMeldProgram(const std::string& path,
-                                                 const std::vector<std::string>& includeDirs) {
+                                                 const std::vector<std::string>& includeDirs,
+                                                 std::ostream* diagnostics) {
   const bool bytecode = path.size() >= 4 && path.compare(path.size() - 4, 4, ".mbc") == 0;
   if (bytecode) {
     try {
@@ -19,7 +21,8 @@ std::unique_ptr<meldvm::Program> loadMeldProgram(const std::string& path,
     }
   }
   meldc::SourceManager sources;
-  meldc::Diagnostics diag(sources, std::cerr);
+  std::ostringstream discarded;
+  meldc::Diagnostics diag(sources, diagnostics ? *diagnostics : discarded);
   meldc::FrontEndInput input{path, includeDirs, {}};
   input.identityNodes = true;  // node ids are block ids
   std::unique_ptr<meldvm::Program> program;

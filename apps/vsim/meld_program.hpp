@@ -2,6 +2,7 @@
 // ABI, vm/robots/include/meldvm/block_runtime.hpp).
 #pragma once
 
+#include <iosfwd>
 #include <memory>
 #include <stdexcept>
 #include <string>
@@ -11,13 +12,15 @@
 
 namespace vsim {
 
-// A .meld file is compiled with node ids = block ids (compile errors go to stderr in the usual
-// file:line:col form); a .mbc file is loaded and verified. Throws ProgramLoadError.
+// A .meld file is compiled with node ids = block ids (compile errors go to `diagnostics` in the
+// usual file:line:col form; nullptr: discarded); a .mbc file is loaded and verified. Throws
+// ProgramLoadError.
 class ProgramLoadError : public std::runtime_error {
  public:
   using std::runtime_error::runtime_error;
 };
 std::unique_ptr<meldvm::Program> loadMeldProgram(const std::string& path,
-                                                 const std::vector<std::string>& includeDirs);
+                                                 const std::vector<std::string>& includeDirs,
+                                                 std::ostream* diagnostics);
 
 }  // namespace vsim

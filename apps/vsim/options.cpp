@@ -119,7 +119,7 @@ void parseTaps(std::string_view text, std::vector<TapRequest>& taps) {
 
 }  // namespace
 
-Options parseOptions(int argc, char** argv) {
+Options parseOptions(int argc, char** argv, bool worldRequired) {
   Options o;
   bool traceFormatOrFile = false;
   for (int i = 1; i < argc; ++i) {
@@ -214,7 +214,7 @@ Options parseOptions(int argc, char** argv) {
     }
   }
   if (o.help || o.version) return o;
-  if (o.world.empty())
+  if (o.world.empty() && worldRequired)
     throw UsageError("no world file given (usage: vsim WORLD.xml --code LIB.so; see --help)");
   if (!o.program.empty() && !o.code.empty()) throw UsageError("give --code or --program, not both");
   if (traceFormatOrFile) o.trace = true;

@@ -61,8 +61,8 @@ struct Options {
   bool version = false;
 };
 
-// Parses argv; throws UsageError with a one-line message.
-Options parseOptions(int argc, char** argv);
+// Parses argv; throws UsageError with a one-line message. The IDE can start without a world.
+Options parseOptions(int argc, char** argv, bool worldRequired = true);
 
 // The --help text.
 const char* usageText();

@@ -5,6 +5,7 @@
 
 #include <ostream>
 #include <string>
+#include <vector>
 
 #include "meldvm/database.hpp"
 
@@ -13,6 +14,14 @@ namespace meldvm {
 // One fact as printed: "!" for persistent predicates, the name, "(", the arguments without the
 // home separated by ", ", ")". The home argument is not printed.
 void appendFact(std::string& out, const Database& db, PredId p, const Value* args);
+
+// The facts of one node exactly as its section of the dump lists them, grouped by predicate (in
+// dump order; predicates without facts are left out); for inspectors that show one node.
+struct PredicateFacts {
+  PredId pred;
+  std::vector<std::string> lines;
+};
+std::vector<PredicateFacts> nodeFacts(const Database& db, NodeId n);
 
 void dumpDatabase(std::string& out, const Database& db);
 std::string dumpDatabase(const Database& db);

@@ -1,0 +1,94 @@
+#include "ide_options.hpp"
+
+#include <cstdlib>
+#include <string_view>
+#include <vector>
+
+namespace ide {
+
+namespace {
+
+QSize parseSize(std::string_view text) {
+  const auto x = text.find('x');
+  const std::string w(text.substr(0, x)), h(x == std::string_view::npos ? "" : text.substr(x + 1));
+  char *endW = nullptr, *endH = nullptr;
+  const long width = std::strtol(w.c_str(), &endW, 10), height = std::strtol(h.c_str(), &endH, 10);
+  if (w.empty() || h.empty() || *endW || *endH || width < 16 || height < 16 || width > 8192 || height > 8192)
+    throw vsim::UsageError("--size wants WIDTHxHEIGHT in pixels (16 to 8192), like 800x600, got '" +
+                           std::string(text) + "'");
+  return QSize(int(width), int(height));
+}
+
+int parseFrames(std::string_view text) {
+  const std::string s(text);
+  char* end = nullptr;
+  const long n = std::strtol(s.c_str(), &end, 10);
+  if (s.empty() || *end || n < 1 || n > 100000)
+    throw vsim::UsageError("--frame-time wants a number of frames from 1 to 100000, got '" + s + "'");
+  return int(n);
+}
+
+}  // namespace
+
+IdeOptions parseIdeOptions(int argc, char** argv) {
+  IdeOptions o;
+  bool sizeGiven = false;
+  // The IDE's own options are taken out; the rest is vsim's command line.
+  std::vector<char*> rest{argv[0]};
+  for (int i = 1; i < argc; ++i) {
+    std::string_view arg = argv[i];
+    std::string_view name = arg, inlineValue;
+    bool hasInline = false;
+    if (arg.substr(0, 2) == "--" && arg.find('=') != std::string_view::npos) {
+      name = arg.substr(0, arg.find('='));
+      inlineValue = arg.substr(arg.find('=') + 1);
+      hasInline = true;
+    }
+    if (name != "--screenshot" && name != "--size" && name != "--frame-time") {
+      rest.push_back(argv[i]);
+      continue;
+    }
+    if (!hasInline && i + 1 >= argc) throw vsim::UsageError(std::string(name) + " needs a value");
+    const std::string_view value = hasInline ? inlineValue : std::string_view(argv[++i]);
+    if (name == "--screenshot") {
+      if (value.empty()) throw vsim::UsageError("--screenshot needs a file name");
+      o.screenshot = value;
+    } else if (name == "--size") {
+      o.size = parseSize(value);
+      sizeGiven = true;
+    } else {
+      o.frameTimes = parseFrames(value);
+    }
+  }
+  o.run = vsim::parseOptions(int(rest.size()), rest.data(), /*worldRequired=*/false);
+  if (o.run.help || o.run.version) return o;
+  if ((sizeGiven || o.frameTimes) && o.screenshot.empty())
+    throw vsim::UsageError("--size and --frame-time go with --screenshot");
+  if (!o.screenshot.empty() && o.run.world.empty()) throw vsim::UsageError("--screenshot needs a world file");
+  return o;
+}
+
+const char* ideUsageText() {
+  return R"(usage: vsim-ide [WORLD.xml] [--program PROG.meld|PROG.mbc | --code LIB.so] [vsim's run options]
+       vsim-ide WORLD.xml [...] --screenshot OUT.png [--size WxH] [--until T]
+
+The IDE: the Meld program's editor, the 3D world and the inspector of the selected block side by
+side, with the console below. It runs exactly the run that vsim runs with the same options (same
+events, same fingerprint), in a thread of its own; the window draws snapshots of it.
+
+Pictures without a window:
+  --screenshot OUT.png  run to --until T (or to the end), render the 3D view as it is then into
+                        OUT.png and exit 0; no window is shown (needs an X display: xvfb-run -a)
+  --size WxH            the picture's size in pixels (default 1024x768)
+  --frame-time N        also draw N frames and print the mean time per frame (ms)
+
+Run options (as vsim; see vsim --help): --code, --program, -I DIR, --target, --until, --seed,
+  --fes, --link-rate, --link-latency, --link-jitter, --motion-time, --tap ID@T, --time-per-rule,
+  --palette visiblesim|lm. The console's trace filter takes vsim --trace's syntax.
+
+Exit status: 0 ok; 1 the run failed (screenshot mode) or the picture could not be written;
+  2 bad command line; 3 bad world, program or block code (screenshot mode).
+)";
+}
+
+}  // namespace ide

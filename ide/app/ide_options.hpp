@@ -1,0 +1,23 @@
+// vsim-ide's command line: vsim's run options (the same run as `vsim` with the same options), the
+// world optional, plus the IDE's own options for pictures without a window.
+#pragma once
+
+#include <QSize>
+#include <string>
+
+#include "options.hpp"
+
+namespace ide {
+
+struct IdeOptions {
+  vsim::Options run;       // run.world empty: the IDE starts without a world
+  std::string screenshot;  // --screenshot: render at --until (or the end) into this PNG and exit
+  QSize size{1024, 768};   // --size WxH of the screenshot
+  int frameTimes = 0;      // --frame-time N: also draw N frames offscreen and print the time per frame
+};
+
+// Throws vsim::UsageError.
+IdeOptions parseIdeOptions(int argc, char** argv);
+const char* ideUsageText();
+
+}  // namespace ide

@@ -1,0 +1,44 @@
+// vsim-ide: the IDE's window, or one picture of a run without a window (--screenshot).
+#include <QApplication>
+#include <QSurfaceFormat>
+#include <iostream>
+
+#include "headless.hpp"
+#include "ide_options.hpp"
+#include "main_window.hpp"
+
+#ifndef VSIM_VERSION
+#define VSIM_VERSION "unknown"
+#endif
+
+int main(int argc, char** argv) {
+  ide::IdeOptions options;
+  try {
+    options = ide::parseIdeOptions(argc, argv);
+  } catch (const std::exception& e) {  // UsageError, TraceFilterError
+    std::cerr << "vsim-ide: error: " << e.what() << '\n';
+    return vsim::kExitUsage;
+  }
+  if (options.run.help) {
+    std::cout << ide::ideUsageText();
+    return 0;
+  }
+  if (options.run.version) {
+    std::cout << "vsim-ide " VSIM_VERSION "\n";
+    return 0;
+  }
+  // Before the application object, as Qt requires: every GL context is 3.3 core.
+  QSurfaceFormat format;
+  format.setVersion(3, 3);
+  format.setProfile(QSurfaceFormat::CoreProfile);
+  format.setDepthBufferSize(24);
+  format.setSamples(4);
+  QSurfaceFormat::setDefaultFormat(format);
+  QApplication app(argc, argv);
+  QApplication::setApplicationName("vsim-ide");
+  QApplication::setOrganizationName("meld-toolchain");
+  if (!options.screenshot.empty()) return ide::takeScreenshot(options);
+  ide::MainWindow window(options.run);
+  window.show();
+  return app.exec();
+}

@@ -1,0 +1,248 @@
+#include "kernel_loop.hpp"
+
+#include <algorithm>
+#include <exception>
+
+#include "meldvm/dump.hpp"
+
+namespace ide {
+
+namespace {
+
+// Events per slice: small enough that commands are seen within milliseconds, large enough that
+// the loop's own work stays negligible next to the kernel's.
+constexpr std::uint64_t kSliceEvents = 4096;
+// Snapshots at most this often while running (the GUI draws at up to 60 frames per second).
+constexpr std::chrono::milliseconds kPublishEvery{16};
+
+SessionInfo describe(const vsim::Session& s) {
+  SessionInfo info;
+  const simcore::WorldDescription& w = s.world();
+  const simcore::Simulation& sim = s.simulation();
+  info.worldPath = w.path;
+  info.codePath = s.codePath();
+  info.codeName = s.codeName();
+  info.targetName = sim.target().name;
+  info.shape = shapeOfTarget(info.targetName);
+  info.blockSizeMm = blockSizeOf(w, sim.target().blockSizeMm);
+  info.grid = sim.world().size();
+  info.faceNames = sim.target().faceNames;
+  info.blockCount = sim.world().blockCount();
+  info.meld = s.isMeld();
+  info.canTap = sim.target().hasTap;
+  info.camera = parseViewPoint(w.camera);
+  info.spotlight = parseViewPoint(w.spotlight);
+  return info;
+}
+
+}  // namespace
+
+KernelLoop::KernelLoop(const vsim::Options& options, std::uint64_t sessionId, std::function<void()> notify,
+                       std::ostream& diagnostics)
+    : sessionId_(sessionId), notify_(std::move(notify)) {
+  vsim::SessionStreams streams;
+  streams.programOutput = &consoleStream_;
+  streams.diagnostics = &diagnostics;
+  session_ = std::make_unique<vsim::Session>(options, streams);
+  info_ = describe(*session_);
+  // By default the console shows the programs' own trace lines (the C BlockCodes' trace service;
+  // a Meld program's output comes through programOutput).
+  trace_.emplace(consoleStream_, simcore::parseTraceFilter("kinds=trace"), simcore::TraceFormat::Text);
+  session_->simulation().addObserver(&*trace_);
+  publish();
+  thread_ = std::thread([this] { threadMain(); });
+}
+
+KernelLoop::~KernelLoop() {
+  post(Command{Command::Quit});
+  thread_.join();
+}
+
+void KernelLoop::post(Command c) {
+  {
+    std::lock_guard lock(mutex_);
+    commands_.push_back(std::move(c));
+  }
+  wake_.notify_one();
+}
+
+std::shared_ptr<const WorldSnapshot> KernelLoop::snapshot() const {
+  std::lock_guard lock(mutex_);
+  return latest_;
+}
+
+std::shared_ptr<const WorldSnapshot> KernelLoop::waitFor(
+    const std::function<bool(const WorldSnapshot&)>& done, std::chrono::milliseconds timeout) const {
+  std::unique_lock lock(mutex_);
+  const auto deadline = Clock::now() + timeout;
+  while (!done(*latest_))
+    if (published_.wait_until(lock, deadline) == std::cv_status::timeout && !done(*latest_)) return nullptr;
+  return latest_;
+}
+
+void KernelLoop::threadMain() {
+  std::vector<Command> batch;
+  for (;;) {
+    {
+      std::unique_lock lock(mutex_);
+      // Paused or over: sleep until told something. Running: only look.
+      if (state_ != RunState::Running) wake_.wait(lock, [&] { return !commands_.empty(); });
+      batch.swap(commands_);
+    }
+    for (const Command& c : batch)
+      if (!apply(c)) return;
+    const bool changed = !batch.empty();
+    batch.clear();
+    if (state_ == RunState::Running) runSlice();
+    if (changed || state_ != RunState::Running || Clock::now() - lastPublish_ >= kPublishEvery) publish();
+  }
+}
+
+bool KernelLoop::apply(const Command& c) {
+  simcore::Simulation& sim = session_->simulation();
+  const bool over = state_ == RunState::Finished || state_ == RunState::Failed;
+  switch (c.kind) {
+    case Command::Quit:
+      return false;
+    case Command::Run:
+      if (over) break;
+      state_ = RunState::Running;
+      speed_ = c.speed;
+      until_ = c.until;
+      pacedFrom_ = sim.now();
+      pacedSince_ = Clock::now();
+      break;
+    case Command::Pause:
+      if (!over) state_ = RunState::Paused;
+      break;
+    case Command::Step:
+      if (over) break;
+      state_ = RunState::Paused;
+      try {
+        sim.step();
+      } catch (const std::exception& e) {
+        error_ = e.what();
+        state_ = RunState::Failed;
+      }
+      finishIfOver();
+      break;
+    case Command::Select:
+      selected_ = c.block;
+      break;
+    case Command::Tap:
+      // A tap after the end starts the run again (VisibleSim lets one tap a block at any time).
+      if (state_ == RunState::Failed || c.block >= sim.world().blockCount() || !sim.target().hasTap ||
+          !sim.world().isAlive(c.block))
+        break;
+      sim.scheduleTap(c.block, sim.now());
+      if (state_ == RunState::Finished) state_ = RunState::Paused;
+      break;
+    case Command::Trace:
+      sim.removeObserver(&*trace_);
+      trace_.emplace(consoleStream_, c.filter, simcore::TraceFormat::Text);
+      sim.addObserver(&*trace_);
+      break;
+  }
+  return true;
+}
+
+void KernelLoop::runSlice() {
+  simcore::Simulation& sim = session_->simulation();
+  simcore::SimTime bound = until_;
+  if (speed_ > 0) {
+    const double wallNs =
+        double(std::chrono::duration_cast<std::chrono::nanoseconds>(Clock::now() - pacedSince_).count());
+    const double paced = double(pacedFrom_) + speed_ * wallNs;
+    bound = std::min<simcore::SimTime>(
+        bound, paced >= double(simcore::kTimeInfinity) ? simcore::kTimeInfinity : simcore::SimTime(paced));
+  }
+  simcore::RunStatus status;
+  try {
+    status = sim.run(bound, kSliceEvents);
+  } catch (const std::exception& e) {
+    error_ = e.what();
+    state_ = RunState::Failed;
+    return;
+  }
+  finishIfOver();
+  if (state_ != RunState::Running || status == simcore::RunStatus::EventLimit) return;
+  if (bound >= until_) {
+    state_ = RunState::Paused;  // reached the requested time
+    return;
+  }
+  // Paced and ahead of the wall clock: wait a frame, or until a command comes.
+  std::unique_lock lock(mutex_);
+  wake_.wait_for(lock, std::chrono::milliseconds(8), [&] { return !commands_.empty(); });
+}
+
+void KernelLoop::finishIfOver() {
+  if (state_ == RunState::Failed) return;
+  if (!session_->programError().empty()) {
+    error_ = "Meld program failed: " + session_->programError();
+    state_ = RunState::Failed;
+  } else if (session_->simulation().pendingEvents() == 0) {
+    state_ = RunState::Finished;
+  }
+}
+
+void KernelLoop::publish() {
+  const simcore::Simulation& sim = session_->simulation();
+  const simcore::World& world = sim.world();
+  auto snap = std::make_shared<WorldSnapshot>();
+  snap->serial = ++serial_;
+  snap->session = sessionId_;
+  snap->now = sim.now();
+  snap->events = sim.statistics().eventsProcessed;
+  snap->eventsPerSecond = sim.statistics().eventsPerSecond();
+  snap->pendingEvents = sim.pendingEvents();
+  snap->state = state_;
+  snap->fingerprint = sim.fingerprint();
+  snap->error = error_;
+  const std::size_t n = world.blockCount();
+  snap->positions.resize(n);
+  snap->colors.resize(n);
+  snap->alive.resize(n);
+  const std::array<float, 3>& size = info_.blockSizeMm;
+  for (simcore::BlockId b = 0; b < n; ++b) {
+    const simcore::Vec3 p = sim.position(b);
+    snap->positions[b] = {(float(p.x) + 0.5f) * size[0], (float(p.y) + 0.5f) * size[1],
+                          (float(p.z) + 0.5f) * size[2]};
+    snap->colors[b] = world.block(b).color;
+    snap->alive[b] = world.isAlive(b);
+  }
+  snap->selected = details(selected_);
+  {
+    std::lock_guard lock(mutex_);
+    latest_ = std::move(snap);
+  }
+  published_.notify_all();
+  lastPublish_ = Clock::now();
+  if (notify_) notify_();
+}
+
+BlockDetails KernelLoop::details(simcore::BlockId id) {
+  BlockDetails d;
+  simcore::Simulation& sim = session_->simulation();
+  const simcore::World& world = sim.world();
+  if (id >= world.blockCount()) return d;
+  const simcore::Block& b = world.block(id);
+  d.id = id;
+  d.cell = b.cell;
+  d.color = b.color;
+  d.alive = world.isAlive(id);
+  d.moving = b.motion != simcore::kNoBlock;
+  for (int f = 0; f < world.faceCount(); ++f)
+    d.neighbors.emplace_back(info_.faceNames[std::size_t(f)], world.neighbor(id, f));
+  if (const meldvm::BlockRuntime* meld = session_->meld()) {
+    const meldvm::Database& db = meld->machine().database();
+    for (meldvm::PredicateFacts& g : meldvm::nodeFacts(db, meldvm::NodeId(id))) {
+      const meldvm::PredicateDesc& p = db.predicates()[g.pred];
+      d.facts.push_back(FactGroup{p.name, p.persistent(), std::move(g.lines)});
+    }
+  } else if (d.alive) {
+    d.info = sim.blockInfo(id);
+  }
+  return d;
+}
+
+}  // namespace ide

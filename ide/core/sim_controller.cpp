@@ -1,0 +1,99 @@
+#include "sim_controller.hpp"
+
+#include <sstream>
+
+#include "kernel_loop.hpp"
+#include "simcore/trace.hpp"
+
+namespace ide {
+
+const char* runStateName(RunState s) {
+  switch (s) {
+    case RunState::Paused:
+      return "paused";
+    case RunState::Running:
+      return "running";
+    case RunState::Finished:
+      return "finished";
+    case RunState::Failed:
+      return "failed";
+  }
+  return "?";
+}
+
+SimController::SimController(std::function<void()> notify) : notify_(std::move(notify)) {}
+
+SimController::~SimController() { close(); }
+
+void SimController::close() { loop_.reset(); }
+
+bool SimController::open(const vsim::Options& options) {
+  close();
+  options_ = options;
+  openError_.clear();
+  diagnostics_.clear();
+  std::ostringstream diagnostics;
+  try {
+    loop_ = std::make_unique<KernelLoop>(options_, ++sessionCount_, notify_, diagnostics);
+    info_ = loop_->info();
+  } catch (const vsim::SessionError& e) {
+    openError_ = e.message;
+  } catch (const std::exception& e) {  // out of memory building a huge world, ...
+    openError_ = e.what();
+  }
+  diagnostics_ = diagnostics.str();
+  return loop_ != nullptr;
+}
+
+void SimController::run(double speed) { runUntil(simcore::kTimeInfinity, speed); }
+
+void SimController::runUntil(simcore::SimTime t, double speed) {
+  if (!loop_) return;
+  Command c{Command::Run};
+  c.speed = speed;
+  c.until = t;
+  loop_->post(c);
+}
+
+void SimController::pause() {
+  if (loop_) loop_->post(Command{Command::Pause});
+}
+
+void SimController::step() {
+  if (loop_) loop_->post(Command{Command::Step});
+}
+
+void SimController::select(simcore::BlockId block) {
+  if (!loop_) return;
+  Command c{Command::Select};
+  c.block = block;
+  loop_->post(c);
+}
+
+void SimController::tap(simcore::BlockId block) {
+  if (!loop_) return;
+  Command c{Command::Tap};
+  c.block = block;
+  loop_->post(c);
+}
+
+void SimController::setTraceFilter(const std::string& filter) {
+  Command c{Command::Trace};
+  c.filter = simcore::parseTraceFilter(filter.empty() ? std::string("kinds=trace") : filter);
+  if (loop_) loop_->post(c);
+}
+
+std::shared_ptr<const WorldSnapshot> SimController::snapshot() const {
+  return loop_ ? loop_->snapshot() : nullptr;
+}
+
+std::shared_ptr<const WorldSnapshot> SimController::waitFor(
+    const std::function<bool(const WorldSnapshot&)>& done, std::chrono::milliseconds timeout) const {
+  return loop_ ? loop_->waitFor(done, timeout) : nullptr;
+}
+
+std::vector<std::string> SimController::takeConsoleLines() {
+  return loop_ ? loop_->takeConsoleLines() : std::vector<std::string>{};
+}
+
+}  // namespace ide

@@ -1,0 +1,79 @@
+// The kernel thread of the IDE. It owns the run (a vsim::Session) and is the only thread that
+// touches it; the GUI sends commands and reads snapshots (snapshot.hpp), so nothing is shared
+// unsynchronised. It learns of what happens in the run through simcore's observer interface (the
+// console) and builds snapshots between slices of events; it includes no Qt.
+#pragma once
+
+#include <chrono>
+#include <condition_variable>
+#include <cstdint>
+#include <deque>
+#include <functional>
+#include <memory>
+#include <mutex>
+#include <string>
+#include <thread>
+#include <vector>
+
+#include "options.hpp"
+#include "session_info.hpp"
+#include "snapshot.hpp"
+
+namespace ide {
+
+class KernelLoop;
+
+class SimController {
+ public:
+  // `notify` is called on the kernel thread after each new snapshot and console line (the GUI
+  // posts itself an event; it must not block).
+  explicit SimController(std::function<void()> notify = {});
+  ~SimController();
+  SimController(const SimController&) = delete;
+  SimController& operator=(const SimController&) = delete;
+
+  // Builds the run that `options` describe (world, block program, seed ...) and starts its kernel
+  // thread, paused at time 0. On failure (bad world, compile error, bad .so) the previous run is
+  // gone, error() says why and the compiler's messages are in diagnostics(); returns false.
+  bool open(const vsim::Options& options);
+  // The same options again: the run from the start.
+  bool restart() { return open(options_); }
+  bool isOpen() const { return loop_ != nullptr; }
+  const vsim::Options& options() const { return options_; }
+  const SessionInfo& info() const { return info_; }
+  const std::string& error() const { return openError_; }
+  const std::string& diagnostics() const { return diagnostics_; }
+
+  // Commands (asynchronous; the kernel thread applies them in order).
+  // speed = simulated seconds per wall second; 0 = as fast as possible.
+  void run(double speed = 0);
+  void runUntil(simcore::SimTime t, double speed = 0);
+  void pause();
+  void step();
+  void select(simcore::BlockId block);
+  void tap(simcore::BlockId block);
+  // The console's trace filter (vsim --trace syntax; "" = the programs' own trace lines only).
+  // Throws simcore::TraceFilterError for a bad filter.
+  void setTraceFilter(const std::string& filter);
+
+  // The latest snapshot (never null once open() succeeded).
+  std::shared_ptr<const WorldSnapshot> snapshot() const;
+  // Waits until a snapshot satisfies `done` (checked on each new one), or the timeout; for tests
+  // and the headless screenshot. Returns the snapshot that satisfied it, or null.
+  std::shared_ptr<const WorldSnapshot> waitFor(const std::function<bool(const WorldSnapshot&)>& done,
+                                               std::chrono::milliseconds timeout) const;
+  // Console lines since the last call (a bounded number is kept; older ones are dropped).
+  std::vector<std::string> takeConsoleLines();
+
+ private:
+  void close();
+
+  std::function<void()> notify_;
+  vsim::Options options_;
+  SessionInfo info_;
+  std::string openError_, diagnostics_;
+  std::uint64_t sessionCount_ = 0;
+  std::unique_ptr<KernelLoop> loop_;
+};
+
+}  // namespace ide

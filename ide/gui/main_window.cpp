@@ -1,0 +1,407 @@
+#include "main_window.hpp"
+
+#include <QApplication>
+#include <QCloseEvent>
+#include <QComboBox>
+#include <QDockWidget>
+#include <QFileDialog>
+#include <QFileInfo>
+#include <QInputDialog>
+#include <QLabel>
+#include <QListWidget>
+#include <QMenuBar>
+#include <QMessageBox>
+#include <QSettings>
+#include <QSplitter>
+#include <QStatusBar>
+#include <QTimer>
+#include <QToolBar>
+#include <QVBoxLayout>
+#include <sstream>
+
+#include "block_inspector.hpp"
+#include "code_editor.hpp"
+#include "console_panel.hpp"
+#include "diagnostics.hpp"
+#include "meld_program.hpp"
+#include "world_view.hpp"
+
+namespace ide {
+
+namespace {
+
+constexpr int kMaxRecent = 8;
+
+// Speeds offered: simulated seconds per wall second; 0 = as fast as possible.
+const std::pair<const char*, double> kSpeeds[] = {{"0.1×", 0.1},   {"1× (real time)", 1},
+                                                  {"10×", 10},     {"100×", 100},
+                                                  {"1000×", 1000}, {"as fast as possible", 0}};
+
+}  // namespace
+
+MainWindow::MainWindow(const vsim::Options& options, QWidget* parent)
+    : QMainWindow(parent),
+      options_(options),
+      editor_(new CodeEditor),
+      diagnostics_(new QListWidget),
+      editorPane_(new QWidget),
+      view_(new WorldView),
+      inspector_(new BlockInspector),
+      console_(new ConsolePanel),
+      splitter_(new QSplitter(Qt::Horizontal)),
+      speed_(new QComboBox),
+      status_(new QLabel),
+      timer_(new QTimer(this)) {
+  setWindowTitle("vsim-ide");
+  buildLayout();
+  buildActions();
+  QSettings settings;
+  restoreGeometry(settings.value("window/geometry").toByteArray());
+  restoreState(settings.value("window/state").toByteArray());
+  splitter_->restoreState(settings.value("window/splitter").toByteArray());
+  speed_->setCurrentIndex(settings.value("run/speed", 1).toInt());
+
+  connect(timer_, &QTimer::timeout, this, &MainWindow::poll);
+  timer_->start(33);
+  if (!options_.world.empty()) {
+    if (!options_.program.empty()) {
+      QString error;
+      if (!editor_->load(QString::fromStdString(options_.program), error)) console_->appendMessage(error);
+    }
+    restart();
+  } else {
+    showSession();
+  }
+}
+
+MainWindow::~MainWindow() = default;
+
+void MainWindow::buildLayout() {
+  auto* paneLayout = new QVBoxLayout(editorPane_);
+  paneLayout->setContentsMargins(0, 0, 0, 0);
+  auto* editorSplit = new QSplitter(Qt::Vertical);
+  editorSplit->addWidget(editor_);
+  editorSplit->addWidget(diagnostics_);
+  editorSplit->setStretchFactor(0, 5);
+  editorSplit->setStretchFactor(1, 1);
+  paneLayout->addWidget(editorSplit);
+  diagnostics_->setToolTip("meldc's messages: click one to go there");
+  splitter_->addWidget(editorPane_);
+  splitter_->addWidget(view_);
+  splitter_->addWidget(inspector_);
+  splitter_->setStretchFactor(0, 2);
+  splitter_->setStretchFactor(1, 3);
+  splitter_->setStretchFactor(2, 1);
+  splitter_->setSizes({420, 640, 300});
+  setCentralWidget(splitter_);
+  auto* dock = new QDockWidget("Console", this);
+  dock->setObjectName("console");
+  dock->setWidget(console_);
+  addDockWidget(Qt::BottomDockWidgetArea, dock);
+  statusBar()->addWidget(status_, 1);
+  resize(1400, 900);
+
+  connect(view_, &WorldView::blockClicked, this, &MainWindow::selectBlock);
+  connect(diagnostics_, &QListWidget::itemClicked, this, [this](QListWidgetItem* item) {
+    const QString file = item->data(Qt::UserRole).toString();
+    if (QFileInfo(file).canonicalFilePath() != QFileInfo(editor_->path()).canonicalFilePath()) {
+      QString error;
+      if (!editor_->load(file, error)) return console_->appendMessage(error);
+    }
+    editor_->goTo(item->data(Qt::UserRole + 1).toInt(), item->data(Qt::UserRole + 2).toInt());
+  });
+  connect(console_, &ConsolePanel::traceFilterChanged, this, [this](const QString& filter) {
+    try {
+      controller_.setTraceFilter(filter.toStdString());
+      console_->setFilterError({});
+    } catch (const std::exception& e) {
+      console_->setFilterError(e.what());
+    }
+  });
+}
+
+void MainWindow::buildActions() {
+  QMenu* file = menuBar()->addMenu("&File");
+  file->addAction("Open &world...", QKeySequence("Ctrl+Shift+O"), this, [this] {
+    const QString path = QFileDialog::getOpenFileName(this, "Open world", {}, "World files (*.xml)");
+    if (!path.isEmpty()) openWorld(path);
+  });
+  file->addAction("&Open program...", QKeySequence::Open, this, [this] {
+    const QString path =
+        QFileDialog::getOpenFileName(this, "Open Meld program", {}, "Meld programs (*.meld *.mbc)");
+    if (!path.isEmpty()) openProgram(path);
+  });
+  recentMenu_ = file->addMenu("Recent files");
+  file->addAction("&Save program", QKeySequence::Save, this, [this] { compile(); });
+  file->addAction("Save 3D view as &PNG...", this, [this] {
+    const QString path =
+        QFileDialog::getSaveFileName(this, "Save the 3D view", "world.png", "PNG images (*.png)");
+    if (!path.isEmpty()) saveScreenshot(path);
+  });
+  file->addSeparator();
+  file->addAction("&Quit", QKeySequence::Quit, this, &QWidget::close);
+  refreshRecentMenu();
+
+  QToolBar* bar = addToolBar("Run");
+  bar->setObjectName("run");
+  QMenu* run = menuBar()->addMenu("&Run");
+  auto both = [&](QAction* a) {
+    bar->addAction(a);
+    run->addAction(a);
+  };
+  QAction* build = new QAction("Compile", this);
+  build->setShortcut(QKeySequence("Ctrl+B"));
+  build->setToolTip("Save and compile the program; meldc's messages are listed under the editor");
+  connect(build, &QAction::triggered, this, [this] { compile(); });
+  both(build);
+  QAction* start = new QAction("Run", this);
+  start->setShortcut(QKeySequence("F5"));
+  connect(start, &QAction::triggered, this, [this] { controller_.run(chosenSpeed()); });
+  both(start);
+  QAction* pause = new QAction("Pause", this);
+  pause->setShortcut(QKeySequence("F6"));
+  connect(pause, &QAction::triggered, this, [this] { controller_.pause(); });
+  both(pause);
+  QAction* step = new QAction("Step", this);
+  step->setShortcut(QKeySequence("F10"));
+  step->setToolTip("Process one event");
+  connect(step, &QAction::triggered, this, [this] { controller_.step(); });
+  both(step);
+  QAction* until = new QAction("Run until...", this);
+  connect(until, &QAction::triggered, this, &MainWindow::runUntilAsked);
+  both(until);
+  QAction* again = new QAction("Restart", this);
+  again->setShortcut(QKeySequence("Ctrl+R"));
+  again->setToolTip("Compile the program and run the world again from the start");
+  connect(again, &QAction::triggered, this, [this] { restart(); });
+  both(again);
+  for (const auto& [name, value] : kSpeeds) speed_->addItem(name, value);
+  speed_->setToolTip("Simulated time per wall time");
+  bar->addWidget(speed_);
+  connect(speed_, &QComboBox::currentIndexChanged, this, [this] {
+    const auto snap = controller_.snapshot();
+    if (snap && snap->state == RunState::Running) controller_.run(chosenSpeed());
+  });
+  bar->addSeparator();
+  QAction* focus = new QAction("Focus", this);
+  focus->setToolTip("Centre the camera on the selected block");
+  connect(focus, &QAction::triggered, view_, &WorldView::focusSelected);
+  bar->addAction(focus);
+  QAction* tap = new QAction("Tap", this);
+  tap->setToolTip("Tap the selected block now");
+  connect(tap, &QAction::triggered, this, [this] {
+    if (selected_ != simcore::kNoBlock) controller_.tap(selected_);
+  });
+  bar->addAction(tap);
+}
+
+double MainWindow::chosenSpeed() const { return speed_->currentData().toDouble(); }
+
+void MainWindow::runUntilAsked() {
+  bool ok = false;
+  const QString text = QInputDialog::getText(
+      this, "Run until", "Simulated time (like 2.5s, 300ms, 1min):", QLineEdit::Normal, "1s", &ok);
+  if (!ok) return;
+  const auto t = simcore::parseDuration(text.trimmed().toStdString());
+  if (!t) {
+    QMessageBox::warning(this, "Run until", "Not a duration: '" + text + "' (like 2.5s, 300ms or 1min)");
+    return;
+  }
+  controller_.runUntil(*t, chosenSpeed());
+}
+
+bool MainWindow::openWorld(const QString& path) {
+  options_.world = path.toStdString();
+  // The world's own block program runs, unless a Meld program is open in the editor.
+  options_.code.clear();
+  if (options_.program.empty()) editor_->clear();
+  addRecent("recent/worlds", path);
+  return restart();
+}
+
+bool MainWindow::openProgram(const QString& path) {
+  if (!path.endsWith(".mbc")) {
+    QString error;
+    if (!editor_->load(path, error)) {
+      console_->appendMessage(error);
+      return false;
+    }
+  }
+  options_.program = path.toStdString();
+  options_.code.clear();
+  addRecent("recent/programs", path);
+  return options_.world.empty() ? compile() : restart();
+}
+
+bool MainWindow::compile() {
+  if (editor_->path().isEmpty() || !editor_->path().endsWith(".meld")) return true;
+  QString error;
+  if (editor_->document()->isModified() && !editor_->save(error)) {
+    console_->appendMessage(error);
+    return false;
+  }
+  std::ostringstream messages;
+  bool ok = true;
+  try {
+    vsim::loadMeldProgram(editor_->path().toStdString(), options_.includeDirs, &messages);
+  } catch (const vsim::ProgramLoadError& e) {
+    ok = false;
+    if (messages.str().empty()) messages << e.what() << '\n';
+  }
+  showDiagnostics(QString::fromStdString(messages.str()));
+  if (ok) statusBar()->showMessage("compiled " + QFileInfo(editor_->path()).fileName() + ": no errors", 4000);
+  return ok;
+}
+
+void MainWindow::showDiagnostics(const QString& text) {
+  const std::vector<Diagnostic> list = parseDiagnostics(text);
+  diagnostics_->clear();
+  for (const Diagnostic& d : list) {
+    auto* item = new QListWidgetItem(QString("%1:%2:%3: %4: %5")
+                                         .arg(QFileInfo(d.file).fileName())
+                                         .arg(d.line)
+                                         .arg(d.column)
+                                         .arg(d.severity, d.message));
+    item->setForeground(d.severity == "error" ? QColor(0xb0, 0, 0) : QColor(0x90, 0x60, 0));
+    item->setData(Qt::UserRole, d.file);
+    item->setData(Qt::UserRole + 1, d.line);
+    item->setData(Qt::UserRole + 2, d.column);
+    diagnostics_->addItem(item);
+  }
+  editor_->setDiagnostics(list);
+  if (!text.isEmpty() && list.empty()) console_->appendMessage(text.trimmed());
+}
+
+bool MainWindow::restart() {
+  if (options_.world.empty()) return compile();
+  if (!compile()) {
+    console_->appendMessage("The program has errors: the run was not restarted.");
+    return false;
+  }
+  selected_ = simcore::kNoBlock;
+  const bool ok = controller_.open(options_);
+  if (!ok) {
+    showDiagnostics(QString::fromStdString(controller_.diagnostics()));
+    console_->appendMessage("Cannot start the run: " + QString::fromStdString(controller_.error()));
+  } else {
+    console_->appendMessage(QString("--- %1 with %2 (%3 blocks)")
+                                .arg(QString::fromStdString(controller_.info().worldPath),
+                                     QString::fromStdString(controller_.info().codePath))
+                                .arg(controller_.info().blockCount));
+  }
+  showSession();
+  return ok;
+}
+
+void MainWindow::showSession() {
+  const bool open = controller_.isOpen();
+  const SessionInfo info = open ? controller_.info() : SessionInfo{};
+  // A C BlockCode has no program to show: the world and the inspector only.
+  editorPane_->setVisible(!open || info.meld);
+  if (open && info.meld && editor_->path().isEmpty() && info.codePath.size() > 5 &&
+      info.codePath.compare(info.codePath.size() - 5, 5, ".meld") == 0) {
+    QString error;
+    editor_->load(QString::fromStdString(info.codePath), error);
+  }
+  view_->setSession(info);
+  view_->setSnapshot(open ? controller_.snapshot() : nullptr);
+  inspector_->setSession(info);
+  setWindowTitle(
+      open ? QString("vsim-ide — %1").arg(QFileInfo(QString::fromStdString(info.worldPath)).fileName())
+           : QString("vsim-ide"));
+  shownSerial_ = shownSession_ = 0;
+  poll();
+}
+
+void MainWindow::selectBlock(std::uint32_t block) {
+  selected_ = block;
+  controller_.select(block);
+  view_->setSelected(block);
+}
+
+void MainWindow::poll() {
+  console_->append(controller_.takeConsoleLines());
+  const auto snap = controller_.snapshot();
+  if (!snap) {
+    status_->setText(controller_.error().empty()
+                         ? "No world: File > Open world."
+                         : "Not running: " + QString::fromStdString(controller_.error()));
+    return;
+  }
+  if (snap->serial == shownSerial_ && snap->session == shownSession_) return;
+  const bool failedNow =
+      snap->state == RunState::Failed && shownSession_ == snap->session && shownSerial_ != 0;
+  shownSerial_ = snap->serial;
+  shownSession_ = snap->session;
+  view_->setSnapshot(snap);
+  if (snap->selected.id == selected_) inspector_->show(snap->selected);
+  status_->setText(statusText());
+  if (failedNow && !snap->error.empty())
+    console_->appendMessage("Run failed: " + QString::fromStdString(snap->error));
+}
+
+QString MainWindow::statusText() const {
+  const auto snap = controller_.snapshot();
+  if (!snap) return {};
+  QString text = QString("%1   t = %2   events %3   %4 events/s")
+                     .arg(runStateName(snap->state))
+                     .arg(QString::fromStdString(simcore::formatTime(snap->now)))
+                     .arg(snap->events)
+                     .arg(snap->eventsPerSecond, 0, 'f', 0);
+  if (snap->state == RunState::Finished)
+    text += QString("   fingerprint %1").arg(snap->fingerprint, 16, 16, QChar('0'));
+  if (snap->state == RunState::Failed) text += "   " + QString::fromStdString(snap->error);
+  return text;
+}
+
+bool MainWindow::saveScreenshot(const QString& path) {
+  const QImage image = view_->grabFramebuffer();
+  if (image.isNull() || !image.save(path, "PNG")) {
+    console_->appendMessage("Cannot write " + path);
+    return false;
+  }
+  statusBar()->showMessage("saved " + path, 4000);
+  return true;
+}
+
+void MainWindow::addRecent(const QString& key, const QString& path) {
+  QSettings settings;
+  QStringList list = settings.value(key).toStringList();
+  const QString absolute = QFileInfo(path).absoluteFilePath();
+  list.removeAll(absolute);
+  list.prepend(absolute);
+  while (list.size() > kMaxRecent) list.removeLast();
+  settings.setValue(key, list);
+  refreshRecentMenu();
+}
+
+void MainWindow::refreshRecentMenu() {
+  recentMenu_->clear();
+  QSettings settings;
+  for (const QString& path : settings.value("recent/worlds").toStringList())
+    recentMenu_->addAction("world: " + path, this, [this, path] { openWorld(path); });
+  for (const QString& path : settings.value("recent/programs").toStringList())
+    recentMenu_->addAction("program: " + path, this, [this, path] { openProgram(path); });
+  recentMenu_->setEnabled(!recentMenu_->isEmpty());
+}
+
+void MainWindow::closeEvent(QCloseEvent* event) {
+  if (editor_->document()->isModified()) {
+    const auto answer = QMessageBox::question(this, "vsim-ide", "Save the program before closing?",
+                                              QMessageBox::Save | QMessageBox::Discard | QMessageBox::Cancel);
+    if (answer == QMessageBox::Cancel) return event->ignore();
+    QString error;
+    if (answer == QMessageBox::Save && !editor_->save(error)) {
+      QMessageBox::warning(this, "vsim-ide", error);
+      return event->ignore();
+    }
+  }
+  QSettings settings;
+  settings.setValue("window/geometry", saveGeometry());
+  settings.setValue("window/state", saveState());
+  settings.setValue("window/splitter", splitter_->saveState());
+  settings.setValue("run/speed", speed_->currentIndex());
+  event->accept();
+}
+
+}  // namespace ide

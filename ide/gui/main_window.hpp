@@ -1,0 +1,84 @@
+// The IDE's window: program editor | 3D world | block inspector side by side (splitters; the
+// layout is kept from one run of the IDE to the next), the console below; the run's controls in
+// the toolbar and its state in the status bar. The run itself lives in a SimController: the
+// window polls its snapshots on a timer and never touches the simulation.
+#pragma once
+
+#include <QMainWindow>
+#include <memory>
+
+#include "options.hpp"
+#include "sim_controller.hpp"
+
+class QComboBox;
+class QLabel;
+class QListWidget;
+class QSplitter;
+class QTimer;
+
+namespace ide {
+
+class BlockInspector;
+class CodeEditor;
+class ConsolePanel;
+class WorldView;
+
+class MainWindow : public QMainWindow {
+  Q_OBJECT
+ public:
+  explicit MainWindow(const vsim::Options& options, QWidget* parent = nullptr);
+  ~MainWindow() override;
+
+  // The parts, for tests.
+  SimController& controller() { return controller_; }
+  CodeEditor* editor() const { return editor_; }
+  WorldView* worldView() const { return view_; }
+  BlockInspector* inspector() const { return inspector_; }
+  ConsolePanel* console() const { return console_; }
+  QListWidget* diagnosticsList() const { return diagnostics_; }
+  QString statusText() const;
+
+  // The actions of the toolbar and menus, callable directly.
+  bool openWorld(const QString& path);
+  bool openProgram(const QString& path);
+  // Saves the program and compiles it; the diagnostics are listed and underlined. True if clean.
+  bool compile();
+  // Compiles (if a program is open) and starts the run again from the beginning.
+  bool restart();
+  void selectBlock(std::uint32_t block);
+  // Applies the newest snapshot and console lines now (the timer does it 30 times a second).
+  void poll();
+  bool saveScreenshot(const QString& path);
+
+ protected:
+  void closeEvent(QCloseEvent* event) override;
+
+ private:
+  void buildLayout();
+  void buildActions();
+  void showSession();
+  void showDiagnostics(const QString& text);
+  void addRecent(const QString& key, const QString& path);
+  void refreshRecentMenu();
+  double chosenSpeed() const;
+  void runUntilAsked();
+  void saveWorldAs();
+
+  SimController controller_;
+  vsim::Options options_;
+  CodeEditor* editor_;
+  QListWidget* diagnostics_;
+  QWidget* editorPane_;
+  WorldView* view_;
+  BlockInspector* inspector_;
+  ConsolePanel* console_;
+  QSplitter* splitter_;
+  QComboBox* speed_;
+  QLabel* status_;
+  QMenu* recentMenu_ = nullptr;
+  QTimer* timer_;
+  std::uint32_t selected_ = 0xFFFFFFFFu;
+  std::uint64_t shownSerial_ = 0, shownSession_ = 0;
+};
+
+}  // namespace ide

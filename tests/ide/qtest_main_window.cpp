@@ -1,0 +1,212 @@
+// The IDE's window under Xvfb, driven as a user would: open a world and its Meld program, run to
+// the end, select a block and read the inspector (it must equal `vsim --dump` for that block), a
+// compile error listed and underlined at its line, step/pause/restart against vsim's fingerprint,
+// the Meld colouring, a saved picture of the 3D view.
+#include <QListWidget>
+#include <QProcess>
+#include <QStandardPaths>
+#include <QTemporaryDir>
+#include <QTest>
+#include <QTextBlock>
+#include <QTextLayout>
+
+#include "block_inspector.hpp"
+#include "code_editor.hpp"
+#include "console_panel.hpp"
+#include "main_window.hpp"
+#include "meld_highlighter.hpp"
+#include "world_view.hpp"
+
+namespace {
+
+const QString kSource = MELD_SOURCE_DIR;
+const QString kVsim = QString(MELD_BINARY_DIR) + "/apps/vsim/vsim";
+
+vsim::Options gradientOptions() {
+  vsim::Options o;
+  o.world = (kSource + "/examples/worlds/meld-gradient-tap.xml").toStdString();
+  o.program = (kSource + "/examples/meld/gradient-tap.meld").toStdString();
+  return o;
+}
+
+// vsim's output for the same run (stdout), with --dump.
+QString vsimOutput() {
+  QProcess p;
+  p.start(kVsim, {kSource + "/examples/worlds/meld-gradient-tap.xml", "--program",
+                  kSource + "/examples/meld/gradient-tap.meld", "--dump", "--no-progress"});
+  if (!p.waitForFinished(60000) || p.exitCode() != 0) return {};
+  return QString::fromUtf8(p.readAllStandardOutput());
+}
+
+QStringList dumpSection(const QString& output, int block) {
+  QStringList lines;
+  bool inside = false;
+  for (const QString& l : output.split('\n')) {
+    if (!l.isEmpty() && l[0].isDigit()) {
+      inside = l == QString::number(block);
+      continue;
+    }
+    if (inside && (l.startsWith('!') || (!l.isEmpty() && l[0].isLower()))) lines << l;
+  }
+  return lines;
+}
+
+QString fingerprintOf(const QString& vsimOut) {
+  for (const QString& l : vsimOut.split('\n'))
+    if (l.trimmed().startsWith("fingerprint")) return l.trimmed().split(' ', Qt::SkipEmptyParts).last();
+  return {};
+}
+
+bool finished(ide::MainWindow& w) {
+  w.poll();
+  const auto s = w.controller().snapshot();
+  return s && s->state == ide::RunState::Finished;
+}
+
+}  // namespace
+
+class MainWindowTest : public QObject {
+  Q_OBJECT
+ private Q_SLOTS:
+  void initTestCase() {
+    QStandardPaths::setTestModeEnabled(true);  // QSettings of the tests, not the user's
+    reference_ = vsimOutput();
+    QVERIFY2(!reference_.isEmpty(), "vsim did not run");
+  }
+
+  void inspectorShowsTheBlocksDumpSection() {
+    ide::MainWindow w(gradientOptions());
+    w.show();
+    QVERIFY(QTest::qWaitForWindowExposed(&w));
+    QVERIFY(w.worldView()->glError().isEmpty());
+    QCOMPARE(w.editor()->path(), kSource + "/examples/meld/gradient-tap.meld");
+    w.controller().run();
+    QTRY_VERIFY_WITH_TIMEOUT(finished(w), 30000);
+    w.selectBlock(10);
+    QTRY_VERIFY_WITH_TIMEOUT((w.poll(), w.inspector()->headerText().contains("block 10")), 10000);
+    QTRY_COMPARE_WITH_TIMEOUT((w.poll(), w.inspector()->factLines()), dumpSection(reference_, 10), 10000);
+    QVERIFY(!w.inspector()->factLines().isEmpty());
+    QVERIFY(w.statusText().contains(fingerprintOf(reference_)));
+    w.inspector()->setFilter("dist");
+    for (const QString& l : w.inspector()->factLines()) QVERIFY(l.contains("dist"));
+    QVERIFY(!w.inspector()->factLines().isEmpty());
+  }
+
+  void clickingABlockSelectsIt() {
+    ide::MainWindow w(gradientOptions());
+    w.show();
+    QVERIFY(QTest::qWaitForWindowExposed(&w));
+    QTRY_VERIFY_WITH_TIMEOUT((w.poll(), w.controller().snapshot() != nullptr), 10000);
+    ide::WorldView* view = w.worldView();
+    const QPoint centre(view->width() / 2, view->height() / 2);
+    const std::uint32_t under = view->blockAt(centre);
+    QVERIFY(under != 0xFFFFFFFFu);
+    QTest::mouseClick(view, Qt::LeftButton, {}, centre);
+    QTRY_VERIFY_WITH_TIMEOUT((w.poll(), w.inspector()->headerText().contains(QString("block %1").arg(under))),
+                             10000);
+  }
+
+  void stepPauseRestartGiveVsimsFingerprint() {
+    ide::MainWindow w(gradientOptions());
+    for (int i = 0; i < 7; ++i) w.controller().step();
+    QTRY_VERIFY_WITH_TIMEOUT((w.poll(), w.controller().snapshot()->events == 7), 10000);
+    QVERIFY(w.statusText().startsWith("paused"));
+    w.controller().run(10.0);
+    QTest::qWait(30);
+    w.controller().pause();
+    QVERIFY(w.restart());
+    QCOMPARE(w.controller().snapshot()->events, std::uint64_t(0));
+    w.controller().step();
+    w.controller().run();
+    QTRY_VERIFY_WITH_TIMEOUT(finished(w), 30000);
+    QVERIFY(w.statusText().contains(fingerprintOf(reference_)));
+  }
+
+  void compileErrorIsListedAndUnderlinedAtItsLine() {
+    QTemporaryDir dir;
+    const QString path = dir.filePath("broken.meld");
+    QFile f(path);
+    QVERIFY(f.open(QIODevice::WriteOnly));
+    f.write("include #blinkyblocks.meld\n\ntype dist(node, min int).\n\n!dist(B, D) -o !setColor2(B, Q).\n");
+    f.close();
+    vsim::Options o = gradientOptions();
+    o.program.clear();
+    ide::MainWindow w(o);
+    QVERIFY(!w.openProgram(path));
+    QVERIFY(w.diagnosticsList()->count() >= 1);
+    const QListWidgetItem* first = w.diagnosticsList()->item(0);
+    QVERIFY2(first->text().contains("broken.meld:5:"), qPrintable(first->text()));
+    const auto marks = w.editor()->underlined();
+    QVERIFY(!marks.empty());
+    QCOMPARE(w.editor()->document()->findBlock(marks[0].first).blockNumber(), 4);
+    // A click on the message puts the cursor there.
+    w.editor()->goTo(1, 1);
+    Q_EMIT w.diagnosticsList()->itemClicked(w.diagnosticsList()->item(0));
+    QCOMPARE(w.editor()->textCursor().blockNumber(), 4);
+    // The IDE keeps running: the message is in the console, the window answers.
+    QVERIFY(w.console()->text().contains("errors"));
+    // Fixed and saved: the run starts.
+    QTextCursor edit(w.editor()->document()->findBlockByNumber(4));  // as typed: Q becomes D
+    edit.setPosition(edit.position() + int(QString("!dist(B, D) -o !setColor2(B, ").size()));
+    edit.deleteChar();
+    edit.insertText("D");
+    QVERIFY(w.editor()->document()->isModified());
+    QVERIFY2(w.restart(), qPrintable(w.console()->text()));
+    QCOMPARE(w.diagnosticsList()->count(), 0);
+    QVERIFY(w.controller().isOpen());
+  }
+
+  void badWorldIsAMessage() {
+    vsim::Options o;
+    ide::MainWindow w(o);
+    QVERIFY(!w.openWorld(kSource + "/no/such/world.xml"));
+    QVERIFY(w.console()->text().contains("cannot open world file"));
+    w.poll();
+  }
+
+  void highlighterColoursMeld() {
+    ide::CodeEditor editor;
+    editor.setPlainText("type linear go(node). // c\n/* a\nb */ !go(X, 3) -o go(X, \"s\").\n");
+    ide::MeldHighlighter* h = editor.highlighter();
+    auto formatAt = [&](int line, int column) {
+      const QTextBlock block = editor.document()->findBlockByNumber(line);
+      for (const QTextLayout::FormatRange& r : block.layout()->formats())
+        if (column >= r.start && column < r.start + r.length) return r.format.foreground().color();
+      return QColor();
+    };
+    using Role = ide::MeldHighlighter::Role;
+    QCOMPARE(formatAt(0, 0), h->format(Role::Keyword).foreground().color());     // type
+    QCOMPARE(formatAt(0, 12), h->format(Role::Predicate).foreground().color());  // go
+    QCOMPARE(formatAt(0, 15), h->format(Role::Type).foreground().color());       // node
+    QCOMPARE(formatAt(0, 23), h->format(Role::Comment).foreground().color());    // c
+    QCOMPARE(formatAt(1, 3), h->format(Role::Comment).foreground().color());     // a (block comment)
+    QCOMPARE(formatAt(2, 0), h->format(Role::Comment).foreground().color());     // b (still inside)
+    QCOMPARE(formatAt(2, 9), h->format(Role::Variable).foreground().color());    // X
+    QCOMPARE(formatAt(2, 12), h->format(Role::Number).foreground().color());     // 3
+    QCOMPARE(formatAt(2, 25), h->format(Role::String).foreground().color());     // "s"
+  }
+
+  void savesThe3dViewAsPng() {
+    ide::MainWindow w(gradientOptions());
+    w.show();
+    QVERIFY(QTest::qWaitForWindowExposed(&w));
+    w.controller().run();
+    QTRY_VERIFY_WITH_TIMEOUT(finished(w), 30000);
+    QTemporaryDir dir;
+    const QString path = dir.filePath("view.png");
+    QVERIFY(w.saveScreenshot(path));
+    const QImage image(path);
+    QCOMPARE(image.size(), w.worldView()->size() * w.worldView()->devicePixelRatio());
+    // Blocks are drawn: the centre block is red (distance 0), the picture is not one colour.
+    QSet<QRgb> colours;
+    for (int y = 0; y < image.height(); y += 7)
+      for (int x = 0; x < image.width(); x += 7) colours.insert(image.pixel(x, y));
+    QVERIFY(colours.size() > 6);
+  }
+
+ private:
+  QString reference_;
+};
+
+QTEST_MAIN(MainWindowTest)
+#include "qtest_main_window.moc"

@@ -1,0 +1,97 @@
+// vsim-ide --screenshot, run as a user would: a world whose blocks a program colours in two
+// colours (tests/ide/two-colors.*: green at first, then red on even columns and blue on odd ones)
+// gives a PNG of the requested size, both colours over about the same area, and no green left.
+#include <QImage>
+#include <QProcess>
+#include <QTemporaryDir>
+#include <QTest>
+
+namespace {
+
+const QString kSource = MELD_SOURCE_DIR;
+const QString kIde = QString(MELD_BINARY_DIR) + "/ide/vsim-ide";
+
+enum class Hue { Red, Blue, Green, Other };
+
+// By the dominant channel, so that lit and shaded faces of one colour count the same.
+Hue hueOf(QRgb p) {
+  const int r = qRed(p), g = qGreen(p), b = qBlue(p);
+  if (r > 60 && r > 2 * std::max(g, b)) return Hue::Red;
+  if (b > 60 && b > 2 * std::max(r, g)) return Hue::Blue;
+  if (g > 60 && g > 2 * std::max(r, b)) return Hue::Green;
+  return Hue::Other;
+}
+
+}  // namespace
+
+class ScreenshotTest : public QObject {
+  Q_OBJECT
+ private Q_SLOTS:
+  void twoColoursInTheirProportion() {
+    QTemporaryDir dir;
+    const QString png = dir.filePath("two.png");
+    QProcess p;
+    p.start(kIde, {kSource + "/tests/ide/two-colors.xml", "--screenshot", png, "--size", "400x300"});
+    QVERIFY(p.waitForFinished(60000));
+    QVERIFY2(p.exitCode() == 0, p.readAllStandardError().constData());
+    QVERIFY(QString::fromUtf8(p.readAllStandardOutput()).contains("screenshot: "));
+    const QImage image(png);
+    QCOMPARE(image.size(), QSize(400, 300));
+    long red = 0, blue = 0, green = 0;
+    for (int y = 0; y < image.height(); ++y)
+      for (int x = 0; x < image.width(); ++x) switch (hueOf(image.pixel(x, y))) {
+          case Hue::Red:
+            ++red;
+            break;
+          case Hue::Blue:
+            ++blue;
+            break;
+          case Hue::Green:
+            ++green;
+            break;
+          case Hue::Other:
+            break;
+        }
+    qInfo("red %ld, blue %ld, green %ld pixels", red, blue, green);
+    QCOMPARE(green, 0L);
+    QVERIFY(red > 400 * 300 / 10);  // the blocks cover a good part of the picture
+    const double ratio = double(red) / double(std::max(blue, 1L));
+    QVERIFY2(ratio > 0.85 && ratio < 1.15, qPrintable(QString("red/blue = %1").arg(ratio)));
+  }
+
+  void atATimeBeforeTheProgramRanTheBlocksAreStillGreen() {
+    // --until before anything happened: the initial colour only.
+    QTemporaryDir dir;
+    const QString png = dir.filePath("start.png");
+    QProcess p;
+    p.start(kIde, {kSource + "/tests/ide/two-colors.xml", "--screenshot", png, "--size", "200x150", "--until",
+                   "0", "--quiet"});
+    QVERIFY(p.waitForFinished(60000));
+    QCOMPARE(p.exitCode(), 0);
+    const QImage image(png);
+    long red = 0, green = 0;
+    for (int y = 0; y < image.height(); ++y)
+      for (int x = 0; x < image.width(); ++x) {
+        const Hue h = hueOf(image.pixel(x, y));
+        red += h == Hue::Red;
+        green += h == Hue::Green;
+      }
+    QVERIFY(green > 0);
+    QCOMPARE(red, 0L);
+  }
+
+  void badInputExitsWithAMessage() {
+    QProcess p;
+    p.start(kIde, {kSource + "/no/such.xml", "--screenshot", "x.png"});
+    QVERIFY(p.waitForFinished(60000));
+    QCOMPARE(p.exitCode(), 3);
+    QVERIFY(p.readAllStandardError().contains("cannot open world file"));
+    p.start(kIde, {kSource + "/tests/ide/two-colors.xml", "--screenshot", "x.png", "--size", "big"});
+    QVERIFY(p.waitForFinished(60000));
+    QCOMPARE(p.exitCode(), 2);
+    QVERIFY(p.readAllStandardError().contains("--size wants"));
+  }
+};
+
+QTEST_GUILESS_MAIN(ScreenshotTest)
+#include "qtest_screenshot.moc"

@@ -1,0 +1,196 @@
+// The IDE's kernel thread (ide/core, no Qt): the run it makes is vsim's run, whatever the mix of
+// commands (run, pause, step, run until, restart); the selected block's facts are the dump's; bad
+// input is an error, never a crash. Built under the tsan preset too: the GUI thread's side of
+// every exchange is exercised here.
+#define BOOST_TEST_MODULE ide_sim_controller
+#include <boost/test/unit_test.hpp>
+#include <chrono>
+#include <fstream>
+#include <sstream>
+#include <thread>
+
+#include "session.hpp"
+#include "sim_controller.hpp"
+
+namespace {
+
+using namespace std::chrono_literals;
+
+const std::string kSource = MELD_SOURCE_DIR;
+
+vsim::Options gradientOptions() {
+  vsim::Options o;
+  o.world = kSource + "/examples/worlds/meld-gradient-tap.xml";
+  return o;
+}
+
+struct Reference {
+  std::uint64_t fingerprint, events;
+  std::string dump;
+};
+
+// The same options run straight through a session, as vsim does.
+Reference runHeadless(const vsim::Options& o) {
+  std::ostringstream out;
+  vsim::SessionStreams streams;
+  streams.programOutput = &out;
+  vsim::Session s(o, streams);
+  s.simulation().run();
+  std::ostringstream dump;
+  if (s.meld()) s.meld()->dump(dump);
+  return {s.simulation().fingerprint(), s.simulation().statistics().eventsProcessed, dump.str()};
+}
+
+bool over(const ide::WorldSnapshot& s) {
+  return s.state == ide::RunState::Finished || s.state == ide::RunState::Failed;
+}
+
+std::shared_ptr<const ide::WorldSnapshot> waitOver(const ide::SimController& c) {
+  return c.waitFor(over, 60s);
+}
+
+// The lines of one block's section of a dump.
+std::vector<std::string> dumpSection(const std::string& dump, std::uint32_t block) {
+  std::istringstream in(dump);
+  std::vector<std::string> lines;
+  std::string line;
+  bool inside = false;
+  while (std::getline(in, line)) {
+    const bool header = !line.empty() && std::isdigit(static_cast<unsigned char>(line[0]));
+    if (header) {
+      inside = line == std::to_string(block);
+      continue;
+    }
+    if (inside) lines.push_back(line);
+  }
+  return lines;
+}
+
+}  // namespace
+
+BOOST_AUTO_TEST_CASE(run_to_the_end_gives_vsims_fingerprint) {
+  const Reference ref = runHeadless(gradientOptions());
+  ide::SimController c;
+  BOOST_REQUIRE(c.open(gradientOptions()));
+  BOOST_TEST(c.info().blockCount == 49u);
+  BOOST_TEST(c.info().meld);
+  BOOST_TEST(ide::runStateName(c.snapshot()->state) == std::string("paused"));
+  BOOST_TEST(c.snapshot()->now == 0);
+  c.run();
+  const auto end = waitOver(c);
+  BOOST_REQUIRE(end);
+  BOOST_TEST(ide::runStateName(end->state) == std::string("finished"));
+  BOOST_TEST(end->fingerprint == ref.fingerprint);
+  BOOST_TEST(end->events == ref.events);
+  BOOST_TEST(end->positions.size() == 49u);
+}
+
+BOOST_AUTO_TEST_CASE(steps_pauses_paced_runs_and_restarts_give_the_same_run) {
+  const Reference ref = runHeadless(gradientOptions());
+  ide::SimController c;
+  BOOST_REQUIRE(c.open(gradientOptions()));
+  for (int i = 0; i < 5; ++i) c.step();
+  BOOST_REQUIRE(c.waitFor([](const ide::WorldSnapshot& s) { return s.events == 5; }, 30s));
+  // Real time for a moment (the tap comes at 1 s: this does not reach it), then pause.
+  c.run(1.0);
+  std::this_thread::sleep_for(50ms);
+  c.pause();
+  BOOST_REQUIRE(c.waitFor([](const ide::WorldSnapshot& s) { return s.state == ide::RunState::Paused; }, 30s));
+  c.runUntil(simcore::kSecond / 2);
+  const auto half = c.waitFor(
+      [](const ide::WorldSnapshot& s) {
+        return s.state == ide::RunState::Paused && s.now == simcore::kSecond / 2;
+      },
+      30s);
+  BOOST_REQUIRE(half);
+  c.run(1000.0);  // paced: 1 s of simulated time per millisecond
+  const auto end = waitOver(c);
+  BOOST_REQUIRE(end);
+  BOOST_TEST(end->fingerprint == ref.fingerprint);
+
+  BOOST_REQUIRE(c.restart());
+  BOOST_TEST(c.snapshot()->now == 0);
+  BOOST_TEST(c.snapshot()->events == 0u);
+  BOOST_TEST(c.snapshot()->session > end->session);
+  c.run();
+  const auto again = waitOver(c);
+  BOOST_REQUIRE(again);
+  BOOST_TEST(again->fingerprint == ref.fingerprint);
+}
+
+BOOST_AUTO_TEST_CASE(the_selected_blocks_facts_are_its_dump_section) {
+  const Reference ref = runHeadless(gradientOptions());
+  ide::SimController c;
+  BOOST_REQUIRE(c.open(gradientOptions()));
+  c.select(17);
+  c.run();
+  const auto end = waitOver(c);
+  BOOST_REQUIRE(end);
+  const ide::BlockDetails& d = end->selected;
+  BOOST_TEST(d.id == 17u);
+  BOOST_TEST(d.cell.x == 3);
+  BOOST_TEST(d.cell.y == 2);
+  BOOST_TEST(d.neighbors.size() == 6u);
+  std::vector<std::string> shown;
+  for (const ide::FactGroup& g : d.facts) shown.insert(shown.end(), g.lines.begin(), g.lines.end());
+  const std::vector<std::string> expected = dumpSection(ref.dump, 17);
+  BOOST_TEST(!expected.empty());
+  BOOST_TEST(shown == expected, boost::test_tools::per_element());
+  // Grouped by predicate: a group's lines all name it.
+  for (const ide::FactGroup& g : d.facts)
+    for (const std::string& l : g.lines) BOOST_TEST(l.find(g.predicate + "(") != std::string::npos);
+}
+
+BOOST_AUTO_TEST_CASE(a_tap_after_the_end_runs_again) {
+  ide::SimController c;
+  BOOST_REQUIRE(c.open(gradientOptions()));
+  c.run();
+  const auto end = waitOver(c);
+  BOOST_REQUIRE(end);
+  c.tap(0);
+  c.run();
+  const auto after = c.waitFor(
+      [&](const ide::WorldSnapshot& s) {
+        return s.state == ide::RunState::Finished && s.events > end->events;
+      },
+      30s);
+  BOOST_REQUIRE(after);
+  BOOST_TEST(after->colors[0] == 0xFF0000u);  // the corner is a source now: distance 0, red
+}
+
+BOOST_AUTO_TEST_CASE(bad_input_is_an_error_message) {
+  ide::SimController c;
+  vsim::Options o;
+  o.world = kSource + "/no/such/world.xml";
+  BOOST_TEST(!c.open(o));
+  BOOST_TEST(!c.isOpen());
+  BOOST_TEST(c.error().find("cannot open world file") != std::string::npos);
+  BOOST_TEST(c.snapshot() == nullptr);
+  c.run();  // commands without a run do nothing
+  c.step();
+
+  const std::string broken = std::string(MELD_BINARY_DIR) + "/ide_broken.meld";
+  std::ofstream(broken) << "include #blinkyblocks.meld\n\n!neighbor(B, N, _) -o !nosuch(B).\n";
+  o = gradientOptions();
+  o.program = broken;
+  BOOST_TEST(!c.open(o));
+  BOOST_TEST(c.diagnostics().find(broken + ":3:") != std::string::npos);
+  BOOST_TEST(c.error().find("has errors") != std::string::npos);
+
+  // A good run after a bad one.
+  BOOST_TEST(c.open(gradientOptions()));
+}
+
+BOOST_AUTO_TEST_CASE(the_console_gets_the_trace_with_vsims_filter) {
+  ide::SimController c;
+  BOOST_REQUIRE(c.open(gradientOptions()));
+  BOOST_CHECK_THROW(c.setTraceFilter("kinds=nonsense"), simcore::TraceFilterError);
+  c.setTraceFilter("blocks=24;kinds=tap");
+  c.run();
+  BOOST_REQUIRE(waitOver(c));
+  const std::vector<std::string> lines = c.takeConsoleLines();
+  BOOST_REQUIRE_EQUAL(lines.size(), 1u);
+  BOOST_TEST(lines[0].find("tap") != std::string::npos);
+  BOOST_TEST(lines[0].find("24") != std::string::npos);
+  BOOST_TEST(c.takeConsoleLines().empty());
+}
