@@ -67,6 +67,7 @@ void KernelLoop::post(Command c) {
 }
 
 std::shared_ptr<const WorldSnapshot> KernelLoop::snapshot() const {
+  snapshotWanted_.store(true, std::memory_order_relaxed);
   std::lock_guard lock(mutex_);
   return latest_;
 }
@@ -94,7 +95,9 @@ void KernelLoop::threadMain() {
     const bool changed = !batch.empty();
     batch.clear();
     if (state_ == RunState::Running) runSlice();
-    if (changed || state_ != RunState::Running || Clock::now() - lastPublish_ >= kPublishEvery) publish();
+    if (changed || state_ != RunState::Running ||
+        (snapshotWanted_.load(std::memory_order_relaxed) && Clock::now() - lastPublish_ >= kPublishEvery))
+      publish();
   }
 }
 
@@ -217,6 +220,7 @@ void KernelLoop::publish() {
   }
   published_.notify_all();
   lastPublish_ = Clock::now();
+  snapshotWanted_.store(false, std::memory_order_relaxed);
   if (notify_) notify_();
 }
 

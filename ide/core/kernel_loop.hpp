@@ -3,6 +3,7 @@
 // session once it started.
 #pragma once
 
+#include <atomic>
 #include <chrono>
 #include <condition_variable>
 #include <cstdint>
@@ -79,6 +80,9 @@ class KernelLoop {
   mutable std::condition_variable published_;  // a new snapshot, for waitFor
   std::vector<Command> commands_;
   std::shared_ptr<const WorldSnapshot> latest_;
+  // Set when the GUI reads a snapshot: while running, a new one is made only then (a GUI that
+  // draws slowly costs the kernel fewer snapshots).
+  mutable std::atomic<bool> snapshotWanted_{true};
   std::thread thread_;
 };
 

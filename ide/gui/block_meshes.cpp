@@ -7,66 +7,84 @@ namespace ide {
 
 namespace {
 
-// A box of half-sizes h centred at c, with flat faces.
-void addBox(std::vector<MeshVertex>& out, const float h[3], float cz) {
-  // For each axis and sign: the face's two in-plane axes, in an order that keeps it front-facing.
+std::uint16_t add(Mesh& m, const MeshVertex& v) {
+  m.vertices.push_back(v);
+  return std::uint16_t(m.vertices.size() - 1);
+}
+
+void quad(Mesh& m, std::uint16_t a, std::uint16_t b, std::uint16_t c, std::uint16_t d) {
+  m.indices.insert(m.indices.end(), {a, b, c, a, c, d});
+}
+
+// A box of half-sizes h centred at (0, 0, cz), with flat faces (4 vertices each).
+void addBox(Mesh& m, const float h[3], float cz) {
   for (int axis = 0; axis < 3; ++axis)
     for (int sign = -1; sign <= 1; sign += 2) {
+      // The face's in-plane axes, in an order that makes (u, v, axis) right-handed for sign > 0.
       const int u = (axis + (sign > 0 ? 1 : 2)) % 3, v = (axis + (sign > 0 ? 2 : 1)) % 3;
       const float corners[4][2] = {{-1, -1}, {1, -1}, {1, 1}, {-1, 1}};
-      const int order[6] = {0, 1, 2, 0, 2, 3};
-      for (int k : order) {
+      std::uint16_t ids[4];
+      for (int k = 0; k < 4; ++k) {
         MeshVertex vert{};
         vert.position[axis] = float(sign) * h[axis];
         vert.position[u] = corners[k][0] * h[u];
         vert.position[v] = corners[k][1] * h[v];
         vert.position[2] += cz;
         vert.normal[axis] = float(sign);
-        out.push_back(vert);
+        ids[k] = add(m, vert);
       }
+      quad(m, ids[0], ids[1], ids[2], ids[3]);
     }
 }
 
-void addCylinder(std::vector<MeshVertex>& out, float radius, float halfLength, int segments) {
+void addCylinder(Mesh& m, float radius, float halfLength, int segments) {
   const float pi2 = 2.0f * std::numbers::pi_v<float>;
+  const auto base = std::uint16_t(m.vertices.size());
+  for (int i = 0; i <= segments; ++i) {  // the side: a ring at each end, smooth normals
+    const float a = pi2 * float(i) / float(segments), x = std::cos(a), z = std::sin(a);
+    add(m, MeshVertex{{x * radius, -halfLength, z * radius}, {x, 0, z}});
+    add(m, MeshVertex{{x * radius, halfLength, z * radius}, {x, 0, z}});
+  }
   for (int i = 0; i < segments; ++i) {
-    const float a0 = pi2 * float(i) / float(segments), a1 = pi2 * float(i + 1) / float(segments);
-    const float x0 = std::cos(a0), z0 = std::sin(a0), x1 = std::cos(a1), z1 = std::sin(a1);
-    auto side = [&](float x, float z, float y) {
-      out.push_back(MeshVertex{{x * radius, y, z * radius}, {x, 0, z}});
-    };
-    side(x0, z0, -halfLength), side(x1, z1, halfLength), side(x1, z1, -halfLength);
-    side(x0, z0, -halfLength), side(x0, z0, halfLength), side(x1, z1, halfLength);
-    for (int s = -1; s <= 1; s += 2) {  // the two caps
-      const float y = float(s) * halfLength;
-      const MeshVertex c{{0, y, 0}, {0, float(s), 0}};
-      const MeshVertex p0{{x0 * radius, y, z0 * radius}, {0, float(s), 0}};
-      const MeshVertex p1{{x1 * radius, y, z1 * radius}, {0, float(s), 0}};
-      out.push_back(c);
-      out.push_back(s > 0 ? p1 : p0);  // counter-clockwise seen from outside
-      out.push_back(s > 0 ? p0 : p1);
+    const auto a = std::uint16_t(base + 2 * i);
+    quad(m, a, std::uint16_t(a + 1), std::uint16_t(a + 3), std::uint16_t(a + 2));
+  }
+  for (int s = -1; s <= 1; s += 2) {  // the caps: a fan around the centre
+    const float y = float(s) * halfLength;
+    const std::uint16_t centre = add(m, MeshVertex{{0, y, 0}, {0, float(s), 0}});
+    for (int i = 0; i <= segments; ++i) {
+      const float a = pi2 * float(i) / float(segments);
+      add(m, MeshVertex{{std::cos(a) * radius, y, std::sin(a) * radius}, {0, float(s), 0}});
+    }
+    for (int i = 0; i < segments; ++i) {
+      const auto p0 = std::uint16_t(centre + 1 + i), p1 = std::uint16_t(centre + 2 + i);
+      // Counter-clockwise seen from outside: angles run clockwise seen from +y.
+      m.indices.insert(m.indices.end(), {centre, s > 0 ? p1 : p0, s > 0 ? p0 : p1});
     }
   }
 }
 
-void addSphere(std::vector<MeshVertex>& out, float radius, int rings, int segments) {
+void addSphere(Mesh& m, float radius, int rings, int segments) {
   const float pi = std::numbers::pi_v<float>;
-  auto point = [&](int ring, int seg) {
-    const float theta = pi * float(ring) / float(rings), phi = 2.0f * pi * float(seg) / float(segments);
-    const float n[3] = {std::sin(theta) * std::cos(phi), std::sin(theta) * std::sin(phi), std::cos(theta)};
-    return MeshVertex{{n[0] * radius, n[1] * radius, n[2] * radius}, {n[0], n[1], n[2]}};
-  };
+  const auto base = std::uint16_t(m.vertices.size());
+  for (int r = 0; r <= rings; ++r)
+    for (int s = 0; s <= segments; ++s) {
+      const float theta = pi * float(r) / float(rings), phi = 2.0f * pi * float(s) / float(segments);
+      const float n[3] = {std::sin(theta) * std::cos(phi), std::sin(theta) * std::sin(phi), std::cos(theta)};
+      add(m, MeshVertex{{n[0] * radius, n[1] * radius, n[2] * radius}, {n[0], n[1], n[2]}});
+    }
+  const int row = segments + 1;
   for (int r = 0; r < rings; ++r)
     for (int s = 0; s < segments; ++s) {
-      const MeshVertex a = point(r, s), b = point(r + 1, s), c = point(r + 1, s + 1), d = point(r, s + 1);
-      out.insert(out.end(), {a, b, c, a, c, d});
+      const auto a = std::uint16_t(base + r * row + s);
+      quad(m, a, std::uint16_t(a + row), std::uint16_t(a + row + 1), std::uint16_t(a + 1));
     }
 }
 
 }  // namespace
 
-std::vector<MeshVertex> blockMesh(BlockShape shape) {
-  std::vector<MeshVertex> mesh;
+Mesh blockMesh(BlockShape shape) {
+  Mesh mesh;
   // A little smaller than the cell, so that neighbouring blocks stay apart on screen.
   switch (shape) {
     case BlockShape::Cube: {
@@ -80,7 +98,7 @@ std::vector<MeshVertex> blockMesh(BlockShape shape) {
       break;
     }
     case BlockShape::Cylinder:
-      addCylinder(mesh, 0.48f, 0.25f, 32);
+      addCylinder(mesh, 0.48f, 0.25f, 24);
       break;
     case BlockShape::Sphere:
       // Catoms 3D are quasi-spherical polyhedra: a coarse sphere shows their facets.

@@ -31,6 +31,7 @@ namespace ide {
 namespace {
 
 constexpr int kMaxRecent = 8;
+constexpr double kDrawShare = 0.2;
 
 // Speeds offered: simulated seconds per wall second; 0 = as fast as possible.
 const std::pair<const char*, double> kSpeeds[] = {{"0.1×", 0.1},   {"1× (real time)", 1},
@@ -321,6 +322,9 @@ void MainWindow::selectBlock(std::uint32_t block) {
 
 void MainWindow::poll() {
   console_->append(controller_.takeConsoleLines());
+  // Fastest runs: draw at most a fifth of the time (a software renderer shares the kernel's
+  // cores), and ask for no snapshot in between (each one costs the kernel a copy of the world).
+  if (drawingFastest_ && chosenSpeed() == 0 && !view_->readyForFrame(kDrawShare)) return;
   const auto snap = controller_.snapshot();
   if (!snap) {
     status_->setText(controller_.error().empty()
@@ -329,6 +333,7 @@ void MainWindow::poll() {
     return;
   }
   if (snap->serial == shownSerial_ && snap->session == shownSession_) return;
+  drawingFastest_ = snap->state == RunState::Running;
   const bool failedNow =
       snap->state == RunState::Failed && shownSession_ == snap->session && shownSerial_ != 0;
   shownSerial_ = snap->serial;

@@ -79,6 +79,7 @@ class MainWindow : public QMainWindow {
   QTimer* timer_;
   std::uint32_t selected_ = 0xFFFFFFFFu;
   std::uint64_t shownSerial_ = 0, shownSession_ = 0;
+  bool drawingFastest_ = false;  // the last snapshot shown was of a running run
 };
 
 }  // namespace ide

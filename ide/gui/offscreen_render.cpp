@@ -56,20 +56,20 @@ QImage renderOffscreen(const SessionInfo& info, const WorldSnapshot& snap, const
   }
   QImage image;
   {
-    QOpenGLFramebufferObjectFormat fboFormat;
-    fboFormat.setAttachment(QOpenGLFramebufferObject::Depth);
-    fboFormat.setSamples(4);
-    QOpenGLFramebufferObject fbo(size, fboFormat);
     WorldRenderer renderer;
-    if (!fbo.isValid() || !renderer.initialize()) {
-      error = fbo.isValid() ? "cannot compile the shaders: " + renderer.log() : "cannot make a framebuffer";
+    if (!renderer.initialize()) {
+      error = "cannot compile the shaders: " + renderer.log();
       return {};
     }
-    fbo.bind();
     renderer.setSession(info);
     renderer.upload(snap);
     renderer.setHighlight(snap.selected.id, 0xFFFFFFFFu);
+    QOpenGLFramebufferObjectFormat fboFormat;
+    fboFormat.setAttachment(QOpenGLFramebufferObject::Depth);
     if (frameTimes > 0 && msPerFrame) {
+      // Timed like the window draws: no multisampling.
+      QOpenGLFramebufferObject fbo(size, fboFormat);
+      fbo.bind();
       renderer.render(camera, size.width(), size.height());  // warm-up: shader compilation
       context.functions()->glFinish();
       QElapsedTimer timer;
@@ -80,7 +80,15 @@ QImage renderOffscreen(const SessionInfo& info, const WorldSnapshot& snap, const
         context.functions()->glFinish();
       }
       *msPerFrame = double(timer.nsecsElapsed()) / 1e6 / frameTimes;
+      fbo.release();
     }
+    fboFormat.setSamples(4);  // the picture: smooth edges
+    QOpenGLFramebufferObject fbo(size, fboFormat);
+    if (!fbo.isValid()) {
+      error = "cannot make a framebuffer of that size";
+      return {};
+    }
+    fbo.bind();
     renderer.render(camera, size.width(), size.height());
     image = fbo.toImage();
     fbo.release();

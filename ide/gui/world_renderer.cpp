@@ -102,6 +102,7 @@ bool WorldRenderer::initialize() {
   blockVao_.create();
   floorVao_.create();
   meshVbo_.create();
+  meshIbo_.create();
   instanceVbo_.create();
   floorVbo_.create();
   instanceVbo_.setUsagePattern(QOpenGLBuffer::StreamDraw);
@@ -138,10 +139,14 @@ bool WorldRenderer::initialize() {
 
 void WorldRenderer::setSession(const SessionInfo& info) {
   info_ = info;
-  const std::vector<MeshVertex> mesh = blockMesh(info.shape);
-  meshVertices_ = int(mesh.size());
+  const Mesh mesh = blockMesh(info.shape);
+  meshIndices_ = int(mesh.indices.size());
+  blockVao_.bind();  // the index buffer binding belongs to the vertex array
   meshVbo_.bind();
-  meshVbo_.allocate(mesh.data(), int(mesh.size() * sizeof(MeshVertex)));
+  meshVbo_.allocate(mesh.vertices.data(), int(mesh.vertices.size() * sizeof(MeshVertex)));
+  meshIbo_.bind();
+  meshIbo_.allocate(mesh.indices.data(), int(mesh.indices.size() * sizeof(std::uint16_t)));
+  blockVao_.release();
   buildFloor(info);
   uploadedSerial_ = 0;
   instances_ = 0;
@@ -213,7 +218,7 @@ void WorldRenderer::render(const OrbitCamera& camera, int width, int height) {
   const QMatrix4x4 viewProjection =
       camera.projection(float(width) / float(std::max(height, 1))) * camera.view();
   drawFloor(viewProjection);
-  if (instances_ == 0 || meshVertices_ == 0) return;
+  if (instances_ == 0 || meshIndices_ == 0) return;
 
   ViewPoint light;
   if (info_.spotlight) {
@@ -236,7 +241,7 @@ void WorldRenderer::render(const OrbitCamera& camera, int width, int height) {
   blocks_.setUniformValue("uLightCosCutoff", std::cos(qDegreesToRadians(std::min(light.angleDeg, 89.0f))));
   blocks_.setUniformValue("uEye", camera.eye());
   blockVao_.bind();
-  glDrawArraysInstanced(GL_TRIANGLES, 0, meshVertices_, GLsizei(instances_));
+  glDrawElementsInstanced(GL_TRIANGLES, meshIndices_, GL_UNSIGNED_SHORT, nullptr, GLsizei(instances_));
   blockVao_.release();
   blocks_.release();
 }

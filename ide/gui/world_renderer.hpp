@@ -47,9 +47,10 @@ class WorldRenderer : protected QOpenGLExtraFunctions {
 
   QOpenGLShaderProgram blocks_, lines_;
   QOpenGLVertexArrayObject blockVao_, floorVao_;
-  QOpenGLBuffer meshVbo_{QOpenGLBuffer::VertexBuffer}, instanceVbo_{QOpenGLBuffer::VertexBuffer};
+  QOpenGLBuffer meshVbo_{QOpenGLBuffer::VertexBuffer}, meshIbo_{QOpenGLBuffer::IndexBuffer};
+  QOpenGLBuffer instanceVbo_{QOpenGLBuffer::VertexBuffer};
   QOpenGLBuffer floorVbo_{QOpenGLBuffer::VertexBuffer};
-  int meshVertices_ = 0, floorVertices_ = 0;
+  int meshIndices_ = 0, floorVertices_ = 0;
   std::vector<Instance> staging_;
   std::vector<std::uint32_t> instanceBlock_;  // block id of each instance
   std::size_t instances_ = 0;

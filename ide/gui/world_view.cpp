@@ -14,6 +14,16 @@ namespace ide {
 WorldView::WorldView(QWidget* parent) : QOpenGLWidget(parent) {
   setMouseTracking(true);
   setMinimumSize(200, 150);
+  connect(this, &QOpenGLWidget::frameSwapped, this, [this] {
+    if (!paintStart_.isValid()) return;
+    frameMs_ = 0.7 * frameMs_ + 0.3 * double(paintStart_.nsecsElapsed()) / 1e6;
+    lastFrameEnd_.start();
+  });
+}
+
+bool WorldView::readyForFrame(double share) const {
+  if (!lastFrameEnd_.isValid()) return true;
+  return double(lastFrameEnd_.elapsed()) >= frameMs_ * (1.0 - share) / share;
 }
 
 WorldView::~WorldView() { releaseGl(); }
@@ -74,8 +84,7 @@ void WorldView::initializeGL() {
 
 void WorldView::paintGL() {
   if (!renderer_) return;
-  QElapsedTimer timer;
-  timer.start();
+  paintStart_.start();
   if (sessionChanged_) {
     renderer_->setSession(info_);
     sessionChanged_ = false;
@@ -84,8 +93,6 @@ void WorldView::paintGL() {
   renderer_->setHighlight(selected_, hovered_);
   const qreal ratio = devicePixelRatioF();
   renderer_->render(camera_, int(width() * ratio), int(height() * ratio));
-  // The time to submit the frame (the driver may finish it later); smoothed.
-  frameMs_ = 0.8 * frameMs_ + 0.2 * double(timer.nsecsElapsed()) / 1e6;
 }
 
 void WorldView::mousePressEvent(QMouseEvent* e) {

@@ -2,6 +2,7 @@
 // middle drag pans, the wheel zooms; hovering shows the block's id, a click selects it.
 #pragma once
 
+#include <QElapsedTimer>
 #include <QOpenGLWidget>
 #include <memory>
 
@@ -28,8 +29,11 @@ class WorldView : public QOpenGLWidget {
   OrbitCamera& camera() { return camera_; }
   // The block under a point of the widget, or kNoBlock.
   std::uint32_t blockAt(const QPoint& p) const;
-  // Mean time of the last frames drawn (ms), for the status bar.
+  // Time of the last frames (ms, smoothed): from the start of drawing to the frame on screen.
   double frameMs() const { return frameMs_; }
+  // Whether a new frame would keep drawing under `share` of the time (while the run goes as fast
+  // as possible, the view draws only that often: a software renderer shares the run's cores).
+  bool readyForFrame(double share) const;
   // The GL error, when the view cannot draw (no OpenGL 3.3).
   const QString& glError() const { return glError_; }
 
@@ -56,6 +60,7 @@ class WorldView : public QOpenGLWidget {
   QPoint pressPos_, lastPos_;
   bool dragging_ = false;
   double frameMs_ = 0;
+  QElapsedTimer paintStart_, lastFrameEnd_;
   QString glError_;
 };
 

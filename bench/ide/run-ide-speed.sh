@@ -1,0 +1,30 @@
+#!/usr/bin/env bash
+# "As fast as possible" in vsim-ide's window against headless vsim, on the same run: the B3
+# gradient on a Blinky Blocks box (default 100x100x10 = 100k blocks; --quick: 40x40x10), under
+# Xvfb. Prints both events/s and their ratio (goal: the IDE at least half of headless) and checks
+# that the two fingerprints are the same.
+#   bench/ide/run-ide-speed.sh [--quick]
+# IDE_SPEED=/path/to/ide_speed selects the program (default build/release/bench/ide/ide_speed).
+set -euo pipefail
+here="$(cd "$(dirname "$0")" && pwd)"
+repo="$(cd "$here/../.." && pwd)"
+bin="${IDE_SPEED:-$repo/build/release/bench/ide/ide_speed}"
+workdir="$repo/build/bench/ide"
+x=100 y=100 z=10
+case "${1:-}" in
+  --quick) x=40 y=40 ;;
+  -h|--help) sed -n '2,7p' "$0" | sed 's/^# \{0,1\}//'; exit 0 ;;
+  "") ;;
+  *) echo "run-ide-speed.sh: unknown option '$1' (see --help)" >&2; exit 2 ;;
+esac
+[ -x "$bin" ] || { echo "run-ide-speed.sh: ide_speed not found at $bin (build it, or set IDE_SPEED=...)" >&2; exit 1; }
+mkdir -p "$workdir"
+w="$workdir/speed-$x-$y-$z.xml"
+cat > "$w" <<XML
+<?xml version="1.0" encoding="UTF-8"?>
+<world gridSize="$x,$y,$z" target="blinkyblocks" seed="1">
+  <blockList color="128,128,128"><blocksBox origin="0,0,0" size="$x,$y,$z"/></blockList>
+</world>
+XML
+echo "world: $x x $y x $z Blinky Blocks, program bench/meld-robots/gradient.meld, tap 0@1ms"
+xvfb-run -a -s "-screen 0 1600x1200x24" "$bin" "$w" --program "$repo/bench/meld-robots/gradient.meld" --tap 0@1ms
