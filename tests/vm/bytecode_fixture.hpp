@@ -214,6 +214,10 @@ inline std::unique_ptr<Program> fullProgram() {
   p->scheduling.staticNodes = true;
   p->indexes = {{c, 1}};
   p->highestArg = 1;
+  // Where the axioms and rule 1 came from (version 3).
+  p->sourceFiles = {"full.meld", "lib/include.meld"};
+  p->axiomBlocks[0].lines = {{0, 0, 3}, {7, 1, 12}};
+  p->rules[1].block.lines = {{0, 0, 9}};
   return p;
 }
 

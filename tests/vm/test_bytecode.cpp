@@ -39,6 +39,22 @@ void put(std::vector<std::uint8_t>& bytes, std::size_t at, std::uint32_t w) {
   for (int i = 0; i < 4; ++i) bytes[at + i] = std::uint8_t(w >> (8 * i));
 }
 
+std::uint32_t get(const std::vector<std::uint8_t>& bytes, std::size_t at) {
+  std::uint32_t w = 0;
+  for (int i = 0; i < 4; ++i) w |= std::uint32_t(bytes[at + i]) << (8 * i);
+  return w;
+}
+
+// The same file as an older version writes it: without the sources section (the last one).
+std::vector<std::uint8_t> asVersion(std::vector<std::uint8_t> bytes, std::uint32_t version) {
+  std::size_t at = 12;
+  while (get(bytes, at) != 13) at += 8 + get(bytes, at + 4);
+  bytes.resize(at);
+  put(bytes, 4, version);
+  put(bytes, 8, 12);
+  return bytes;
+}
+
 }  // namespace
 
 BOOST_AUTO_TEST_CASE(round_trip_is_exact) {
@@ -127,13 +143,20 @@ BOOST_AUTO_TEST_CASE(header_errors) {
   BOOST_TEST(contains(readError(bytes), "magic"));
 
   bytes = good;
-  put(bytes, 4, 3);
+  put(bytes, 4, 4);
   const std::string version = readError(bytes);
-  BOOST_TEST(contains(version, "version 3"), version);
-  BOOST_TEST(contains(version, "this VM reads versions 1 to 2"), version);
+  BOOST_TEST(contains(version, "version 4"), version);
+  BOOST_TEST(contains(version, "this VM reads versions 1 to 3"), version);
+  // Version 1 and 2 files, without the additions of the later versions, still load.
+  for (std::uint32_t v : {1u, 2u}) {
+    bytes = asVersion(writeBytecode(*fullProgram()), v);
+    const auto p = readBytecode(bytes.data(), bytes.size());
+    BOOST_TEST(p->sourceFiles.empty());
+    BOOST_TEST(p->rules[1].block.lines.empty());
+  }
   bytes = good;
-  put(bytes, 4, 1);  // version 1 files, without the additions of version 2, still load
-  BOOST_CHECK_NO_THROW(readBytecode(bytes.data(), bytes.size()));
+  put(bytes, 8, 12);  // a version 3 file needs its sources section
+  BOOST_TEST(contains(readError(bytes), "section count 12 (expected 13)"));
 
   bytes = good;
   put(bytes, 12, 99);  // the first section's tag
@@ -160,6 +183,33 @@ BOOST_AUTO_TEST_CASE(header_errors) {
 }
 
 // Verification errors of the file come out of readBytecode as well.
+BOOST_AUTO_TEST_CASE(source_lines_round_trip_and_are_checked) {
+  const auto p = fullProgram();
+  auto bytes = writeBytecode(*p);
+  const auto q = readBytecode(bytes.data(), bytes.size());
+  BOOST_TEST(q->sourceFiles == p->sourceFiles);
+  BOOST_TEST((q->axiomBlocks[0].lines == p->axiomBlocks[0].lines));
+  BOOST_TEST((q->rules[1].block.lines == p->rules[1].block.lines));
+  const SourceLine* l = q->axiomBlocks[0].lineAt(9);
+  BOOST_REQUIRE(l);
+  BOOST_TEST(l->line == 12u);
+  BOOST_TEST(q->sourceFiles[l->file] == "lib/include.meld");
+  BOOST_TEST(q->rules[0].block.lineAt(0) == nullptr);
+
+  auto bad = fullProgram();
+  bad->rules[1].block.lines = {{0, 2, 9}};  // no file 2
+  bytes = writeBytecode(*bad);
+  BOOST_TEST(contains(readError(bytes), "out of order or out of range"));
+  bad = fullProgram();
+  bad->axiomBlocks[0].lines = {{7, 0, 3}, {0, 0, 4}};  // pcs must increase
+  bytes = writeBytecode(*bad);
+  BOOST_TEST(contains(readError(bytes), "out of order or out of range"));
+  bad = fullProgram();
+  bad->rules[1].block.lines = {{100000, 0, 9}};  // past the code
+  bytes = writeBytecode(*bad);
+  BOOST_TEST(contains(readError(bytes), "out of order or out of range"));
+}
+
 BOOST_AUTO_TEST_CASE(reader_verifies) {
   auto p = smallProgram();
   p->rules[1].block.registerTypes[3] = TypeTable::kFloat;
@@ -185,7 +235,7 @@ BOOST_AUTO_TEST_CASE(fuzz_corpus_is_current) {
 }
 
 BOOST_AUTO_TEST_CASE(disassembly_golden) {
-  const std::string expected = R"(; Meld bytecode version 2
+  const std::string expected = R"(; Meld bytecode version 3
 
 types:
   0  int

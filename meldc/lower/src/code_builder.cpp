@@ -50,7 +50,18 @@ void CodeBuilder::emit(meldvm::Opcode o, std::initializer_list<std::uint32_t> wo
   for (std::uint32_t word : words) w(word);
 }
 
+void CodeBuilder::at(std::uint32_t file, std::uint32_t line) {
+  const auto pc = std::uint32_t(block_.code.size());
+  std::vector<meldvm::SourceLine>& lines = block_.lines;
+  if (!lines.empty() && lines.back().file == file && lines.back().line == line) return;
+  if (!lines.empty() && lines.back().pc == pc) lines.pop_back();  // nothing came from that one
+  if (!lines.empty() && lines.back().file == file && lines.back().line == line) return;
+  lines.push_back(meldvm::SourceLine{pc, file, line});
+}
+
 meldvm::CodeBlock CodeBuilder::finish(std::string label) {
+  // A last entry with no instruction after it says nothing.
+  if (!block_.lines.empty() && block_.lines.back().pc >= block_.code.size()) block_.lines.pop_back();
   for (const auto& [at, l] : patches_) {
     if (positions_.at(l) == kUnplaced) throw std::logic_error("meldc: jump to a label never placed");
     block_.code[at] = positions_[l];

@@ -42,6 +42,9 @@ class CodeBuilder {
   void emit(meldvm::Opcode o, std::initializer_list<std::uint32_t> words);
 
   std::size_t size() const { return block_.code.size(); }
+  // The instructions emitted from now on come from this line of the program's source file `file`
+  // (an index into meldvm::Program::sourceFiles).
+  void at(std::uint32_t file, std::uint32_t line);
   // Patches the jumps and returns the block (the builder is left empty).
   meldvm::CodeBlock finish(std::string label);
 

@@ -182,6 +182,7 @@ meldvm::Rule threadInitRule(Lowering& L, const std::vector<ThreadAxioms>& axioms
   cb.emit(Opcode::THREAD, {self});
   for (const ThreadAxioms& a : axioms) {
     try {
+      L.at(cb, a.statement->loc);
       RuleLowering rl(L, cb, "");
       for (const Term* t : a.facts)
         if (t->args[0].kind == ExprKind::Var) rl.ex.env[t->args[0].name] = self;
@@ -319,6 +320,9 @@ void statementAxioms(Lowering& L, CodeBuilder& cb, const Rule& r, ConstantAxioms
     }
   }
   if (!thread.empty()) threadAxioms.push_back(ThreadAxioms{&r, std::move(thread)});
+  // Only a statement that puts code into rule 0 says where it comes from there (a fact of a
+  // constant home, into its node's axiom block, must leave rule 0 as the compact path leaves it).
+  if (!computed.empty() || !variable.empty()) L.at(cb, r.loc);
   for (const Term* t : computed) computedHomeAxiom(L, cb, r, *t);
   if (variable.empty()) return;
   // Every variable home stands for the node running rule 0.
@@ -349,9 +353,11 @@ void nodeAxiomBlock(Lowering& L, std::int64_t node, const std::vector<Axiom>& ax
   try {
     for (const Axiom& a : nodeAxiomOrder(L, axioms, groundNames)) {
       if (a.ground) {
+        L.at(block, a.ground->loc);
         groundAxiom(L, block, *a.ground, *groundPreds[a.ground->name]);
         continue;
       }
+      L.at(block, a.statement->loc);
       RuleLowering rl(L, block, "");
       CodeBuilder::Label skip = block.label();
       evaluateConditions(rl, block, *a.statement, skip);

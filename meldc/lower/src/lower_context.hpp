@@ -11,6 +11,7 @@
 #include <unordered_map>
 #include <vector>
 
+#include "code_builder.hpp"
 #include "meldc/ast/program.hpp"
 #include "meldc/diagnostics.hpp"
 #include "meldc/source.hpp"
@@ -89,6 +90,9 @@ struct Lowering {
   std::uint32_t string(const std::string& s);
   // The first line of the statement's text, for code block labels.
   std::string label(SourceLoc loc) const;
+  // Marks the instructions `cb` emits from now on as coming from `loc` (derivation trees).
+  void at(CodeBuilder& cb, SourceLoc loc);
+  std::unordered_map<std::uint32_t, std::uint32_t> sourceFileIndex;  // SourceManager file -> program's
 };
 
 // lower_predicates.cpp: types, predicates, nodes, scheduling, indexes, externs (no code).

@@ -262,6 +262,13 @@ std::string Lowering::label(SourceLoc loc) const {
   return text;
 }
 
+void Lowering::at(CodeBuilder& cb, SourceLoc loc) {
+  if (!loc.valid() || loc.file >= sources.size()) return;
+  auto [it, added] = sourceFileIndex.try_emplace(loc.file, std::uint32_t(prog.sourceFiles.size()));
+  if (added) prog.sourceFiles.push_back(sources.file(loc.file).path);
+  cb.at(it->second, loc.line);
+}
+
 void lowerDeclarations(Lowering& L) {
   predicates(L);
   directives(L);

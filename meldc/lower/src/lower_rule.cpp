@@ -22,6 +22,7 @@ struct Analyzed {
 // One original rule inside a numbered rule's block: its loops, head and FIRE; a test that fails
 // before the first loop goes on with the next merged rule (or the final RET).
 void lowerPart(Lowering& L, CodeBuilder& cb, const Analyzed& a, const BodyPlan& plan, bool prebound) {
+  L.at(cb, a.rule->loc);
   RuleLowering rl(L, cb, a.host);
   rl.bindHost();
   CodeBuilder::Label end = cb.label();

@@ -285,6 +285,25 @@ void readSection(Cursor& c, std::uint32_t tag, Program& p) {
       p.highestArg = c.word("highest argument");
       break;
     }
+    case kSecSources: {
+      const std::uint32_t files = c.count("source file", 4);
+      for (std::uint32_t i = 0; i < files; ++i) p.sourceFiles.push_back(c.str("source file name"));
+      // Checked here, not by the verifier: a wrong line only misleads a message, but it is refused.
+      forEachCodeBlock(p, [&](CodeBlock& b) {
+        const std::uint32_t n = c.count("source line", 12);
+        for (std::uint32_t i = 0; i < n; ++i) {
+          SourceLine l;
+          l.pc = c.word("source line pc");
+          l.file = c.word("source line file");
+          l.line = c.word("source line number");
+          if (l.pc >= b.code.size() || l.file >= files || (i && l.pc <= b.lines.back().pc))
+            c.fail("source line " + std::to_string(i) + " of block '" + b.label +
+                   "' is out of order or out of range");
+          b.lines.push_back(l);
+        }
+      });
+      break;
+    }
   }
 }
 
@@ -299,14 +318,14 @@ std::unique_ptr<Program> readBytecode(const std::uint8_t* data, std::size_t size
   if (version < kOldestBytecodeVersion || version > kBytecodeVersion)
     c.fail("bytecode version " + std::to_string(version) + " is not supported (this VM reads versions " +
            std::to_string(kOldestBytecodeVersion) + " to " + std::to_string(kBytecodeVersion) + ")");
-  const std::uint32_t sections = c.word("section count");
-  if (sections != kSectionCount)
-    c.fail("section count " + std::to_string(sections) + " (expected " + std::to_string(kSectionCount) + ")");
+  const std::uint32_t sections = c.word("section count"), expected = sectionCountOf(version);
+  if (sections != expected)
+    c.fail("section count " + std::to_string(sections) + " (expected " + std::to_string(expected) + ")");
 
   auto p = std::make_unique<Program>();
-  for (std::uint32_t want = 1; want <= kSectionCount; ++want) {
+  for (std::uint32_t want = 1; want <= expected; ++want) {
     const std::uint32_t tag = c.word("section tag");
-    if (tag == 0 || tag > kSectionCount) c.fail("unknown section tag " + std::to_string(tag));
+    if (tag == 0 || tag > expected) c.fail("unknown section tag " + std::to_string(tag));
     if (tag != want)
       c.fail(std::string("section ") + sectionName(tag) + " out of order (expected section " +
              sectionName(want) + ")");

@@ -88,9 +88,10 @@ void writePredicates(Writer& w, const Program& p) {
 
 std::vector<std::uint8_t> writeBytecode(const Program& p) {
   Writer w;
-  w.bytes.insert(w.bytes.end(), std::begin(kMagic), std::end(kMagic));
+  // Byte by byte: GCC 12 warns of a bogus overflow for a range insert into the empty vector.
+  for (const char ch : kMagic) w.bytes.push_back(std::uint8_t(ch));
   w.word(kBytecodeVersion);
-  w.word(kSectionCount);
+  w.word(sectionCountOf(kBytecodeVersion));
 
   std::size_t s = w.begin(kSecTypes);
   writeTypes(w, p.types);
@@ -178,6 +179,19 @@ std::vector<std::uint8_t> writeBytecode(const Program& p) {
     w.word(ix.field);
   }
   w.word(p.highestArg);
+  w.end(s);
+
+  s = w.begin(kSecSources);
+  w.word(std::uint32_t(p.sourceFiles.size()));
+  for (const std::string& f : p.sourceFiles) w.str(f);
+  forEachCodeBlock(p, [&](const CodeBlock& b) {
+    w.word(std::uint32_t(b.lines.size()));
+    for (const SourceLine& l : b.lines) {
+      w.word(l.pc);
+      w.word(l.file);
+      w.word(l.line);
+    }
+  });
   w.end(s);
 
   return std::move(w.bytes);

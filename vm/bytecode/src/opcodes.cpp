@@ -136,9 +136,9 @@ std::string typeName(const TypeTable& types, TypeId t) {
 }
 
 const char* sectionName(std::uint32_t tag) {
-  static constexpr const char* kNames[] = {"?",       "types",      "predicates", "nodes", "strings",
-                                           "globals", "functions",  "externs",    "rules", "processes",
-                                           "axioms",  "scheduling", "indexes"};
+  static constexpr const char* kNames[] = {"?",       "types",      "predicates", "nodes",  "strings",
+                                           "globals", "functions",  "externs",    "rules",  "processes",
+                                           "axioms",  "scheduling", "indexes",    "sources"};
   return tag <= kSectionCount ? kNames[tag] : "?";
 }
 

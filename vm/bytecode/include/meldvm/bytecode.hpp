@@ -3,8 +3,9 @@
 // to 4):
 //   magic "MBC1", version (kBytecodeVersion), section count, then sections in this order:
 //   types, predicates, nodes, strings, globals, functions, externs, rules, processes, axioms,
-//   scheduling, indexes. Each section = tag word, byte length, payload. A code block = label,
-//   register count + register types, slot count, word count + words.
+//   scheduling, indexes, and from version 3 on sources (the source files and, per code block in
+//   the order globals, functions, rules, processes, axioms, its source lines). Each section = tag word, byte
+//   length, payload. A code block = label, register count + register types, slot count, word count + words.
 // The loader checks everything before the VM runs any of it (verifyProgram): counts and bounds,
 // operand kinds and register types of every instruction against opcodes.def, jump targets on
 // instruction boundaries, loop nesting, slots. Malformed input gives a BytecodeError, never a crash.
@@ -22,9 +23,10 @@
 namespace meldvm {
 
 // Version 2 added RET_IF_UPDATED (a merged rule stops after an in-place update) and the
-// scheduling flag of `priority @no_priority`. Every change so far only adds: the reader also takes
-// version 1 files, which use neither, and an older VM refuses a version 2 file by its version.
-inline constexpr std::uint32_t kBytecodeVersion = 2;
+// scheduling flag of `priority @no_priority`; version 3 the sources section (file:line of rules
+// and axioms, for derivation trees). Every change so far only adds: the reader also takes version
+// 1 and 2 files, and an older VM refuses a newer file by its version.
+inline constexpr std::uint32_t kBytecodeVersion = 3;
 inline constexpr std::uint32_t kOldestBytecodeVersion = 1;
 
 class BytecodeError : public std::runtime_error {

@@ -25,8 +25,25 @@ enum SectionTag : std::uint32_t {
   kSecAxioms,
   kSecScheduling,
   kSecIndexes,
+  kSecSources,  // version 3 on
 };
-inline constexpr std::uint32_t kSectionCount = kSecIndexes;
+inline constexpr std::uint32_t kSectionCount = kSecSources;
+// The sections a file of that version has.
+inline constexpr std::uint32_t sectionCountOf(std::uint32_t version) {
+  return version >= 3 ? kSecSources : kSecIndexes;
+}
+// Every code block of a program, in the order of the sources section.
+template <class P, class F>
+void forEachCodeBlock(P& program, F&& f) {
+  f(program.globalsInit);
+  for (auto& fn : program.functions) f(fn.block);
+  for (auto& r : program.rules) f(r.block);
+  for (auto& pr : program.processes) f(pr.block);
+  for (auto& a : program.axiomBlocks) f(a);
+}
+inline std::size_t codeBlockCount(const Program& p) {
+  return 1 + p.functions.size() + p.rules.size() + p.processes.size() + p.axiomBlocks.size();
+}
 const char* sectionName(std::uint32_t tag);  // "?" for unknown tags
 
 inline constexpr char kMagic[4] = {'M', 'B', 'C', '1'};

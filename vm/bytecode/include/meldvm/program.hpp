@@ -49,12 +49,30 @@ enum IterFlags : std::uint32_t {
 // Flag bits of UPDATE.
 enum UpdateFlags : std::uint32_t { kUpdateMoveToBack = 1 };
 
+// Where instructions came from: from `pc` on (until the next entry), Program::sourceFiles[file],
+// 1-based `line`. For the derivation trees (why a fact exists) and messages; no effect on runs.
+struct SourceLine {
+  std::uint32_t pc = 0, file = 0, line = 0;
+  friend bool operator==(const SourceLine&, const SourceLine&) = default;
+};
+
 // A sequence of instructions with its register file and fact slots.
 struct CodeBlock {
   std::vector<std::uint32_t> code;
   std::vector<TypeId> registerTypes;  // one per register
   std::uint32_t slots = 0;            // fact slots used by loops
   std::string label;                  // for messages and the disassembly, e.g. the rule's source text
+  std::vector<SourceLine> lines;      // by increasing pc; empty when unknown (bytecode before v3)
+
+  // The source line of the instruction at `pc`, or nullptr.
+  const SourceLine* lineAt(std::uint32_t pc) const {
+    const SourceLine* found = nullptr;
+    for (const SourceLine& l : lines) {
+      if (l.pc > pc) break;
+      found = &l;
+    }
+    return found;
+  }
 };
 
 struct Rule {
@@ -100,7 +118,7 @@ struct SchedulingOptions {
   bool noInitialPriorities = false;  // `priority @no_initial_priorities.`
   bool hasNoPriority = false;        // `priority @no_priority P.`: P means "no priority"
   double noPriority = 0.0;
-  bool staticNodes = false;          // `priority @static.`
+  bool staticNodes = false;  // `priority @static.`
 };
 
 struct IndexRequest {
@@ -122,7 +140,8 @@ struct Program {
 
   // Initial nodes: internal id -> id in the source (§6.1).
   std::vector<std::int64_t> nodeSourceIds;
-  std::vector<std::string> strings;  // string constants (MOVS)
+  std::vector<std::string> strings;      // string constants (MOVS)
+  std::vector<std::string> sourceFiles;  // the files SourceLine::file indexes (as meldc named them)
   std::vector<Global> globals;
   CodeBlock globalsInit;  // computes the globals (SETGLOBAL), run once before any node runs
   std::vector<Function> functions;
