@@ -10,6 +10,7 @@
 #include "meldc/source.hpp"
 #include "meldvm/arith.hpp"
 #include "meldvm/bytecode.hpp"
+#include "meldvm/derivation_log.hpp"
 #include "meldvm/machine.hpp"
 #include "options.hpp"
 
@@ -79,6 +80,18 @@ int main(int argc, char** argv) {
   const double loadSeconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   const auto runStart = std::chrono::steady_clock::now();
   meldvm::Machine machine(*program, mo);
+  // Facts asked about are checked before the run: a typo fails at once.
+  std::vector<meldvm::FactAt> why;
+  for (const std::string& spec : options->why) {
+    try {
+      why.push_back(meldvm::parseFactSpec(spec, *program));
+    } catch (const std::invalid_argument& e) {
+      std::cerr << "meld: error: --why: " << e.what() << "\n";
+      return kExitUsage;
+    }
+  }
+  meldvm::DerivationLog derivations;
+  if (!why.empty()) machine.recordDerivations(&derivations);
   try {
     machine.run();
   } catch (const meldvm::RuntimeError& e) {
@@ -89,6 +102,16 @@ int main(int argc, char** argv) {
   const double wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - runStart).count();
   if (options->dump) machine.dump(std::cout);
   std::cout.flush();
+  int status = kExitOk;
+  for (std::size_t i = 0; i < why.size(); ++i) {
+    if (!meldvm::printWhy(std::cout, derivations, why[i])) {
+      std::cerr << "meld: no derivation of " << options->why[i]
+                << ": the run did not derive it (the node first, "
+                << "then the values as --dump prints them)\n";
+      status = kExitNoSuchFact;
+    }
+  }
+  std::cout.flush();
   if (options->stats) {
     const meldvm::MachineStats& s = machine.stats();
     std::fprintf(stderr,
@@ -98,6 +121,9 @@ int main(int argc, char** argv) {
                  (unsigned long long)s.factsSent, (unsigned long long)s.rulesFired,
                  (unsigned long long)s.nodeRuns, loadSeconds, wall,
                  wall > 0 ? double(s.factsDerived) / wall : 0.0, peakRssMb());
+    if (!why.empty())
+      std::fprintf(stderr, "derivations recorded: %zu (%.1f MB)\n", derivations.size(),
+                   double(derivations.bytesInUse()) / 1e6);
   }
-  return kExitOk;
+  return status;
 }

@@ -20,12 +20,16 @@ const char* usageText() {
          "  --max-steps N   stop with a run-time error after N steps: rule, persistent-rule\n"
          "                  and loop runs, linear facts derived, nodes created (for programs\n"
          "                  that may not terminate; default: no limit)\n"
+         "  --why FACT      after the run, print why FACT exists, like --why 'reach(@3, 3)' (the\n"
+         "                  node first, the values as --dump prints them): the rule that derived\n"
+         "                  it (FILE:LINE, the node it ran at) and the facts it matched, down to\n"
+         "                  the axioms (FILE:LINE); repeatable. Records derivations during the run\n"
          "  -- ARGS         program arguments, read by @arg1, @arg2, ...\n"
          "  --help          this text\n"
          "  --version       print the version\n"
          "\n"
          "exit status: 0 done, 1 compile errors, 2 bad command line, 3 bad bytecode,\n"
-         "4 run-time error\n";
+         "4 run-time error, 5 a --why fact that the run did not derive\n";
 }
 
 std::optional<Options> parseOptions(const std::vector<std::string>& args, std::string& error) {
@@ -47,6 +51,10 @@ std::optional<Options> parseOptions(const std::vector<std::string>& args, std::s
       o.dump = true;
     } else if (a == "--stats") {
       o.stats = true;
+    } else if (a == "--why") {
+      auto v = value("a fact like 'reach(@3, 3)'");
+      if (!v) return std::nullopt;
+      o.why.push_back(*v);
     } else if (a == "--help" || a == "-h") {
       o.help = true;
     } else if (a == "--version") {

@@ -15,6 +15,7 @@ enum ExitCode {
   kExitUsage = 2,
   kExitBadBytecode = 3,
   kExitRuntimeError = 4,
+  kExitNoSuchFact = 5,  // --why names a fact the run did not derive
 };
 
 struct Options {
@@ -28,6 +29,7 @@ struct Options {
   std::vector<std::string> programArgs;                      // after `--`: @arg1 ...
   std::uint64_t seed = 0;      // --seed: the random stream of randint & co. (0: the default one)
   std::uint64_t maxSteps = 0;  // --max-steps: rule and process runs allowed (0: no limit)
+  std::vector<std::string> why;  // --why FACT: print its derivation tree after the run
 };
 
 std::optional<Options> parseOptions(const std::vector<std::string>& args, std::string& error);

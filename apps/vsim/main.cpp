@@ -8,6 +8,7 @@
 #include <memory>
 #include <optional>
 
+#include "meldvm/derivation_log.hpp"
 #include "options.hpp"
 #include "progress.hpp"
 #include "report.hpp"
@@ -103,6 +104,17 @@ int runVsim(const Options& o) {
   streams.warnings = !o.quiet;
   Session session(o, streams);
   simcore::Simulation& sim = session.simulation();
+  // --why: the facts are checked before the run (a typo fails at once), derivations recorded.
+  std::vector<meldvm::FactAt> why;
+  meldvm::DerivationLog derivations;
+  for (const std::string& spec : o.why) {
+    try {
+      why.push_back(meldvm::parseFactSpec(spec, *session.meldProgram()));
+    } catch (const std::invalid_argument& e) {
+      throw Failure{kExitUsage, std::string("--why: ") + e.what()};
+    }
+  }
+  if (!why.empty()) session.meld()->recordDerivations(&derivations);
 
   std::optional<simcore::Trace> trace;
   if (o.trace) {
@@ -143,6 +155,15 @@ int runVsim(const Options& o) {
     session.meld()->dump(std::cout);
     std::cout.flush();
   }
+  for (std::size_t i = 0; i < why.size(); ++i) {
+    if (!meldvm::printWhy(std::cout, derivations, why[i]))
+      throw Failure{kExitRuntime, "--why: the run did not derive " + o.why[i] +
+                                      " (values as --dump prints them, then @BLOCK)"};
+  }
+  if (!why.empty() && o.stats)
+    report << "derivations     " << derivations.size() << " recorded, " << derivations.bytesInUse()
+           << " bytes\n";
+  std::cout.flush();
   if (json.wanted()) {
     writeJsonReport(json.stream(), sim, info);
     json.close();

@@ -25,6 +25,11 @@ options:
                         `meldc --robots`); the target's include file is found by `include`
   --dump                with a Meld program: print every block's final facts (the `meld --dump`
                         format) after the summary
+  --why FACT@BLOCK      with a Meld program: after the run, print why the fact exists on that
+                        block, like --why 'dist(2)@24' (values as --dump prints them): the rule
+                        (FILE:LINE, the block it ran at, the simulated time), the facts it matched,
+                        down to the axioms (FILE:LINE) and the sensed facts; a fact from a
+                        neighbour names the block that sent it. Repeatable
   --time-per-rule T     with a Meld program: simulated computing time of one rule firing (target
                         default: 10us Blinky/Smart Blocks, 1us Catoms); a node run's messages
                         leave after its rules' time
@@ -158,6 +163,8 @@ Options parseOptions(int argc, char** argv, bool worldRequired) {
       o.program = value();
     else if (arg == "--dump")
       flag(), o.dump = true;
+    else if (arg == "--why")
+      o.why.emplace_back(value());
     else if (arg == "--time-per-rule")
       o.timePerRule = parseTime("--time-per-rule", value());
     else if (arg == "--palette") {

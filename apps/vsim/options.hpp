@@ -40,6 +40,7 @@ struct Options {
   simcore::SimTime timePerRule = -1;      // --time-per-rule (negative: the VM's default)
   bool paletteLm = false;                 // --palette lm
   std::vector<std::string> includeDirs;   // -I for the Meld compiler
+  std::vector<std::string> why;           // --why FACT@BLOCK: print its derivation tree after the run
   std::string target;                     // --target: overrides the world's target= attribute
   std::optional<simcore::SimTime> until;  // --until; none = until the event queue is empty
   std::optional<std::uint64_t> seed;      // --seed; none = the world's seed, else 1

@@ -102,9 +102,9 @@ void Session::loadBlockProgram(const Options& o, const SessionStreams& streams) 
                        "no block code: give --code LIB.so or --program PROG.meld (or code=\"LIB.so\" "
                        "or program=\"PROG.meld\" in " +
                            o.world + ")"};
-  if (programPath.empty() && (o.dump || o.timePerRule >= 0 || !o.includeDirs.empty()))
+  if (programPath.empty() && (o.dump || o.timePerRule >= 0 || !o.includeDirs.empty() || !o.why.empty()))
     throw SessionError{kExitUsage,
-                       "--dump, --time-per-rule and -I go with a Meld program (--program, or "
+                       "--dump, --why, --time-per-rule and -I go with a Meld program (--program, or "
                        "program= in the world)"};
   if (!programPath.empty()) {
     try {

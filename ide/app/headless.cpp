@@ -11,6 +11,7 @@ namespace ide {
 
 int takeScreenshot(const IdeOptions& o) {
   SimController controller;
+  controller.setRecordDerivations(false);
   if (!controller.open(o.run)) {
     std::cerr << controller.diagnostics();
     const std::string& e = controller.error();

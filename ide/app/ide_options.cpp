@@ -44,7 +44,12 @@ IdeOptions parseIdeOptions(int argc, char** argv) {
       inlineValue = arg.substr(arg.find('=') + 1);
       hasInline = true;
     }
-    if (name != "--screenshot" && name != "--size" && name != "--frame-time") {
+    if (name == "--run") {
+      if (hasInline) throw vsim::UsageError("--run takes no value");
+      o.runAtOnce = true;
+      continue;
+    }
+    if (name != "--screenshot" && name != "--size" && name != "--frame-time" && name != "--select") {
       rest.push_back(argv[i]);
       continue;
     }
@@ -56,6 +61,13 @@ IdeOptions parseIdeOptions(int argc, char** argv) {
     } else if (name == "--size") {
       o.size = parseSize(value);
       sizeGiven = true;
+    } else if (name == "--select") {
+      const std::string v(value);
+      char* end = nullptr;
+      const unsigned long id = std::strtoul(v.c_str(), &end, 10);
+      if (v.empty() || *end || id >= 0xFFFFFFFFul)
+        throw vsim::UsageError("--select wants a block id, got '" + v + "'");
+      o.select = std::uint32_t(id);
     } else {
       o.frameTimes = parseFrames(value);
     }
@@ -75,6 +87,13 @@ const char* ideUsageText() {
 The IDE: the Meld program's editor, the 3D world and the inspector of the selected block side by
 side, with the console below. It runs exactly the run that vsim runs with the same options (same
 events, same fingerprint), in a thread of its own; the window draws snapshots of it.
+
+In the window:
+  --run                 start the run at once (at the speed chosen last time)
+  --select ID           show block ID in the inspector
+  --why FACT@BLOCK      record derivations, run, and show why the fact exists when the run
+                        ends, like --why 'dist(2)@10' (a click on a fact in the inspector does
+                        the same once Run > Record derivations is on)
 
 Pictures without a window:
   --screenshot OUT.png  run to --until T (or to the end), render the 3D view as it is then into

@@ -14,6 +14,8 @@ struct IdeOptions {
   std::string screenshot;  // --screenshot: render at --until (or the end) into this PNG and exit
   QSize size{1024, 768};   // --size WxH of the screenshot
   int frameTimes = 0;      // --frame-time N: also draw N frames offscreen and print the time per frame
+  bool runAtOnce = false;  // --run: start the run when the window opens
+  std::uint32_t select = 0xFFFFFFFFu;  // --select ID: the block the inspector shows
 };
 
 // Throws vsim::UsageError.

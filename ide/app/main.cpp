@@ -38,7 +38,10 @@ int main(int argc, char** argv) {
   QApplication::setApplicationName("vsim-ide");
   QApplication::setOrganizationName("meld-toolchain");
   if (!options.screenshot.empty()) return ide::takeScreenshot(options);
-  ide::MainWindow window(options.run);
+  ide::StartActions start;
+  start.run = options.runAtOnce;
+  start.select = options.select;
+  ide::MainWindow window(options.run, start);
   window.show();
   return app.exec();
 }

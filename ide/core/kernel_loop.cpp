@@ -38,7 +38,7 @@ SessionInfo describe(const vsim::Session& s) {
 }  // namespace
 
 KernelLoop::KernelLoop(const vsim::Options& options, std::uint64_t sessionId, std::function<void()> notify,
-                       std::ostream& diagnostics)
+                       std::ostream& diagnostics, bool recordDerivations)
     : sessionId_(sessionId), notify_(std::move(notify)) {
   vsim::SessionStreams streams;
   streams.programOutput = &consoleStream_;
@@ -49,6 +49,10 @@ KernelLoop::KernelLoop(const vsim::Options& options, std::uint64_t sessionId, st
   // a Meld program's output comes through programOutput).
   trace_.emplace(consoleStream_, simcore::parseTraceFilter("kinds=trace"), simcore::TraceFormat::Text);
   session_->simulation().addObserver(&*trace_);
+  if (recordDerivations && session_->meld()) {
+    derivations_ = std::make_unique<meldvm::DerivationLog>();
+    session_->meld()->recordDerivations(derivations_.get());
+  }
   publish();
   thread_ = std::thread([this] { threadMain(); });
 }
@@ -56,6 +60,8 @@ KernelLoop::KernelLoop(const vsim::Options& options, std::uint64_t sessionId, st
 KernelLoop::~KernelLoop() {
   post(Command{Command::Quit});
   thread_.join();
+  if (history_) session_->simulation().removeObserver(history_.get());
+  if (derivations_) session_->meld()->recordDerivations(nullptr);
 }
 
 void KernelLoop::post(Command c) {
@@ -131,6 +137,14 @@ bool KernelLoop::apply(const Command& c) {
       break;
     case Command::Select:
       selected_ = c.block;
+      followHistory();
+      break;
+    case Command::History:
+      historyWanted_ = c.on;
+      followHistory();
+      break;
+    case Command::Why:
+      answerWhy(c);
       break;
     case Command::Tap:
       // A tap after the end starts the run again (VisibleSim lets one tap a block at any time).
@@ -214,6 +228,11 @@ void KernelLoop::publish() {
     snap->alive[b] = world.isAlive(b);
   }
   snap->selected = details(selected_);
+  if (history_) {
+    history_->flush();
+    snap->selected.history.assign(history_->entries().begin(), history_->entries().end());
+  }
+  snap->why = why_;
   {
     std::lock_guard lock(mutex_);
     latest_ = std::move(snap);
@@ -222,6 +241,46 @@ void KernelLoop::publish() {
   lastPublish_ = Clock::now();
   snapshotWanted_.store(false, std::memory_order_relaxed);
   if (notify_) notify_();
+}
+
+void KernelLoop::followHistory() {
+  simcore::Simulation& sim = session_->simulation();
+  const bool wanted = historyWanted_ && selected_ < sim.world().blockCount();
+  if (history_ && (!wanted || history_->block() != selected_)) {
+    sim.removeObserver(history_.get());
+    history_.reset();
+  }
+  if (wanted && !history_) {
+    history_ = std::make_unique<BlockHistory>(*session_, selected_);
+    sim.addObserver(history_.get());
+  }
+}
+
+void KernelLoop::answerWhy(const Command& c) {
+  auto r = std::make_shared<WhyResult>();
+  r->request = c.request;
+  r->block = c.block;
+  r->fact = c.fact;
+  if (c.block == simcore::kNoBlock && session_->meld()) {  // a spec as the user typed it
+    try {
+      const meldvm::FactAt f = meldvm::parseFactSpec(c.fact, *session_->meldProgram());
+      r->block = f.node;
+      r->fact = f.text;
+    } catch (const std::invalid_argument& e) {
+      r->error = e.what();
+      why_ = std::move(r);
+      return;
+    }
+  }
+  if (!session_->meld())
+    r->error = "Only the facts of a Meld program have derivations.";
+  else if (!derivations_)
+    r->error = "Derivations are not recorded: turn on Run > Record derivations (the run starts again).";
+  else
+    r->lines = meldvm::whyTree(*derivations_, meldvm::FactAt{meldvm::NodeId(r->block), r->fact});
+  if (r->error.empty() && r->lines.empty())
+    r->error = "No record of " + r->fact + " on block " + std::to_string(r->block) + ".";
+  why_ = std::move(r);
 }
 
 BlockDetails KernelLoop::details(simcore::BlockId id) {

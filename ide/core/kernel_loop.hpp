@@ -14,6 +14,7 @@
 #include <thread>
 #include <vector>
 
+#include "block_history.hpp"
 #include "console_buffer.hpp"
 #include "session.hpp"
 #include "session_info.hpp"
@@ -23,21 +24,25 @@
 namespace ide {
 
 struct Command {
-  enum Kind { Run, Pause, Step, Select, Tap, Trace, Quit };
+  enum Kind { Run, Pause, Step, Select, Tap, Trace, History, Why, Quit };
   explicit Command(Kind k) : kind(k) {}
   Kind kind;
   double speed = 0;                                 // Run: simulated s per wall s; 0 = as fast as possible
   simcore::SimTime until = simcore::kTimeInfinity;  // Run: stop (paused) at this time
   simcore::BlockId block = simcore::kNoBlock;       // Select, Tap
   simcore::TraceFilter filter;                      // Trace
+  bool on = false;                                  // History
+  std::string fact;                                 // Why: the fact as the dump prints it
+  std::uint64_t request = 0;                        // Why
 };
 
 class KernelLoop {
  public:
   // Builds the session (on the caller's thread; throws vsim::SessionError, compiler messages to
   // `diagnostics`), then starts the thread, paused.
+  // `recordDerivations`: the VM notes where every fact comes from, for Why commands.
   KernelLoop(const vsim::Options& options, std::uint64_t sessionId, std::function<void()> notify,
-             std::ostream& diagnostics);
+             std::ostream& diagnostics, bool recordDerivations);
   ~KernelLoop();  // stops and joins the thread
 
   const SessionInfo& info() const { return info_; }
@@ -55,12 +60,18 @@ class KernelLoop {
   void finishIfOver();
   void publish();
   BlockDetails details(simcore::BlockId id);
+  void followHistory();  // the history observer follows the selection (or goes)
+  void answerWhy(const Command& c);
 
   ConsoleBuffer console_;
   ConsoleStream consoleStream_{console_};
   std::unique_ptr<vsim::Session> session_;
   SessionInfo info_;
   std::optional<simcore::Trace> trace_;
+  std::unique_ptr<BlockHistory> history_;
+  bool historyWanted_ = false;
+  std::unique_ptr<meldvm::DerivationLog> derivations_;
+  std::shared_ptr<const WhyResult> why_;
   std::uint64_t sessionId_;
   std::function<void()> notify_;
 

@@ -34,8 +34,9 @@ bool SimController::open(const vsim::Options& options) {
   diagnostics_.clear();
   std::ostringstream diagnostics;
   try {
-    loop_ = std::make_unique<KernelLoop>(options_, ++sessionCount_, notify_, diagnostics);
+    loop_ = std::make_unique<KernelLoop>(options_, ++sessionCount_, notify_, diagnostics, recordDerivations_);
     info_ = loop_->info();
+    if (history_) setHistory(true);
   } catch (const vsim::SessionError& e) {
     openError_ = e.message;
   } catch (const std::exception& e) {  // out of memory building a huge world, ...
@@ -68,6 +69,24 @@ void SimController::select(simcore::BlockId block) {
   Command c{Command::Select};
   c.block = block;
   loop_->post(c);
+}
+
+void SimController::setHistory(bool on) {
+  history_ = on;
+  if (!loop_) return;
+  Command c{Command::History};
+  c.on = on;
+  loop_->post(c);
+}
+
+std::uint64_t SimController::why(simcore::BlockId block, const std::string& fact) {
+  if (!loop_) return 0;
+  Command c{Command::Why};
+  c.block = block;
+  c.fact = fact;
+  c.request = ++whyRequests_;
+  loop_->post(c);
+  return c.request;
 }
 
 void SimController::tap(simcore::BlockId block) {

@@ -51,6 +51,18 @@ class SimController {
   void pause();
   void step();
   void select(simcore::BlockId block);
+  // The selected block's history (facts gained and lost, messages) in its snapshots; kept across
+  // restarts. Off: nothing is recorded.
+  void setHistory(bool on);
+  // Whether the next open() makes the VM record derivations (why a fact exists).
+  void setRecordDerivations(bool on) { recordDerivations_ = on; }
+  bool recordsDerivations() const { return recordDerivations_; }
+  // Asks why `fact` (as the dump prints it, like "!dist(2)") exists on `block`; the answer comes in
+  // a later snapshot's `why` with the returned request number.
+  std::uint64_t why(simcore::BlockId block, const std::string& fact);
+  // The same for a fact as a user types it ("dist(2)@10", "!dist(@10, 2)"): the answer names the
+  // block (or says what is wrong with the text).
+  std::uint64_t why(const std::string& spec) { return why(simcore::kNoBlock, spec); }
   void tap(simcore::BlockId block);
   // The console's trace filter (vsim --trace syntax; "" = the programs' own trace lines only).
   // Throws simcore::TraceFilterError for a bad filter.
@@ -72,7 +84,8 @@ class SimController {
   vsim::Options options_;
   SessionInfo info_;
   std::string openError_, diagnostics_;
-  std::uint64_t sessionCount_ = 0;
+  std::uint64_t sessionCount_ = 0, whyRequests_ = 0;
+  bool history_ = false, recordDerivations_ = false;
   std::unique_ptr<KernelLoop> loop_;
 };
 

@@ -4,9 +4,11 @@
 
 #include <array>
 #include <cstdint>
+#include <memory>
 #include <string>
 #include <vector>
 
+#include "meldvm/derivation_log.hpp"
 #include "simcore/lattice.hpp"
 #include "simcore/time.hpp"
 #include "simcore/world.hpp"
@@ -27,14 +29,29 @@ struct FactGroup {
   std::vector<std::string> lines;  // as `--dump` prints them, sorted
 };
 
+struct HistoryEntry {
+  simcore::SimTime time = 0;
+  std::string text;  // "+ !dist(2)", "- tap()", "sent 9 bytes on face top to block 3 ...", ...
+};
+
+// Why a fact exists, as the kernel found it (meldvm::whyTree) for the last fact asked about.
+struct WhyResult {
+  std::uint64_t request = 0;  // SimController::why's number
+  simcore::BlockId block = simcore::kNoBlock;
+  std::string fact;                    // as the dump prints it
+  std::vector<meldvm::WhyLine> lines;  // empty: `error` says why
+  std::string error;
+};
+
 struct BlockDetails {
   simcore::BlockId id = simcore::kNoBlock;  // kNoBlock: nothing selected
   simcore::Cell cell;
   std::uint32_t color = 0;
   bool alive = false, moving = false;
   std::vector<std::pair<std::string, simcore::BlockId>> neighbors;  // face name, block (or kNoBlock)
-  std::vector<FactGroup> facts;  // Meld programs: the block's node, grouped as the dump
-  std::string info;              // C BlockCodes: the text of the info callback
+  std::vector<FactGroup> facts;       // Meld programs: the block's node, grouped as the dump
+  std::string info;                   // C BlockCodes: the text of the info callback
+  std::vector<HistoryEntry> history;  // while the inspector asks for it (SimController::setHistory)
 };
 
 struct WorldSnapshot {
@@ -54,6 +71,7 @@ struct WorldSnapshot {
   std::vector<std::uint32_t> colors;
   std::vector<std::uint8_t> alive;
   BlockDetails selected;
+  std::shared_ptr<const WhyResult> why;  // the last answer of SimController::why, if any
 };
 
 }  // namespace ide

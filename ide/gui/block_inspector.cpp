@@ -1,13 +1,17 @@
 #include "block_inspector.hpp"
 
+#include <QCheckBox>
 #include <QHeaderView>
 #include <QLabel>
 #include <QLineEdit>
+#include <QListWidget>
 #include <QPlainTextEdit>
 #include <QScrollBar>
 #include <QSet>
+#include <QTabWidget>
 #include <QTreeWidget>
 #include <QVBoxLayout>
+#include <functional>
 
 namespace ide {
 
@@ -32,7 +36,11 @@ BlockInspector::BlockInspector(QWidget* parent)
       header_(new QLabel),
       filter_(new QLineEdit),
       facts_(new QTreeWidget),
-      infoText_(new QPlainTextEdit) {
+      infoText_(new QPlainTextEdit),
+      tabs_(new QTabWidget),
+      why_(new QTreeWidget),
+      history_(new QListWidget),
+      recordHistory_(new QCheckBox("Record the history of the selected block")) {
   auto* layout = new QVBoxLayout(this);
   layout->setContentsMargins(4, 4, 4, 4);
   header_->setTextFormat(Qt::RichText);
@@ -46,9 +54,31 @@ BlockInspector::BlockInspector(QWidget* parent)
   infoText_->setReadOnly(true);
   layout->addWidget(header_);
   layout->addWidget(filter_);
-  layout->addWidget(facts_, 1);
+  layout->addWidget(facts_, 2);
   layout->addWidget(infoText_, 1);
-  connect(filter_, &QLineEdit::textChanged, this, [this] { rebuildFacts(); });
+  why_->setHeaderLabels({"fact", "how it came"});
+  why_->setToolTip("Click a fact above to see why it exists; click a rule or axiom to open it");
+  auto* historyPage = new QWidget;
+  auto* historyLayout = new QVBoxLayout(historyPage);
+  historyLayout->setContentsMargins(0, 0, 0, 0);
+  historyLayout->addWidget(recordHistory_);
+  historyLayout->addWidget(history_);
+  tabs_->addTab(why_, "Why");
+  tabs_->addTab(historyPage, "History");
+  layout->addWidget(tabs_, 2);
+  connect(filter_, &QLineEdit::textChanged, this, [this] {
+    rebuildFacts();
+    rebuildHistory();
+  });
+  connect(facts_, &QTreeWidget::itemClicked, this, [this](QTreeWidgetItem* item) {
+    if (item->parent() && shown_.id != simcore::kNoBlock) Q_EMIT factChosen(shown_.id, item->text(0));
+  });
+  connect(why_, &QTreeWidget::itemClicked, this, [this](QTreeWidgetItem* item) {
+    const QString where = item->data(0, Qt::UserRole).toString();
+    const auto colon = where.lastIndexOf(':');
+    if (colon > 0) Q_EMIT sourceClicked(where.left(colon), where.mid(colon + 1).toInt());
+  });
+  connect(recordHistory_, &QCheckBox::toggled, this, &BlockInspector::historyToggled);
   setSession(SessionInfo{});
 }
 
@@ -57,6 +87,10 @@ void BlockInspector::setSession(const SessionInfo& info) {
   shown_ = BlockDetails{};
   facts_->setVisible(info.meld);
   filter_->setVisible(info.meld);
+  tabs_->setTabEnabled(0, info.meld);
+  why_->clear();
+  history_->clear();
+  shownWhy_ = 0;
   infoText_->setVisible(!info.meld && !info.codePath.empty());
   show(BlockDetails{});
 }
@@ -84,8 +118,86 @@ void BlockInspector::show(const BlockDetails& d) {
   }
   infoText_->setPlainText(QString::fromStdString(d.info));
   const bool factsChanged = d.id != shown_.id || !sameFacts(d, shown_);
+  const bool historyChanged = d.id != shown_.id || d.history.size() != shown_.history.size() ||
+                              (!d.history.empty() && d.history.back().text != shown_.history.back().text);
   shown_ = d;
   if (factsChanged) rebuildFacts();
+  if (historyChanged) rebuildHistory();
+}
+
+void BlockInspector::showWhy(const WhyResult& why) {
+  if (why.request == shownWhy_) return;
+  shownWhy_ = why.request;
+  why_->clear();
+  tabs_->setCurrentIndex(0);
+  if (why.lines.empty()) {
+    why_->addTopLevelItem(
+        new QTreeWidgetItem({QString::fromStdString(why.fact), QString::fromStdString(why.error)}));
+    return;
+  }
+  std::vector<QTreeWidgetItem*> parents;  // by depth
+  for (const meldvm::WhyLine& l : why.lines) {
+    auto* item = new QTreeWidgetItem({QString::fromStdString(l.fact), QString::fromStdString(l.how)});
+    item->setData(0, Qt::UserRole, QString::fromStdString(l.where));
+    item->setToolTip(0, QString::fromStdString(l.fact + "\n" + l.how));
+    item->setToolTip(
+        1, QString::fromStdString(l.how) +
+               (l.where.empty() ? QString() : "\nClick to open " + QString::fromStdString(l.where)));
+    parents.resize(std::size_t(l.depth));
+    if (parents.empty())
+      why_->addTopLevelItem(item);
+    else
+      parents.back()->addChild(item);
+    parents.push_back(item);
+  }
+  why_->expandAll();
+  why_->resizeColumnToContents(0);
+}
+
+void BlockInspector::rebuildHistory() {
+  history_->clear();
+  const QString filter = filter_->text();
+  for (const HistoryEntry& e : shown_.history) {
+    const QString line = QString("%1  %2").arg(QString::fromStdString(simcore::formatTime(e.time)),
+                                               QString::fromStdString(e.text));
+    if (filter.isEmpty() || line.contains(filter, Qt::CaseInsensitive)) history_->addItem(line);
+  }
+  history_->scrollToBottom();
+}
+
+QStringList BlockInspector::whyRows() const {
+  QStringList rows;
+  std::function<void(const QTreeWidgetItem*, int)> walk = [&](const QTreeWidgetItem* item, int depth) {
+    rows << QString(depth * 2, ' ') + item->text(0) + "    " + item->text(1);
+    for (int i = 0; i < item->childCount(); ++i) walk(item->child(i), depth + 1);
+  };
+  for (int i = 0; i < why_->topLevelItemCount(); ++i) walk(why_->topLevelItem(i), 0);
+  return rows;
+}
+
+QStringList BlockInspector::historyLines() const {
+  QStringList lines;
+  for (int i = 0; i < history_->count(); ++i) lines << history_->item(i)->text();
+  return lines;
+}
+
+bool BlockInspector::chooseFact(const QString& line) {
+  for (int i = 0; i < facts_->topLevelItemCount(); ++i) {
+    QTreeWidgetItem* group = facts_->topLevelItem(i);
+    for (int j = 0; j < group->childCount(); ++j)
+      if (group->child(j)->text(0) == line) {
+        facts_->setCurrentItem(group->child(j));
+        Q_EMIT facts_->itemClicked(group->child(j), 0);
+        return true;
+      }
+  }
+  return false;
+}
+
+void BlockInspector::setHistoryRecorded(bool on) { recordHistory_->setChecked(on); }
+
+void BlockInspector::clickFirstWhyRow() {
+  if (why_->topLevelItemCount() > 0) Q_EMIT why_->itemClicked(why_->topLevelItem(0), 0);
 }
 
 void BlockInspector::rebuildFacts() {

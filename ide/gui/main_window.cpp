@@ -40,7 +40,7 @@ const std::pair<const char*, double> kSpeeds[] = {{"0.1×", 0.1},   {"1× (real 
 
 }  // namespace
 
-MainWindow::MainWindow(const vsim::Options& options, QWidget* parent)
+MainWindow::MainWindow(const vsim::Options& options, const StartActions& start, QWidget* parent)
     : QMainWindow(parent),
       options_(options),
       editor_(new CodeEditor),
@@ -64,15 +64,19 @@ MainWindow::MainWindow(const vsim::Options& options, QWidget* parent)
 
   connect(timer_, &QTimer::timeout, this, &MainWindow::poll);
   timer_->start(33);
-  if (!options_.world.empty()) {
-    if (!options_.program.empty()) {
-      QString error;
-      if (!editor_->load(QString::fromStdString(options_.program), error)) console_->appendMessage(error);
-    }
-    restart();
-  } else {
+  if (options_.world.empty()) {
     showSession();
+    return;
   }
+  if (!options_.program.empty()) {
+    QString error;
+    if (!editor_->load(QString::fromStdString(options_.program), error)) console_->appendMessage(error);
+  }
+  whyAtEnd_ = !options_.why.empty();
+  controller_.setRecordDerivations(whyAtEnd_);
+  if (!restart()) return;
+  if (start.select != simcore::kNoBlock) selectBlock(start.select);
+  if (start.run || whyAtEnd_) controller_.run(chosenSpeed());
 }
 
 MainWindow::~MainWindow() = default;
@@ -99,10 +103,21 @@ void MainWindow::buildLayout() {
   dock->setObjectName("console");
   dock->setWidget(console_);
   addDockWidget(Qt::BottomDockWidgetArea, dock);
+  resizeDocks({dock}, {180}, Qt::Vertical);
   statusBar()->addWidget(status_, 1);
   resize(1400, 900);
 
   connect(view_, &WorldView::blockClicked, this, &MainWindow::selectBlock);
+  connect(inspector_, &BlockInspector::factChosen, this,
+          [this](std::uint32_t block, const QString& fact) { controller_.why(block, fact.toStdString()); });
+  connect(inspector_, &BlockInspector::historyToggled, this, [this](bool on) { controller_.setHistory(on); });
+  connect(inspector_, &BlockInspector::sourceClicked, this, [this](const QString& file, int line) {
+    if (QFileInfo(file).canonicalFilePath() != QFileInfo(editor_->path()).canonicalFilePath()) {
+      QString error;
+      if (!editor_->load(file, error)) return console_->appendMessage(error);
+    }
+    editor_->goTo(line, 1);
+  });
   connect(diagnostics_, &QListWidget::itemClicked, this, [this](QListWidgetItem* item) {
     const QString file = item->data(Qt::UserRole).toString();
     if (QFileInfo(file).canonicalFilePath() != QFileInfo(editor_->path()).canonicalFilePath()) {
@@ -176,6 +191,14 @@ void MainWindow::buildActions() {
   again->setToolTip("Compile the program and run the world again from the start");
   connect(again, &QAction::triggered, this, [this] { restart(); });
   both(again);
+  run->addSeparator();
+  QAction* record = run->addAction("Record derivations (why a fact exists)");
+  record->setCheckable(true);
+  record->setToolTip("The VM notes where every fact comes from; the run starts again");
+  connect(record, &QAction::toggled, this, [this](bool on) {
+    controller_.setRecordDerivations(on);
+    restart();
+  });
   for (const auto& [name, value] : kSpeeds) speed_->addItem(name, value);
   speed_->setToolTip("Simulated time per wall time");
   bar->addWidget(speed_);
@@ -340,6 +363,14 @@ void MainWindow::poll() {
   shownSession_ = snap->session;
   view_->setSnapshot(snap);
   if (snap->selected.id == selected_) inspector_->show(snap->selected);
+  if (snap->why) {
+    if (snap->why->block != selected_ && snap->why->block != simcore::kNoBlock) selectBlock(snap->why->block);
+    inspector_->showWhy(*snap->why);
+  }
+  if (whyAtEnd_ && (snap->state == RunState::Finished || snap->state == RunState::Failed)) {
+    whyAtEnd_ = false;
+    for (const std::string& spec : options_.why) controller_.why(spec);
+  }
   status_->setText(statusText());
   if (failedNow && !snap->error.empty())
     console_->appendMessage("Run failed: " + QString::fromStdString(snap->error));

@@ -23,10 +23,18 @@ class CodeEditor;
 class ConsolePanel;
 class WorldView;
 
+// What the window does once the run is open (vsim-ide's --run and --select; vsim's --why makes it
+// record derivations and show that fact's tree when the run ends).
+struct StartActions {
+  bool run = false;
+  std::uint32_t select = 0xFFFFFFFFu;
+};
+
 class MainWindow : public QMainWindow {
   Q_OBJECT
  public:
-  explicit MainWindow(const vsim::Options& options, QWidget* parent = nullptr);
+  explicit MainWindow(const vsim::Options& options, const StartActions& start = {},
+                      QWidget* parent = nullptr);
   ~MainWindow() override;
 
   // The parts, for tests.
@@ -80,6 +88,7 @@ class MainWindow : public QMainWindow {
   std::uint32_t selected_ = 0xFFFFFFFFu;
   std::uint64_t shownSerial_ = 0, shownSession_ = 0;
   bool drawingFastest_ = false;  // the last snapshot shown was of a running run
+  bool whyAtEnd_ = false;        // --why: ask once the run is over
 };
 
 }  // namespace ide

@@ -23,7 +23,8 @@ out vec3 vWorld;
 out vec3 vColor;
 flat out float vFlags;
 void main() {
-  vec3 world = iPosition + aPosition * uScale;
+  // The selected block is drawn a little larger, so that its rim shows around it.
+  vec3 world = iPosition + aPosition * uScale * (iFlags > 0.5 && iFlags < 1.5 ? 1.12 : 1.0);
   vNormal = normalize(aNormal / uScale);
   vWorld = world;
   vColor = iColor.rgb;
@@ -54,8 +55,14 @@ void main() {
   vec3 color = vColor * min(fill + 0.75 * diffuse, 1.15);
   vec3 toEye = normalize(uEye - vWorld);
   float rim = pow(1.0 - max(dot(n, toEye), 0.0), 2.0);
-  if (vFlags > 1.5) color = mix(color, vec3(1.0), 0.25 + 0.5 * rim);
-  else if (vFlags > 0.5) color = mix(color, vec3(1.0, 0.85, 0.1), 0.35 + 0.65 * rim);
+  if (vFlags > 1.5) {
+    color = mix(color, vec3(1.0), 0.25 + 0.5 * rim);
+  } else if (vFlags > 0.5) {
+    // A rim that contrasts with the block's own colour: dark on light blocks, white on dark ones.
+    float luminance = dot(vColor, vec3(0.3, 0.59, 0.11));
+    vec3 rimColor = luminance > 0.5 ? vec3(0.05) : vec3(1.0);
+    color = mix(color, rimColor, clamp(0.4 + 1.6 * rim, 0.0, 0.9));
+  }
   fragColor = vec4(color, 1.0);
 }
 )";

@@ -176,6 +176,24 @@ case_world_program() {
   has "$OUT" "meld-vm"
 }
 
+case_why() {
+  # Why a fact exists on a block (issue 11, point 6): the gradient's distance 2 on block 10 came
+  # from block 17 as a message, which got distance 1 from the tapped block 24; the tree goes
+  # down to the tap and the neighbor facts the blocks sensed, each rule step at its FILE:LINE
+  # (the world is named relative to the repository: stable paths).
+  cd "$SRC" || fail "no repository"
+  run 0 examples/worlds/meld-gradient-tap.xml --why 'dist(2)@10' --quiet
+  golden why-gradient.txt "$OUT"
+  run 0 examples/worlds/meld-gradient-tap.xml --why '!dist(@10, 2)' --quiet
+  golden why-gradient.txt "$OUT"
+  run 1 examples/worlds/meld-gradient-tap.xml --why 'dist(5)@10' --quiet
+  has "$ERR" "the run did not derive dist(5)@10"
+  run 2 examples/worlds/meld-gradient-tap.xml --why 'nosuch(1)@3'
+  has "$ERR" "--why: the program has no predicate 'nosuch'"
+  run 2 "$WORLDS/color-flood.xml" --code "$FLOOD" --why 'dist(1)@3'
+  has "$ERR" "--why, --time-per-rule and -I go with a Meld program"
+}
+
 case_visiblesim_world() {
   # VisibleSim's forms (vs root, gridsize, bitmap rows, blockBox, #RRGGBB) with a Meld program
   # named by the world: 13 blocks; the 12 connected ones elect id 11 (blue, 11 % 6 = 5), block 12

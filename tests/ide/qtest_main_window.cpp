@@ -164,6 +164,45 @@ class MainWindowTest : public QObject {
     w.poll();
   }
 
+  void whyTreeOfAFactAndItsRule() {
+    ide::MainWindow w(gradientOptions());
+    w.controller().setRecordDerivations(true);
+    QVERIFY(w.restart());
+    w.controller().run();
+    QTRY_VERIFY_WITH_TIMEOUT(finished(w), 30000);
+    w.selectBlock(10);
+    QTRY_VERIFY_WITH_TIMEOUT((w.poll(), w.inspector()->factLines().contains("!dist(2)")), 10000);
+    QVERIFY(w.inspector()->chooseFact("!dist(2)"));
+    QTRY_VERIFY_WITH_TIMEOUT((w.poll(), !w.inspector()->whyRows().isEmpty()), 10000);
+    // The tree vsim --why prints (tests/cli/expected), with the program named as the IDE got it.
+    QFile expectedFile(kSource + "/tests/cli/expected/why-gradient.txt");
+    QVERIFY(expectedFile.open(QIODevice::ReadOnly));
+    QString expected = QString::fromUtf8(expectedFile.readAll());
+    expected.replace("examples/meld/gradient-tap.meld", kSource + "/examples/meld/gradient-tap.meld");
+    QCOMPARE(w.inspector()->whyRows().join('\n') + '\n', expected);
+    // The rule of the fact: a click opens the program at its line (23).
+    w.editor()->goTo(1, 1);
+    w.inspector()->clickFirstWhyRow();
+    QCOMPARE(w.editor()->textCursor().blockNumber(), 22);
+  }
+
+  void historyOfTheSelectedBlock() {
+    ide::MainWindow w(gradientOptions());
+    w.selectBlock(24);
+    w.inspector()->setHistoryRecorded(true);
+    w.controller().run();
+    QTRY_VERIFY_WITH_TIMEOUT(finished(w), 30000);
+    QTRY_VERIFY_WITH_TIMEOUT((w.poll(), w.inspector()->historyLines().size() > 5), 10000);
+    const QStringList lines = w.inspector()->historyLines();
+    QVERIFY(lines.filter("event tap").size() == 1);
+    QVERIFY(lines.filter("+ !dist(0)").size() == 1);
+    QVERIFY(lines.filter("+ !dist(0)")[0].startsWith("1.000000000 s"));
+    w.inspector()->setFilter("dist");
+    QVERIFY(!w.inspector()->historyLines().isEmpty());
+    for (const QString& l : w.inspector()->historyLines()) QVERIFY(l.contains("dist"));
+    w.inspector()->setHistoryRecorded(false);
+  }
+
   void highlighterColoursMeld() {
     ide::CodeEditor editor;
     editor.setPlainText("type linear go(node). // c\n/* a\nb */ !go(X, 3) -o go(X, \"s\").\n");

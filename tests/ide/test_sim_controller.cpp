@@ -3,9 +3,11 @@
 // input is an error, never a crash. Built under the tsan preset too: the GUI thread's side of
 // every exchange is exercised here.
 #define BOOST_TEST_MODULE ide_sim_controller
+#include <algorithm>
 #include <boost/test/unit_test.hpp>
 #include <chrono>
 #include <fstream>
+#include <iterator>
 #include <sstream>
 #include <thread>
 
@@ -193,4 +195,73 @@ BOOST_AUTO_TEST_CASE(the_console_gets_the_trace_with_vsims_filter) {
   BOOST_TEST(lines[0].find("tap") != std::string::npos);
   BOOST_TEST(lines[0].find("24") != std::string::npos);
   BOOST_TEST(c.takeConsoleLines().empty());
+}
+
+BOOST_AUTO_TEST_CASE(the_selected_blocks_history_is_recorded_only_when_asked) {
+  ide::SimController c;
+  BOOST_REQUIRE(c.open(gradientOptions()));
+  c.select(17);
+  c.run();
+  auto end = waitOver(c);
+  BOOST_REQUIRE(end);
+  BOOST_TEST(end->selected.history.empty());  // not asked: nothing recorded
+
+  c.setHistory(true);
+  BOOST_REQUIRE(c.restart());
+  c.select(17);
+  c.run();
+  end = waitOver(c);
+  BOOST_REQUIRE(end);
+  const std::vector<ide::HistoryEntry>& h = end->selected.history;
+  BOOST_REQUIRE(!h.empty());
+  auto has = [&](const std::string& part) {
+    return std::any_of(h.begin(), h.end(),
+                       [&](const ide::HistoryEntry& e) { return e.text.find(part) != e.text.npos; });
+  };
+  BOOST_TEST(has("+ !dist(1)"));             // its distance, from block 24 (tapped at 1 s)
+  BOOST_TEST(has("+ !setColor2") == false);  // actions are not facts of the node
+  BOOST_TEST(has("received a message on face"));
+  BOOST_TEST(has("sent "));
+  BOOST_TEST(has("event start"));
+  for (std::size_t i = 1; i < h.size(); ++i) BOOST_TEST(h[i - 1].time <= h[i].time);
+  const auto dist =
+      std::find_if(h.begin(), h.end(), [](const ide::HistoryEntry& e) { return e.text == "+ !dist(1)"; });
+  BOOST_TEST(dist->time >= simcore::kSecond);  // after the tap
+}
+
+BOOST_AUTO_TEST_CASE(why_a_fact_exists_is_vsims_tree) {
+  ide::SimController c;
+  BOOST_REQUIRE(c.open(gradientOptions()));
+  c.run();
+  BOOST_REQUIRE(waitOver(c));
+  std::uint64_t asked = c.why(10, "!dist(2)");
+  auto answered = [&](const ide::WorldSnapshot& s) { return s.why && s.why->request == asked; };
+  auto s = c.waitFor(answered, 30s);
+  BOOST_REQUIRE(s);
+  BOOST_TEST(s->why->lines.empty());
+  BOOST_TEST(s->why->error.find("Record derivations") != std::string::npos);
+
+  c.setRecordDerivations(true);
+  BOOST_REQUIRE(c.restart());
+  c.run();
+  BOOST_REQUIRE(waitOver(c));
+  asked = c.why(10, "!dist(2)");
+  s = c.waitFor(answered, 30s);
+  BOOST_REQUIRE(s);
+  std::string tree;
+  for (const meldvm::WhyLine& l : s->why->lines)
+    tree += std::string(std::size_t(l.depth) * 2, ' ') + l.fact + "    " + l.how + "\n";
+  // The tree `vsim --why` prints for the same fact (tests/cli/expected), the world named alike.
+  std::ifstream expectedFile(kSource + "/tests/cli/expected/why-gradient.txt");
+  std::string expected((std::istreambuf_iterator<char>(expectedFile)), std::istreambuf_iterator<char>());
+  const std::string relative = "examples/meld/gradient-tap.meld", absolute = kSource + "/" + relative;
+  for (std::size_t at = 0; (at = expected.find(relative, at)) != std::string::npos; at += absolute.size())
+    expected.replace(at, relative.size(), absolute);
+  BOOST_TEST(tree == expected);
+  BOOST_TEST(s->why->lines[0].where == absolute + ":23");
+
+  asked = c.why(10, "!dist(7)");
+  s = c.waitFor(answered, 30s);
+  BOOST_REQUIRE(s);
+  BOOST_TEST(s->why->error.find("No record of !dist(7) on block 10") != std::string::npos);
 }

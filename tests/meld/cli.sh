@@ -35,6 +35,22 @@ case_max_steps() {
   has "$ERR" "stopped after 1000 steps (the step limit"
 }
 
+case_why() {
+  # The derivation tree of a fact (issue 11, point 6): equal to the expected tree, each rule step
+  # and axiom at its FILE:LINE (the program is named relative to its folder: stable paths).
+  cd "$(dirname "$0")/programs" || fail "no programs folder"
+  run 0 why-reach.meld --why 'reach(@0, 3)' --why '!edge(@2,@1)'
+  cmp -s "$OUT" why-reach.expected || { diff why-reach.expected "$OUT"; fail "the tree differs from why-reach.expected"; }
+  run 5 why-reach.meld --why 'reach(@0, 7)'
+  has "$ERR" "no derivation of reach(@0, 7): the run did not derive it"
+  run 2 why-reach.meld --why 'nosuch(@0, 7)'
+  has "$ERR" "the program has no predicate 'nosuch'"
+  run 2 why-reach.meld --why 'reach(0, 7)'
+  has "$ERR" "the first argument is the node"
+  run 2 why-reach.meld --why
+  has "$ERR" "needs a fact"
+}
+
 case_aggregate_cascade() {
   # Passing values of sum aggregates must not cascade (issue 10, point 11): a few thousand steps,
   # where without the established VM's cancellation rule it took over two million.

@@ -5,6 +5,8 @@
 
 #include "meldvm/arith.hpp"
 #include "meldvm/bytecode_internal.hpp"
+#include "meldvm/derivation_log.hpp"
+#include "meldvm/dump.hpp"
 #include "meldvm/machine.hpp"
 #include "meldvm/value_ops.hpp"
 
@@ -123,6 +125,31 @@ Value Interpreter::retained(const Frame& f, std::uint32_t r) const {
 }
 
 void Interpreter::consumeSlot(const Slot& sl) { machine_.consumed(sl.node, sl.pred, sl.fact); }
+
+void Interpreter::noteDerivation(const Frame& f, std::uint32_t pc, NodeId node, PredId p, const Value* args) {
+  Derivation d;
+  const CodeBlock* b = f.block;
+  const bool axiom = b == &program_.rules.front().block ||
+                     (!program_.axiomBlocks.empty() && b >= &program_.axiomBlocks.front() &&
+                      b <= &program_.axiomBlocks.back());
+  d.kind = axiom ? Derivation::Kind::Axiom : Derivation::Kind::Rule;
+  if (const SourceLine* l = b->lineAt(pc))
+    d.where = program_.sourceFiles[l->file] + ":" + std::to_string(l->line);
+  d.rule = b->label.substr(0, b->label.find('\n'));
+  d.at = f.host;
+  DerivationLog& log = *machine_.derivations_;
+  if (log.clock) d.time = log.clock();
+  for (std::uint32_t s = 0; s < b->slots; ++s) {
+    const Slot& sl = f.slots[s];
+    if (sl.fact == kNoFact && !sl.fixed) continue;
+    FactAt premise{sl.node, {}};
+    appendFact(premise.text, db_, sl.pred, slotArgs(f, s));
+    d.premises.push_back(std::move(premise));
+  }
+  std::string text;
+  appendFact(text, db_, p, args);
+  log.record(node, std::move(text), std::move(d));
+}
 
 bool Interpreter::skipFact(const Frame& f, std::uint32_t slot, PredId p, FactRef fact) const {
   if (db_.consumedMark(p, fact)) return true;
@@ -472,11 +499,15 @@ Interpreter::Status Interpreter::exec(Frame& f, std::uint32_t pc) {
                            "' is not available: this VM links no external code");
       case Opcode::DERIVE:
         gatherArgs(f, c + 3, c[2]);
+        if (machine_.derivations_ && !f.negative) [[unlikely]]
+          noteDerivation(f, pc, f.host, c[1], args_.data());
         machine_.derive(f.host, c[1], args_.data(), f.negative);
         pc += 3 + c[2];
         break;
       case Opcode::SEND:
         gatherArgs(f, c + 4, c[3]);
+        if (machine_.derivations_ && !f.negative) [[unlikely]]
+          noteDerivation(f, pc, R[c[2]].asNode(), c[1], args_.data());
         machine_.send(f.host, R[c[2]].asNode(), c[1], args_.data(), f.negative);
         pc += 4 + c[3];
         break;
@@ -487,12 +518,16 @@ Interpreter::Status Interpreter::exec(Frame& f, std::uint32_t pc) {
         break;
       case Opcode::SEND_DELAY:
         gatherArgs(f, c + 5, c[4]);
+        if (machine_.derivations_ && !f.negative) [[unlikely]]
+          noteDerivation(f, pc, R[c[2]].asNode(), c[1], args_.data());
         machine_.send(f.host, R[c[2]].asNode(), c[1], args_.data(), f.negative, c[3]);
         pc += 5 + c[4];
         break;
       case Opcode::UPDATE: {
         gatherArgs(f, c + 4, c[3]);
         const Slot& sl = f.slots[c[1]];
+        if (machine_.derivations_ && !f.negative) [[unlikely]]
+          noteDerivation(f, pc, sl.node, sl.pred, args_.data());
         if (!f.negative) machine_.updated(sl.node, sl.pred, sl.fact, args_.data(), c[2] & kUpdateMoveToBack);
         f.updated = true;
         pc += 4 + c[3];

@@ -66,6 +66,9 @@ class Interpreter {
     }
   }
   void consumeSlot(const Slot& sl);
+  // Why a fact exists (DerivationLog): the rule's line and the facts its slots hold.
+  [[gnu::noinline]] void noteDerivation(const Frame& f, std::uint32_t pc, NodeId node, PredId p,
+                                        const Value* args);
   const Value* slotArgs(const Frame& f, std::uint32_t s) const {
     const Slot& sl = f.slots[s];
     return sl.fixed ? sl.fixed : db_.args(sl.pred, sl.fact);

@@ -4,6 +4,8 @@
 #include <ostream>
 
 #include "meldvm/arith.hpp"
+#include "meldvm/derivation_log.hpp"
+#include "meldvm/dump.hpp"
 
 namespace meldvm {
 
@@ -45,7 +47,8 @@ RobotPredicates checkRobotProgram(const Program& program) {
   s.neighborCount = find({"neighborCount"}, {I}, "type neighborCount(node, int).");
   s.tap = find({"tap"}, {}, "type linear tap(node).` or `type tap(node).");
   s.accel = find({"accel"}, {I}, "type linear accel(node, int).` or `type accel(node, int).");
-  s.shake = find({"shake"}, {I, I, I}, "type linear shake(node, int, int, int).` or `type shake(node, int, int, int).");
+  s.shake = find({"shake"}, {I, I, I},
+                 "type linear shake(node, int, int, int).` or `type shake(node, int, int, int).");
   s.at = find({"at"}, {I, I, I}, "type at(node, int, int, int).");
   s.moveto = find({"moveto"}, {I, I, I}, "type linear action moveTo(node, int, int, int).");
   s.terminate = find({"terminate"}, {}, "type linear action terminate(node).");
@@ -125,12 +128,30 @@ void BlockRuntime::start(vs_ctx* ctx) {
   }
 }
 
+void BlockRuntime::receiveSensed(NodeId n, PredId p, const Value* args, bool negative) {
+  if (DerivationLog* log = machine_->derivations(); log && !negative) [[unlikely]] {
+    Derivation d;
+    d.kind = Derivation::Kind::Sensed;
+    d.at = n;
+    if (log->clock) d.time = log->clock();
+    std::string text;
+    appendFact(text, machine_->database(), p, args);
+    log->record(n, std::move(text), std::move(d));
+  }
+  machine_->receive(n, p, args, negative);
+}
+
+void BlockRuntime::recordDerivations(DerivationLog* log) {
+  if (log) log->clock = [this] { return ctx_ ? std::int64_t(vs_now(ctx_)) : std::int64_t(-1); };
+  machine_->recordDerivations(log);
+}
+
 void BlockRuntime::sense(NodeId n, PredId p, std::initializer_list<std::int32_t> ints, bool negative) {
   if (p == Program::kNoPred) return;
   Value args[4];
   std::size_t i = 0;
   for (std::int32_t v : ints) args[i++] = Value::fromInt(v);
-  machine_->receive(n, p, args, negative);
+  receiveSensed(n, p, args, negative);
 }
 
 void BlockRuntime::assertSensors(vs_ctx* ctx) {
@@ -142,7 +163,7 @@ void BlockRuntime::assertSensors(vs_ctx* ctx) {
     if (other != VS_NO_BLOCK) {
       if (s.neighbor != Program::kNoPred) {
         const Value args[2] = {Value::fromNode(other), Value::fromInt(f)};
-        machine_->receive(n, s.neighbor, args, false);
+        receiveSensed(n, s.neighbor, args, false);
       }
     } else {
       sense(n, s.vacant, {f}, false);
@@ -174,7 +195,7 @@ void BlockRuntime::event(vs_ctx* ctx, const vs_event& ev) {
         const bool added = ev.kind == VS_EV_NEIGHBOR_ADDED;
         if (s.neighbor != Program::kNoPred) {
           const Value args[2] = {Value::fromNode(ev.other), Value::fromInt(ev.face)};
-          machine_->receive(n, s.neighbor, args, !added);
+          receiveSensed(n, s.neighbor, args, !added);
         }
         sense(n, s.vacant, {ev.face}, added);
         sense(n, s.neighborCount, {st.neighbors}, true);

@@ -63,6 +63,7 @@ struct MachineStats {
   std::uint64_t nodeRuns = 0;
 };
 
+class DerivationLog;
 class Interpreter;
 class Mailboxes;
 
@@ -103,6 +104,10 @@ class Machine : private SchedulerView {
   std::string dump() const;
 
   const MachineStats& stats() const { return stats_; }
+  // From now on, notes in `log` where each derived or sent fact comes from (nullptr: stop). The
+  // log must outlive the machine or the next call.
+  void recordDerivations(DerivationLog* log) { derivations_ = log; }
+  DerivationLog* derivations() const { return derivations_; }
   const Database& database() const { return *db_; }
   const Program& program() const { return program_; }
   // Memory the VM holds for its nodes: fact store, values, mailboxes, scheduler, candidate sets.
@@ -207,6 +212,7 @@ class Machine : private SchedulerView {
   const ProgramTables tables_;  // per predicate and per rule, from the program
   MachineStats stats_;
   bool stop_ = false;
+  DerivationLog* derivations_ = nullptr;  // why a fact exists: off unless asked
   static constexpr NodeId kNoNode = 0xFFFFFFFFu;
   NodeId threadNode_ = kNoNode;  // the node of the one VM thread (§6.12)
   bool started_ = false;

@@ -18,6 +18,7 @@
 #include <vector>
 
 #include "meldvm/fact_codec.hpp"
+#include "meldvm/derivation_log.hpp"
 #include "meldvm/machine.hpp"
 #include "meldvm/program.hpp"
 #include "simcore/blockcode.h"
@@ -71,6 +72,9 @@ class BlockRuntime : private MachineHost {
   const vs_blockcode* blockcode() const { return &code_; }
 
   const Machine& machine() const { return *machine_; }
+  // Why a fact exists: from now on the VM notes where each fact comes from, with simulated times,
+  // and the sensed facts as such (nullptr: stop). The log must outlive this runtime or the next call.
+  void recordDerivations(DerivationLog* log);
   void dump(std::ostream& out) const { machine_->dump(out); }
   // The first error raised on a block (the run should stop), or empty.
   const std::string& error() const { return error_; }
@@ -89,6 +93,7 @@ class BlockRuntime : private MachineHost {
   void event(vs_ctx* ctx, const vs_event& ev);
   void assertSensors(vs_ctx* ctx);
   void sense(NodeId n, PredId p, std::initializer_list<std::int32_t> ints, bool negative);
+  void receiveSensed(NodeId n, PredId p, const Value* args, bool negative);
   void runNode(vs_ctx* ctx);
   void failed(vs_ctx* ctx, const std::exception& e);
 
