@@ -2,6 +2,8 @@
 
 #include <algorithm>
 #include <exception>
+#include <filesystem>
+#include <fstream>
 
 #include "meldvm/dump.hpp"
 
@@ -146,6 +148,12 @@ bool KernelLoop::apply(const Command& c) {
     case Command::Why:
       answerWhy(c);
       break;
+    case Command::Remove:
+      removeBlock(c.block);
+      break;
+    case Command::SaveWorld:
+      saveWorld(c.fact);
+      break;
     case Command::Tap:
       // A tap after the end starts the run again (VisibleSim lets one tap a block at any time).
       if (state_ == RunState::Failed || c.block >= sim.world().blockCount() || !sim.target().hasTap ||
@@ -254,6 +262,33 @@ void KernelLoop::followHistory() {
     history_ = std::make_unique<BlockHistory>(*session_, selected_);
     sim.addObserver(history_.get());
   }
+}
+
+void KernelLoop::removeBlock(simcore::BlockId block) {
+  simcore::Simulation& sim = session_->simulation();
+  if (state_ == RunState::Running) return console_.push("Pause the run before removing a block.");
+  if (state_ == RunState::Failed) return;
+  if (block >= sim.world().blockCount() || !sim.world().isAlive(block)) return;
+  sim.removeBlock(block);  // its links break; its neighbours are told (events at the current time)
+  if (state_ == RunState::Finished && sim.pendingEvents() > 0) state_ = RunState::Paused;
+  console_.push("Removed block " + std::to_string(block) + " at " + simcore::formatTime(sim.now()) + ".");
+}
+
+void KernelLoop::saveWorld(const std::string& path) {
+  const simcore::Simulation& sim = session_->simulation();
+  std::ofstream out(path, std::ios::binary);
+  simcore::WorldDescription now = session_->world();
+  now.seed = sim.seed();
+  // The block program that ran, by an absolute path: the file may be saved in another folder.
+  const std::string code = std::filesystem::absolute(session_->codePath()).lexically_normal().string();
+  (session_->isMeld() ? now.program : now.code) = code;
+  (session_->isMeld() ? now.code : now.program).clear();
+  if (out) simcore::exportWorldXml(sim, now, out);
+  out.close();
+  if (!out)
+    console_.push("Cannot write the world to '" + path + "'.");
+  else
+    console_.push("Saved the world as it is at " + simcore::formatTime(sim.now()) + " to " + path + ".");
 }
 
 void KernelLoop::answerWhy(const Command& c) {

@@ -89,6 +89,20 @@ std::uint64_t SimController::why(simcore::BlockId block, const std::string& fact
   return c.request;
 }
 
+void SimController::removeBlock(simcore::BlockId block) {
+  if (!loop_) return;
+  Command c{Command::Remove};
+  c.block = block;
+  loop_->post(c);
+}
+
+void SimController::saveWorld(const std::string& path) {
+  if (!loop_) return;
+  Command c{Command::SaveWorld};
+  c.fact = path;
+  loop_->post(c);
+}
+
 void SimController::tap(simcore::BlockId block) {
   if (!loop_) return;
   Command c{Command::Tap};

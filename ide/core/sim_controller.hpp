@@ -64,6 +64,11 @@ class SimController {
   // block (or says what is wrong with the text).
   std::uint64_t why(const std::string& spec) { return why(simcore::kNoBlock, spec); }
   void tap(simcore::BlockId block);
+  // While paused (or at the end): the block leaves the world; its neighbours are told.
+  void removeBlock(simcore::BlockId block);
+  // Writes the world as it is now (cells, colours; camera, light and the block program kept) as
+  // a world file that loads again; the console says when it is done or why it failed.
+  void saveWorld(const std::string& path);
   // The console's trace filter (vsim --trace syntax; "" = the programs' own trace lines only).
   // Throws simcore::TraceFilterError for a bad filter.
   void setTraceFilter(const std::string& filter);

@@ -149,6 +149,11 @@ void MainWindow::buildActions() {
   });
   recentMenu_ = file->addMenu("Recent files");
   file->addAction("&Save program", QKeySequence::Save, this, [this] { compile(); });
+  file->addAction("Save &world as...", this, [this] {
+    const QString path = QFileDialog::getSaveFileName(this, "Save the world as it is now", "world.xml",
+                                                      "World files (*.xml)");
+    if (!path.isEmpty()) controller_.saveWorld(path.toStdString());
+  });
   file->addAction("Save 3D view as &PNG...", this, [this] {
     const QString path =
         QFileDialog::getSaveFileName(this, "Save the 3D view", "world.png", "PNG images (*.png)");
@@ -217,6 +222,13 @@ void MainWindow::buildActions() {
     if (selected_ != simcore::kNoBlock) controller_.tap(selected_);
   });
   bar->addAction(tap);
+  QAction* remove = new QAction("Remove", this);
+  remove->setShortcut(QKeySequence::Delete);
+  remove->setToolTip("Remove the selected block from the world (while paused)");
+  connect(remove, &QAction::triggered, this, [this] {
+    if (selected_ != simcore::kNoBlock) controller_.removeBlock(selected_);
+  });
+  bar->addAction(remove);
 }
 
 double MainWindow::chosenSpeed() const { return speed_->currentData().toDouble(); }

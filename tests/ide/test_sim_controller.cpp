@@ -265,3 +265,50 @@ BOOST_AUTO_TEST_CASE(why_a_fact_exists_is_vsims_tree) {
   BOOST_REQUIRE(s);
   BOOST_TEST(s->why->error.find("No record of !dist(7) on block 10") != std::string::npos);
 }
+
+BOOST_AUTO_TEST_CASE(removing_a_block_while_paused_and_saving_the_world) {
+  ide::SimController c;
+  BOOST_REQUIRE(c.open(gradientOptions()));
+  c.runUntil(simcore::kSecond / 2);
+  BOOST_REQUIRE(c.waitFor([](const ide::WorldSnapshot& s) { return s.now == simcore::kSecond / 2; }, 30s));
+  c.removeBlock(17);  // between the tapped centre (24) and block 10
+  BOOST_REQUIRE(c.waitFor([](const ide::WorldSnapshot& s) { return !s.alive[17]; }, 30s));
+  c.run();
+  const auto end = waitOver(c);
+  BOOST_REQUIRE(end);
+  BOOST_TEST(end->fingerprint != runHeadless(gradientOptions()).fingerprint);
+  BOOST_TEST(end->error == "");
+  // The gradient goes around the hole: block 10, at (3, 1) under the removed (3, 2), is 4 hops
+  // from the tapped centre now (aqua) instead of 2; block 3, at (3, 0), 5 (blue) instead of 3.
+  BOOST_TEST(end->colors[10] == 0x00FFFFu);
+  BOOST_TEST(end->colors[3] == 0x0000FFu);
+  BOOST_TEST(end->colors[16] == 0xFFFF00u);  // (2, 2): 2 hops, as before (yellow)
+
+  const std::string saved = std::string(MELD_BINARY_DIR) + "/ide_saved_world.xml";
+  std::remove(saved.c_str());
+  c.saveWorld(saved);
+  std::vector<std::string> console;
+  for (int i = 0; i < 300 && console.empty(); ++i) {
+    std::this_thread::sleep_for(10ms);
+    for (std::string& l : c.takeConsoleLines())
+      if (l.find("Saved the world") != std::string::npos) console.push_back(l);
+  }
+  BOOST_REQUIRE_EQUAL(console.size(), 1u);
+  // It loads again: 48 blocks, the colours they had, the same program.
+  const simcore::WorldDescription again = simcore::loadWorldXml(saved);
+  BOOST_TEST(again.blocks.size() == 48u);
+  vsim::Options o;
+  o.world = saved;
+  ide::SimController reopened;
+  BOOST_REQUIRE_MESSAGE(reopened.open(o), reopened.error());
+  BOOST_TEST(reopened.info().blockCount == 48u);
+  BOOST_TEST(reopened.info().meld);
+
+  c.saveWorld("/no/such/folder/w.xml");
+  bool refused = false;
+  for (int i = 0; i < 300 && !refused; ++i) {
+    std::this_thread::sleep_for(10ms);
+    for (const std::string& l : c.takeConsoleLines()) refused = refused || l.find("Cannot write") == 0;
+  }
+  BOOST_TEST(refused);
+}

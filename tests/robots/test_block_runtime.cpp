@@ -68,6 +68,31 @@ type neighborCount(node, int).
   BOOST_TEST(f.find("!neighborCount(2)") == std::string::npos);
 }
 
+BOOST_AUTO_TEST_CASE(a_removed_blocks_inverse_route_facts_are_taken_back_by_its_neighbours) {
+  // A rule that reaches a neighbour's facts (localized over the inverse route ___robhgien, which
+  // the neighbour sends): when block 1 leaves, blocks 0 and 2 hold inverse facts naming it that
+  // block 1 cannot take back over the broken links. They drop them themselves, so the flood that
+  // follows neither sends a fact to the departed block (a run-time error before) nor keeps it.
+  const char* reach = R"(
+type route neighbor(node, node, int).
+type linear tap(node).
+type hops(node, min int).
+tap(X) -o !hops(X, 0).
+!neighbor(X, Y, _), !hops(Y, D) -o !hops(X, D + 1).
+)";
+  World w("blinkyblocks", robots::line(3), reach);
+  w.sim->runUntil(simcore::kSecond);
+  BOOST_TEST(w.facts(0).find("!___robhgien(@1, 4)") != std::string::npos);
+  w.sim->removeBlock(1);
+  w.sim->scheduleTap(0, 2 * simcore::kSecond);
+  w.sim->runUntilEmpty();
+  BOOST_TEST(w.vm->error() == "");
+  BOOST_TEST(w.facts(0).find("___robhgien") == std::string::npos);
+  BOOST_TEST(w.facts(2).find("___robhgien") == std::string::npos);
+  BOOST_TEST(w.facts(0).find("!hops(0)") != std::string::npos);
+  BOOST_TEST(w.facts(2).find("!hops(") == std::string::npos);  // cut off from the tapped block
+}
+
 BOOST_AUTO_TEST_CASE(a_fact_for_a_neighbour_is_a_message_of_its_encoded_size) {
   // ping(node, int): predicate id (2 bytes) + flags (1) + int (4) = 7 bytes on the link.
   World w("blinkyblocks", robots::line(2), R"(

@@ -393,7 +393,12 @@ void Machine::send(NodeId host, NodeId dest, PredId p, const Value* args, bool n
     pushArgs(sentArgs_, p, args);
     return;
   }
-  if (host_ && dest != host && !host_->reachable(host, dest)) notANeighbour(p, host, dest);
+  if (host_ && dest != host && !host_->reachable(host, dest)) {
+    // A retraction for a block that is no longer a neighbour is dropped: that block took back
+    // what it had from this one when the link broke (BlockRuntime, inverse routes).
+    if (negative) return;
+    notANeighbour(p, host, dest);
+  }
   if (d.linear && negative) return;
   if (!negative) {
     ++stats_.factsDerived;

@@ -141,6 +141,33 @@ void BlockRuntime::receiveSensed(NodeId n, PredId p, const Value* args, bool neg
   machine_->receive(n, p, args, negative);
 }
 
+void BlockRuntime::retractInverseRoutes(NodeId n, NodeId other) {
+  // The inverse route facts at n that name `other` (`___robhgien(n, other, face)`: other has n as
+  // a neighbour) were sent by `other`; the link is gone, so it cannot take them back: n does.
+  const Database& db = machine_->database();
+  for (PredId p = 0; p < program_.predicates.size(); ++p) {
+    const PredicateDesc& d = program_.predicates[p];
+    if (!d.reverseRoute || d.linear || d.arity() == 0 || d.fields[0] != TypeTable::kNode) continue;
+    std::vector<Value>& stale = retracting_;
+    stale.clear();
+    std::vector<std::uint32_t> copies;
+    for (FactRef f = db.first(n, p); f != kNoFact; f = db.next(p, f)) {
+      const Value* args = db.args(p, f);
+      if (args[0].asNode() != other) continue;
+      for (std::uint32_t i = 0; i < d.arity(); ++i) {
+        machine_->database().heap().retain(d.fields[i], args[i]);
+        stale.push_back(args[i]);
+      }
+      copies.push_back(db.copies(p, f));
+    }
+    for (std::size_t k = 0; k < copies.size(); ++k) {
+      const Value* args = stale.data() + k * d.arity();
+      for (std::uint32_t c = 0; c < copies[k]; ++c) machine_->receive(n, p, args, true);
+      for (std::uint32_t i = 0; i < d.arity(); ++i) machine_->database().heap().release(d.fields[i], args[i]);
+    }
+  }
+}
+
 void BlockRuntime::recordDerivations(DerivationLog* log) {
   if (log) log->clock = [this] { return ctx_ ? std::int64_t(vs_now(ctx_)) : std::int64_t(-1); };
   machine_->recordDerivations(log);
@@ -197,6 +224,7 @@ void BlockRuntime::event(vs_ctx* ctx, const vs_event& ev) {
           const Value args[2] = {Value::fromNode(ev.other), Value::fromInt(ev.face)};
           receiveSensed(n, s.neighbor, args, !added);
         }
+        if (!added) retractInverseRoutes(n, ev.other);
         sense(n, s.vacant, {ev.face}, added);
         sense(n, s.neighborCount, {st.neighbors}, true);
         st.neighbors += added ? 1 : -1;

@@ -94,6 +94,7 @@ class BlockRuntime : private MachineHost {
   void assertSensors(vs_ctx* ctx);
   void sense(NodeId n, PredId p, std::initializer_list<std::int32_t> ints, bool negative);
   void receiveSensed(NodeId n, PredId p, const Value* args, bool negative);
+  void retractInverseRoutes(NodeId n, NodeId other);
   void runNode(vs_ctx* ctx);
   void failed(vs_ctx* ctx, const std::exception& e);
 
@@ -117,6 +118,7 @@ class BlockRuntime : private MachineHost {
   // Delayed facts for the block itself, waiting for their timer (tag = index).
   std::vector<std::vector<std::uint8_t>> delayed_;
   std::vector<std::uint32_t> freeDelayed_;
+  std::vector<Value> retracting_;  // retractInverseRoutes' copies (kept: no allocation per break)
 };
 
 }  // namespace meldvm
