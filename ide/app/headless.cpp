@@ -1,52 +1,70 @@
 #include "headless.hpp"
 
+#include <QDir>
 #include <QImage>
 #include <cstdio>
 #include <iostream>
 
+#include "frame_export.hpp"
 #include "offscreen_render.hpp"
 #include "sim_controller.hpp"
 
 namespace ide {
 
-int takeScreenshot(const IdeOptions& o) {
+namespace {
+
+int openFailure(const SimController& controller) {
+  std::cerr << controller.diagnostics();
+  const std::string& e = controller.error();
+  std::cerr << (e.find(": error: ") != std::string::npos ? "" : "vsim-ide: error: ") << e << '\n';
+  return e.rfind("--", 0) == 0 || e.rfind("no block code", 0) == 0 ? vsim::kExitUsage : vsim::kExitInput;
+}
+
+int framesFromTheCommandLine(const IdeOptions& o) {
+  FrameExport how;
+  how.folder = o.framesDir;
+  how.every = o.frameEvery;
+  how.size = o.size;
+  const FrameExportResult r = exportFrames(o.run, how);
+  if (!r.error.empty()) {
+    std::cerr << (r.error.find(": error: ") != std::string::npos ? "" : "vsim-ide: error: ") << r.error
+              << '\n';
+    return r.exitCode;
+  }
+  if (!o.run.quiet)
+    std::printf("frames: %d written to %s, one every %s of simulated time\n", r.written, o.framesDir.c_str(),
+                simcore::formatTime(o.frameEvery).c_str());
+  return vsim::kExitOk;
+}
+
+}  // namespace
+
+int runHeadless(const IdeOptions& o) {
+  if (!o.framesDir.empty()) return framesFromTheCommandLine(o);
   SimController controller;
-  controller.setRecordDerivations(false);
-  if (!controller.open(o.run)) {
-    std::cerr << controller.diagnostics();
-    const std::string& e = controller.error();
-    std::cerr << (e.find(": error: ") != std::string::npos ? "" : "vsim-ide: error: ") << e << '\n';
-    return e.find("--") == 0 || e.rfind("no block code", 0) == 0 ? vsim::kExitUsage : vsim::kExitInput;
+  if (!controller.open(o.run)) return openFailure(controller);
+  OffscreenRenderer renderer;
+  QString error;
+  if (!renderer.initialize(controller.info(), o.size, error)) {
+    std::cerr << "vsim-ide: error: cannot render: " << error.toStdString() << '\n';
+    return vsim::kExitRuntime;
   }
-  const simcore::SimTime until = o.run.until.value_or(simcore::kTimeInfinity);
-  controller.runUntil(until);
-  auto done = [&](const WorldSnapshot& s) {
-    return s.state == RunState::Finished || s.state == RunState::Failed ||
-           (s.state == RunState::Paused && s.now >= until);
-  };
-  std::shared_ptr<const WorldSnapshot> snap;
-  while (!(snap = controller.waitFor(done, std::chrono::seconds(1)))) {
-  }
+  const auto snap = controller.runToAndWait(o.run.until.value_or(simcore::kTimeInfinity));
   if (snap->state == RunState::Failed) {
     std::cerr << "vsim-ide: error: the run failed at " << simcore::formatTime(snap->now) << ": "
               << snap->error << '\n';
     return vsim::kExitRuntime;
   }
-  QString error;
-  double msPerFrame = 0;
-  const QImage image = renderOffscreen(controller.info(), *snap, initialCamera(controller.info(), *snap),
-                                       o.size, error, o.frameTimes, &msPerFrame);
-  if (image.isNull()) {
-    std::cerr << "vsim-ide: error: cannot render: " << error.toStdString() << '\n';
-    return vsim::kExitRuntime;
-  }
-  if (!image.save(QString::fromStdString(o.screenshot), "PNG")) {
+  const OrbitCamera camera = initialCamera(controller.info(), *snap);
+  const QImage image = renderer.render(*snap, camera);
+  if (image.isNull() || !image.save(QString::fromStdString(o.screenshot), "PNG")) {
     std::cerr << "vsim-ide: error: cannot write '" << o.screenshot << "'\n";
     return vsim::kExitRuntime;
   }
   if (o.frameTimes)
-    std::printf("frame time: %.2f ms (%d frames of %dx%d, %zu blocks)\n", msPerFrame, o.frameTimes,
-                o.size.width(), o.size.height(), controller.info().blockCount);
+    std::printf("frame time: %.2f ms (%d frames of %dx%d, %zu blocks)\n",
+                renderer.timeFrames(*snap, camera, o.frameTimes), o.frameTimes, o.size.width(),
+                o.size.height(), controller.info().blockCount);
   if (!o.run.quiet)
     std::printf("screenshot: %s (%dx%d) at %s, %llu events, fingerprint %016llx\n", o.screenshot.c_str(),
                 image.width(), image.height(), simcore::formatTime(snap->now).c_str(),

@@ -32,7 +32,7 @@ int parseFrames(std::string_view text) {
 
 IdeOptions parseIdeOptions(int argc, char** argv) {
   IdeOptions o;
-  bool sizeGiven = false;
+  bool sizeGiven = false, everyGiven = false;
   // The IDE's own options are taken out; the rest is vsim's command line.
   std::vector<char*> rest{argv[0]};
   for (int i = 1; i < argc; ++i) {
@@ -49,7 +49,8 @@ IdeOptions parseIdeOptions(int argc, char** argv) {
       o.runAtOnce = true;
       continue;
     }
-    if (name != "--screenshot" && name != "--size" && name != "--frame-time" && name != "--select") {
+    if (name != "--screenshot" && name != "--size" && name != "--frame-time" && name != "--select" &&
+        name != "--frames" && name != "--every") {
       rest.push_back(argv[i]);
       continue;
     }
@@ -61,6 +62,16 @@ IdeOptions parseIdeOptions(int argc, char** argv) {
     } else if (name == "--size") {
       o.size = parseSize(value);
       sizeGiven = true;
+    } else if (name == "--frames") {
+      if (value.empty()) throw vsim::UsageError("--frames needs a folder");
+      o.framesDir = value;
+    } else if (name == "--every") {
+      const auto t = simcore::parseDuration(value);
+      if (!t || *t <= 0)
+        throw vsim::UsageError("--every wants a positive duration like 100ms, got '" + std::string(value) +
+                               "'");
+      o.frameEvery = *t;
+      everyGiven = true;
     } else if (name == "--select") {
       const std::string v(value);
       char* end = nullptr;
@@ -74,15 +85,20 @@ IdeOptions parseIdeOptions(int argc, char** argv) {
   }
   o.run = vsim::parseOptions(int(rest.size()), rest.data(), /*worldRequired=*/false);
   if (o.run.help || o.run.version) return o;
-  if ((sizeGiven || o.frameTimes) && o.screenshot.empty())
-    throw vsim::UsageError("--size and --frame-time go with --screenshot");
-  if (!o.screenshot.empty() && o.run.world.empty()) throw vsim::UsageError("--screenshot needs a world file");
+  const bool headless = !o.screenshot.empty() || !o.framesDir.empty();
+  if (!o.screenshot.empty() && !o.framesDir.empty())
+    throw vsim::UsageError("give --screenshot or --frames, not both");
+  if ((sizeGiven && !headless) || (o.frameTimes && o.screenshot.empty()))
+    throw vsim::UsageError("--size goes with --screenshot or --frames, --frame-time with --screenshot");
+  if (everyGiven && o.framesDir.empty()) throw vsim::UsageError("--every goes with --frames");
+  if (headless && o.run.world.empty()) throw vsim::UsageError("--screenshot and --frames need a world file");
   return o;
 }
 
 const char* ideUsageText() {
   return R"(usage: vsim-ide [WORLD.xml] [--program PROG.meld|PROG.mbc | --code LIB.so] [vsim's run options]
        vsim-ide WORLD.xml [...] --screenshot OUT.png [--size WxH] [--until T]
+       vsim-ide WORLD.xml [...] --frames DIR [--every T] [--until T] [--size WxH]
 
 The IDE: the Meld program's editor, the 3D world and the inspector of the selected block side by
 side, with the console below. It runs exactly the run that vsim runs with the same options (same
@@ -99,14 +115,18 @@ Pictures without a window:
   --screenshot OUT.png  run to --until T (or to the end), render the 3D view as it is then into
                         OUT.png and exit 0; no window is shown (needs an X display: xvfb-run -a)
   --size WxH            the picture's size in pixels (default 1024x768)
-  --frame-time N        also draw N frames and print the mean time per frame (ms)
+  --frame-time N        also draw N frames and print the mean time per frame
+  --frames DIR          a picture every --every of simulated time (default 100ms) from 0 to
+                        --until T (or to the end), DIR/frame-000000.png on, then exit; make a
+                        video with e.g. ffmpeg -i DIR/frame-%06d.png out.mp4
+  --every T             the simulated time between two frames (ms)
 
 Run options (as vsim; see vsim --help): --code, --program, -I DIR, --target, --until, --seed,
   --fes, --link-rate, --link-latency, --link-jitter, --motion-time, --tap ID@T, --time-per-rule,
   --palette visiblesim|lm. The console's trace filter takes vsim --trace's syntax.
 
 Exit status: 0 ok; 1 the run failed (screenshot mode) or the picture could not be written;
-  2 bad command line; 3 bad world, program or block code (screenshot mode).
+  2 bad command line; 3 bad world, program or block code (screenshot and frames modes).
 )";
 }
 

@@ -6,6 +6,7 @@
 #include <string>
 
 #include "options.hpp"
+#include "simcore/time.hpp"
 
 namespace ide {
 
@@ -13,6 +14,8 @@ struct IdeOptions {
   vsim::Options run;       // run.world empty: the IDE starts without a world
   std::string screenshot;  // --screenshot: render at --until (or the end) into this PNG and exit
   QSize size{1024, 768};   // --size WxH of the screenshot
+  std::string framesDir;   // --frames DIR: a PNG every --every of simulated time, without a window
+  simcore::SimTime frameEvery = 100 * simcore::kMillisecond;
   int frameTimes = 0;      // --frame-time N: also draw N frames offscreen and print the time per frame
   bool runAtOnce = false;  // --run: start the run when the window opens
   std::uint32_t select = 0xFFFFFFFFu;  // --select ID: the block the inspector shows

@@ -37,7 +37,7 @@ int main(int argc, char** argv) {
   QApplication app(argc, argv);
   QApplication::setApplicationName("vsim-ide");
   QApplication::setOrganizationName("meld-toolchain");
-  if (!options.screenshot.empty()) return ide::takeScreenshot(options);
+  if (!options.screenshot.empty() || !options.framesDir.empty()) return ide::runHeadless(options);
   ide::StartActions start;
   start.run = options.runAtOnce;
   start.select = options.select;

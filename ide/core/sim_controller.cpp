@@ -125,6 +125,19 @@ std::shared_ptr<const WorldSnapshot> SimController::waitFor(
   return loop_ ? loop_->waitFor(done, timeout) : nullptr;
 }
 
+std::shared_ptr<const WorldSnapshot> SimController::runToAndWait(simcore::SimTime t) {
+  if (!loop_) return nullptr;
+  runUntil(t);
+  auto there = [&](const WorldSnapshot& s) {
+    return s.state == RunState::Finished || s.state == RunState::Failed ||
+           (s.state == RunState::Paused && s.now >= t);
+  };
+  std::shared_ptr<const WorldSnapshot> snap;
+  while (!(snap = waitFor(there, std::chrono::seconds(1)))) {
+  }
+  return snap;
+}
+
 std::vector<std::string> SimController::takeConsoleLines() {
   return loop_ ? loop_->takeConsoleLines() : std::vector<std::string>{};
 }

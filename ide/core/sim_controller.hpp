@@ -79,6 +79,9 @@ class SimController {
   // and the headless screenshot. Returns the snapshot that satisfied it, or null.
   std::shared_ptr<const WorldSnapshot> waitFor(const std::function<bool(const WorldSnapshot&)>& done,
                                                std::chrono::milliseconds timeout) const;
+  // Runs (as fast as possible) to time t, or to the end, and waits there; the snapshot then (null
+  // when nothing is open). For the window-less modes.
+  std::shared_ptr<const WorldSnapshot> runToAndWait(simcore::SimTime t);
   // Console lines since the last call (a bounded number is kept; older ones are dropped).
   std::vector<std::string> takeConsoleLines();
 

@@ -11,6 +11,7 @@
 #include <QListWidget>
 #include <QMenuBar>
 #include <QMessageBox>
+#include <QProgressDialog>
 #include <QSettings>
 #include <QSplitter>
 #include <QStatusBar>
@@ -23,6 +24,7 @@
 #include "code_editor.hpp"
 #include "console_panel.hpp"
 #include "diagnostics.hpp"
+#include "frame_export.hpp"
 #include "meld_program.hpp"
 #include "world_view.hpp"
 
@@ -150,8 +152,8 @@ void MainWindow::buildActions() {
   recentMenu_ = file->addMenu("Recent files");
   file->addAction("&Save program", QKeySequence::Save, this, [this] { compile(); });
   file->addAction("Save &world as...", this, [this] {
-    const QString path = QFileDialog::getSaveFileName(this, "Save the world as it is now", "world.xml",
-                                                      "World files (*.xml)");
+    const QString path =
+        QFileDialog::getSaveFileName(this, "Save the world as it is now", "world.xml", "World files (*.xml)");
     if (!path.isEmpty()) controller_.saveWorld(path.toStdString());
   });
   file->addAction("Save 3D view as &PNG...", this, [this] {
@@ -159,6 +161,7 @@ void MainWindow::buildActions() {
         QFileDialog::getSaveFileName(this, "Save the 3D view", "world.png", "PNG images (*.png)");
     if (!path.isEmpty()) saveScreenshot(path);
   });
+  file->addAction("Export &frames...", this, &MainWindow::exportFramesAsked);
   file->addSeparator();
   file->addAction("&Quit", QKeySequence::Quit, this, &QWidget::close);
   refreshRecentMenu();
@@ -400,6 +403,43 @@ QString MainWindow::statusText() const {
     text += QString("   fingerprint %1").arg(snap->fingerprint, 16, 16, QChar('0'));
   if (snap->state == RunState::Failed) text += "   " + QString::fromStdString(snap->error);
   return text;
+}
+
+void MainWindow::exportFramesAsked() {
+  if (!controller_.isOpen()) return;
+  const QString folder = QFileDialog::getExistingDirectory(this, "Export frames into");
+  if (folder.isEmpty()) return;
+  bool ok = false;
+  const QString every = QInputDialog::getText(
+      this, "Export frames", "A frame every (simulated time):", QLineEdit::Normal, "100ms", &ok);
+  if (!ok) return;
+  const auto t = simcore::parseDuration(every.trimmed().toStdString());
+  if (!t || *t <= 0) {
+    QMessageBox::warning(this, "Export frames", "Not a positive duration: '" + every + "'");
+    return;
+  }
+  exportFrames(folder, *t);
+}
+
+int MainWindow::exportFrames(const QString& folder, simcore::SimTime every) {
+  FrameExport how;
+  how.folder = folder.toStdString();
+  how.every = every;
+  how.size = view_->size() * view_->devicePixelRatio();
+  how.camera = view_->camera();
+  QProgressDialog progress("Exporting frames (the run from its start)...", "Stop", 0, 0, this);
+  progress.setWindowModality(Qt::WindowModal);
+  progress.setMinimumDuration(500);
+  how.progress = [&](int frames, simcore::SimTime now) {
+    progress.setLabelText(
+        QString("%1 frames, t = %2").arg(frames).arg(QString::fromStdString(simcore::formatTime(now))));
+    QApplication::processEvents();
+    return !progress.wasCanceled();
+  };
+  const FrameExportResult r = ide::exportFrames(options_, how);
+  console_->appendMessage(r.error.empty() ? QString("Exported %1 frames to %2.").arg(r.written).arg(folder)
+                                          : "Frame export failed: " + QString::fromStdString(r.error));
+  return r.error.empty() ? r.written : -1;
 }
 
 bool MainWindow::saveScreenshot(const QString& path) {

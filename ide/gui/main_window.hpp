@@ -57,6 +57,9 @@ class MainWindow : public QMainWindow {
   // Applies the newest snapshot and console lines now (the timer does it 30 times a second).
   void poll();
   bool saveScreenshot(const QString& path);
+  // The run from its start, a frame every `every` of simulated time, seen from the view's camera,
+  // into `folder` (frame-000000.png ...); the number written, -1 on error (said in the console).
+  int exportFrames(const QString& folder, simcore::SimTime every);
 
  protected:
   void closeEvent(QCloseEvent* event) override;
@@ -70,7 +73,7 @@ class MainWindow : public QMainWindow {
   void refreshRecentMenu();
   double chosenSpeed() const;
   void runUntilAsked();
-  void saveWorldAs();
+  void exportFramesAsked();
 
   SimController controller_;
   vsim::Options options_;

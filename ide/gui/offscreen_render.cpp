@@ -4,6 +4,7 @@
 #include <QOffscreenSurface>
 #include <QOpenGLContext>
 #include <QOpenGLFramebufferObject>
+#include <QOpenGLFunctions>
 #include <limits>
 
 #include "world_renderer.hpp"
@@ -33,68 +34,78 @@ OrbitCamera initialCamera(const SessionInfo& info, const WorldSnapshot& snap) {
   return camera;
 }
 
-QImage renderOffscreen(const SessionInfo& info, const WorldSnapshot& snap, const OrbitCamera& camera,
-                       QSize size, QString& error, int frameTimes, double* msPerFrame) {
-  QOpenGLContext context;
-  context.setFormat(QSurfaceFormat::defaultFormat());
-  if (!context.create()) {
+OffscreenRenderer::OffscreenRenderer() = default;
+
+OffscreenRenderer::~OffscreenRenderer() {
+  if (renderer_ && context_.makeCurrent(&surface_)) {
+    renderer_.reset();
+    context_.doneCurrent();
+  }
+}
+
+bool OffscreenRenderer::initialize(const SessionInfo& info, QSize size, QString& error) {
+  context_.setFormat(QSurfaceFormat::defaultFormat());
+  if (!context_.create()) {
     error = "cannot create an OpenGL context";
-    return {};
+    return false;
   }
-  QOffscreenSurface surface;
-  surface.setFormat(context.format());
-  surface.create();
-  if (!context.makeCurrent(&surface)) {
+  surface_.setFormat(context_.format());
+  surface_.create();
+  if (!context_.makeCurrent(&surface_)) {
     error = "cannot make the OpenGL context current on an offscreen surface";
-    return {};
+    return false;
   }
-  const QSurfaceFormat f = context.format();
+  const QSurfaceFormat f = context_.format();
   if (f.majorVersion() * 10 + f.minorVersion() < 33) {
     error =
         QString("OpenGL 3.3 is needed, the context has %1.%2").arg(f.majorVersion()).arg(f.minorVersion());
-    return {};
+    return false;
   }
-  QImage image;
-  {
-    WorldRenderer renderer;
-    if (!renderer.initialize()) {
-      error = "cannot compile the shaders: " + renderer.log();
-      return {};
-    }
-    renderer.setSession(info);
-    renderer.upload(snap);
-    renderer.setHighlight(snap.selected.id, 0xFFFFFFFFu);
-    QOpenGLFramebufferObjectFormat fboFormat;
-    fboFormat.setAttachment(QOpenGLFramebufferObject::Depth);
-    if (frameTimes > 0 && msPerFrame) {
-      // Timed like the window draws: no multisampling.
-      QOpenGLFramebufferObject fbo(size, fboFormat);
-      fbo.bind();
-      renderer.render(camera, size.width(), size.height());  // warm-up: shader compilation
-      context.functions()->glFinish();
-      QElapsedTimer timer;
-      timer.start();
-      for (int i = 0; i < frameTimes; ++i) {  // each frame as while running: upload, then draw
-        renderer.upload(snap, true);
-        renderer.render(camera, size.width(), size.height());
-        context.functions()->glFinish();
-      }
-      *msPerFrame = double(timer.nsecsElapsed()) / 1e6 / frameTimes;
-      fbo.release();
-    }
-    fboFormat.setSamples(4);  // the picture: smooth edges
-    QOpenGLFramebufferObject fbo(size, fboFormat);
-    if (!fbo.isValid()) {
-      error = "cannot make a framebuffer of that size";
-      return {};
-    }
-    fbo.bind();
-    renderer.render(camera, size.width(), size.height());
-    image = fbo.toImage();
-    fbo.release();
+  renderer_ = std::make_unique<WorldRenderer>();
+  if (!renderer_->initialize()) {
+    error = "cannot compile the shaders: " + renderer_->log();
+    renderer_.reset();
+    return false;
   }
-  context.doneCurrent();
+  renderer_->setSession(info);
+  size_ = size;
+  return true;
+}
+
+QImage OffscreenRenderer::render(const WorldSnapshot& snap, const OrbitCamera& camera) {
+  context_.makeCurrent(&surface_);
+  QOpenGLFramebufferObjectFormat format;
+  format.setAttachment(QOpenGLFramebufferObject::Depth);
+  format.setSamples(4);
+  QOpenGLFramebufferObject fbo(size_, format);
+  if (!fbo.isValid()) return {};
+  fbo.bind();
+  renderer_->upload(snap);
+  renderer_->setHighlight(snap.selected.id, 0xFFFFFFFFu);
+  renderer_->render(camera, size_.width(), size_.height());
+  QImage image = fbo.toImage();
+  fbo.release();
   return image;
+}
+
+double OffscreenRenderer::timeFrames(const WorldSnapshot& snap, const OrbitCamera& camera, int frames) {
+  context_.makeCurrent(&surface_);
+  QOpenGLFramebufferObjectFormat format;
+  format.setAttachment(QOpenGLFramebufferObject::Depth);
+  QOpenGLFramebufferObject fbo(size_, format);
+  fbo.bind();
+  renderer_->upload(snap, true);
+  renderer_->render(camera, size_.width(), size_.height());  // warm-up: shader compilation
+  context_.functions()->glFinish();
+  QElapsedTimer timer;
+  timer.start();
+  for (int i = 0; i < frames; ++i) {
+    renderer_->upload(snap, true);
+    renderer_->render(camera, size_.width(), size_.height());
+    context_.functions()->glFinish();
+  }
+  fbo.release();
+  return double(timer.nsecsElapsed()) / 1e6 / std::max(frames, 1);
 }
 
 }  // namespace ide

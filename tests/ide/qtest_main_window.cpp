@@ -2,6 +2,7 @@
 // the end, select a block and read the inspector (it must equal `vsim --dump` for that block), a
 // compile error listed and underlined at its line, step/pause/restart against vsim's fingerprint,
 // the Meld colouring, a saved picture of the 3D view.
+#include <QDir>
 #include <QListWidget>
 #include <QProcess>
 #include <QStandardPaths>
@@ -223,6 +224,22 @@ class MainWindowTest : public QObject {
     QCOMPARE(formatAt(2, 9), h->format(Role::Variable).foreground().color());    // X
     QCOMPARE(formatAt(2, 12), h->format(Role::Number).foreground().color());     // 3
     QCOMPARE(formatAt(2, 25), h->format(Role::String).foreground().color());     // "s"
+  }
+
+  void exportsFramesSeenFromTheView() {
+    ide::MainWindow w(gradientOptions());
+    w.show();
+    QVERIFY(QTest::qWaitForWindowExposed(&w));
+    QTemporaryDir dir;
+    QCOMPARE(w.exportFrames(dir.path(), 400 * simcore::kMillisecond), 4);
+    const QStringList frames = QDir(dir.path()).entryList({"frame-*.png"}, QDir::Files, QDir::Name);
+    QCOMPARE(frames.size(), 4);
+    QCOMPARE(QImage(dir.filePath(frames[0])).size(),
+             w.worldView()->size() * w.worldView()->devicePixelRatio());
+    QVERIFY(w.console()->text().contains("Exported 4 frames"));
+    // The window's own run is untouched: still at its start.
+    w.poll();
+    QCOMPARE(w.controller().snapshot()->events, std::uint64_t(0));
   }
 
   void savesThe3dViewAsPng() {

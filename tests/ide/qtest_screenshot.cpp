@@ -1,6 +1,7 @@
 // vsim-ide --screenshot, run as a user would: a world whose blocks a program colours in two
 // colours (tests/ide/two-colors.*: green at first, then red on even columns and blue on odd ones)
 // gives a PNG of the requested size, both colours over about the same area, and no green left.
+#include <QDir>
 #include <QImage>
 #include <QProcess>
 #include <QTemporaryDir>
@@ -80,6 +81,30 @@ class ScreenshotTest : public QObject {
     QCOMPARE(red, 0L);
   }
 
+  void framesEveryDeltaT() {
+    // The gradient example: white blocks until the tap at 1 s, the run over at about 1.01 s. A
+    // frame at 0, 0.4, 0.8 and 1.2 s (the end): no red before the tap, red after.
+    QTemporaryDir dir;
+    QProcess p;
+    p.start(kIde, {kSource + "/examples/worlds/meld-gradient-tap.xml", "--frames", dir.filePath("f"),
+                   "--every", "400ms", "--size", "160x120"});
+    QVERIFY(p.waitForFinished(60000));
+    QVERIFY2(p.exitCode() == 0, p.readAllStandardError().constData());
+    QVERIFY(QString::fromUtf8(p.readAllStandardOutput()).contains("frames: 4 written"));
+    const QStringList frames = QDir(dir.filePath("f")).entryList({"frame-*.png"}, QDir::Files, QDir::Name);
+    QCOMPARE(frames.size(), 4);
+    auto reds = [&](const QString& name) {
+      const QImage image(dir.filePath("f/" + name));
+      long n = 0;
+      for (int y = 0; y < image.height(); ++y)
+        for (int x = 0; x < image.width(); ++x) n += hueOf(image.pixel(x, y)) == Hue::Red;
+      return n;
+    };
+    QCOMPARE(reds(frames[0]), 0L);
+    QCOMPARE(reds(frames[2]), 0L);
+    QVERIFY(reds(frames[3]) > 0);
+  }
+
   void badInputExitsWithAMessage() {
     QProcess p;
     p.start(kIde, {kSource + "/no/such.xml", "--screenshot", "x.png"});
@@ -90,6 +115,10 @@ class ScreenshotTest : public QObject {
     QVERIFY(p.waitForFinished(60000));
     QCOMPARE(p.exitCode(), 2);
     QVERIFY(p.readAllStandardError().contains("--size wants"));
+    p.start(kIde, {kSource + "/tests/ide/two-colors.xml", "--frames", "d", "--every", "0s"});
+    QVERIFY(p.waitForFinished(60000));
+    QCOMPARE(p.exitCode(), 2);
+    QVERIFY(p.readAllStandardError().contains("--every wants a positive duration"));
   }
 };
 

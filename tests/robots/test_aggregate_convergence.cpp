@@ -29,8 +29,8 @@ struct Shape {
   int z(int id) const { return id / (nx * ny); }
 };
 
-const Shape kShapes[] = {{2, 2, 1}, {4, 4, 1}, {8, 8, 1}, {16, 16, 1}, {32, 32, 1},
-                         {3, 3, 3}, {5, 5, 5}, {10, 10, 10}};
+const Shape kShapes[] = {{2, 2, 1},   {4, 4, 1}, {8, 8, 1}, {16, 16, 1},
+                         {32, 32, 1}, {3, 3, 3}, {5, 5, 5}, {10, 10, 10}};
 
 // At most this many fact messages per block and hop of diameter.
 constexpr double kMessagesPerBlockHop = 10.0;
@@ -45,12 +45,13 @@ void converges(const std::string& source, Expect expect) {
       BOOST_TEST(w.vm->error() == "");
       const double messages = double(w.sim->statistics().messagesSent);
       const double bound = kMessagesPerBlockHop * s.blocks() * std::max(1, s.diameter());
-      BOOST_TEST(messages <= bound, messages << " messages for " << s.blocks() << " blocks, diameter "
-                                             << s.diameter());
+      BOOST_TEST(messages <= bound,
+                 messages << " messages for " << s.blocks() << " blocks, diameter " << s.diameter());
       for (int id : {0, s.blocks() / 2, s.blocks() - 1}) {
         const std::string fact = expect(s, id);
         BOOST_TEST(w.facts(std::uint32_t(id)).find(fact) != std::string::npos,
-                   "block " << id << " lacks " << fact << ":\n" << w.facts(std::uint32_t(id)));
+                   "block " << id << " lacks " << fact << ":\n"
+                            << w.facts(std::uint32_t(id)));
       }
     }
   }
@@ -102,14 +103,13 @@ type bottomv(node, min float).
 }
 
 BOOST_AUTO_TEST_CASE(min_int_hop_gradient) {
-  converges(R"(
+  converges(
+      R"(
 type hops(node, min int).
 !hops(@0, 0).
 !neighbor(X, Y, _), !hops(X, D) -o !hops(Y, D + 1).
 )",
-            [](const Shape& s, int id) {
-              return "!hops(" + std::to_string(s.x(id) + s.y(id) + s.z(id)) + ")";
-            });
+      [](const Shape& s, int id) { return "!hops(" + std::to_string(s.x(id) + s.y(id) + s.z(id)) + ")"; });
 }
 
 BOOST_AUTO_TEST_CASE(sum_int_of_the_neighbours) {
@@ -123,7 +123,8 @@ type nsum(node, sum int).
               const int d[6][3] = {{1, 0, 0}, {-1, 0, 0}, {0, 1, 0}, {0, -1, 0}, {0, 0, 1}, {0, 0, -1}};
               for (const auto& v : d) {
                 const int a = x + v[0], b = y + v[1], c = z + v[2];
-                if (a >= 0 && a < s.nx && b >= 0 && b < s.ny && c >= 0 && c < s.nz) sum += a + s.nx * (b + s.ny * c);
+                if (a >= 0 && a < s.nx && b >= 0 && b < s.ny && c >= 0 && c < s.nz)
+                  sum += a + s.nx * (b + s.ny * c);
               }
               return "!nsum(" + std::to_string(sum) + ")";
             });
