@@ -1,8 +1,8 @@
 // vsim-ide: the IDE's window, or one picture of a run without a window (--screenshot).
 #include <QApplication>
-#include <QSurfaceFormat>
 #include <iostream>
 
+#include "gl_setup.hpp"
 #include "headless.hpp"
 #include "ide_options.hpp"
 #include "main_window.hpp"
@@ -27,13 +27,7 @@ int main(int argc, char** argv) {
     std::cout << "vsim-ide " VSIM_VERSION "\n";
     return 0;
   }
-  // Before the application object, as Qt requires: every GL context is 3.3 core.
-  QSurfaceFormat format;
-  format.setVersion(3, 3);
-  format.setProfile(QSurfaceFormat::CoreProfile);
-  format.setDepthBufferSize(24);
-  // No multisampling in the window: under a software renderer it doubles the time per frame.
-  QSurfaceFormat::setDefaultFormat(format);
+  ide::setUpOpenGl();  // before the application object, as Qt requires
   QApplication app(argc, argv);
   QApplication::setApplicationName("vsim-ide");
   QApplication::setOrganizationName("meld-toolchain");

@@ -99,7 +99,7 @@ void MainWindow::buildLayout() {
   splitter_->setStretchFactor(0, 2);
   splitter_->setStretchFactor(1, 3);
   splitter_->setStretchFactor(2, 1);
-  splitter_->setSizes({420, 640, 300});
+  splitter_->setSizes({380, 580, 440});
   setCentralWidget(splitter_);
   auto* dock = new QDockWidget("Console", this);
   dock->setObjectName("console");

@@ -134,8 +134,8 @@ void Simulation::dispatch(const Event& e) {
   ++stats_.eventsProcessed;
   ++stats_.eventsByKind[std::size_t(e.kind)];
   fingerprint_.add(e.time, e.block, e.kind);
-  if (!observers_.empty())
-    for (SimulationObserver* o : observers_) o->onEvent(*this, e);
+  if (!eventObservers_.empty())
+    for (SimulationObserver* o : eventObservers_) o->onEvent(*this, e);
   if (e.kind == EventKind::Start) {
     if (code_ && code_->start) {
       vs_ctx ctx{&kHostApi, this, e.block, blockState(e.block), code_->user};

@@ -150,8 +150,8 @@ int Simulation::send(BlockId from, int f, const void* data, std::uint32_t size, 
   stats_.bytesSent += size;
   const int back = world_.lattice().oppositeFace(world_.block(from).cell, f);
   schedule(arrival, to, EventKind::Message, back, slot);
-  if (!observers_.empty())
-    for (SimulationObserver* o : observers_) o->onMessageSent(*this, from, f, to, size, arrival);
+  if (!messageObservers_.empty())
+    for (SimulationObserver* o : messageObservers_) o->onMessageSent(*this, from, f, to, size, arrival);
   return VS_OK;
 }
 

@@ -104,7 +104,8 @@ SimTime Simulation::transmissionTime(std::uint32_t size) const {
 }
 
 void Simulation::removeObserver(SimulationObserver* observer) {
-  observers_.erase(std::remove(observers_.begin(), observers_.end(), observer), observers_.end());
+  for (auto* list : {&observers_, &eventObservers_, &messageObservers_})
+    list->erase(std::remove(list->begin(), list->end(), observer), list->end());
 }
 
 const Statistics& Simulation::statistics() const {

@@ -209,7 +209,8 @@ class Loader {
   void readBitmapLine(Node n, std::optional<std::uint32_t> listColor);
   void readCsg(Node n, std::optional<std::uint32_t> listColor);
   bool boolAttribute(Node n, const char* name, bool fallback) const;
-  void fillBox(Node n, Attr sizeAttr, const Cell& origin, const Cell& size, std::optional<std::uint32_t> color);
+  void fillBox(Node n, Attr sizeAttr, const Cell& origin, const Cell& size,
+               std::optional<std::uint32_t> color);
   void readSchedule(Node schedule);
   BlockId blockIdAttribute(Node n);
   SimTime timeAttribute(Node n);
@@ -326,7 +327,9 @@ WorldDescription Loader::run() {
   // A world without blocks is almost always a file whose block elements we did not understand:
   // running it would print an empty summary and exit 0.
   if (world_.blocks.empty() && !world_.csg)
-    fail(posOf(root), "the world has no block (no <block>, <blocksBox>, <blockBox>, <blocksLine> or <csg> in a <blockList>)");
+    fail(posOf(root),
+         "the world has no block (no <block>, <blocksBox>, <blockBox>, <blocksLine> or <csg> in a "
+         "<blockList>)");
   return std::move(world_);
 }
 
@@ -461,7 +464,8 @@ void Loader::readVisibleSimBox(Node n, std::optional<std::uint32_t> listColor) {
   const GridSize& g = world_.grid;
   Attr originAttr = attr(n, "boxOrigin"), sizeAttr = attr(n, "boxSize");
   const Cell origin = originAttr ? checkedCell(n, originAttr) : Cell{0, 0, 0};
-  const Cell size = sizeAttr ? sizeAttribute(n, sizeAttr) : Cell{g.x - origin.x, g.y - origin.y, g.z - origin.z};
+  const Cell size =
+      sizeAttr ? sizeAttribute(n, sizeAttr) : Cell{g.x - origin.x, g.y - origin.y, g.z - origin.z};
   // Without boxSize the box ends at the grid's far corner, so only a given size can be wrong.
   fillBox(n, sizeAttr ? sizeAttr : originAttr, origin, size, optionalColor(n, listColor));
 }
@@ -486,7 +490,8 @@ void Loader::readBitmapLine(Node n, std::optional<std::uint32_t> listColor) {
   const std::optional<std::uint32_t> color = optionalColor(n, listColor);
   for (std::size_t x = 0; x < bits.size(); ++x) {
     if (bits[x] == '0') continue;
-    if (bits[x] != '1') badAttribute(n, values, "holds '" + std::string(1, bits[x]) + "': only 0 and 1 are allowed");
+    if (bits[x] != '1')
+      badAttribute(n, values, "holds '" + std::string(1, bits[x]) + "': only 0 and 1 are allowed");
     if (std::int64_t(x) >= world_.grid.x)
       badAttribute(n, values, "has a block at x = " + std::to_string(x) + ", outside the grid");
     addBlock(n, values, Cell{std::int32_t(x), std::int32_t((*y)[0]), std::int32_t(z)}, color);
@@ -501,7 +506,8 @@ void Loader::readBox(Node n, std::optional<std::uint32_t> listColor) {
   fillBox(n, sizeAttr, origin, size, optionalColor(n, listColor));
 }
 
-void Loader::fillBox(Node n, Attr sizeAttr, const Cell& origin, const Cell& size, std::optional<std::uint32_t> color) {
+void Loader::fillBox(Node n, Attr sizeAttr, const Cell& origin, const Cell& size,
+                     std::optional<std::uint32_t> color) {
   const GridSize& g = world_.grid;
   if (size.x <= 0 || size.y <= 0 || size.z <= 0) badAttribute(n, sizeAttr, "is not three positive integers");
   if (std::int64_t(origin.x) + size.x > g.x || std::int64_t(origin.y) + size.y > g.y ||
@@ -592,8 +598,8 @@ void Loader::readCsg(Node n, std::optional<std::uint32_t> listColor) {
     fail(posOfPointer(content.value() + std::min(e.offset(), std::strlen(content.value()))),
          std::string("<csg content>: ") + e.what());
   }
-  world_.csg = CsgDescription{content.value(), boolAttribute(n, "boundingBox", true), boolAttribute(n, "offset", true),
-                              optionalColor(n, listColor), posOf(n)};
+  world_.csg = CsgDescription{content.value(), boolAttribute(n, "boundingBox", true),
+                              boolAttribute(n, "offset", true), optionalColor(n, listColor), posOf(n)};
 }
 
 bool Loader::boolAttribute(Node n, const char* name, bool fallback) const {

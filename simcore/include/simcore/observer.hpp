@@ -15,6 +15,11 @@ class Simulation;
 class SimulationObserver {
  public:
   virtual ~SimulationObserver() = default;
+  // Whether onEvent and onMessageSent are wanted: they come once per event and per message, so an
+  // observer that does not want them (a console showing only the programs' own text) costs the
+  // kernel nothing per event. Asked once, when the observer is added.
+  virtual bool wantsEvents() const { return true; }
+  virtual bool wantsMessages() const { return true; }
   // Called before the event is handed to the block program.
   virtual void onEvent(const Simulation&, const Event&) {}
   virtual void onMessageSent(const Simulation&, std::uint32_t /*from*/, int /*face*/, std::uint32_t /*to*/,

@@ -69,7 +69,11 @@ class Simulation {
   std::uint64_t seed() const { return config_.seed; }
   const char* fesName() const;
   std::size_t pendingEvents() const { return queue_.size(); }
-  void addObserver(SimulationObserver* observer) { observers_.push_back(observer); }
+  void addObserver(SimulationObserver* observer) {
+    observers_.push_back(observer);
+    if (observer->wantsEvents()) eventObservers_.push_back(observer);
+    if (observer->wantsMessages()) messageObservers_.push_back(observer);
+  }
   void removeObserver(SimulationObserver* observer);
   // Interpolated position (cell units) of a block, mid-motion included.
   Vec3 position(BlockId id) const;
@@ -190,6 +194,7 @@ class Simulation {
   mutable Statistics stats_;
   Fingerprint fingerprint_;
   std::vector<SimulationObserver*> observers_;
+  std::vector<SimulationObserver*> eventObservers_, messageObservers_;  // those of observers_ that want them
   double wallSeconds_ = 0;
 };
 

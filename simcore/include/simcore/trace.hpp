@@ -82,6 +82,13 @@ class Trace final : public SimulationObserver {
   void onBlockTrace(const Simulation& sim, std::uint32_t block, std::string_view text) override;
 
   std::uint64_t linesWritten() const { return lines_; }
+  // Only the kinds the filter selects: kernel events, sends.
+  bool wantsEvents() const override {
+    for (int k = 0; k < int(EventKind::Count); ++k)
+      if (filter_.selectsKind(k)) return true;
+    return false;
+  }
+  bool wantsMessages() const override { return filter_.selectsKind(int(TraceKind::Send)); }
 
  private:
   class Line;

@@ -8,8 +8,8 @@
 #include <string>
 #include <vector>
 
-#include "support/large_allocator.hpp"
 #include "simcore/lattice.hpp"
+#include "support/large_allocator.hpp"
 
 namespace simcore {
 

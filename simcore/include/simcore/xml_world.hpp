@@ -86,8 +86,8 @@ struct CsgDescription {
 };
 
 struct WorldDescription {
-  std::string path;    // the file read (or the name given to parseWorldXml)
-  std::string target;  // as written, blanks trimmed ("" if absent); not validated here
+  std::string path;     // the file read (or the name given to parseWorldXml)
+  std::string target;   // as written, blanks trimmed ("" if absent); not validated here
   SourcePos targetPos;  // of the target attribute, for the front end's message
   GridSize grid;
   std::optional<std::uint32_t> listColor;  // color="..." of the first <blockList>
@@ -109,8 +109,9 @@ WorldDescription loadWorldXml(const std::string& path);
 WorldDescription parseWorldXml(std::string_view text, const std::string& pathForMessages);
 
 // Adds the blocks (in order, so ids match the description; then those of the <csg> solid) to a
-// simulation that has none yet, and schedules the taps and accelerometer readings. Throws XmlWorldError at the offending element
-// (cell outside the simulation's grid, tap on an unknown block, tap on a target without tap ...).
+// simulation that has none yet, and schedules the taps and accelerometer readings. Throws XmlWorldError at
+// the offending element (cell outside the simulation's grid, tap on an unknown block, tap on a target without
+// tap ...).
 void populateSimulation(const WorldDescription& world, Simulation& sim);
 
 // Writes the current configuration (cells and colors of the alive blocks, renumbered densely in id
