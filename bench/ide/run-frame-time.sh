@@ -21,15 +21,10 @@ done
 [ -x "$ide" ] || { echo "run-frame-time.sh: vsim-ide not found at $ide (build it, or set VSIM_IDE=...)" >&2; exit 1; }
 command -v xvfb-run > /dev/null || { echo "run-frame-time.sh: xvfb-run is needed (Debian package xvfb)" >&2; exit 1; }
 mkdir -p "$workdir"
-world() {  # world NAME X Y Z
-  local f="$workdir/$1.xml"
-  cat > "$f" <<XML
-<?xml version="1.0" encoding="UTF-8"?>
-<world gridSize="$2,$3,$4" target="blinkyblocks" seed="1">
-  <blockList color="128,128,128"><blocksBox origin="0,0,0" size="$2,$3,$4"/></blockList>
-</world>
-XML
-  echo "$f"
+source "$here/box-world.sh"
+world() {  # world NAME X Y Z: the file's path
+  box_world "$workdir/$1.xml" "$2" "$3" "$4"
+  echo "$workdir/$1.xml"
 }
 printf "%-8s %9s %10s\n" blocks size ms/frame
 for spec in "1k 10 10 10" "10k 100 100 1" "100k 100 100 10"; do

@@ -23,12 +23,8 @@ done
 [ -x "$bin" ] || { echo "run-ide-speed.sh: ide_speed not found at $bin (build it, or set IDE_SPEED=...)" >&2; exit 1; }
 mkdir -p "$workdir"
 w="$workdir/speed-$x-$y-$z.xml"
-cat > "$w" <<XML
-<?xml version="1.0" encoding="UTF-8"?>
-<world gridSize="$x,$y,$z" target="blinkyblocks" seed="1">
-  <blockList color="128,128,128"><blocksBox origin="0,0,0" size="$x,$y,$z"/></blockList>
-</world>
-XML
+source "$here/box-world.sh"
+box_world "$w" "$x" "$y" "$z"
 echo "world: $x x $y x $z Blinky Blocks, program bench/meld-robots/gradient.meld, tap 0@1ms, $runs runs"
 median() { sort -g | awk '{a[NR]=$1} END {print (NR%2) ? a[(NR+1)/2] : (a[NR/2]+a[NR/2+1])/2}'; }
 heads="" ides="" ratios=""
