@@ -119,14 +119,15 @@ Pictures without a window:
   --frames DIR          a picture every --every of simulated time (default 100ms) from 0 to
                         --until T (or to the end), DIR/frame-000000.png on, then exit; make a
                         video with e.g. ffmpeg -i DIR/frame-%06d.png out.mp4
-  --every T             the simulated time between two frames (ms)
+  --every T             the simulated time between two frames (a duration: 50ms, 0.5s, ...)
 
 Run options (as vsim; see vsim --help): --code, --program, -I DIR, --target, --until, --seed,
   --fes, --link-rate, --link-latency, --link-jitter, --motion-time, --tap ID@T, --time-per-rule,
   --palette visiblesim|lm. The console's trace filter takes vsim --trace's syntax.
 
-Exit status: 0 ok; 1 the run failed (screenshot mode) or the picture could not be written;
-  2 bad command line; 3 bad world, program or block code (screenshot and frames modes).
+Exit status: 0 ok; 1 the run failed, or a picture could not be written; 2 bad command line;
+  3 bad world, program or block code (1 and 3: screenshot and frames modes; the window shows
+  such errors and keeps running).
 )";
 }
 
