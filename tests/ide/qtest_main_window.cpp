@@ -204,6 +204,40 @@ class MainWindowTest : public QObject {
     w.inspector()->setHistoryRecorded(false);
   }
 
+  void runTimeErrorsAndBadCodeAreMessages() {
+    QTemporaryDir dir;
+    QFile f(dir.filePath("div.meld"));
+    QVERIFY(f.open(QIODevice::WriteOnly));
+    f.write("include #blinkyblocks.meld\ntype v(node, int).\n!at(B, X, _, _) -o !v(B, 10 / (X - X)).\n");
+    f.close();
+    vsim::Options o = gradientOptions();
+    o.program = dir.filePath("div.meld").toStdString();
+    ide::MainWindow w(o);
+    w.show();
+    w.controller().run();
+    QTRY_VERIFY_WITH_TIMEOUT((w.poll(), w.controller().snapshot()->state == ide::RunState::Failed), 30000);
+    w.poll();
+    QVERIFY(w.statusText().startsWith("failed"));
+    QVERIFY2(w.console()->text().contains("integer division by zero"), qPrintable(w.console()->text()));
+    // The window goes on: a good program runs again.
+    QVERIFY(w.openProgram(kSource + "/examples/meld/gradient-tap.meld"));
+    w.controller().run();
+    QTRY_VERIFY_WITH_TIMEOUT(finished(w), 30000);
+
+    QFile so(dir.filePath("bad.so"));
+    QVERIFY(so.open(QIODevice::WriteOnly));
+    so.write("not a shared object");
+    so.close();
+    vsim::Options c;
+    c.world = (kSource + "/examples/worlds/color-flood.xml").toStdString();
+    c.code = dir.filePath("bad.so").toStdString();
+    ide::MainWindow broken(c);
+    QVERIFY(!broken.controller().isOpen());
+    QVERIFY(broken.console()->text().contains("is not a shared object"));
+    broken.poll();
+    QVERIFY(broken.statusText().isEmpty());
+  }
+
   void highlighterColoursMeld() {
     ide::CodeEditor editor;
     editor.setPlainText("type linear go(node). // c\n/* a\nb */ !go(X, 3) -o go(X, \"s\").\n");
