@@ -151,6 +151,9 @@ bool KernelLoop::apply(const Command& c) {
     case Command::Remove:
       removeBlock(c.block);
       break;
+    case Command::Add:
+      addBlock(c);
+      break;
     case Command::SaveWorld:
       saveWorld(c.fact);
       break;
@@ -272,6 +275,31 @@ void KernelLoop::removeBlock(simcore::BlockId block) {
   sim.removeBlock(block);  // its links break; its neighbours are told (events at the current time)
   if (state_ == RunState::Finished && sim.pendingEvents() > 0) state_ = RunState::Paused;
   console_.push("Removed block " + std::to_string(block) + " at " + simcore::formatTime(sim.now()) + ".");
+}
+
+void KernelLoop::addBlock(const Command& c) {
+  simcore::Simulation& sim = session_->simulation();
+  if (state_ == RunState::Running) return console_.push("Pause the run before adding a block.");
+  if (state_ == RunState::Failed) return;
+  simcore::World& world = sim.world();
+  simcore::Cell cell = c.cell;
+  if (c.block != simcore::kNoBlock) {  // the first free cell next to that block, in face order
+    if (c.block >= world.blockCount() || !world.isAlive(c.block)) return;
+    bool found = false;
+    for (int f = 0; f < world.faceCount() && !found; ++f) {
+      cell = world.lattice().neighborCell(world.block(c.block).cell, f);
+      found = world.isFree(cell) && world.lattice().isValidCell(cell);
+    }
+    if (!found) return console_.push("Block " + std::to_string(c.block) + " has no free cell around it.");
+  }
+  const simcore::BlockId id = sim.addBlockWhileRunning(cell, sim.target().defaultColor);
+  const std::string where =
+      "(" + std::to_string(cell.x) + ", " + std::to_string(cell.y) + ", " + std::to_string(cell.z) + ")";
+  if (id == simcore::kNoBlock)
+    return console_.push("Cannot add a block at " + where + ": outside the grid or taken.");
+  if (state_ == RunState::Finished) state_ = RunState::Paused;
+  console_.push("Added block " + std::to_string(id) + " at " + where + ", " + simcore::formatTime(sim.now()) +
+                ".");
 }
 
 void KernelLoop::saveWorld(const std::string& path) {

@@ -24,7 +24,7 @@
 namespace ide {
 
 struct Command {
-  enum Kind { Run, Pause, Step, Select, Tap, Trace, History, Why, Remove, SaveWorld, Quit };
+  enum Kind { Run, Pause, Step, Select, Tap, Trace, History, Why, Remove, Add, SaveWorld, Quit };
   explicit Command(Kind k) : kind(k) {}
   Kind kind;
   double speed = 0;                                 // Run: simulated s per wall s; 0 = as fast as possible
@@ -32,6 +32,7 @@ struct Command {
   simcore::BlockId block = simcore::kNoBlock;       // Select, Tap
   simcore::TraceFilter filter;                      // Trace
   bool on = false;                                  // History
+  simcore::Cell cell;                               // Add: the cell (block == kNoBlock), else next to block
   std::string fact;                                 // Why: the fact as the dump prints it; SaveWorld: path
   std::uint64_t request = 0;                        // Why
 };
@@ -63,6 +64,7 @@ class KernelLoop {
   void followHistory();  // the history observer follows the selection (or goes)
   void answerWhy(const Command& c);
   void removeBlock(simcore::BlockId block);
+  void addBlock(const Command& c);
   void saveWorld(const std::string& path);
 
   ConsoleBuffer console_;

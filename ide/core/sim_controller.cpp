@@ -96,6 +96,20 @@ void SimController::removeBlock(simcore::BlockId block) {
   loop_->post(c);
 }
 
+void SimController::addBlock(const simcore::Cell& cell) {
+  if (!loop_) return;
+  Command c{Command::Add};
+  c.cell = cell;
+  loop_->post(c);
+}
+
+void SimController::addBlockNextTo(simcore::BlockId block) {
+  if (!loop_) return;
+  Command c{Command::Add};
+  c.block = block;
+  loop_->post(c);
+}
+
 void SimController::saveWorld(const std::string& path) {
   if (!loop_) return;
   Command c{Command::SaveWorld};

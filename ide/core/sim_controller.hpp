@@ -66,6 +66,10 @@ class SimController {
   void tap(simcore::BlockId block);
   // While paused (or at the end): the block leaves the world; its neighbours are told.
   void removeBlock(simcore::BlockId block);
+  // While paused (or at the end): a new block (the next id) at a cell, or in the first free cell
+  // next to a block; it starts now and its neighbours are told. The console says where or why not.
+  void addBlock(const simcore::Cell& cell);
+  void addBlockNextTo(simcore::BlockId block);
   // Writes the world as it is now (cells, colours; camera, light and the block program kept) as
   // a world file that loads again; the console says when it is done or why it failed.
   void saveWorld(const std::string& path);

@@ -232,6 +232,13 @@ void MainWindow::buildActions() {
     if (selected_ != simcore::kNoBlock) controller_.removeBlock(selected_);
   });
   bar->addAction(remove);
+  QAction* add = new QAction("Add", this);
+  add->setShortcut(QKeySequence("Insert"));
+  add->setToolTip("Add a block in the first free cell next to the selected one (while paused)");
+  connect(add, &QAction::triggered, this, [this] {
+    if (selected_ != simcore::kNoBlock) controller_.addBlockNextTo(selected_);
+  });
+  bar->addAction(add);
 }
 
 double MainWindow::chosenSpeed() const { return speed_->currentData().toDouble(); }

@@ -4,6 +4,7 @@
 #include <string>
 
 #include "host_api.hpp"
+#include "simcore/rng.hpp"
 #include "simcore/simulation.hpp"
 #include "slot_pool.hpp"
 
@@ -188,6 +189,37 @@ void Simulation::formLinks(BlockId id) {
     schedule(queue_.now(), id, EventKind::NeighborAdded, f, n);
     schedule(queue_.now(), n, EventKind::NeighborAdded, back, id);
   }
+}
+
+BlockId Simulation::addBlockWhileRunning(const Cell& cell, std::uint32_t color) {
+  if (!started_) return addBlock(cell, color);
+  if (!world_.isFree(cell)) return kNoBlock;
+  const BlockId id = world_.addBlock(cell, color);
+  if (id == kNoBlock) return id;
+  world_.block(id).rng = BlockRng::initialState(config_.seed, id);
+  faceGroup_.push_back(kNoBlock);
+  facesInFlight_.push_back(0);
+  if (link_.jitter > 0) lastArrival_.resize(lastArrival_.size() + std::size_t(faceCount_), 0);
+  if (target_.hasAccelerometer) accel_.push_back({0, 0, -1});
+  if (target_.hasDisplayValue) displayValues_.push_back(0);
+  if (stateSize_) {
+    // The states move (block programs get their state's address per callback, never keep it).
+    const std::size_t used = std::size_t(id) * stateSize_;
+    std::vector<unsigned char, support::LargeAllocator<unsigned char>> grown(used + stateSize_ + 16, 0);
+    unsigned char* raw = grown.data();
+    unsigned char* base = raw + ((16 - (reinterpret_cast<std::uintptr_t>(raw) & 15)) & 15);
+    std::memcpy(base, stateBase_, used);
+    stateStorage_.swap(grown);
+    stateBase_ = base;
+  }
+  schedule(queue_.now(), id, EventKind::Start, 0, 0);
+  // Its neighbours learn of it; the block itself sees them at its start.
+  for (int f = 0; f < faceCount_; ++f) {
+    const BlockId n = world_.neighbor(id, f);
+    if (n != kNoBlock)
+      schedule(queue_.now(), n, EventKind::NeighborAdded, world_.lattice().oppositeFace(cell, f), id);
+  }
+  return id;
 }
 
 void Simulation::removeBlock(BlockId id) {

@@ -312,3 +312,33 @@ BOOST_AUTO_TEST_CASE(removing_a_block_while_paused_and_saving_the_world) {
   }
   BOOST_TEST(refused);
 }
+
+BOOST_AUTO_TEST_CASE(adding_a_block_while_paused) {
+  ide::SimController c;
+  BOOST_REQUIRE(c.open(gradientOptions()));
+  c.runUntil(simcore::kSecond / 2);
+  BOOST_REQUIRE(c.waitFor([](const ide::WorldSnapshot& s) { return s.now == simcore::kSecond / 2; }, 30s));
+  auto console = [&](const std::string& part) {
+    for (int i = 0; i < 300; ++i) {
+      for (const std::string& l : c.takeConsoleLines())
+        if (l.find(part) != std::string::npos) return true;
+      std::this_thread::sleep_for(10ms);
+    }
+    return false;
+  };
+  c.addBlock({3, 3, 0});  // the centre: taken
+  BOOST_TEST(console("Cannot add a block at (3, 3, 0)"));
+  c.addBlockNextTo(48);  // the far corner: the floor is full, and one layer high
+  BOOST_TEST(console("has no free cell around it"));
+  c.removeBlock(48);
+  c.addBlockNextTo(47);  // (5, 6): its first free neighbour cell is (6, 6), where 48 was
+  BOOST_TEST(console("Added block 49 at (6, 6, 0)"));
+  c.run();
+  const auto end = waitOver(c);
+  BOOST_REQUIRE(end);
+  BOOST_TEST(end->error == "");
+  BOOST_REQUIRE_EQUAL(end->positions.size(), 50u);
+  BOOST_TEST(!end->alive[48]);
+  BOOST_TEST(end->alive[49]);
+  BOOST_TEST(end->colors[49] == 0xFF0000u);  // distance 6 from the tapped centre: red, as 48 was
+}

@@ -215,3 +215,29 @@ BOOST_AUTO_TEST_CASE(catoms_2d_and_3d_run_the_gradient_over_their_lattices) {
                  target << " " << b);
   }
 }
+
+BOOST_AUTO_TEST_CASE(a_block_added_to_the_running_world_gets_a_node_and_joins_the_gradient) {
+  // Blocks 0..2 on a line; after the gradient from block 0 settled, a block joins at x = 3 next
+  // to block 2: its node starts with its neighbour, takes hops 3 and colours itself, and block 2
+  // sees a new neighbour.
+  World w("blinkyblocks", robots::line(3), kGradient);
+  w.sim->scheduleTap(0, simcore::kSecond);
+  w.sim->runUntilEmpty();
+  BOOST_TEST(w.sim->addBlockWhileRunning({1, 0, 0}, 0x808080) == simcore::kNoBlock);  // taken
+  const simcore::BlockId added = w.sim->addBlockWhileRunning({3, 0, 0}, 0x808080);
+  BOOST_REQUIRE_EQUAL(added, 3u);
+  w.sim->runUntilEmpty();
+  BOOST_TEST(w.vm->error() == "");
+  BOOST_TEST(w.facts(3).find("!hops(3)") != std::string::npos, w.facts(3));
+  BOOST_TEST(w.facts(3).find("!neighbor(@2, 4)") != std::string::npos);
+  BOOST_TEST(w.facts(2).find("!neighbor(@3, 2)") != std::string::npos);
+  BOOST_TEST(w.color(3) != 0x808080u);
+  // The same again: the run is deterministic.
+  World again("blinkyblocks", robots::line(3), kGradient);
+  again.sim->scheduleTap(0, simcore::kSecond);
+  again.sim->runUntilEmpty();
+  again.sim->addBlockWhileRunning({3, 0, 0}, 0x808080);
+  again.sim->runUntilEmpty();
+  BOOST_TEST(again.sim->fingerprint() == w.sim->fingerprint());
+  BOOST_TEST(again.dump() == w.dump());
+}

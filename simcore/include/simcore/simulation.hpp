@@ -57,6 +57,10 @@ class Simulation {
   // --- Changing the world while it runs (tests, IDE) ---
   // Removes a block: its links break (in-flight messages on them are dropped) and neighbors are told.
   void removeBlock(BlockId id);
+  // Adds a block to the running world (before the start: addBlock): it gets the next id and a
+  // Start event now; its neighbours are told (NeighborAdded now). kNoBlock if the cell is outside,
+  // invalid or taken.
+  BlockId addBlockWhileRunning(const Cell& cell, std::uint32_t color);
 
   // --- Observing ---
   SimTime now() const { return queue_.now(); }

@@ -461,20 +461,30 @@ void Machine::updated(NodeId host, PredId p, FactRef f, const Value* args, bool 
   ++runDerived_;
 }
 
-NodeId Machine::newNode() {
-  countStep();
+NodeId Machine::appendNode(bool created) {
   const NodeId id = db_->addNodes(1);
   candidates_.resize(candidates_.size() + tables_.ruleWords, 0);
   mail_->addNodes(1);
-  created_.push_back(1);
+  created_.push_back(created ? 1 : 0);
   sched_.addNode();
   if (program_.initPredicate != Program::kNoPred) {
     db_->addLinear(id, program_.initPredicate, kNoArgs);
     factAdded(id, program_.initPredicate);
   }
+  return id;
+}
+
+NodeId Machine::newNode() {
+  countStep();
+  const NodeId id = appendNode(true);
   if (host_) throw RuntimeError("exists: a robot cannot create nodes (every node is a block)");
   sched_.wake(id);
   return id;
+}
+
+NodeId Machine::addHostNode() {
+  start();
+  return appendNode(false);
 }
 
 // ---- end of the run ----

@@ -117,6 +117,8 @@ void BlockRuntime::start(vs_ctx* ctx) {
   if (!error_.empty()) return;
   try {
     machine_->start();
+    // A block added to the running world (the IDE): its node is made now, with the next id.
+    while (machine_->database().nodeCount() <= ctx->block) machine_->addHostNode();
     auto& st = *static_cast<BlockState*>(ctx->state);
     st.neighbors = ctx->api->neighbor_count(ctx);
     ctx->api->position(ctx, st.at);

@@ -85,6 +85,10 @@ class Machine : private SchedulerView {
   void receive(NodeId n, PredId p, const Value* args, bool negative);
   std::uint64_t runNode(NodeId n);
   bool hasWork(NodeId n) const;
+  // A node for a block that joined the world after the start (the host drives it like the others):
+  // it gets its `_init` fact, and rule 0's axioms of variable home; the axioms written for a
+  // node literal belong to the initial nodes. Returns its id (the next one).
+  NodeId addHostNode();
   // Room for that many facts of p (all nodes together), when the driver knows the count.
   void reserveFacts(PredId p, std::size_t facts) { db_->reserve(p, facts); }
   bool stopped() const { return stop_; }
@@ -123,6 +127,7 @@ class Machine : private SchedulerView {
   void consumed(NodeId host, PredId p, FactRef f);
   void updated(NodeId host, PredId p, FactRef f, const Value* args, bool moveToBack);
   NodeId newNode();
+  NodeId appendNode(bool created);
   void priorityRequest(NodeId n, double p);
   void coordination(Opcode op, NodeId n, double value);
   void stopProgram() { stop_ = true; }
