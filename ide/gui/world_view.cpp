@@ -26,7 +26,12 @@ bool WorldView::readyForFrame(double share) const {
   return double(lastFrameEnd_.elapsed()) >= frameMs_ * (1.0 - share) / share;
 }
 
-WorldView::~WorldView() { releaseGl(); }
+WorldView::~WorldView() {
+  // QOpenGLWidget's destructor destroys the context after this object is gone: the slot must not
+  // be called then (UBSan found the call on the half-destroyed widget).
+  disconnect(contextGone_);
+  releaseGl();
+}
 
 void WorldView::releaseGl() {
   if (!renderer_) return;
@@ -79,7 +84,8 @@ void WorldView::initializeGL() {
     renderer_.reset();
   }
   sessionChanged_ = true;
-  connect(context(), &QOpenGLContext::aboutToBeDestroyed, this, &WorldView::releaseGl);
+  disconnect(contextGone_);
+  contextGone_ = connect(context(), &QOpenGLContext::aboutToBeDestroyed, this, &WorldView::releaseGl);
 }
 
 void WorldView::paintGL() {

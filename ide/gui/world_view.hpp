@@ -62,6 +62,7 @@ class WorldView : public QOpenGLWidget {
   double frameMs_ = 0;
   QElapsedTimer paintStart_, lastFrameEnd_;
   QString glError_;
+  QMetaObject::Connection contextGone_;  // the context's aboutToBeDestroyed, to release GL objects
 };
 
 }  // namespace ide
