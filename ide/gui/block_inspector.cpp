@@ -45,6 +45,9 @@ BlockInspector::BlockInspector(QWidget* parent)
   layout->setContentsMargins(4, 4, 4, 4);
   header_->setTextFormat(Qt::RichText);
   header_->setWordWrap(true);
+  // The header wraps to the pane's width instead of widening the pane past the window's edge.
+  header_->setSizePolicy(QSizePolicy::Ignored, QSizePolicy::Preferred);
+  header_->setMinimumWidth(120);
   header_->setTextInteractionFlags(Qt::TextSelectableByMouse);
   filter_->setPlaceholderText("filter facts");
   filter_->setClearButtonEnabled(true);

@@ -6,12 +6,14 @@
 #include <QDockWidget>
 #include <QFileDialog>
 #include <QFileInfo>
+#include <QGuiApplication>
 #include <QInputDialog>
 #include <QLabel>
 #include <QListWidget>
 #include <QMenuBar>
 #include <QMessageBox>
 #include <QProgressDialog>
+#include <QScreen>
 #include <QSettings>
 #include <QSplitter>
 #include <QStatusBar>
@@ -107,7 +109,10 @@ void MainWindow::buildLayout() {
   addDockWidget(Qt::BottomDockWidgetArea, dock);
   resizeDocks({dock}, {180}, Qt::Vertical);
   statusBar()->addWidget(status_, 1);
-  resize(1400, 900);
+  // 1400x900, or most of a smaller screen (restoreGeometry overrides it with the last run's).
+  const QSize screen =
+      QGuiApplication::primaryScreen() ? QGuiApplication::primaryScreen()->availableSize() : QSize(1400, 900);
+  resize(std::min(1400, screen.width() * 95 / 100), std::min(900, screen.height() * 95 / 100));
 
   connect(view_, &WorldView::blockClicked, this, &MainWindow::selectBlock);
   connect(inspector_, &BlockInspector::factChosen, this,
