@@ -56,78 +56,59 @@ void SimController::runUntil(simcore::SimTime t, double speed) {
   loop_->post(c);
 }
 
-void SimController::pause() {
-  if (loop_) loop_->post(Command{Command::Pause});
+void SimController::pause() { post(Command{Command::Pause}); }
+void SimController::step() { post(Command{Command::Step}); }
+
+void SimController::post(Command c) {
+  if (loop_) loop_->post(std::move(c));
 }
 
-void SimController::step() {
-  if (loop_) loop_->post(Command{Command::Step});
-}
-
-void SimController::select(simcore::BlockId block) {
-  if (!loop_) return;
-  Command c{Command::Select};
+// A command about one block.
+namespace {
+Command aboutBlock(Command::Kind kind, simcore::BlockId block) {
+  Command c{kind};
   c.block = block;
-  loop_->post(c);
+  return c;
 }
+}  // namespace
+
+void SimController::select(simcore::BlockId block) { post(aboutBlock(Command::Select, block)); }
+void SimController::removeBlock(simcore::BlockId block) { post(aboutBlock(Command::Remove, block)); }
+void SimController::addBlockNextTo(simcore::BlockId block) { post(aboutBlock(Command::Add, block)); }
+void SimController::tap(simcore::BlockId block) { post(aboutBlock(Command::Tap, block)); }
 
 void SimController::setHistory(bool on) {
   history_ = on;
-  if (!loop_) return;
   Command c{Command::History};
   c.on = on;
-  loop_->post(c);
+  post(c);
 }
 
 std::uint64_t SimController::why(simcore::BlockId block, const std::string& fact) {
   if (!loop_) return 0;
-  Command c{Command::Why};
-  c.block = block;
+  Command c = aboutBlock(Command::Why, block);
   c.fact = fact;
   c.request = ++whyRequests_;
-  loop_->post(c);
+  post(c);
   return c.request;
 }
 
-void SimController::removeBlock(simcore::BlockId block) {
-  if (!loop_) return;
-  Command c{Command::Remove};
-  c.block = block;
-  loop_->post(c);
-}
-
 void SimController::addBlock(const simcore::Cell& cell) {
-  if (!loop_) return;
   Command c{Command::Add};
   c.cell = cell;
-  loop_->post(c);
-}
-
-void SimController::addBlockNextTo(simcore::BlockId block) {
-  if (!loop_) return;
-  Command c{Command::Add};
-  c.block = block;
-  loop_->post(c);
+  post(c);
 }
 
 void SimController::saveWorld(const std::string& path) {
-  if (!loop_) return;
   Command c{Command::SaveWorld};
   c.fact = path;
-  loop_->post(c);
-}
-
-void SimController::tap(simcore::BlockId block) {
-  if (!loop_) return;
-  Command c{Command::Tap};
-  c.block = block;
-  loop_->post(c);
+  post(c);
 }
 
 void SimController::setTraceFilter(const std::string& filter) {
   Command c{Command::Trace};
   c.filter = simcore::parseTraceFilter(filter.empty() ? std::string("kinds=trace") : filter);
-  if (loop_) loop_->post(c);
+  post(c);
 }
 
 std::shared_ptr<const WorldSnapshot> SimController::snapshot() const {

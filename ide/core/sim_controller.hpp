@@ -22,6 +22,7 @@
 namespace ide {
 
 class KernelLoop;
+struct Command;
 
 class SimController {
  public:
@@ -91,6 +92,7 @@ class SimController {
 
  private:
   void close();
+  void post(Command c);  // to the kernel thread, when a run is open
 
   std::function<void()> notify_;
   vsim::Options options_;
