@@ -1,25 +1,16 @@
 #include "session_info.hpp"
 
-#include <cstdlib>
-#include <sstream>
 
 namespace ide {
 
 namespace {
 
-// "a,b,c" into up to n floats; false unless exactly n numbers.
-bool parseFloats(const std::string& text, float* out, int n) {
-  std::istringstream in(text);
-  std::string item;
-  int i = 0;
-  while (std::getline(in, item, ',')) {
-    if (i == n) return false;
-    char* end = nullptr;
-    const float v = std::strtof(item.c_str(), &end);
-    if (end == item.c_str()) return false;
-    out[i++] = v;
-  }
-  return i == n;
+// Exactly n numbers ("a,b,c"), as world files write them.
+bool parseFloats(const std::string& text, float* out, std::size_t n) {
+  const auto v = simcore::parseRealList(text);
+  if (!v || v->size() != n) return false;
+  for (std::size_t i = 0; i < n; ++i) out[i] = float((*v)[i]);
+  return true;
 }
 
 }  // namespace

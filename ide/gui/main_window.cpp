@@ -7,18 +7,14 @@
 #include <QFileDialog>
 #include <QFileInfo>
 #include <QGuiApplication>
-#include <QInputDialog>
 #include <QLabel>
 #include <QListWidget>
-#include <QMenuBar>
 #include <QMessageBox>
-#include <QProgressDialog>
 #include <QScreen>
 #include <QSettings>
 #include <QSplitter>
 #include <QStatusBar>
 #include <QTimer>
-#include <QToolBar>
 #include <QVBoxLayout>
 #include <sstream>
 
@@ -26,7 +22,6 @@
 #include "code_editor.hpp"
 #include "console_panel.hpp"
 #include "diagnostics.hpp"
-#include "frame_export.hpp"
 #include "meld_program.hpp"
 #include "world_view.hpp"
 
@@ -34,13 +29,7 @@ namespace ide {
 
 namespace {
 
-constexpr int kMaxRecent = 8;
 constexpr double kDrawShare = 0.2;
-
-// Speeds offered: simulated seconds per wall second; 0 = as fast as possible.
-const std::pair<const char*, double> kSpeeds[] = {{"0.1×", 0.1},   {"1× (real time)", 1},
-                                                  {"10×", 10},     {"100×", 100},
-                                                  {"1000×", 1000}, {"as fast as possible", 0}};
 
 }  // namespace
 
@@ -59,7 +48,9 @@ MainWindow::MainWindow(const vsim::Options& options, const StartActions& start, 
       timer_(new QTimer(this)) {
   setWindowTitle("vsim-ide");
   buildLayout();
-  buildActions();
+  buildFileMenu();
+  buildRunActions();
+  buildBlockActions();
   QSettings settings;
   restoreGeometry(settings.value("window/geometry").toByteArray());
   restoreState(settings.value("window/state").toByteArray());
@@ -118,20 +109,11 @@ void MainWindow::buildLayout() {
   connect(inspector_, &BlockInspector::factChosen, this,
           [this](std::uint32_t block, const QString& fact) { controller_.why(block, fact.toStdString()); });
   connect(inspector_, &BlockInspector::historyToggled, this, [this](bool on) { controller_.setHistory(on); });
-  connect(inspector_, &BlockInspector::sourceClicked, this, [this](const QString& file, int line) {
-    if (QFileInfo(file).canonicalFilePath() != QFileInfo(editor_->path()).canonicalFilePath()) {
-      QString error;
-      if (!editor_->load(file, error)) return console_->appendMessage(error);
-    }
-    editor_->goTo(line, 1);
-  });
+  connect(inspector_, &BlockInspector::sourceClicked, this,
+          [this](const QString& file, int line) { showSource(file, line, 1); });
   connect(diagnostics_, &QListWidget::itemClicked, this, [this](QListWidgetItem* item) {
-    const QString file = item->data(Qt::UserRole).toString();
-    if (QFileInfo(file).canonicalFilePath() != QFileInfo(editor_->path()).canonicalFilePath()) {
-      QString error;
-      if (!editor_->load(file, error)) return console_->appendMessage(error);
-    }
-    editor_->goTo(item->data(Qt::UserRole + 1).toInt(), item->data(Qt::UserRole + 2).toInt());
+    showSource(item->data(Qt::UserRole).toString(), item->data(Qt::UserRole + 1).toInt(),
+               item->data(Qt::UserRole + 2).toInt());
   });
   connect(console_, &ConsolePanel::traceFilterChanged, this, [this](const QString& filter) {
     try {
@@ -143,123 +125,19 @@ void MainWindow::buildLayout() {
   });
 }
 
-void MainWindow::buildActions() {
-  QMenu* file = menuBar()->addMenu("&File");
-  file->addAction("Open &world...", QKeySequence("Ctrl+Shift+O"), this, [this] {
-    const QString path = QFileDialog::getOpenFileName(this, "Open world", {}, "World files (*.xml)");
-    if (!path.isEmpty()) openWorld(path);
-  });
-  file->addAction("&Open program...", QKeySequence::Open, this, [this] {
-    const QString path =
-        QFileDialog::getOpenFileName(this, "Open Meld program", {}, "Meld programs (*.meld *.mbc)");
-    if (!path.isEmpty()) openProgram(path);
-  });
-  recentMenu_ = file->addMenu("Recent files");
-  file->addAction("&Save program", QKeySequence::Save, this, [this] { compile(); });
-  file->addAction("Save &world as...", this, [this] {
-    const QString path =
-        QFileDialog::getSaveFileName(this, "Save the world as it is now", "world.xml", "World files (*.xml)");
-    if (!path.isEmpty()) controller_.saveWorld(path.toStdString());
-  });
-  file->addAction("Save 3D view as &PNG...", this, [this] {
-    const QString path =
-        QFileDialog::getSaveFileName(this, "Save the 3D view", "world.png", "PNG images (*.png)");
-    if (!path.isEmpty()) saveScreenshot(path);
-  });
-  file->addAction("Export &frames...", this, &MainWindow::exportFramesAsked);
-  file->addSeparator();
-  file->addAction("&Quit", QKeySequence::Quit, this, &QWidget::close);
-  refreshRecentMenu();
-
-  QToolBar* bar = addToolBar("Run");
-  bar->setObjectName("run");
-  QMenu* run = menuBar()->addMenu("&Run");
-  auto both = [&](QAction* a) {
-    bar->addAction(a);
-    run->addAction(a);
-  };
-  QAction* build = new QAction("Compile", this);
-  build->setShortcut(QKeySequence("Ctrl+B"));
-  build->setToolTip("Save and compile the program; meldc's messages are listed under the editor");
-  connect(build, &QAction::triggered, this, [this] { compile(); });
-  both(build);
-  QAction* start = new QAction("Run", this);
-  start->setShortcut(QKeySequence("F5"));
-  connect(start, &QAction::triggered, this, [this] { controller_.run(chosenSpeed()); });
-  both(start);
-  QAction* pause = new QAction("Pause", this);
-  pause->setShortcut(QKeySequence("F6"));
-  connect(pause, &QAction::triggered, this, [this] { controller_.pause(); });
-  both(pause);
-  QAction* step = new QAction("Step", this);
-  step->setShortcut(QKeySequence("F10"));
-  step->setToolTip("Process one event");
-  connect(step, &QAction::triggered, this, [this] { controller_.step(); });
-  both(step);
-  QAction* until = new QAction("Run until...", this);
-  connect(until, &QAction::triggered, this, &MainWindow::runUntilAsked);
-  both(until);
-  QAction* again = new QAction("Restart", this);
-  again->setShortcut(QKeySequence("Ctrl+R"));
-  again->setToolTip("Compile the program and run the world again from the start");
-  connect(again, &QAction::triggered, this, [this] { restart(); });
-  both(again);
-  run->addSeparator();
-  QAction* record = run->addAction("Record derivations (why a fact exists)");
-  record->setCheckable(true);
-  record->setToolTip("The VM notes where every fact comes from; the run starts again");
-  connect(record, &QAction::toggled, this, [this](bool on) {
-    controller_.setRecordDerivations(on);
-    restart();
-  });
-  for (const auto& [name, value] : kSpeeds) speed_->addItem(name, value);
-  speed_->setToolTip("Simulated time per wall time");
-  bar->addWidget(speed_);
-  connect(speed_, &QComboBox::currentIndexChanged, this, [this] {
-    const auto snap = controller_.snapshot();
-    if (snap && snap->state == RunState::Running) controller_.run(chosenSpeed());
-  });
-  bar->addSeparator();
-  QAction* focus = new QAction("Focus", this);
-  focus->setToolTip("Centre the camera on the selected block");
-  connect(focus, &QAction::triggered, view_, &WorldView::focusSelected);
-  bar->addAction(focus);
-  QAction* tap = new QAction("Tap", this);
-  tap->setToolTip("Tap the selected block now");
-  connect(tap, &QAction::triggered, this, [this] {
-    if (selected_ != simcore::kNoBlock) controller_.tap(selected_);
-  });
-  bar->addAction(tap);
-  QAction* remove = new QAction("Remove", this);
-  remove->setShortcut(QKeySequence::Delete);
-  remove->setToolTip("Remove the selected block from the world (while paused)");
-  connect(remove, &QAction::triggered, this, [this] {
-    if (selected_ != simcore::kNoBlock) controller_.removeBlock(selected_);
-  });
-  bar->addAction(remove);
-  QAction* add = new QAction("Add", this);
-  add->setShortcut(QKeySequence("Insert"));
-  add->setToolTip("Add a block in the first free cell next to the selected one (while paused)");
-  connect(add, &QAction::triggered, this, [this] {
-    if (selected_ != simcore::kNoBlock) controller_.addBlockNextTo(selected_);
-  });
-  bar->addAction(add);
+void MainWindow::showSource(const QString& file, int line, int column) {
+  if (QFileInfo(file).canonicalFilePath() != QFileInfo(editor_->path()).canonicalFilePath()) {
+    // Never drop the user's edits for a jump.
+    if (editor_->document()->isModified())
+      return console_->appendMessage("Save the program first: " + file + ":" + QString::number(line) +
+                                     " is in another file.");
+    QString error;
+    if (!editor_->load(file, error)) return console_->appendMessage(error);
+  }
+  editor_->goTo(line, column);
 }
 
 double MainWindow::chosenSpeed() const { return speed_->currentData().toDouble(); }
-
-void MainWindow::runUntilAsked() {
-  bool ok = false;
-  const QString text = QInputDialog::getText(
-      this, "Run until", "Simulated time (like 2.5s, 300ms, 1min):", QLineEdit::Normal, "1s", &ok);
-  if (!ok) return;
-  const auto t = simcore::parseDuration(text.trimmed().toStdString());
-  if (!t) {
-    QMessageBox::warning(this, "Run until", "Not a duration: '" + text + "' (like 2.5s, 300ms or 1min)");
-    return;
-  }
-  controller_.runUntil(*t, chosenSpeed());
-}
 
 bool MainWindow::openWorld(const QString& path) {
   options_.world = path.toStdString();
@@ -415,74 +293,6 @@ QString MainWindow::statusText() const {
     text += QString("   fingerprint %1").arg(snap->fingerprint, 16, 16, QChar('0'));
   if (snap->state == RunState::Failed) text += "   " + QString::fromStdString(snap->error);
   return text;
-}
-
-void MainWindow::exportFramesAsked() {
-  if (!controller_.isOpen()) return;
-  const QString folder = QFileDialog::getExistingDirectory(this, "Export frames into");
-  if (folder.isEmpty()) return;
-  bool ok = false;
-  const QString every = QInputDialog::getText(
-      this, "Export frames", "A frame every (simulated time):", QLineEdit::Normal, "100ms", &ok);
-  if (!ok) return;
-  const auto t = simcore::parseDuration(every.trimmed().toStdString());
-  if (!t || *t <= 0) {
-    QMessageBox::warning(this, "Export frames", "Not a positive duration: '" + every + "'");
-    return;
-  }
-  exportFrames(folder, *t);
-}
-
-int MainWindow::exportFrames(const QString& folder, simcore::SimTime every) {
-  FrameExport how;
-  how.folder = folder.toStdString();
-  how.every = every;
-  how.size = view_->size() * view_->devicePixelRatio();
-  how.camera = view_->camera();
-  QProgressDialog progress("Exporting frames (the run from its start)...", "Stop", 0, 0, this);
-  progress.setWindowModality(Qt::WindowModal);
-  progress.setMinimumDuration(500);
-  how.progress = [&](int frames, simcore::SimTime now) {
-    progress.setLabelText(
-        QString("%1 frames, t = %2").arg(frames).arg(QString::fromStdString(simcore::formatTime(now))));
-    QApplication::processEvents();
-    return !progress.wasCanceled();
-  };
-  const FrameExportResult r = ide::exportFrames(options_, how);
-  console_->appendMessage(r.error.empty() ? QString("Exported %1 frames to %2.").arg(r.written).arg(folder)
-                                          : "Frame export failed: " + QString::fromStdString(r.error));
-  return r.error.empty() ? r.written : -1;
-}
-
-bool MainWindow::saveScreenshot(const QString& path) {
-  const QImage image = view_->grabFramebuffer();
-  if (image.isNull() || !image.save(path, "PNG")) {
-    console_->appendMessage("Cannot write " + path);
-    return false;
-  }
-  statusBar()->showMessage("saved " + path, 4000);
-  return true;
-}
-
-void MainWindow::addRecent(const QString& key, const QString& path) {
-  QSettings settings;
-  QStringList list = settings.value(key).toStringList();
-  const QString absolute = QFileInfo(path).absoluteFilePath();
-  list.removeAll(absolute);
-  list.prepend(absolute);
-  while (list.size() > kMaxRecent) list.removeLast();
-  settings.setValue(key, list);
-  refreshRecentMenu();
-}
-
-void MainWindow::refreshRecentMenu() {
-  recentMenu_->clear();
-  QSettings settings;
-  for (const QString& path : settings.value("recent/worlds").toStringList())
-    recentMenu_->addAction("world: " + path, this, [this, path] { openWorld(path); });
-  for (const QString& path : settings.value("recent/programs").toStringList())
-    recentMenu_->addAction("program: " + path, this, [this, path] { openProgram(path); });
-  recentMenu_->setEnabled(!recentMenu_->isEmpty());
 }
 
 void MainWindow::closeEvent(QCloseEvent* event) {

@@ -66,12 +66,18 @@ class MainWindow : public QMainWindow {
 
  private:
   void buildLayout();
-  void buildActions();
+  void buildFileMenu();  // main_window_actions.cpp, with the toolbars
+  void buildRunActions();
+  void buildBlockActions();
+  template <class Slot>
+  QAction* action(const QString& text, const QKeySequence& shortcut, const QString& tip, Slot slot);
   void showSession();
   void showDiagnostics(const QString& text);
   void addRecent(const QString& key, const QString& path);
   void refreshRecentMenu();
   double chosenSpeed() const;
+  // Opens `file` in the editor (unless it is there) at line:column.
+  void showSource(const QString& file, int line, int column);
   void runUntilAsked();
   void exportFramesAsked();
 

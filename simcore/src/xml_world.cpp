@@ -78,21 +78,6 @@ std::optional<std::vector<long long>> parseIntList(std::string_view text) {
   }
 }
 
-std::optional<std::vector<double>> parseRealList(std::string_view text) {
-  std::vector<double> values;
-  std::istringstream in{std::string(text)};
-  std::string part;
-  while (std::getline(in, part, ',')) {
-    const std::string p(trim(part));
-    char* end = nullptr;
-    const double v = std::strtod(p.c_str(), &end);
-    if (p.empty() || end != p.c_str() + p.size() || !std::isfinite(v)) return std::nullopt;
-    values.push_back(v);
-  }
-  if (values.empty() || (!text.empty() && text.back() == ',')) return std::nullopt;
-  return values;
-}
-
 bool sameName(std::string_view a, std::string_view b) {
   return a.size() == b.size() && std::equal(a.begin(), a.end(), b.begin(), [](char x, char y) {
            return std::tolower(static_cast<unsigned char>(x)) == std::tolower(static_cast<unsigned char>(y));
@@ -621,6 +606,21 @@ void Loader::checkScheduledBlocks() {
 }
 
 }  // namespace
+
+std::optional<std::vector<double>> parseRealList(std::string_view text) {
+  std::vector<double> values;
+  std::istringstream in{std::string(text)};
+  std::string part;
+  while (std::getline(in, part, ',')) {
+    const std::string p(trim(part));
+    char* end = nullptr;
+    const double v = std::strtod(p.c_str(), &end);
+    if (p.empty() || end != p.c_str() + p.size() || !std::isfinite(v)) return std::nullopt;
+    values.push_back(v);
+  }
+  if (values.empty() || (!text.empty() && text.back() == ',')) return std::nullopt;
+  return values;
+}
 
 WorldDescription parseWorldXml(std::string_view text, const std::string& pathForMessages) {
   return Loader(text, pathForMessages).run();

@@ -103,6 +103,10 @@ struct WorldDescription {
   std::vector<std::string> warnings;  // "file:line:col: warning: ..." (unknown elements, ...)
 };
 
+// "40, 40, 25.5": the comma-separated numbers world files write (blockSize, camera target ...);
+// nullopt unless every item is a finite number.
+std::optional<std::vector<double>> parseRealList(std::string_view text);
+
 // Reads and validates a world file. Throws XmlWorldError.
 WorldDescription loadWorldXml(const std::string& path);
 // The same from text in memory; `pathForMessages` names it in messages and resolves relative paths.

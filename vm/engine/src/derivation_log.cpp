@@ -129,13 +129,8 @@ FactAt parseFactSpec(const std::string& spec, const Program& program) {
   if (open == std::string::npos || open == 0 || s.back() != ')')
     throw std::invalid_argument("'" + spec + "' is not a fact like name(@3, 1, 2)");
   const std::string name = s.substr(0, open);
-  PredId pred = Program::kNoPred;
-  for (PredId p = 0; p < program.predicates.size(); ++p)
-    if (program.predicates[p].name.size() == name.size() &&
-        std::equal(name.begin(), name.end(), program.predicates[p].name.begin(),
-                   [](char a, char b) { return std::tolower(a) == std::tolower(b); }))
-      pred = p;
-  if (pred == Program::kNoPred) throw std::invalid_argument("the program has no predicate '" + name + "'");
+  const PredId pred = program.predicates.find(name);  // case-insensitive, as Meld names (§1.3)
+  if (pred >= program.predicates.size()) throw std::invalid_argument("the program has no predicate '" + name + "'");
   if (s.compare(open + 1, 1, "@") != 0)
     throw std::invalid_argument("'" + spec + "': the first argument is the node, like @3");
   std::size_t end = open + 2;
