@@ -151,8 +151,9 @@ void BlockRuntime::retractInverseRoutes(NodeId n, NodeId other) {
     const PredicateDesc& d = program_.predicates[p];
     if (!d.reverseRoute || d.linear || d.arity() == 0 || d.fields[0] != TypeTable::kNode) continue;
     std::vector<Value>& stale = retracting_;
+    std::vector<std::uint32_t>& copies = retractingCopies_;
     stale.clear();
-    std::vector<std::uint32_t> copies;
+    copies.clear();
     for (FactRef f = db.first(n, p); f != kNoFact; f = db.next(p, f)) {
       const Value* args = db.args(p, f);
       if (args[0].asNode() != other) continue;

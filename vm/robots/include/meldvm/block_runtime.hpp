@@ -118,7 +118,9 @@ class BlockRuntime : private MachineHost {
   // Delayed facts for the block itself, waiting for their timer (tag = index).
   std::vector<std::vector<std::uint8_t>> delayed_;
   std::vector<std::uint32_t> freeDelayed_;
-  std::vector<Value> retracting_;  // retractInverseRoutes' copies (kept: no allocation per break)
+  // retractInverseRoutes' copies of the stale facts and their counts (kept: no allocation per break)
+  std::vector<Value> retracting_;
+  std::vector<std::uint32_t> retractingCopies_;
 };
 
 }  // namespace meldvm
