@@ -31,7 +31,6 @@ SessionInfo describe(const vsim::Session& s) {
   info.faceNames = sim.target().faceNames;
   info.blockCount = sim.world().blockCount();
   info.meld = s.isMeld();
-  info.canTap = sim.target().hasTap;
   info.camera = parseViewPoint(w.camera);
   info.spotlight = parseViewPoint(w.spotlight);
   return info;
@@ -39,9 +38,9 @@ SessionInfo describe(const vsim::Session& s) {
 
 }  // namespace
 
-KernelLoop::KernelLoop(const vsim::Options& options, std::uint64_t sessionId, std::function<void()> notify,
-                       std::ostream& diagnostics, bool recordDerivations)
-    : sessionId_(sessionId), notify_(std::move(notify)) {
+KernelLoop::KernelLoop(const vsim::Options& options, std::uint64_t sessionId, std::ostream& diagnostics,
+                       bool recordDerivations)
+    : sessionId_(sessionId) {
   vsim::SessionStreams streams;
   streams.programOutput = &consoleStream_;
   streams.diagnostics = &diagnostics;
@@ -159,8 +158,11 @@ bool KernelLoop::apply(const Command& c) {
       break;
     case Command::Tap:
       // A tap after the end starts the run again (VisibleSim lets one tap a block at any time).
-      if (state_ == RunState::Failed || c.block >= sim.world().blockCount() || !sim.target().hasTap ||
-          !sim.world().isAlive(c.block))
+      if (!sim.target().hasTap) {
+        console_.push(sim.target().name + " blocks have no tap sensor.");
+        break;
+      }
+      if (state_ == RunState::Failed || c.block >= sim.world().blockCount() || !sim.world().isAlive(c.block))
         break;
       sim.scheduleTap(c.block, sim.now());
       if (state_ == RunState::Finished) state_ = RunState::Paused;
@@ -251,7 +253,6 @@ void KernelLoop::publish() {
   published_.notify_all();
   lastPublish_ = Clock::now();
   snapshotWanted_.store(false, std::memory_order_relaxed);
-  if (notify_) notify_();
 }
 
 void KernelLoop::followHistory() {

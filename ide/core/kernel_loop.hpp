@@ -42,8 +42,8 @@ class KernelLoop {
   // Builds the session (on the caller's thread; throws vsim::SessionError, compiler messages to
   // `diagnostics`), then starts the thread, paused.
   // `recordDerivations`: the VM notes where every fact comes from, for Why commands.
-  KernelLoop(const vsim::Options& options, std::uint64_t sessionId, std::function<void()> notify,
-             std::ostream& diagnostics, bool recordDerivations);
+  KernelLoop(const vsim::Options& options, std::uint64_t sessionId, std::ostream& diagnostics,
+             bool recordDerivations);
   ~KernelLoop();  // stops and joins the thread
 
   const SessionInfo& info() const { return info_; }
@@ -77,7 +77,6 @@ class KernelLoop {
   std::unique_ptr<meldvm::DerivationLog> derivations_;
   std::shared_ptr<const WhyResult> why_;
   std::uint64_t sessionId_;
-  std::function<void()> notify_;
 
   // Kernel-thread state.
   RunState state_ = RunState::Paused;

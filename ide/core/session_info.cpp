@@ -1,6 +1,5 @@
 #include "session_info.hpp"
 
-
 namespace ide {
 
 namespace {

@@ -28,7 +28,6 @@ struct SessionInfo {
   std::vector<std::string> faceNames;
   std::size_t blockCount = 0;
   bool meld = false;
-  bool canTap = false;
   std::optional<ViewPoint> camera, spotlight;  // as the world file gives them
 };
 

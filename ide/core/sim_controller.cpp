@@ -21,7 +21,7 @@ const char* runStateName(RunState s) {
   return "?";
 }
 
-SimController::SimController(std::function<void()> notify) : notify_(std::move(notify)) {}
+SimController::SimController() = default;
 
 SimController::~SimController() { close(); }
 
@@ -34,7 +34,7 @@ bool SimController::open(const vsim::Options& options) {
   diagnostics_.clear();
   std::ostringstream diagnostics;
   try {
-    loop_ = std::make_unique<KernelLoop>(options_, ++sessionCount_, notify_, diagnostics, recordDerivations_);
+    loop_ = std::make_unique<KernelLoop>(options_, ++sessionCount_, diagnostics, recordDerivations_);
     info_ = loop_->info();
     if (history_) setHistory(true);
   } catch (const vsim::SessionError& e) {

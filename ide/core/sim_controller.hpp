@@ -26,9 +26,7 @@ struct Command;
 
 class SimController {
  public:
-  // `notify` is called on the kernel thread after each new snapshot and console line (the GUI
-  // posts itself an event; it must not block).
-  explicit SimController(std::function<void()> notify = {});
+  SimController();
   ~SimController();
   SimController(const SimController&) = delete;
   SimController& operator=(const SimController&) = delete;
@@ -94,7 +92,6 @@ class SimController {
   void close();
   void post(Command c);  // to the kernel thread, when a run is open
 
-  std::function<void()> notify_;
   vsim::Options options_;
   SessionInfo info_;
   std::string openError_, diagnostics_;
