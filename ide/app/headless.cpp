@@ -17,7 +17,7 @@ int openFailure(const SimController& controller) {
   std::cerr << controller.diagnostics();
   const std::string& e = controller.error();
   std::cerr << (e.find(": error: ") != std::string::npos ? "" : "vsim-ide: error: ") << e << '\n';
-  return e.rfind("--", 0) == 0 || e.rfind("no block code", 0) == 0 ? vsim::kExitUsage : vsim::kExitInput;
+  return controller.errorCode();
 }
 
 int framesFromTheCommandLine(const IdeOptions& o) {

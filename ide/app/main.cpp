@@ -27,6 +27,13 @@ int main(int argc, char** argv) {
     std::cout << "vsim-ide " VSIM_VERSION "\n";
     return 0;
   }
+  // Without a display Qt aborts the process: say what to do instead.
+  if (!qEnvironmentVariableIsSet("DISPLAY") && !qEnvironmentVariableIsSet("WAYLAND_DISPLAY") &&
+      !qEnvironmentVariableIsSet("QT_QPA_PLATFORM")) {
+    std::cerr << "vsim-ide: error: no display (DISPLAY is not set); without one, run it under Xvfb: "
+                 "xvfb-run -a vsim-ide ...\n";
+    return vsim::kExitRuntime;
+  }
   ide::setUpOpenGl();  // before the application object, as Qt requires
   QApplication app(argc, argv);
   QApplication::setApplicationName("vsim-ide");

@@ -31,6 +31,7 @@ bool SimController::open(const vsim::Options& options) {
   close();
   options_ = options;
   openError_.clear();
+  openErrorCode_ = 0;
   diagnostics_.clear();
   std::ostringstream diagnostics;
   try {
@@ -39,8 +40,10 @@ bool SimController::open(const vsim::Options& options) {
     if (history_) setHistory(true);
   } catch (const vsim::SessionError& e) {
     openError_ = e.message;
+    openErrorCode_ = e.code;
   } catch (const std::exception& e) {  // out of memory building a huge world, ...
     openError_ = e.what();
+    openErrorCode_ = vsim::kExitRuntime;
   }
   diagnostics_ = diagnostics.str();
   return loop_ != nullptr;

@@ -41,6 +41,7 @@ class SimController {
   const vsim::Options& options() const { return options_; }
   const SessionInfo& info() const { return info_; }
   const std::string& error() const { return openError_; }
+  int errorCode() const { return openErrorCode_; }  // vsim's exit code for error()
   const std::string& diagnostics() const { return diagnostics_; }
 
   // Commands (asynchronous; the kernel thread applies them in order).
@@ -95,6 +96,7 @@ class SimController {
   vsim::Options options_;
   SessionInfo info_;
   std::string openError_, diagnostics_;
+  int openErrorCode_ = 0;
   std::uint64_t sessionCount_ = 0, whyRequests_ = 0;
   bool history_ = false, recordDerivations_ = false;
   std::unique_ptr<KernelLoop> loop_;

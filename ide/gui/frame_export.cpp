@@ -14,7 +14,7 @@ FrameExportResult exportFrames(const vsim::Options& run, const FrameExport& how)
   SimController controller;
   if (!controller.open(run)) {
     r.error = controller.diagnostics() + controller.error();
-    r.exitCode = vsim::kExitInput;
+    r.exitCode = controller.errorCode();
     return r;
   }
   if (!QDir().mkpath(QString::fromStdString(how.folder))) {

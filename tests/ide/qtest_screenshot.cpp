@@ -119,6 +119,22 @@ class ScreenshotTest : public QObject {
     QVERIFY(p.waitForFinished(60000));
     QCOMPARE(p.exitCode(), 2);
     QVERIFY(p.readAllStandardError().contains("--every wants a positive duration"));
+    // A .so that is not a BlockCode: an input error (exit 3), as vsim says it.
+    p.start(kIde, {kSource + "/examples/worlds/color-flood.xml", "--code", kSource + "/README.md",
+                   "--screenshot", "x.png"});
+    QVERIFY(p.waitForFinished(60000));
+    QCOMPARE(p.exitCode(), 3);
+    // No display: a message and exit 1, not Qt's abort.
+    QProcessEnvironment env = QProcessEnvironment::systemEnvironment();
+    env.remove("DISPLAY");
+    env.remove("WAYLAND_DISPLAY");
+    env.remove("QT_QPA_PLATFORM");
+    p.setProcessEnvironment(env);
+    p.start(kIde, {kSource + "/tests/ide/two-colors.xml", "--screenshot", "x.png"});
+    QVERIFY(p.waitForFinished(60000));
+    QCOMPARE(p.exitStatus(), QProcess::NormalExit);
+    QCOMPARE(p.exitCode(), 1);
+    QVERIFY(p.readAllStandardError().contains("no display"));
   }
 };
 
