@@ -125,10 +125,13 @@ std::shared_ptr<const WorldSnapshot> SimController::waitFor(
 
 std::shared_ptr<const WorldSnapshot> SimController::runToAndWait(simcore::SimTime t) {
   if (!loop_) return nullptr;
+  // Only a snapshot made after the command counts: the one before may already look "there" (a
+  // paused run at time 0 when t is 0) without the events at t having run.
+  const std::uint64_t before = loop_->snapshot()->serial;
   runUntil(t);
   auto there = [&](const WorldSnapshot& s) {
-    return s.state == RunState::Finished || s.state == RunState::Failed ||
-           (s.state == RunState::Paused && s.now >= t);
+    return s.serial > before && (s.state == RunState::Finished || s.state == RunState::Failed ||
+                                 (s.state == RunState::Paused && s.now >= t));
   };
   std::shared_ptr<const WorldSnapshot> snap;
   while (!(snap = waitFor(there, std::chrono::seconds(1)))) {

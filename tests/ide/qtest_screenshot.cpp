@@ -6,6 +6,7 @@
 #include <QProcess>
 #include <QTemporaryDir>
 #include <QTest>
+#include <array>
 
 namespace {
 
@@ -60,25 +61,33 @@ class ScreenshotTest : public QObject {
     QVERIFY2(ratio > 0.85 && ratio < 1.15, qPrintable(QString("red/blue = %1").arg(ratio)));
   }
 
-  void atATimeBeforeTheProgramRanTheBlocksAreStillGreen() {
-    // --until before anything happened: the initial colour only.
-    QTemporaryDir dir;
-    const QString png = dir.filePath("start.png");
-    QProcess p;
-    p.start(kIde, {kSource + "/tests/ide/two-colors.xml", "--screenshot", png, "--size", "200x150", "--until",
-                   "0", "--quiet"});
-    QVERIFY(p.waitForFinished(60000));
-    QCOMPARE(p.exitCode(), 0);
-    const QImage image(png);
-    long red = 0, green = 0;
-    for (int y = 0; y < image.height(); ++y)
-      for (int x = 0; x < image.width(); ++x) {
-        const Hue h = hueOf(image.pixel(x, y));
-        red += h == Hue::Red;
-        green += h == Hue::Green;
-      }
-    QVERIFY(green > 0);
-    QCOMPARE(red, 0L);
+  void theWorldAsItIsAtTheTimeAsked() {
+    // --until T shows the world after the events at T: the two-colour program colours every block
+    // at time 0 already (green is gone at --until 0); the gradient example's blocks are white
+    // until the tap at 1 s (no red at 0.5 s) and have a red centre after it.
+    auto hues = [&](const QStringList& args) {
+      QTemporaryDir dir;
+      const QString png = dir.filePath("at.png");
+      QProcess p;
+      p.start(kIde, QStringList(args) << "--screenshot" << png << "--size"
+                                      << "200x150"
+                                      << "--quiet");
+      p.waitForFinished(60000);
+      std::array<long, 4> n{};
+      if (p.exitCode() != 0) return n;
+      const QImage image(png);
+      for (int y = 0; y < image.height(); ++y)
+        for (int x = 0; x < image.width(); ++x) ++n[std::size_t(hueOf(image.pixel(x, y)))];
+      return n;
+    };
+    const auto two = hues({kSource + "/tests/ide/two-colors.xml", "--until", "0"});
+    QCOMPARE(two[std::size_t(Hue::Green)], 0L);
+    QVERIFY(two[std::size_t(Hue::Red)] > 0 && two[std::size_t(Hue::Blue)] > 0);
+    const auto before = hues({kSource + "/examples/worlds/meld-gradient-tap.xml", "--until", "500ms"});
+    QCOMPARE(before[std::size_t(Hue::Red)], 0L);
+    QVERIFY(before[std::size_t(Hue::Other)] > 0);
+    const auto after = hues({kSource + "/examples/worlds/meld-gradient-tap.xml", "--until", "2s"});
+    QVERIFY(after[std::size_t(Hue::Red)] > 0);
   }
 
   void framesEveryDeltaT() {
