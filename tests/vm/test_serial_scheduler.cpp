@@ -18,7 +18,7 @@ std::vector<NodeId> drain(SerialScheduler& s) {
 
 BOOST_AUTO_TEST_CASE(equal_initial_priorities_pop_zero_then_from_the_last_node_down) {
   SerialScheduler s(SchedulingOptions{});
-  s.start(5);
+  s.start(5, 0, 5);
   BOOST_TEST(drain(s) == (std::vector<NodeId>{0, 4, 3, 2, 1}), boost::test_tools::per_element());
 }
 
@@ -26,13 +26,13 @@ BOOST_AUTO_TEST_CASE(without_initial_priorities_nodes_start_in_the_fifo_in_id_or
   SchedulingOptions o;
   o.noInitialPriorities = true;
   SerialScheduler s(o);
-  s.start(4);
+  s.start(4, 0, 4);
   BOOST_TEST(drain(s) == (std::vector<NodeId>{0, 1, 2, 3}), boost::test_tools::per_element());
 }
 
 BOOST_AUTO_TEST_CASE(after_a_run_a_node_goes_to_the_fifo_and_the_heap_is_served_first) {
   SerialScheduler s(SchedulingOptions{});
-  s.start(3);
+  s.start(3, 0, 3);
   NodeId n;
   BOOST_REQUIRE(s.pop(n));
   BOOST_TEST(n == 0u);
@@ -44,7 +44,7 @@ BOOST_AUTO_TEST_CASE(set_priority_raises_only_and_moves_a_waiting_node_to_the_he
   SchedulingOptions o;
   o.noInitialPriorities = true;
   SerialScheduler s(o);
-  s.start(4);  // FIFO 0 1 2 3
+  s.start(4, 0, 4);  // FIFO 0 1 2 3
   s.setPriority(2, 5.0);
   s.setPriority(3, 7.0);
   s.setPriority(3, 1.0);  // lower: ignored
@@ -57,7 +57,7 @@ BOOST_AUTO_TEST_CASE(ascending_order_serves_smaller_values_first) {
   o.order = PriorityOrder::Asc;
   o.noInitialPriorities = true;
   SerialScheduler s(o);
-  s.start(3);
+  s.start(3, 0, 3);
   s.setPriority(1, 10.0);
   s.setPriority(2, 3.0);
   BOOST_TEST(drain(s) == (std::vector<NodeId>{2, 1, 0}), boost::test_tools::per_element());
@@ -67,7 +67,7 @@ BOOST_AUTO_TEST_CASE(a_waiting_node_is_queued_once_and_a_finished_node_falls_bac
   SchedulingOptions o;
   o.noInitialPriorities = true;
   SerialScheduler s(o);
-  s.start(2);
+  s.start(2, 0, 2);
   s.wake(1);
   s.wake(1);
   BOOST_TEST(s.waiting() == 2u);

@@ -350,11 +350,11 @@ Interpreter::Status Interpreter::exec(Frame& f, std::uint32_t pc) {
         pc += 2;
         break;
       case Opcode::CPUS:
-        R[c[1]] = Value::fromInt(1);
+        R[c[1]] = Value::fromInt(std::int32_t(machine_.placement_.threads));
         pc += 2;
         break;
       case Opcode::THREAD:
-        R[c[1]] = Value::fromThread(0);
+        R[c[1]] = Value::fromThread(machine_.placement_.self);
         pc += 2;
         break;
       case Opcode::ARG:
@@ -557,19 +557,19 @@ Interpreter::Status Interpreter::exec(Frame& f, std::uint32_t pc) {
         break;
       case Opcode::ADD_PRIORITY:
       case Opcode::SET_DEFAULT_PRIORITY:
-      case Opcode::SET_CPU:
-        if (!f.negative) machine_.coordination(Opcode(c[0]), R[c[1]].asNode(), R[c[2]].asFloat());
+        if (!f.negative) machine_.coordination(Opcode(c[0]), R[c[1]].asNode(), R[c[2]]);
         pc += 3;
         break;
+      case Opcode::SET_CPU:
       case Opcode::SET_AFFINITY:
-        if (!f.negative) machine_.coordination(Opcode(c[0]), R[c[1]].asNode(), 0.0);
+        if (!f.negative) machine_.coordination(Opcode(c[0]), R[c[1]].asNode(), R[c[2]]);
         pc += 3;
         break;
       case Opcode::REMOVE_PRIORITY:
       case Opcode::SCHEDULE_NEXT:
       case Opcode::SET_STATIC:
       case Opcode::SET_MOVING:
-        if (!f.negative) machine_.coordination(Opcode(c[0]), R[c[1]].asNode(), 0.0);
+        if (!f.negative) machine_.coordination(Opcode(c[0]), R[c[1]].asNode(), Value());
         pc += 2;
         break;
       case Opcode::STOP_PROGRAM:

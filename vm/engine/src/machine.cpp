@@ -21,10 +21,13 @@ Machine::Machine(const Program& program, MachineOptions options)
       heap_(program.types),
       db_(std::make_unique<Database>(program.predicates, heap_)),
       builtinCtx_(heap_),
-      rng_(Rng::forThread(0)),
+      rng_(Rng::forThread(options_.placement.self)),
       sched_(program.scheduling),
       tables_(program) {
   host_ = options_.host;
+  shard_ = options_.shard;
+  placement_ = options_.placement;
+  if (shard_ && host_) throw std::invalid_argument("a Machine is either a shard or driven by a host");
   stepsLeft_ = options_.maxSteps ? options_.maxSteps + 1 : UINT64_MAX;
   if (options_.seed) rng_.state ^= support::splitmix64(options_.seed);
   builtinCtx_.rng = &rng_;
@@ -74,10 +77,13 @@ void Machine::start() {
   started_ = true;
   const NodeId n = std::max<NodeId>(NodeId(program_.nodeSourceIds.size()), options_.nodes);
   initialNodes_ = n;
-  // §6.12: with thread predicates, the one VM thread has a node of its own, id n, allocated before
-  // any node `exists` creates.
-  const NodeId all = tables_.hasThreads ? n + 1 : n;
-  if (tables_.hasThreads) threadNode_ = n;
+  if (!shard_) placement_ = {0, 1, 0, n};
+  if (placement_.endOwned > n || placement_.firstOwned > placement_.endOwned)
+    throw std::invalid_argument("shard placement outside the graph");
+  // §6.12: with thread predicates, every VM thread has a node of its own, ids n, n + 1, ...,
+  // allocated before any node `exists` creates.
+  const NodeId all = tables_.hasThreads ? n + placement_.threads : n;
+  if (tables_.hasThreads) threadNode_ = n + placement_.self;
   db_->addNodes(all);
   candidates_.assign(std::size_t(all) * tables_.ruleWords, 0);
   axiomCandidates_.assign(tables_.ruleWords, 0);
@@ -91,17 +97,19 @@ void Machine::start() {
     }
   }
   reserveForAxioms();
-  if (program_.initPredicate != Program::kNoPred) {
-    for (NodeId i = 0; i < n; ++i) {
-      db_->addLinear(i, program_.initPredicate, kNoArgs);
-      factAdded(i, program_.initPredicate);
-    }
-  }
-  sched_.start(n);
+  for (NodeId i = placement_.firstOwned; i < placement_.endOwned; ++i) initNode(i);
+  sched_.start(n, placement_.firstOwned, placement_.endOwned);
   if (tables_.hasThreads) {
-    sched_.addNode();  // the thread node has a scheduler entry but is served apart (run())
+    // The thread nodes have scheduler entries but are served apart (runNext()).
+    for (ThreadId t = 0; t < placement_.threads; ++t) sched_.addNode();
     startThreadNode();
   }
+}
+
+void Machine::initNode(NodeId n) {
+  if (program_.initPredicate == Program::kNoPred) return;
+  db_->addLinear(n, program_.initPredicate, kNoArgs);
+  factAdded(n, program_.initPredicate);
 }
 
 void Machine::reserveForAxioms() {
@@ -113,8 +121,11 @@ void Machine::reserveForAxioms() {
     detail::forEachInstruction(b.code, [&](std::size_t pc) {
       if (Opcode(b.code[pc]) == Opcode::DERIVE) ++facts[b.code[pc + 1]];
     });
+  // A shard stores about its share of them.
+  const double share = initialNodes_ ? double(placement_.endOwned - placement_.firstOwned) / initialNodes_ : 1;
   for (PredId p = 0; p < facts.size(); ++p)
-    if (facts[p] != 0 && !program_.predicates[p].action) db_->reserve(p, facts[p]);
+    if (facts[p] != 0 && !program_.predicates[p].action)
+      db_->reserve(p, std::size_t(double(facts[p]) * share) + (share < 1 ? 64 : 0));
 }
 
 void Machine::startThreadNode() {
@@ -123,36 +134,53 @@ void Machine::startThreadNode() {
     const PredId p = preds.find(name);
     return p < preds.size() && preds[p].thread ? p : Program::kNoPred;
   };
-  const Value self = Value::fromThread(0);
   if (const PredId p = find("_init_thread"); p != Program::kNoPred) {
     db_->addLinear(threadNode_, p, kNoArgs);
     factAdded(threadNode_, p);
   }
-  // The special facts of one thread: the list of all threads and the leader; no other threads.
+  // The special facts: the list of all threads, every other thread with its index, the leader.
+  std::vector<Value> all;
+  for (ThreadId t = 0; t < placement_.threads; ++t) all.push_back(Value::fromThread(t));
   if (const PredId p = find("thread-list"); p != Program::kNoPred) {
-    const Value list = heap_.makeList(preds[p].fields[0], std::span<const Value>(&self, 1));
+    const Value list = heap_.makeList(preds[p].fields[0], all);
     db_->derive(threadNode_, p, &list);
     heap_.release(preds[p].fields[0], list);
     factAdded(threadNode_, p);
   }
+  if (const PredId p = find("other-thread"); p != Program::kNoPred)
+    for (ThreadId t = 0; t < placement_.threads; ++t)
+      if (t != placement_.self) {
+        const Value args[2] = {Value::fromThread(t), Value::fromInt(std::int32_t(t))};
+        db_->derive(threadNode_, p, args);
+        factAdded(threadNode_, p);
+      }
   if (const PredId p = find("leader-thread"); p != Program::kNoPred) {
-    db_->derive(threadNode_, p, &self);
+    const Value leader = Value::fromThread(0);
+    db_->derive(threadNode_, p, &leader);
     factAdded(threadNode_, p);
   }
 }
 
 void Machine::run() {
   start();
-  // §6.11: the heap, then the FIFO, then the thread node.
-  for (NodeId node; !stop_;) {
-    if (sched_.pop(node))
-      runNode(node);
-    else if (threadNode_ != kNoNode && (hasWork(threadNode_) || hasCandidate(threadNode_)))
-      runNode(threadNode_);
-    else
-      break;
+  while (!stop_ && runNext()) {
   }
   if (!stop_) collectGarbageNodes();
+}
+
+bool Machine::runNext() {
+  start();
+  // §6.11: the heap, then the FIFO, then the thread node.
+  NodeId node;
+  if (sched_.pop(node)) {
+    runNode(node);
+    return true;
+  }
+  if (threadNode_ != kNoNode && (hasWork(threadNode_) || hasCandidate(threadNode_))) {
+    runNode(threadNode_);
+    return true;
+  }
+  return false;
 }
 
 void Machine::receive(NodeId n, PredId p, const Value* args, bool negative) {
@@ -377,6 +405,23 @@ void Machine::send(NodeId host, NodeId dest, PredId p, const Value* args, bool n
   // at once.
   if (!host_) delayMs = 0;
   if (dest == host && delayMs == 0) return derive(host, p, args, negative);
+  if (shard_ && !ownedHere(dest)) [[unlikely]] {
+    const ThreadId owner = shard_->ownerOf(dest);
+    if (owner == kNoThread) noSuchNode(p, dest);
+    if (owner != placement_.self) {  // routed when the run ends (postOrRoute)
+      const PredicateDesc& d = program_.predicates[p];
+      if (d.action) {  // on the VM's own graph an action only prints, at the deriving node
+        if (!negative) action(host, dest, p, args);
+        return;
+      }
+      if (d.linear && negative) return;
+      if (!negative) ++stats_.factsDerived, ++runDerived_;
+      ++stats_.factsSent;
+      (d.linear ? sentLinear_ : sentPersistent_).push_back({dest, p, negative, std::uint32_t(sentArgs_.size())});
+      pushArgs(sentArgs_, p, args);
+      return;
+    }
+  }
   if (dest >= db_->nodeCount()) noSuchNode(p, dest);
   if (!host_) {  // posted when the run ends (flushOutgoing): fetch what the post will touch
     mail_->prefetchBox(dest);
@@ -421,13 +466,23 @@ void Machine::notANeighbour(PredId p, NodeId host, NodeId dest) const {
 }
 
 void Machine::sendThread(NodeId host, ThreadId t, PredId p, const Value* args, bool negative) {
-  if (t != 0 || threadNode_ == kNoNode)
+  if (t >= placement_.threads || threadNode_ == kNoNode)
     throw RuntimeError("fact " + program_.predicates[p].name + " for thread #T" + std::to_string(t) +
-                       ", which does not exist (the VM runs one thread)");
-  // One thread: its node is visible to every node's rules, so its facts are stored directly, as
-  // facts of the host are (linear ones when the rule run ends, persistent ones through the queue).
+                       ", which does not exist (the VM runs " + std::to_string(placement_.threads) +
+                       (placement_.threads == 1 ? " thread)" : " threads)"));
   if (!negative) ++stats_.factsDerived, ++runDerived_;
   const PredicateDesc& d = program_.predicates[p];
+  if (t != placement_.self) {  // another thread's node: sent like a fact for a node of its own
+    if (d.linear && negative) return;
+    ++stats_.factsSent;
+    (d.linear ? sentLinear_ : sentPersistent_)
+        .push_back({initialNodes_ + t, p, negative, std::uint32_t(sentArgs_.size())});
+    pushArgs(sentArgs_, p, args);
+    return;
+  }
+  // The running thread: its node is visible to every node's rules, so its facts are stored
+  // directly, as facts of the host are (linear ones when the rule run ends, persistent ones
+  // through the queue).
   if (d.linear) {
     if (negative) return;
     linearOut_.push_back({threadNode_, p, false, std::uint32_t(linearOutArgs_.size())});
@@ -462,22 +517,40 @@ void Machine::updated(NodeId host, PredId p, FactRef f, const Value* args, bool 
 }
 
 NodeId Machine::appendNode(bool created) {
-  const NodeId id = db_->addNodes(1);
-  candidates_.resize(candidates_.size() + tables_.ruleWords, 0);
-  mail_->addNodes(1);
-  created_.push_back(created ? 1 : 0);
-  sched_.addNode();
-  if (program_.initPredicate != Program::kNoPred) {
-    db_->addLinear(id, program_.initPredicate, kNoArgs);
-    factAdded(id, program_.initPredicate);
-  }
+  const NodeId id = db_->nodeCount();
+  growNodes(id + 1);
+  created_[id] = created ? 1 : 0;
+  initNode(id);
   return id;
+}
+
+void Machine::growNodes(NodeId end) {
+  const NodeId count = end - db_->nodeCount();
+  db_->addNodes(count);
+  candidates_.resize(std::size_t(end) * tables_.ruleWords, 0);
+  mail_->addNodes(count);
+  created_.resize(end, 0);
+  for (NodeId i = 0; i < count; ++i) sched_.addNode();
 }
 
 NodeId Machine::newNode() {
   countStep();
-  const NodeId id = appendNode(true);
   if (host_) throw RuntimeError("exists: a robot cannot create nodes (every node is a block)");
+  NodeId id;
+  if (shard_) {
+    // A shard numbers its nodes from blocks of ids of its own (§6.10: 16384 per thread).
+    if (nextCreated_ == createdEnd_) {
+      NodeId count = 0;
+      nextCreated_ = shard_->allocateNodeBlock(placement_.self, count);
+      createdEnd_ = nextCreated_ + count;
+      growNodes(createdEnd_);
+    }
+    id = nextCreated_++;
+    created_[id] = 1;
+    initNode(id);
+  } else {
+    id = appendNode(true);
+  }
   sched_.wake(id);
   return id;
 }
@@ -491,6 +564,15 @@ NodeId Machine::addHostNode() {
 
 void Machine::collectGarbageNodes() {
   // §6.10: a created node with no facts that no fact refers to is deleted.
+  const std::vector<NodeId> empty = emptyCreatedNodes();
+  if (empty.empty()) return;
+  std::vector<std::uint8_t> referenced;
+  markReferencedNodes(referenced);
+  for (NodeId n : empty)
+    if (n >= referenced.size() || !referenced[n]) db_->removeNode(n);
+}
+
+std::vector<NodeId> Machine::emptyCreatedNodes() const {
   std::vector<NodeId> empty;
   for (NodeId n = initialNodes_; n < db_->nodeCount(); ++n) {
     if (!created_[n] || !db_->alive(n)) continue;
@@ -498,8 +580,14 @@ void Machine::collectGarbageNodes() {
     for (PredId p = 0; p < program_.predicates.size() && !hasFacts; ++p) hasFacts = db_->factCount(n, p) != 0;
     if (!hasFacts) empty.push_back(n);
   }
-  if (empty.empty()) return;
-  std::vector<std::uint8_t> referenced(db_->nodeCount(), 0);
+  return empty;
+}
+
+void Machine::markReferencedNodes(std::vector<std::uint8_t>& referenced) const {
+  auto mark = [&](NodeId r) {
+    if (r >= referenced.size()) referenced.resize(std::size_t(r) + 1, 0);
+    referenced[r] = 1;
+  };
   for (NodeId n = 0; n < db_->nodeCount(); ++n) {
     if (!db_->alive(n)) continue;
     for (PredId p = 0; p < program_.predicates.size(); ++p) {
@@ -509,17 +597,15 @@ void Machine::collectGarbageNodes() {
         for (std::uint32_t i = 0; i < d.arity(); ++i) {
           const TypeId t = d.fields[i];
           if (program_.types.kind(t) == TypeKind::Node) {
-            referenced[a[i].asNode()] = 1;
+            mark(a[i].asNode());
           } else if (program_.types.kind(t) == TypeKind::List &&
                      program_.types.kind(program_.types.element(t)) == TypeKind::Node) {
-            for (Value l = a[i]; !l.isNil(); l = listTail(l)) referenced[listHead(l).asNode()] = 1;
+            for (Value l = a[i]; !l.isNil(); l = listTail(l)) mark(listHead(l).asNode());
           }
         }
       }
     }
   }
-  for (NodeId n : empty)
-    if (!referenced[n]) db_->removeNode(n);
 }
 
 void Machine::dump(std::ostream& out) const { dumpDatabase(out, *db_); }

@@ -1,4 +1,6 @@
-// The Machine's coordination facts (§5.7) and what the built-ins ask of the scheduler.
+// The Machine's coordination facts (§5.7) and what the built-ins ask of the scheduler. In a
+// threaded run (MachineOptions::shard) a coordination fact for another thread's node is sent to
+// that thread, which applies it (coordinateOwned).
 #include "meldvm/arith.hpp"
 #include "meldvm/machine.hpp"
 
@@ -6,10 +8,18 @@ namespace meldvm {
 
 namespace {
 const Value kNoArgs[1] = {};  // arguments of just-moved (home only)
+
+std::string nodeName(NodeId n) { return "@" + std::to_string(n); }
 }  // namespace
 
 void Machine::priorityRequest(NodeId n, double p) {
   if (n == running_ && inRun_) return;  // §5.7: ignored for the running node
+  if (shard_ && !ownedHere(n)) [[unlikely]] {
+    const ThreadId owner = shard_->ownerOf(n);
+    if (owner == kNoThread)
+      throw RuntimeError("set-priority for node " + nodeName(n) + ", which does not exist");
+    if (owner != placement_.self) return shard_->coordinateRemote(owner, Opcode::SET_PRIORITY, n, p);
+  }
   priorityRequests_.emplace_back(n, p);
 }
 
@@ -18,12 +28,28 @@ void Machine::applyPriorityRequests() {
   priorityRequests_.clear();
 }
 
-void Machine::coordination(Opcode op, NodeId n, double value) {
-  if (n >= db_->nodeCount())
-    throw RuntimeError("coordination fact for node @" + std::to_string(n) + ", which does not exist");
+void Machine::coordination(Opcode op, NodeId n, Value arg) {
+  if (op == Opcode::SET_AFFINITY || op == Opcode::SET_CPU) return placeNode(op, n, arg);
+  const double value = op == Opcode::ADD_PRIORITY || op == Opcode::SET_DEFAULT_PRIORITY ? arg.asFloat() : 0.0;
+  if (shard_ && !ownedHere(n)) {
+    const ThreadId owner = shard_->ownerOf(n);
+    if (owner == kNoThread)
+      throw RuntimeError("coordination fact for node " + nodeName(n) + ", which does not exist");
+    if (owner != placement_.self) return shard_->coordinateRemote(owner, op, n, value);
+  } else if (n >= db_->nodeCount()) {
+    throw RuntimeError("coordination fact for node " + nodeName(n) + ", which does not exist");
+  }
+  if (op == Opcode::ADD_PRIORITY && n == running_ && inRun_) return;  // §5.7: not the running node
+  coordinateOwned(op, n, value);
+}
+
+void Machine::coordinateOwned(Opcode op, NodeId n, double value) {
   switch (op) {
+    case Opcode::SET_PRIORITY:
+      sched_.setPriority(n, value);
+      break;
     case Opcode::ADD_PRIORITY:
-      if (!(n == running_ && inRun_)) sched_.addPriority(n, value);
+      sched_.addPriority(n, value);
       break;
     case Opcode::REMOVE_PRIORITY:
       sched_.removePriority(n);
@@ -35,20 +61,55 @@ void Machine::coordination(Opcode op, NodeId n, double value) {
       sched_.scheduleNext(n);
       break;
     case Opcode::SET_STATIC:
-      sched_.setStatic(n, true);
+      setStatic(n, true);
       break;
     case Opcode::SET_MOVING:
-      sched_.setStatic(n, false);
-      break;
-    case Opcode::SET_AFFINITY:
-    case Opcode::SET_CPU:
-      // One thread: the node stays where it is and is pinned; just-moved arrives at once (§5.7).
-      sched_.setStatic(n, true);
-      if (tables_.justMoved != Program::kNoPred) send(running_, n, tables_.justMoved, kNoArgs, false);
+      setStatic(n, false);
       break;
     default:
       break;
   }
+}
+
+void Machine::setStatic(NodeId n, bool isStatic) {
+  if (sched_.isStatic(n) == isStatic) return;
+  sched_.setStatic(n, isStatic);
+  if (shard_) shard_->staticChanged(placement_.self, isStatic ? 1 : -1);
+}
+
+void Machine::placeNode(Opcode op, NodeId n, Value arg) {
+  if (!shard_) {
+    if (n >= db_->nodeCount())
+      throw RuntimeError("coordination fact for node " + nodeName(n) + ", which does not exist");
+    // One thread: the node stays where it is and is pinned; just-moved arrives at once (§5.7).
+    setStatic(n, true);
+    if (tables_.justMoved != Program::kNoPred) send(running_, n, tables_.justMoved, kNoArgs, false);
+    return;
+  }
+  const char* what = op == Opcode::SET_CPU ? "set-cpu" : "set-affinity";
+  const ThreadId owner = ownerOf(n);
+  if (owner == kNoThread) throw RuntimeError(std::string(what) + " for node " + nodeName(n) + ", which does not exist");
+  ThreadId target = kNoThread;
+  if (op == Opcode::SET_CPU) {
+    target = arg.asThread();
+    if (target >= placement_.threads)
+      throw RuntimeError("set-cpu: thread #T" + std::to_string(target) + " does not exist");
+  } else {
+    target = ownerOf(arg.asNode());
+    if (target == kNoThread)
+      throw RuntimeError("set-affinity: node " + nodeName(arg.asNode()) + " does not exist");
+  }
+  // Moving a node between threads would move its facts between shards; until the runtime does
+  // that, a request that needs it stops the run rather than pinning the node in the wrong place.
+  if (owner != target)
+    throw RuntimeError(std::string(what) + ": moving node " + nodeName(n) + " from thread #T" +
+                       std::to_string(owner) + " to #T" + std::to_string(target) +
+                       " is not supported yet (`meld -j N` keeps every node on its first thread)");
+  if (owner == placement_.self)
+    setStatic(n, true);
+  else
+    shard_->coordinateRemote(owner, Opcode::SET_STATIC, n, 0.0);
+  if (tables_.justMoved != Program::kNoPred) send(running_, n, tables_.justMoved, kNoArgs, false);
 }
 
 Value Machine::programArg(std::uint32_t k) const {
@@ -59,7 +120,8 @@ Value Machine::programArg(std::uint32_t k) const {
   return v;
 }
 
-std::int32_t Machine::staticNodes(ThreadId) const {
+std::int32_t Machine::staticNodes(ThreadId t) const {
+  if (shard_) return shard_->staticNodes(t);
   std::int32_t count = 0;
   for (NodeId n = 0; n < db_->nodeCount(); ++n) count += sched_.isStatic(n);
   return count;

@@ -9,7 +9,18 @@ void Machine::post(NodeId dest, PredId p, const Value* args, bool negative) {
   if (tables_.boxedField[p]) retainArgs(p, args);
   linearPosted_ |= tables_.isLinear[p];
   mail_->post(dest, p, negative, args);
-  if (!host_ && !(inRun_ && dest == running_)) sched_.wake(dest);
+  // The thread node is served apart (runNext), never from the queue.
+  if (!host_ && !(inRun_ && dest == running_) && dest != threadNode_) sched_.wake(dest);
+}
+
+void Machine::postOrRoute(const PendingFact& e, const Value* args) {
+  if (shard_ && !ownedHere(e.node)) [[unlikely]] {
+    if (const ThreadId owner = shard_->ownerOf(e.node); owner != placement_.self) {
+      shard_->sendRemote(owner, running_, e.node, e.pred, args, e.negative);
+      return;
+    }
+  }
+  post(e.node, e.pred, args, e.negative);
 }
 
 void Machine::flushOutgoing() {
@@ -35,12 +46,15 @@ void Machine::postAll(const std::vector<PendingFact>& facts) {
   // before the loop), since its address is only known from the entry.
   constexpr std::size_t kTailAhead = 4;
   const std::size_t n = facts.size();
-  for (std::size_t i = 0; i < n && i < kTailAhead; ++i) mail_->prefetchTail(facts[i].node);
+  // (A shard's facts may name nodes of other threads beyond its own arrays: no prefetch there.)
+  const NodeId nodes = shard_ ? db_->nodeCount() : ~NodeId(0);
+  for (std::size_t i = 0; i < n && i < kTailAhead; ++i)
+    if (facts[i].node < nodes) mail_->prefetchTail(facts[i].node);
   for (std::size_t i = 0; i < n; ++i) {
-    if (i + kTailAhead < n) mail_->prefetchTail(facts[i + kTailAhead].node);
+    if (i + kTailAhead < n && facts[i + kTailAhead].node < nodes) mail_->prefetchTail(facts[i + kTailAhead].node);
     const PendingFact& e = facts[i];
     const Value* args = sentArgs_.data() + e.args;
-    post(e.node, e.pred, args, e.negative);
+    postOrRoute(e, args);
     releaseArgs(e.pred, args);
   }
 }

@@ -10,12 +10,12 @@ SerialScheduler::SerialScheduler(const SchedulingOptions& o) : desc_(o.order == 
   if (o.noInitialPriorities) initial_ = default_;
 }
 
-void SerialScheduler::start(NodeId nodes) {
+void SerialScheduler::start(NodeId nodes, NodeId first, NodeId end) {
   NodeState init;
   init.prio = initial_;
   init.defaultPrio = default_;
   nodes_.assign(nodes, init);
-  for (NodeId n = 0; n < nodes; ++n) wake(n);
+  for (NodeId n = first; n < end; ++n) wake(n);
 }
 
 void SerialScheduler::addNode() {

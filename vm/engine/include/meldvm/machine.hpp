@@ -21,6 +21,7 @@
 #include "meldvm/program.hpp"
 #include "meldvm/program_tables.hpp"
 #include "meldvm/serial_scheduler.hpp"
+#include "meldvm/shard.hpp"
 #include "meldvm/value_buffer.hpp"
 
 namespace meldvm {
@@ -53,6 +54,10 @@ struct MachineOptions {
   // a linear fact stored for the node that derived it, or a node created. Bounds what a program (or a damaged
   // bytecode file) can make the VM do.
   std::uint64_t maxSteps = 0;
+  // Set: this Machine is one shard of a threaded run (shard.hpp, vm/threads) and owns only the
+  // nodes of `placement`; facts for other nodes go through the link.
+  ShardLink* shard = nullptr;
+  ShardPlacement placement;
 };
 
 struct MachineStats {
@@ -78,6 +83,9 @@ class Machine : private SchedulerView {
   void start();
   // Runs to global quiescence or stop-program. Throws RuntimeError naming the rule and node.
   void run();
+  // One node run: the next node of the scheduler (§6.11), else the thread node if it has work.
+  // False when nothing is left to run here (a shard then waits for facts from other threads).
+  bool runNext();
 
   // Driving the nodes from outside (MachineOptions::host): a fact arrives at node n (a message, a
   // sensor change; negative = a retraction), and node n runs until it has nothing left to do.
@@ -92,6 +100,17 @@ class Machine : private SchedulerView {
   // Room for that many facts of p (all nodes together), when the driver knows the count.
   void reserveFacts(PredId p, std::size_t facts) { db_->reserve(p, facts); }
   bool stopped() const { return stop_; }
+  // Another thread ran stop-program: stop after the current node run.
+  void requestStop() { stop_ = true; }
+  // A coordination fact (§5.7) that another thread sent for a node of this shard.
+  void coordinateOwned(Opcode op, NodeId n, double value);
+  const ShardPlacement& placement() const { return placement_; }
+  // The garbage collection of created nodes (§6.10) in pieces, for a threaded run whose nodes
+  // refer to each other across shards: the created nodes here with no fact, the nodes the facts
+  // here refer to (`referenced` grows as needed), and the removal.
+  std::vector<NodeId> emptyCreatedNodes() const;
+  void markReferencedNodes(std::vector<std::uint8_t>& referenced) const;
+  void removeNode(NodeId n) { db_->removeNode(n); }
   // The store's index on field `field` of `p` (requested at construction for every `index`
   // directive and every ITER_KEY of the program).
   std::uint32_t keyIndex(PredId p, std::uint32_t field) const {
@@ -129,7 +148,15 @@ class Machine : private SchedulerView {
   NodeId newNode();
   NodeId appendNode(bool created);
   void priorityRequest(NodeId n, double p);
-  void coordination(Opcode op, NodeId n, double value);
+  void coordination(Opcode op, NodeId n, Value arg);
+  void placeNode(Opcode op, NodeId n, Value arg);  // set-cpu, set-affinity
+  void setStatic(NodeId n, bool isStatic);
+  bool ownedHere(NodeId n) const {  // the shard's initial range, or any node when serial
+    return n - placement_.firstOwned < placement_.endOwned - placement_.firstOwned;
+  }
+  ThreadId ownerOf(NodeId n) const { return ownedHere(n) ? placement_.self : shard_->ownerOf(n); }
+  void growNodes(NodeId end);  // node arrays up to id end (a shard's block of created ids)
+  void initNode(NodeId n);     // its _init fact
   void stopProgram() { stop_ = true; }
   Value programArg(std::uint32_t k) const;
 
@@ -222,6 +249,10 @@ class Machine : private SchedulerView {
   NodeId threadNode_ = kNoNode;  // the node of the one VM thread (§6.12)
   bool started_ = false;
   MachineHost* host_ = nullptr;
+  ShardLink* shard_ = nullptr;
+  ShardPlacement placement_;
+  NodeId nextCreated_ = 0, createdEnd_ = 0;  // a shard's block of ids for created nodes
+  void postOrRoute(const PendingFact& e, const Value* args);
   NodeId running_ = 0;
   bool inRun_ = false;
   NodeId initialNodes_ = 0;
@@ -267,13 +298,13 @@ class Machine : private SchedulerView {
 
   // SchedulerView (built-ins priority, cpu-id, ...).
   double priority(NodeId n) const override { return sched_.priority(n); }
-  ThreadId owner(NodeId) const override { return 0; }
+  ThreadId owner(NodeId n) const override { return shard_ ? ownerOf(n) : 0; }
   std::int32_t staticNodes(ThreadId) const override;
   bool isStatic(NodeId n) const override { return sched_.isStatic(n); }
   std::int32_t queueSize(NodeId) const override { return std::int32_t(sched_.waiting()); }
   std::int32_t factsProved() const override { return std::int32_t(runDerived_); }
   std::int32_t factsConsumed() const override { return std::int32_t(runConsumed_); }
-  std::int32_t threadCount() const override { return 1; }
+  std::int32_t threadCount() const override { return std::int32_t(placement_.threads); }
   std::uint64_t runDerived_ = 0, runConsumed_ = 0;
 };
 

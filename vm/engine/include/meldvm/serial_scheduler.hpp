@@ -18,8 +18,9 @@ class SerialScheduler {
  public:
   explicit SerialScheduler(const SchedulingOptions& options);
 
-  // Called once with the initial node count, before any run: every node is queued in id order.
-  void start(NodeId nodes);
+  // Called once with the initial node count, before any run: the nodes [first, end) (all of them
+  // in a serial run, a shard's own in a threaded one) are queued in id order.
+  void start(NodeId nodes, NodeId first, NodeId end);
   // A node created at run time (exists): it starts with no priority.
   void addNode();
 

@@ -1,0 +1,51 @@
+// One Machine as a shard of a threaded run (the multicore target, `meld -j N`, vm/threads): each
+// worker thread owns a Machine with its own store, heap and scheduler, and the nodes of its part
+// of the graph. What the Machine asks of the runtime around it is this interface; without it
+// (MachineOptions::shard null) the Machine is the serial VM and none of this costs anything.
+//
+// Why shards rather than one shared store: the fact tables, their hash tables and the heap's
+// reference counts are shared by all nodes of a store, so two threads writing one store would need
+// a lock or an atomic on every fact. A shard touches only its own store; facts for another
+// thread's nodes travel through per-pair channels, copied (boxed values included) into the
+// receiver's heap.
+#pragma once
+
+#include <cstdint>
+
+#include "meldvm/program.hpp"
+#include "meldvm/value.hpp"
+
+namespace meldvm {
+
+inline constexpr ThreadId kNoThread = 0xFFFFFFFFu;
+
+// Where a shard sits in the run: its thread, the node range it owns at the start.
+struct ShardPlacement {
+  ThreadId self = 0;
+  ThreadId threads = 1;
+  NodeId firstOwned = 0, endOwned = 0;  // initial nodes [firstOwned, endOwned)
+};
+
+class ShardLink {
+ public:
+  virtual ~ShardLink() = default;
+  // The thread that owns node n now (initial, thread and created nodes), or kNoThread when no
+  // node n exists. Read on every fact sent to a node outside the shard's own initial range.
+  virtual ThreadId ownerOf(NodeId n) const = 0;
+  // A fact for node `dest` of thread `to`, sent by `from`'s rule; arguments are borrowed (the
+  // link copies them). Sent in order: facts from one thread to one node arrive in sending order.
+  virtual void sendRemote(ThreadId to, NodeId from, NodeId dest, PredId p, const Value* args,
+                          bool negative) = 0;
+  // A coordination fact (§5.7: priorities, schedule-next, static/moving) for another thread's
+  // node; `op` is the opcode, SET_PRIORITY for set-priority.
+  virtual void coordinateRemote(ThreadId to, Opcode op, NodeId n, double value) = 0;
+  // A block of fresh node ids for nodes this shard creates (exists): [first, first + count).
+  virtual NodeId allocateNodeBlock(ThreadId self, NodeId& count) = 0;
+  // stop-program: every thread stops after its current node run.
+  virtual void stopAll() = 0;
+  // set-static / set-moving changed how many nodes of thread t are static (cpu-static, §5.7).
+  virtual void staticChanged(ThreadId t, int delta) = 0;
+  virtual std::int32_t staticNodes(ThreadId t) const = 0;
+};
+
+}  // namespace meldvm
