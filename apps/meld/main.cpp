@@ -12,6 +12,7 @@
 #include "meldvm/bytecode.hpp"
 #include "meldvm/derivation_log.hpp"
 #include "meldvm/machine.hpp"
+#include "meldvm/threaded_machine.hpp"
 #include "options.hpp"
 
 #ifndef MELD_VERSION
@@ -19,6 +20,9 @@
 #endif
 
 namespace {
+
+using namespace meldapp;
+using Clock = std::chrono::steady_clock;
 
 bool endsWith(const std::string& s, const char* suffix) {
   const std::string x(suffix);
@@ -31,10 +35,123 @@ double peakRssMb() {
   return double(u.ru_maxrss) / 1024.0;  // Linux: kilobytes
 }
 
+double secondsSince(Clock::time_point t) { return std::chrono::duration<double>(Clock::now() - t).count(); }
+
+// Compiles or loads the program; on failure prints why and sets the exit status.
+std::unique_ptr<meldvm::Program> loadProgram(const Options& options, int& status) {
+  if (endsWith(options.program, ".mbc")) {
+    try {
+      return meldvm::readBytecodeFile(options.program);
+    } catch (const meldvm::BytecodeError& e) {
+      std::cerr << "meld: error: " << e.what() << "\n";  // the message names the file
+      status = kExitBadBytecode;
+      return nullptr;
+    }
+  }
+  meldc::SourceManager sources;
+  meldc::Diagnostics diag(sources, std::cerr);
+  try {
+    auto program = meldc::compileProgram({options.program, options.includeDirs, options.defines}, sources, diag);
+    if (!program) status = kExitCompileErrors;
+    return program;
+  } catch (const meldc::InternalCompilerError& e) {
+    std::cerr << "meld: internal compiler error: " << e.what() << "\n";
+    status = 70;
+    return nullptr;
+  }
+}
+
+void printStats(const meldvm::MachineStats& s, double loadSeconds, double wall) {
+  std::fprintf(stderr,
+               "facts derived: %llu\nfacts consumed: %llu\nfacts sent: %llu\nrules fired: %llu\n"
+               "node runs: %llu\nload s: %.3f\nwall s: %.3f\nfacts/s: %.0f\npeak RSS MB: %.1f\n",
+               (unsigned long long)s.factsDerived, (unsigned long long)s.factsConsumed,
+               (unsigned long long)s.factsSent, (unsigned long long)s.rulesFired, (unsigned long long)s.nodeRuns,
+               loadSeconds, wall, wall > 0 ? double(s.factsDerived) / wall : 0.0, peakRssMb());
+}
+
+void printThreadTable(const std::vector<meldvm::ThreadStats>& threads) {
+  std::fprintf(stderr, "threads: %zu\n%-6s %7s %10s %12s %13s %11s %11s %9s %7s\n", threads.size(), "thread",
+               "busy %", "node runs", "rules fired", "facts derived", "facts out", "facts in", "batches", "waits");
+  for (std::size_t t = 0; t < threads.size(); ++t) {
+    const meldvm::ThreadStats& s = threads[t];
+    const double total = s.busySeconds + s.idleSeconds;
+    std::fprintf(stderr, "%-6zu %7.1f %10llu %12llu %13llu %11llu %11llu %9llu %7llu\n", t,
+                 total > 0 ? 100.0 * s.busySeconds / total : 0.0, (unsigned long long)s.nodeRuns,
+                 (unsigned long long)s.rulesFired, (unsigned long long)s.factsDerived,
+                 (unsigned long long)s.factsOut, (unsigned long long)s.factsIn, (unsigned long long)s.batchesOut,
+                 (unsigned long long)s.waits);
+  }
+}
+
+int runSerial(const Options& options, const meldvm::Program& program, meldvm::MachineOptions mo, double loadSeconds) {
+  const Clock::time_point runStart = Clock::now();
+  meldvm::Machine machine(program, mo);
+  // Facts asked about are checked before the run: a typo fails at once.
+  std::vector<meldvm::FactAt> why;
+  for (const std::string& spec : options.why) {
+    try {
+      why.push_back(meldvm::parseFactSpec(spec, program));
+    } catch (const std::invalid_argument& e) {
+      std::cerr << "meld: error: --why: " << e.what() << "\n";
+      return kExitUsage;
+    }
+  }
+  meldvm::DerivationLog derivations;
+  if (!why.empty()) machine.recordDerivations(&derivations);
+  try {
+    machine.run();
+  } catch (const meldvm::RuntimeError& e) {
+    std::cout.flush();
+    std::cerr << "meld: " << e.what() << "\n";
+    return kExitRuntimeError;
+  }
+  const double wall = secondsSince(runStart);
+  if (options.dump) machine.dump(std::cout);
+  std::cout.flush();
+  int status = kExitOk;
+  for (std::size_t i = 0; i < why.size(); ++i) {
+    if (!meldvm::printWhy(std::cout, derivations, why[i])) {
+      std::cerr << "meld: no derivation of " << options.why[i]
+                << ": the run did not derive it (the node first, "
+                << "then the values as --dump prints them)\n";
+      status = kExitNoSuchFact;
+    }
+  }
+  std::cout.flush();
+  if (options.stats) {
+    printStats(machine.stats(), loadSeconds, wall);
+    if (!why.empty())
+      std::fprintf(stderr, "derivations recorded: %zu (%.1f MB)\n", derivations.size(),
+                   double(derivations.bytesInUse()) / 1e6);
+  }
+  return status;
+}
+
+int runThreaded(const Options& options, const meldvm::Program& program, meldvm::MachineOptions mo,
+                double loadSeconds) {
+  const Clock::time_point runStart = Clock::now();
+  meldvm::ThreadedMachine machine(program, mo, options.threads);
+  try {
+    machine.run();
+  } catch (const meldvm::RuntimeError& e) {
+    std::cout.flush();
+    std::cerr << "meld: " << e.what() << "\n";
+    return kExitRuntimeError;
+  }
+  const double wall = secondsSince(runStart);
+  if (options.dump) machine.dump(std::cout);
+  std::cout.flush();
+  if (options.stats) {
+    printStats(machine.stats(), loadSeconds, wall);
+    printThreadTable(machine.threadStats());
+  }
+  return kExitOk;
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
-  using namespace meldapp;
   std::string error;
   const std::optional<Options> options = parseOptions({argv + 1, argv + argc}, error);
   if (!options) {
@@ -50,80 +167,17 @@ int main(int argc, char** argv) {
     return kExitOk;
   }
 
-  const auto start = std::chrono::steady_clock::now();
-  std::unique_ptr<meldvm::Program> program;
-  if (endsWith(options->program, ".mbc")) {
-    try {
-      program = meldvm::readBytecodeFile(options->program);
-    } catch (const meldvm::BytecodeError& e) {
-      std::cerr << "meld: error: " << e.what() << "\n";  // the message names the file
-      return kExitBadBytecode;
-    }
-  } else {
-    meldc::SourceManager sources;
-    meldc::Diagnostics diag(sources, std::cerr);
-    try {
-      program =
-          meldc::compileProgram({options->program, options->includeDirs, options->defines}, sources, diag);
-    } catch (const meldc::InternalCompilerError& e) {
-      std::cerr << "meld: internal compiler error: " << e.what() << "\n";
-      return 70;
-    }
-    if (!program) return kExitCompileErrors;
-  }
+  const Clock::time_point start = Clock::now();
+  int status = kExitOk;
+  const std::unique_ptr<meldvm::Program> program = loadProgram(*options, status);
+  if (!program) return status;
 
   meldvm::MachineOptions mo;
   mo.args = options->programArgs;
   mo.output = &std::cout;
   mo.seed = options->seed;
   mo.maxSteps = options->maxSteps;
-  const double loadSeconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-  const auto runStart = std::chrono::steady_clock::now();
-  meldvm::Machine machine(*program, mo);
-  // Facts asked about are checked before the run: a typo fails at once.
-  std::vector<meldvm::FactAt> why;
-  for (const std::string& spec : options->why) {
-    try {
-      why.push_back(meldvm::parseFactSpec(spec, *program));
-    } catch (const std::invalid_argument& e) {
-      std::cerr << "meld: error: --why: " << e.what() << "\n";
-      return kExitUsage;
-    }
-  }
-  meldvm::DerivationLog derivations;
-  if (!why.empty()) machine.recordDerivations(&derivations);
-  try {
-    machine.run();
-  } catch (const meldvm::RuntimeError& e) {
-    std::cout.flush();
-    std::cerr << "meld: " << e.what() << "\n";
-    return kExitRuntimeError;
-  }
-  const double wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - runStart).count();
-  if (options->dump) machine.dump(std::cout);
-  std::cout.flush();
-  int status = kExitOk;
-  for (std::size_t i = 0; i < why.size(); ++i) {
-    if (!meldvm::printWhy(std::cout, derivations, why[i])) {
-      std::cerr << "meld: no derivation of " << options->why[i]
-                << ": the run did not derive it (the node first, "
-                << "then the values as --dump prints them)\n";
-      status = kExitNoSuchFact;
-    }
-  }
-  std::cout.flush();
-  if (options->stats) {
-    const meldvm::MachineStats& s = machine.stats();
-    std::fprintf(stderr,
-                 "facts derived: %llu\nfacts consumed: %llu\nfacts sent: %llu\nrules fired: %llu\n"
-                 "node runs: %llu\nload s: %.3f\nwall s: %.3f\nfacts/s: %.0f\npeak RSS MB: %.1f\n",
-                 (unsigned long long)s.factsDerived, (unsigned long long)s.factsConsumed,
-                 (unsigned long long)s.factsSent, (unsigned long long)s.rulesFired,
-                 (unsigned long long)s.nodeRuns, loadSeconds, wall,
-                 wall > 0 ? double(s.factsDerived) / wall : 0.0, peakRssMb());
-    if (!why.empty())
-      std::fprintf(stderr, "derivations recorded: %zu (%.1f MB)\n", derivations.size(),
-                   double(derivations.bytesInUse()) / 1e6);
-  }
-  return status;
+  const double loadSeconds = secondsSince(start);
+  return options->threads > 1 ? runThreaded(*options, *program, mo, loadSeconds)
+                              : runSerial(*options, *program, mo, loadSeconds);
 }

@@ -1,6 +1,7 @@
 #include "options.hpp"
 
 #include <charconv>
+#include <string>
 
 namespace meldapp {
 
@@ -11,19 +12,25 @@ const char* usageText() {
          "\n"
          "options:\n"
          "  --dump          print every node's final facts (the format of the established VM's -d)\n"
+         "  -j N, --threads N\n"
+         "                  run on N worker threads (default 1, the serial VM): each thread owns\n"
+         "                  a contiguous range of the nodes and a thread node (§6.12); the dump\n"
+         "                  is the serial one for programs whose result does not depend on the\n"
+         "                  order nodes run in (thread nodes and created node ids differ)\n"
          "  --stats         print facts derived/consumed/sent, rules fired, wall time and peak\n"
-         "                  memory on standard error\n"
+         "                  memory on standard error; with -j, a table per thread too\n"
          "  -I DIR          include directory (for .meld input)\n"
          "  -D NAME=VALUE   define the constant NAME (for .meld input)\n"
          "  --seed S        seed of the random stream of randint, degeneratevector and [:random]\n"
          "                  (a non-negative integer; the same seed gives the same run)\n"
          "  --max-steps N   stop with a run-time error after N steps: rule, persistent-rule\n"
          "                  and loop runs, linear facts derived, nodes created (for programs\n"
-         "                  that may not terminate; default: no limit)\n"
+         "                  that may not terminate; default: no limit; with -j, per thread)\n"
          "  --why FACT      after the run, print why FACT exists, like --why 'reach(@3, 3)' (the\n"
          "                  node first, the values as --dump prints them): the rule that derived\n"
          "                  it (FILE:LINE, the node it ran at) and the facts it matched, down to\n"
          "                  the axioms (FILE:LINE); repeatable. Records derivations during the run\n"
+         "                  (serial runs only)\n"
          "  -- ARGS         program arguments, read by @arg1, @arg2, ...\n"
          "  --help          this text\n"
          "  --version       print the version\n"
@@ -55,6 +62,16 @@ std::optional<Options> parseOptions(const std::vector<std::string>& args, std::s
       auto v = value("a fact like 'reach(@3, 3)'");
       if (!v) return std::nullopt;
       o.why.push_back(*v);
+    } else if (a == "--threads" || a.rfind("-j", 0) == 0) {
+      auto v = value("a thread count");
+      if (!v) return std::nullopt;
+      unsigned n = 0;
+      const auto [end, ec] = std::from_chars(v->data(), v->data() + v->size(), n);
+      if (v->empty() || ec != std::errc() || end != v->data() + v->size() || n < 1 || n > 1024) {
+        error = "-j/--threads expects a thread count from 1 to 1024, got '" + *v + "'";
+        return std::nullopt;
+      }
+      o.threads = n;
     } else if (a == "--help" || a == "-h") {
       o.help = true;
     } else if (a == "--version") {
@@ -95,6 +112,10 @@ std::optional<Options> parseOptions(const std::vector<std::string>& args, std::s
   }
   if (!o.help && !o.version && o.program.empty()) {
     error = "no program given";
+    return std::nullopt;
+  }
+  if (o.threads > 1 && !o.why.empty()) {
+    error = "--why records derivations in serial runs only: drop -j " + std::to_string(o.threads);
     return std::nullopt;
   }
   return o;

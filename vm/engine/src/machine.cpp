@@ -185,7 +185,7 @@ bool Machine::runNext() {
 
 void Machine::receive(NodeId n, PredId p, const Value* args, bool negative) {
   start();
-  if (n >= db_->nodeCount())
+  if (n >= db_->nodeCount() || (shard_ && !holdsNode(n)))
     throw RuntimeError("fact for node @" + std::to_string(n) + ", which does not exist");
   post(n, p, args, negative);
 }

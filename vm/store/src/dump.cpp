@@ -20,8 +20,6 @@ void appendFact(std::string& out, const Database& db, PredId p, const Value* arg
   out += ')';
 }
 
-namespace {
-
 // By name only (the "!" prefix plays no part), byte-wise like std::string's operator<.
 std::vector<PredId> dumpOrder(const PredicateTable& preds) {
   std::vector<PredId> order(preds.size());
@@ -30,6 +28,8 @@ std::vector<PredId> dumpOrder(const PredicateTable& preds) {
                    [&](PredId a, PredId b) { return preds[a].name < preds[b].name; });
   return order;
 }
+
+namespace {
 
 // The sorted lines of p's facts on node n.
 void collectLines(const Database& db, NodeId n, PredId p, std::vector<std::string>& lines) {
@@ -61,24 +61,25 @@ std::vector<PredicateFacts> nodeFacts(const Database& db, NodeId n) {
   return result;
 }
 
-void dumpDatabase(std::string& out, const Database& db) {
+void appendNodeDump(std::string& out, const Database& db, NodeId n, const std::vector<PredId>& order) {
   const PredicateTable& preds = db.predicates();
-  const std::vector<PredId> order = dumpOrder(preds);
-
   std::vector<std::string> lines;
-  for (NodeId n = 0; n < db.nodeCount(); ++n) {
-    if (!db.alive(n)) continue;  // created nodes deleted by the GC (§6.10)
-    out += std::to_string(n);
-    out += '\n';
-    for (PredId p : order) {
-      if (preds[p].action) continue;
-      collectLines(db, n, p, lines);
-      for (const std::string& l : lines) {
-        out += l;
-        out += '\n';
-      }
+  out += std::to_string(n);
+  out += '\n';
+  for (PredId p : order) {
+    if (preds[p].action) continue;
+    collectLines(db, n, p, lines);
+    for (const std::string& l : lines) {
+      out += l;
+      out += '\n';
     }
   }
+}
+
+void dumpDatabase(std::string& out, const Database& db) {
+  const std::vector<PredId> order = dumpOrder(db.predicates());
+  for (NodeId n = 0; n < db.nodeCount(); ++n)
+    if (db.alive(n)) appendNodeDump(out, db, n, order);  // not the created nodes deleted by the GC (§6.10)
 }
 
 std::string dumpDatabase(const Database& db) {

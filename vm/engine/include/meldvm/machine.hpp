@@ -111,6 +111,14 @@ class Machine : private SchedulerView {
   std::vector<NodeId> emptyCreatedNodes() const;
   void markReferencedNodes(std::vector<std::uint8_t>& referenced) const;
   void removeNode(NodeId n) { db_->removeNode(n); }
+  // Whether the node's facts are here: a live node of the graph or thread node, or a node created
+  // here (a shard's arrays also span the other threads' nodes and unused created ids).
+  bool holdsNode(NodeId n) const {
+    if (n >= db_->nodeCount() || !db_->alive(n)) return false;
+    return n < initialNodes_ + (threadNode_ != kNoNode ? placement_.threads : 0) || created_[n];
+  }
+  // The heap of this Machine's values (facts from other threads are rebuilt in it).
+  Heap& heap() { return heap_; }
   // The store's index on field `field` of `p` (requested at construction for every `index`
   // directive and every ITER_KEY of the program).
   std::uint32_t keyIndex(PredId p, std::uint32_t field) const {
@@ -157,7 +165,10 @@ class Machine : private SchedulerView {
   ThreadId ownerOf(NodeId n) const { return ownedHere(n) ? placement_.self : shard_->ownerOf(n); }
   void growNodes(NodeId end);  // node arrays up to id end (a shard's block of created ids)
   void initNode(NodeId n);     // its _init fact
-  void stopProgram() { stop_ = true; }
+  void stopProgram() {
+    stop_ = true;
+    if (shard_) shard_->stopAll();
+  }
   Value programArg(std::uint32_t k) const;
 
   // ---- node runs ----

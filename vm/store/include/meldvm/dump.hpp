@@ -24,6 +24,10 @@ struct PredicateFacts {
 std::vector<PredicateFacts> nodeFacts(const Database& db, NodeId n);
 
 void dumpDatabase(std::string& out, const Database& db);
+// One node's section of the dump (its id, then its facts), for dumps merged from several stores
+// (the threaded VM): `order` is dumpOrder's.
+std::vector<PredId> dumpOrder(const PredicateTable& preds);
+void appendNodeDump(std::string& out, const Database& db, NodeId n, const std::vector<PredId>& order);
 std::string dumpDatabase(const Database& db);
 void dumpDatabase(std::ostream& os, const Database& db);
 

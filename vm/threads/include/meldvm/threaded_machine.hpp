@@ -1,0 +1,70 @@
+// The multicore target (`meld -j N`): a Meld program on N worker threads. Each thread owns a
+// shard (a Machine with its own store, heap and scheduler, shard.hpp) and a contiguous range of
+// the graph's nodes, as the established VM partitions them statically; thread t also has thread
+// node N + t (§6.12). A fact for another thread's node goes, copied, through the channel of that
+// pair of threads. The run ends by quiescence: no thread has work and no fact is in transit
+// (one counter of busy threads and batches in transit, see worker.cpp), or by stop-program.
+//
+// For a program whose result does not depend on the order in which nodes run, the dump equals
+// the serial VM's; the thread nodes (one per thread) and the ids of created nodes (blocks of
+// 16384 per thread) are where a threaded dump differs by design.
+#pragma once
+
+#include <cstdint>
+#include <memory>
+#include <mutex>
+#include <ostream>
+#include <string>
+#include <vector>
+
+#include "meldvm/machine.hpp"
+
+namespace meldvm {
+
+namespace threads {
+class NodeDirectory;
+class Worker;
+struct SharedState;
+}  // namespace threads
+
+// What one worker thread did (meld --stats prints the table).
+struct ThreadStats {
+  std::uint64_t nodeRuns = 0, rulesFired = 0, factsDerived = 0;
+  std::uint64_t factsOut = 0, factsIn = 0;  // facts sent to / received from other threads
+  std::uint64_t batchesOut = 0;             // channel pushes (each one or more facts)
+  std::uint64_t waits = 0;                  // times the thread ran out of work
+  double busySeconds = 0, idleSeconds = 0;
+};
+
+class ThreadedMachine {
+ public:
+  // `threads` >= 1; options as for a Machine (host must be null: robots run serially).
+  ThreadedMachine(const Program& program, MachineOptions options, unsigned threads);
+  ~ThreadedMachine();
+  ThreadedMachine(const ThreadedMachine&) = delete;
+  ThreadedMachine& operator=(const ThreadedMachine&) = delete;
+
+  // Runs to quiescence or stop-program. Throws RuntimeError (the first error of any thread).
+  void run();
+
+  void dump(std::ostream& out) const;
+  std::string dump() const;
+  unsigned threads() const { return unsigned(workers_.size()); }
+  MachineStats stats() const;  // all threads together
+  std::vector<ThreadStats> threadStats() const;
+  double wallSeconds() const { return wallSeconds_; }
+  std::size_t bytesInUse() const;
+  bool stopped() const;
+
+ private:
+  void collectGarbageNodes();
+
+  const Program& program_;
+  std::unique_ptr<threads::NodeDirectory> directory_;
+  std::unique_ptr<threads::SharedState> shared_;
+  std::vector<std::unique_ptr<threads::Worker>> workers_;
+  std::mutex outputLock_;
+  double wallSeconds_ = 0;
+};
+
+}  // namespace meldvm

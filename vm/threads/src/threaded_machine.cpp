@@ -1,0 +1,92 @@
+#include "meldvm/threaded_machine.hpp"
+
+#include <chrono>
+#include <sstream>
+
+#include "meldvm/dump.hpp"
+#include "node_directory.hpp"
+#include "shared_state.hpp"
+#include "worker.hpp"
+
+namespace meldvm {
+
+ThreadedMachine::ThreadedMachine(const Program& program, MachineOptions options, unsigned threads)
+    : program_(program) {
+  if (threads == 0) throw std::invalid_argument("a threaded run needs at least one thread");
+  if (options.host) throw std::invalid_argument("a threaded run drives its own nodes (no host)");
+  const NodeId graph = std::max<NodeId>(NodeId(program.nodeSourceIds.size()), options.nodes);
+  const ProgramTables tables(program);
+  directory_ = std::make_unique<threads::NodeDirectory>(graph, threads, tables.hasThreads);
+  shared_ = std::make_unique<threads::SharedState>(threads);
+  for (ThreadId t = 0; t < threads; ++t)
+    workers_.push_back(std::make_unique<threads::Worker>(program, options, t, *directory_, *shared_, outputLock_));
+}
+
+ThreadedMachine::~ThreadedMachine() {
+  for (auto& w : workers_) w->join();
+}
+
+void ThreadedMachine::run() {
+  const auto start = std::chrono::steady_clock::now();
+  for (auto& w : workers_) w->launch();
+  for (auto& w : workers_) w->join();
+  wallSeconds_ = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  if (shared_->error) std::rethrow_exception(shared_->error);
+  if (!stopped()) collectGarbageNodes();
+}
+
+bool ThreadedMachine::stopped() const { return shared_->stop.load(); }
+
+void ThreadedMachine::collectGarbageNodes() {
+  // §6.10 over all shards: a created node with no facts that no fact anywhere refers to.
+  std::vector<std::uint8_t> referenced;
+  bool anyEmpty = false;
+  for (auto& w : workers_) anyEmpty = anyEmpty || !w->machine().emptyCreatedNodes().empty();
+  if (!anyEmpty) return;
+  for (auto& w : workers_) w->machine().markReferencedNodes(referenced);
+  for (auto& w : workers_)
+    for (NodeId n : w->machine().emptyCreatedNodes())
+      if (n >= referenced.size() || !referenced[n]) w->machine().removeNode(n);
+}
+
+void ThreadedMachine::dump(std::ostream& out) const { out << dump(); }
+
+std::string ThreadedMachine::dump() const {
+  std::string out;
+  const std::vector<PredId> order = dumpOrder(program_.predicates);
+  const NodeId end = directory_->idEnd();
+  for (NodeId n = 0; n < end; ++n) {
+    const ThreadId t = directory_->ownerOf(n);
+    if (t == kNoThread) continue;
+    const Machine& m = workers_[t]->machine();
+    if (m.holdsNode(n)) appendNodeDump(out, m.database(), n, order);
+  }
+  return out;
+}
+
+MachineStats ThreadedMachine::stats() const {
+  MachineStats all;
+  for (const auto& w : workers_) {
+    const MachineStats& s = w->machine().stats();
+    all.factsDerived += s.factsDerived;
+    all.factsConsumed += s.factsConsumed;
+    all.factsSent += s.factsSent;
+    all.rulesFired += s.rulesFired;
+    all.nodeRuns += s.nodeRuns;
+  }
+  return all;
+}
+
+std::vector<ThreadStats> ThreadedMachine::threadStats() const {
+  std::vector<ThreadStats> s;
+  for (const auto& w : workers_) s.push_back(w->stats());
+  return s;
+}
+
+std::size_t ThreadedMachine::bytesInUse() const {
+  std::size_t b = 0;
+  for (const auto& w : workers_) b += w->machine().bytesInUse();
+  return b;
+}
+
+}  // namespace meldvm

@@ -1,0 +1,72 @@
+// One worker thread of a threaded run: its shard (a Machine), the facts it has for other threads
+// until they go out in a batch, and the loop that runs nodes, takes in facts and waits.
+#pragma once
+
+#include <chrono>
+#include <memory>
+#include <ostream>
+#include <thread>
+#include <vector>
+
+#include "line_output.hpp"
+#include "meldvm/machine.hpp"
+#include "meldvm/threaded_machine.hpp"
+#include "node_directory.hpp"
+#include "shared_state.hpp"
+
+namespace meldvm::threads {
+
+class Worker final : public ShardLink {
+ public:
+  Worker(const Program& program, MachineOptions options, ThreadId self, NodeDirectory& directory,
+         SharedState& shared, std::mutex& outputLock);
+  ~Worker() override;
+
+  void launch() { thread_ = std::thread([this] { loop(); }); }
+  void join() {
+    if (thread_.joinable()) thread_.join();
+  }
+  Machine& machine() { return *machine_; }
+  const Machine& machine() const { return *machine_; }
+  ThreadStats stats() const;
+
+  // ShardLink.
+  ThreadId ownerOf(NodeId n) const override { return directory_.ownerOf(n); }
+  void sendRemote(ThreadId to, NodeId from, NodeId dest, PredId p, const Value* args, bool negative) override;
+  void coordinateRemote(ThreadId to, Opcode op, NodeId n, double value) override;
+  NodeId allocateNodeBlock(ThreadId self, NodeId& count) override { return directory_.allocateBlock(self, count); }
+  void stopAll() override { shared_.stopAll(); }
+  void staticChanged(ThreadId t, int delta) override { shared_.perThread[t].staticNodes.fetch_add(delta); }
+  std::int32_t staticNodes(ThreadId t) const override {
+    return t < shared_.threads ? shared_.perThread[t].staticNodes.load() : 0;
+  }
+
+ private:
+  // Batches go out when this many words wait for one thread, or after this many node runs.
+  static constexpr std::size_t kFlushWords = 2048;
+  static constexpr unsigned kFlushRuns = 16;
+
+  void loop();
+  bool takeMail();  // takes in every batch waiting for this thread; false if there was none
+  bool mailWaiting() const;
+  void decode(const Words& words);
+  void flush();
+  bool waitForWork();  // false: the run is over (quiescence, stop-program or an error)
+
+  const Program& program_;
+  const ThreadId self_;
+  NodeDirectory& directory_;
+  SharedState& shared_;
+  std::unique_ptr<LineOutput> lineOutput_;
+  std::unique_ptr<std::ostream> output_;
+  std::unique_ptr<Machine> machine_;
+  std::vector<Words> outgoing_;  // per destination thread
+  std::size_t outgoingWords_ = 0;
+  unsigned runsSinceFlush_ = 0;
+  Words incoming_;
+  std::vector<Value> args_, scratch_;
+  ThreadStats stats_;
+  std::thread thread_;
+};
+
+}  // namespace meldvm::threads
