@@ -1,21 +1,23 @@
 // Facts from one thread to another: one channel per ordered pair of threads, so a channel has one
 // writer and one reader and facts keep their sending order. The sender appends whole batches of
-// encoded facts (fact_codec.hpp) under the channel's lock; the receiver swaps the buffer out under
+// records (worker.cpp; facts encoded by meldvm/fact_codec.hpp) under the channel's lock; the receiver swaps the buffer out under
 // the same lock. Nobody else ever takes that lock, and it is taken once per batch, not per fact.
 // The two buffers trade places, so their capacity is reused: no allocation in the steady state.
 #pragma once
 
 #include <atomic>
+#include <cstdint>
 #include <mutex>
-
-#include "fact_codec.hpp"
+#include <vector>
 
 namespace meldvm::threads {
+
+using Bytes = std::vector<std::uint8_t>;
 
 class Channel {
  public:
   // Appends `batch` and leaves it empty (its capacity, or the pending buffer's, is kept).
-  void push(Words& batch) {
+  void push(Bytes& batch) {
     std::lock_guard<std::mutex> lock(mutex_);
     if (pending_.empty())
       pending_.swap(batch);
@@ -28,7 +30,7 @@ class Channel {
   // Cheap check without the lock (a hint: take() decides).
   bool ready() const { return ready_.load(std::memory_order_acquire); }
   // Moves what is pending into `into` (which must be empty); returns how many batches that was.
-  std::uint32_t take(Words& into) {
+  std::uint32_t take(Bytes& into) {
     std::lock_guard<std::mutex> lock(mutex_);
     const std::uint32_t batches = batches_;
     if (batches == 0) return 0;
@@ -40,7 +42,7 @@ class Channel {
 
  private:
   std::mutex mutex_;
-  Words pending_;
+  Bytes pending_;
   std::uint32_t batches_ = 0;
   std::atomic<bool> ready_{false};
 };

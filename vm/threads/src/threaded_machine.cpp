@@ -14,6 +14,9 @@ ThreadedMachine::ThreadedMachine(const Program& program, MachineOptions options,
     : program_(program) {
   if (threads == 0) throw std::invalid_argument("a threaded run needs at least one thread");
   if (options.host) throw std::invalid_argument("a threaded run drives its own nodes (no host)");
+  if (program.predicates.size() > 0xFFFF)  // fact_codec.hpp numbers predicates in 16 bits
+    throw RuntimeError("a threaded run handles at most 65535 predicates; this program has " +
+                       std::to_string(program.predicates.size()));
   const NodeId graph = std::max<NodeId>(NodeId(program.nodeSourceIds.size()), options.nodes);
   const ProgramTables tables(program);
   directory_ = std::make_unique<threads::NodeDirectory>(graph, threads, tables.hasThreads);

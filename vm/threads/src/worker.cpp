@@ -1,14 +1,30 @@
 #include "worker.hpp"
 
 #include <algorithm>
+#include <cstring>
 
 namespace meldvm::threads {
 
 namespace {
 
-// A record in a channel: a header word (kind, negative flag, predicate or opcode), the node, then
-// the fact's arguments (fact_codec.hpp) or the coordination value.
-enum RecordKind : std::uint64_t { kFact = 0, kCoordination = 1 };
+// A record in a channel: its kind (u8), the node (u32), then for a fact its length (u32) and the
+// fact as meldvm/fact_codec.hpp encodes it, for a coordination fact the opcode (u32) and the
+// value (f64). Native byte order: the bytes never leave the process.
+enum RecordKind : std::uint8_t { kFact = 0, kCoordination = 1 };
+
+template <class T>
+void put(Bytes& out, T v) {
+  const std::size_t at = out.size();
+  out.resize(at + sizeof(T));
+  std::memcpy(out.data() + at, &v, sizeof(T));
+}
+template <class T>
+T get(const Bytes& in, std::size_t& pos) {
+  T v;
+  std::memcpy(&v, in.data() + pos, sizeof(T));
+  pos += sizeof(T);
+  return v;
+}
 
 inline void cpuRelax() {
 #if defined(__x86_64__) || defined(__i386__)
@@ -35,9 +51,6 @@ Worker::Worker(const Program& program, MachineOptions options, ThreadId self, No
   options.placement = {self, directory.threads(), directory.firstOwned(self), directory.endOwned(self)};
   machine_ = std::make_unique<Machine>(program, std::move(options));
   outgoing_.resize(directory.threads());
-  std::uint32_t arity = 1;
-  for (PredId p = 0; p < program.predicates.size(); ++p) arity = std::max(arity, program.predicates[p].arity());
-  args_.resize(arity);
 }
 
 Worker::~Worker() {
@@ -65,7 +78,7 @@ void Worker::loop() {
       }
       takeMail();
       if (machine_->runNext()) {
-        if (outgoingWords_ != 0 && (outgoingWords_ >= kFlushWords || ++runsSinceFlush_ >= kFlushRuns)) flush();
+        if (outgoingBytes_ != 0 && (outgoingBytes_ >= kFlushBytes || ++runsSinceFlush_ >= kFlushRuns)) flush();
         continue;
       }
       flush();
@@ -100,63 +113,71 @@ bool Worker::takeMail() {
   return any;
 }
 
-void Worker::decode(const Words& w) {
+void Worker::decode(const Bytes& in) {
   Heap& heap = machine_->heap();
-  for (std::size_t pos = 0; pos < w.size();) {
-    const std::uint64_t header = w[pos];
-    const NodeId node = NodeId(w[pos + 1]);
-    pos += 2;
-    if ((header & 1) == kCoordination) {
-      const double value = Value::fromBits(w[pos++]).asFloat();
+  for (std::size_t pos = 0; pos < in.size();) {
+    const auto kind = get<std::uint8_t>(in, pos);
+    const NodeId node = get<std::uint32_t>(in, pos);
+    if (kind == kCoordination) {
+      const auto op = Opcode(get<std::uint32_t>(in, pos));
+      const double value = get<double>(in, pos);
       if (!machine_->holdsNode(node))
         throw RuntimeError("coordination fact for node @" + std::to_string(node) + ", which does not exist");
-      machine_->coordinateOwned(Opcode(header >> 32), node, value);
+      machine_->coordinateOwned(op, node, value);
       continue;
     }
-    const PredId p = PredId(header >> 32);
-    const bool negative = (header >> 1) & 1;
-    const PredicateDesc& d = program_.predicates[p];
-    pos = decodeArgs(w, pos, d, heap, args_.data(), scratch_);
+    const auto length = get<std::uint32_t>(in, pos);
+    decodeFact(in.data() + pos, length, program_.predicates, heap, fact_);
+    pos += length;
     ++stats_.factsIn;
+    const PredicateDesc& d = program_.predicates[fact_.pred];
+    auto release = [&] {
+      for (std::uint32_t i = 0; i < d.arity(); ++i) heap.release(d.fields[i], fact_.args[i]);
+    };
     try {
-      machine_->receive(node, p, args_.data(), negative);
+      machine_->receive(node, fact_.pred, fact_.args.data(), fact_.negative);
     } catch (...) {
-      releaseArgs(d, heap, args_.data());
+      release();
       throw;
     }
-    releaseArgs(d, heap, args_.data());
+    release();
   }
 }
 
 void Worker::sendRemote(ThreadId to, NodeId, NodeId dest, PredId p, const Value* args, bool negative) {
-  Words& w = outgoing_[to];
-  const std::size_t before = w.size();
-  w.push_back(kFact | (std::uint64_t(negative) << 1) | (std::uint64_t(p) << 32));
-  w.push_back(dest);
-  encodeArgs(w, program_.predicates[p], program_.types, args);
-  outgoingWords_ += w.size() - before;
+  Bytes& out = outgoing_[to];
+  const std::size_t before = out.size();
+  put<std::uint8_t>(out, kFact);
+  put<std::uint32_t>(out, dest);
+  put<std::uint32_t>(out, 0);  // the length, once known
+  const std::size_t start = out.size();
+  encodeFact(out, program_.predicates, p, args, negative);
+  const auto length = std::uint32_t(out.size() - start);
+  std::memcpy(out.data() + start - sizeof length, &length, sizeof length);
+  outgoingBytes_ += out.size() - before;
   ++stats_.factsOut;
 }
 
 void Worker::coordinateRemote(ThreadId to, Opcode op, NodeId n, double value) {
-  Words& w = outgoing_[to];
-  w.push_back(kCoordination | (std::uint64_t(op) << 32));
-  w.push_back(n);
-  w.push_back(Value::fromFloat(value).bits());
-  outgoingWords_ += 3;
+  Bytes& out = outgoing_[to];
+  put<std::uint8_t>(out, kCoordination);
+  put<std::uint32_t>(out, n);
+  put<std::uint32_t>(out, std::uint32_t(op));
+  put<double>(out, value);
+  outgoingBytes_ += 17;
 }
 
 void Worker::flush() {
-  if (outgoingWords_ == 0) return;
+  if (outgoingBytes_ == 0) return;
   for (ThreadId to = 0; to < shared_.threads; ++to) {
-    Words& w = outgoing_[to];
+    Bytes& w = outgoing_[to];
     if (w.empty()) continue;
     shared_.active.fetch_add(1);  // before the batch can be taken
     shared_.channel(self_, to).push(w);
     shared_.wake(to);
     ++stats_.batchesOut;
   }
-  outgoingWords_ = 0;
+  outgoingBytes_ = 0;
   runsSinceFlush_ = 0;
 }
 

@@ -9,6 +9,7 @@
 #include <vector>
 
 #include "line_output.hpp"
+#include "meldvm/fact_codec.hpp"
 #include "meldvm/machine.hpp"
 #include "meldvm/threaded_machine.hpp"
 #include "node_directory.hpp"
@@ -42,14 +43,14 @@ class Worker final : public ShardLink {
   }
 
  private:
-  // Batches go out when this many words wait for one thread, or after this many node runs.
-  static constexpr std::size_t kFlushWords = 2048;
+  // Batches go out when this many bytes wait, or after this many node runs.
+  static constexpr std::size_t kFlushBytes = 16384;
   static constexpr unsigned kFlushRuns = 16;
 
   void loop();
   bool takeMail();  // takes in every batch waiting for this thread; false if there was none
   bool mailWaiting() const;
-  void decode(const Words& words);
+  void decode(const Bytes& records);
   void flush();
   bool waitForWork();  // false: the run is over (quiescence, stop-program or an error)
 
@@ -60,11 +61,11 @@ class Worker final : public ShardLink {
   std::unique_ptr<LineOutput> lineOutput_;
   std::unique_ptr<std::ostream> output_;
   std::unique_ptr<Machine> machine_;
-  std::vector<Words> outgoing_;  // per destination thread
-  std::size_t outgoingWords_ = 0;
+  std::vector<Bytes> outgoing_;  // per destination thread
+  std::size_t outgoingBytes_ = 0;
   unsigned runsSinceFlush_ = 0;
-  Words incoming_;
-  std::vector<Value> args_, scratch_;
+  Bytes incoming_;
+  DecodedFact fact_;  // the decoder's storage, reused
   ThreadStats stats_;
   std::thread thread_;
 };

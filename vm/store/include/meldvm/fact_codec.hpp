@@ -1,5 +1,6 @@
-// Facts as bytes, for the messages between simulated blocks (issue 4: a fact for a neighbour
-// travels over the link, and its size decides the transmission time). Layout, little-endian:
+// Facts as bytes, for the messages between simulated blocks (a fact for a neighbour travels over
+// the link, and its size decides the transmission time) and between the worker threads of
+// `meld -j N` (a fact leaves the sender's heap and is rebuilt in the receiver's). Layout, little-endian:
 // predicate id (u16), flags (u8: 1 = retraction), then the arguments by type: int i32, float f64,
 // bool u8, node/thread u32, string u32 length + bytes, list u32 count + items, struct its fields,
 // array/set u32 count + items.
