@@ -195,7 +195,7 @@ bool Interpreter::loop(Frame& f, std::uint32_t pc) {
       fired = true;
       if (returnOnFire) return false;
     }
-    return !machine_.stopped();
+    return !machine_.stopRequested();
   };
 
   if (op == Opcode::ITER_KEY) {
@@ -245,7 +245,7 @@ Interpreter::Status Interpreter::exec(Frame& f, std::uint32_t pc) {
       case Opcode::ITER_SORTED: {
         lastFired = loop(f, pc);
         pc = Opcode(c[0]) == Opcode::ITER ? c[4] : Opcode(c[0]) == Opcode::ITER_KEY ? c[6] : c[5];
-        if (machine_.stopped()) return Status::Return;
+        if (machine_.stopRequested()) return Status::Return;
         break;
       }
       case Opcode::NEXT:

@@ -26,6 +26,7 @@ Machine::Machine(const Program& program, MachineOptions options)
       tables_(program) {
   host_ = options_.host;
   shard_ = options_.shard;
+  stopFlag_ = options_.stopFlag;
   placement_ = options_.placement;
   if (shard_ && host_) throw std::invalid_argument("a Machine is either a shard or driven by a host");
   stepsLeft_ = options_.maxSteps ? options_.maxSteps + 1 : UINT64_MAX;
@@ -223,7 +224,7 @@ std::uint64_t Machine::runNode(NodeId n) {
   if (withThread)
     for (std::uint32_t r : tables_.mixedRules)
       if (allPresent(n, r)) cand[r / 64] |= std::uint64_t(1) << (r % 64);
-  while (!stop_) {
+  while (!stopRequested()) {
     const std::uint64_t* threadCand =
         withThread ? candidates_.data() + std::size_t(threadNode_) * tables_.ruleWords : nullptr;
     std::uint32_t rule = ~0u;

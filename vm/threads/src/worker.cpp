@@ -48,6 +48,7 @@ Worker::Worker(const Program& program, MachineOptions options, ThreadId self, No
     options.output = output_.get();
   }
   options.shard = this;
+  options.stopFlag = &shared.stop;
   options.placement = {self, directory.threads(), directory.firstOwned(self), directory.endOwned(self)};
   machine_ = std::make_unique<Machine>(program, std::move(options));
   outgoing_.resize(directory.threads());

@@ -44,8 +44,8 @@ class Worker final : public ShardLink {
 
  private:
   // Batches go out when this many bytes wait, or after this many node runs.
-  static constexpr std::size_t kFlushBytes = 16384;
-  static constexpr unsigned kFlushRuns = 16;
+  static constexpr std::size_t kFlushBytes = 65536;
+  static constexpr unsigned kFlushRuns = 64;
 
   void loop();
   bool takeMail();  // takes in every batch waiting for this thread; false if there was none

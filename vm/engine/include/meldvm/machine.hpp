@@ -8,6 +8,7 @@
 // ends; persistent ones at once.
 #pragma once
 
+#include <atomic>
 #include <cstdint>
 #include <iosfwd>
 #include <memory>
@@ -58,6 +59,9 @@ struct MachineOptions {
   // nodes of `placement`; facts for other nodes go through the link.
   ShardLink* shard = nullptr;
   ShardPlacement placement;
+  // Set by another thread to end the run (stop-program elsewhere, an error): read between rule
+  // runs, so that a node run that would never end on its own still stops.
+  const std::atomic<bool>* stopFlag = nullptr;
 };
 
 struct MachineStats {
@@ -100,6 +104,7 @@ class Machine : private SchedulerView {
   // Room for that many facts of p (all nodes together), when the driver knows the count.
   void reserveFacts(PredId p, std::size_t facts) { db_->reserve(p, facts); }
   bool stopped() const { return stop_; }
+  bool stopRequested() const { return stop_ || (stopFlag_ && stopFlag_->load(std::memory_order_relaxed)); }
   // Another thread ran stop-program: stop after the current node run.
   void requestStop() { stop_ = true; }
   // A coordination fact (§5.7) that another thread sent for a node of this shard.
@@ -261,6 +266,7 @@ class Machine : private SchedulerView {
   bool started_ = false;
   MachineHost* host_ = nullptr;
   ShardLink* shard_ = nullptr;
+  const std::atomic<bool>* stopFlag_ = nullptr;
   ShardPlacement placement_;
   NodeId nextCreated_ = 0, createdEnd_ = 0;  // a shard's block of ids for created nodes
   void postOrRoute(const PendingFact& e, const Value* args);

@@ -1,0 +1,172 @@
+// The threaded VM (`meld -j N`, vm/threads): facts with boxed values crossing threads, created
+// nodes on every thread, thread facts sent between threads, stop-program and run-time errors on
+// one thread, and the serial dump for schedule-independent programs at several thread counts.
+#define BOOST_TEST_MODULE threads_threaded_machine
+#include <boost/test/unit_test.hpp>
+
+#include <regex>
+#include <set>
+#include <sstream>
+#include <string>
+
+#include "../meldc/temp_dir.hpp"
+#include "meldc/compile.hpp"
+#include "meldc/diagnostics.hpp"
+#include "meldvm/machine.hpp"
+#include "meldvm/threaded_machine.hpp"
+
+namespace {
+
+std::unique_ptr<meldvm::Program> compile(const std::string& source) {
+  TempDir dir;
+  const std::string path = dir.write("prog.meld", source);
+  meldc::SourceManager sources;
+  std::ostringstream errors;
+  meldc::Diagnostics diag(sources, errors);
+  std::unique_ptr<meldvm::Program> p = meldc::compileProgram({path, {}, {}}, sources, diag);
+  BOOST_REQUIRE_MESSAGE(p, "compile errors:\n" << errors.str());
+  return p;
+}
+
+std::string serialDump(const meldvm::Program& p) {
+  meldvm::Machine m(p);
+  m.run();
+  return m.dump();
+}
+
+std::string threadedDump(const meldvm::Program& p, unsigned threads, std::string* output = nullptr) {
+  std::ostringstream out;
+  meldvm::MachineOptions o;
+  o.output = &out;
+  meldvm::ThreadedMachine m(p, o, threads);
+  m.run();
+  if (output) *output = out.str();
+  return m.dump();
+}
+
+// A ring of 24 nodes (the literals are renumbered in order of appearance, so the ring visits
+// every thread's range in turn) carrying a list, a string and a struct all the way round.
+std::string ringProgram() {
+  std::string s =
+      "type route edge(node, node).\n"
+      "type linear token(node, list int, string, :(int, float), int).\n"
+      "type linear seen(node, list int, string, :(int, float)).\n"
+      "token(@0, [], \"go\", :(0, 0.5), 23).\n";
+  for (int i = 0; i < 24; ++i) s += "!edge(@" + std::to_string(i) + ", @" + std::to_string((i + 1) % 24) + ").\n";
+  s += "token(A, L, S, P, N), !edge(A, B), N > 0 -o "
+       "token(B, [N | L], concatenate(S, int2str(N)), P, N - 1), seen(A, L, S, P).\n"
+       "token(A, L, S, P, 0) -o seen(A, L, S, P).\n";
+  return s;
+}
+
+}  // namespace
+
+BOOST_AUTO_TEST_CASE(boxed_values_cross_threads_and_the_dump_is_the_serial_one) {
+  const auto p = compile(ringProgram());
+  const std::string serial = serialDump(*p);
+  BOOST_TEST(serial.find("seen([1,2,3,4,5,6,7,8,9,10,11,12,13,14,15,16,17,18,19,20,21,22,23], ") !=
+             std::string::npos);
+  for (unsigned threads : {2u, 3u, 4u, 7u}) BOOST_TEST(threadedDump(*p, threads) == serial, "threads " << threads);
+}
+
+BOOST_AUTO_TEST_CASE(more_threads_than_nodes) {
+  const auto p = compile("type linear a(node, int).\na(@0, 1). a(@1, 2).\na(A, N), N < 5 -o a(A, N + 2).\n");
+  BOOST_TEST(threadedDump(*p, 6) == serialDump(*p));
+}
+
+BOOST_AUTO_TEST_CASE(nodes_created_on_every_thread_are_collected_like_the_serial_ones) {
+  // Each of 8 nodes creates a chain of 3 nodes that reports back; the chain nodes keep nothing
+  // but the last, so the GC (§6.10) must drop the rest on every thread.
+  std::string s =
+      "type linear grow(node, node, int).\ntype linear back(node, int).\ntype linear kept(node, int).\n"
+      "type linear total(node, int).\n";
+  for (int i = 0; i < 8; ++i) s += "grow(@" + std::to_string(i) + ", @" + std::to_string(i) + ", 3). total(@" +
+                                   std::to_string(i) + ", 0).\n";
+  s += "grow(A, R, N), N > 0 -o exists B. (grow(B, R, N - 1)).\n"
+       "grow(A, R, 0) -o back(R, 1), kept(A, 1).\n"
+       "back(A, X), total(A, T) -o total(A, T + X).\n";
+  const auto p = compile(s);
+  const std::string serial = serialDump(*p);
+  auto shape = [](const std::string& dump) {
+    std::multiset<std::string> lines;
+    std::istringstream in(std::regex_replace(dump, std::regex("^[0-9]+\n", std::regex::multiline), "node\n"));
+    for (std::string l; std::getline(in, l);) lines.insert(l);
+    return lines;
+  };
+  for (unsigned threads : {2u, 4u}) {
+    const std::string dump = threadedDump(*p, threads);
+    BOOST_TEST((shape(dump) == shape(serial)), "threads " << threads << ":\n" << dump);
+    BOOST_TEST(std::count(dump.begin(), dump.end(), '\n') == std::count(serial.begin(), serial.end(), '\n'));
+  }
+}
+
+BOOST_AUTO_TEST_CASE(thread_facts_are_sent_to_other_threads) {
+  // Every thread node greets every other thread once: each ends with threads - 1 greetings.
+  const auto p = compile(
+      "type linear hello(thread, int).\ntype linear start(thread).\n"
+      "start(T).\n"
+      "start(T) -o {T2, I | !other-thread(T, T2, I) | hello(T2, 1)}.\n");
+  for (unsigned threads : {2u, 3u}) {
+    const std::string dump = threadedDump(*p, threads);
+    std::size_t count = 0;
+    for (std::size_t at = dump.find("hello(1)"); at != std::string::npos; at = dump.find("hello(1)", at + 1)) ++count;
+    BOOST_TEST(count == threads * (threads - 1), dump);
+  }
+}
+
+BOOST_AUTO_TEST_CASE(write_string_lines_of_all_threads_come_whole) {
+  std::string s = "type linear say(node, int).\n";
+  for (int i = 0; i < 40; ++i) s += "say(@" + std::to_string(i) + ", " + std::to_string(i) + ").\n";
+  s += "say(A, N) -o write-string(A, concatenate(\"line \", int2str(N))).\n";
+  const auto p = compile(s);
+  std::string output;
+  threadedDump(*p, 4, &output);
+  std::set<std::string> lines;
+  std::istringstream in(output);
+  for (std::string l; std::getline(in, l);) lines.insert(l);
+  BOOST_TEST(lines.size() == 40u);
+  for (int i = 0; i < 40; ++i) BOOST_TEST(lines.count("line " + std::to_string(i)) == 1u);
+}
+
+BOOST_AUTO_TEST_CASE(stop_program_on_one_thread_stops_them_all) {
+  // The node that stops the program runs first on thread 0 (§6.1 numbers the node literals last
+  // seen first: @5 is node 0); the nodes of the other threads would count forever, each in one
+  // endless node run.
+  std::string s = "type linear tick(node, int).\ntype linear halt(node).\n";
+  for (int i = 0; i < 5; ++i) s += "tick(@" + std::to_string(i) + ", 0).\n";
+  s += "halt(@5).\n";
+  s += "halt(A) -o stop-program(A).\ntick(A, N) -o tick(A, N + 1).\n";
+  const auto p = compile(s);
+  meldvm::ThreadedMachine m(*p, {}, 3);
+  m.run();
+  BOOST_TEST(m.stopped());
+}
+
+BOOST_AUTO_TEST_CASE(a_run_time_error_on_one_thread_ends_the_run_with_its_message) {
+  std::string s = "type linear d(node, int).\n";
+  // Node 3 (@5, numbered as above), the first node of thread 1, divides by zero; the others would
+  // loop forever.
+  for (int i = 0; i < 9; ++i) s += "d(@" + std::to_string(i) + ", " + std::to_string(i == 5 ? 0 : 1) + ").\n";
+  s += "d(A, N) -o d(A, 10 / N).\n";
+  const auto p = compile(s);
+  meldvm::ThreadedMachine m(*p, {}, 3);
+  try {
+    m.run();
+    BOOST_FAIL("no error");
+  } catch (const meldvm::RuntimeError& e) {
+    BOOST_TEST(std::string(e.what()).find("node @3") != std::string::npos, e.what());
+  }
+}
+
+BOOST_AUTO_TEST_CASE(per_thread_statistics_add_up) {
+  const auto p = compile(ringProgram());
+  meldvm::ThreadedMachine m(*p, {}, 3);
+  m.run();
+  const std::vector<meldvm::ThreadStats> threads = m.threadStats();
+  BOOST_REQUIRE(threads.size() == 3u);
+  std::uint64_t derived = 0, out = 0, in = 0;
+  for (const auto& t : threads) derived += t.factsDerived, out += t.factsOut, in += t.factsIn;
+  BOOST_TEST(derived == m.stats().factsDerived);
+  BOOST_TEST(out == in);
+  BOOST_TEST(out >= 3u);  // the token crosses from each thread's range to the next at least once
+}
