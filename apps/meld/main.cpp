@@ -3,6 +3,7 @@
 
 #include <chrono>
 #include <cstdio>
+#include <fstream>
 #include <iostream>
 
 #include "meldc/compile.hpp"
@@ -130,8 +131,17 @@ int runSerial(const Options& options, const meldvm::Program& program, meldvm::Ma
 
 int runThreaded(const Options& options, const meldvm::Program& program, meldvm::MachineOptions mo,
                 double loadSeconds) {
+  std::ofstream profile;
+  if (!options.profile.empty()) {
+    profile.open(options.profile);
+    if (!profile) {
+      std::cerr << "meld: error: --profile: cannot write " << options.profile << "\n";
+      return kExitUsage;
+    }
+  }
   const Clock::time_point runStart = Clock::now();
   meldvm::ThreadedMachine machine(program, mo, options.threads);
+  if (profile.is_open()) machine.recordProfile();
   try {
     machine.run();
   } catch (const meldvm::RuntimeError& e) {
@@ -145,6 +155,14 @@ int runThreaded(const Options& options, const meldvm::Program& program, meldvm::
   if (options.stats) {
     printStats(machine.stats(), loadSeconds, wall);
     printThreadTable(machine.threadStats());
+  }
+  if (profile.is_open()) {
+    machine.writeProfile(profile);
+    profile.close();
+    if (!profile) {
+      std::cerr << "meld: error: --profile: writing " << options.profile << " failed\n";
+      return kExitRuntimeError;
+    }
   }
   return kExitOk;
 }
@@ -178,6 +196,6 @@ int main(int argc, char** argv) {
   mo.seed = options->seed;
   mo.maxSteps = options->maxSteps;
   const double loadSeconds = secondsSince(start);
-  return options->threads > 1 ? runThreaded(*options, *program, mo, loadSeconds)
-                              : runSerial(*options, *program, mo, loadSeconds);
+  return options->threads > 1 || !options->profile.empty() ? runThreaded(*options, *program, mo, loadSeconds)
+                                                          : runSerial(*options, *program, mo, loadSeconds);
 }

@@ -31,6 +31,7 @@ struct Options {
   std::uint64_t maxSteps = 0;  // --max-steps: rule and process runs allowed (0: no limit)
   std::vector<std::string> why;  // --why FACT: print its derivation tree after the run
   unsigned threads = 1;          // -j N / --threads N: worker threads (1: the serial VM)
+  std::string profile;           // --profile FILE.json: the threads' timelines (Chrome trace)
 };
 
 std::optional<Options> parseOptions(const std::vector<std::string>& args, std::string& error);

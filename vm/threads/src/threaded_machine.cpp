@@ -31,6 +31,8 @@ ThreadedMachine::~ThreadedMachine() {
 
 void ThreadedMachine::run() {
   const auto start = std::chrono::steady_clock::now();
+  if (profile_)
+    for (auto& w : workers_) w->recordProfile(start);
   for (auto& w : workers_) w->launch();
   for (auto& w : workers_) w->join();
   wallSeconds_ = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();

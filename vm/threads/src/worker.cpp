@@ -79,6 +79,7 @@ void Worker::loop() {
       }
       takeMail();
       if (machine_->runNext()) {
+        if (profile_) profile_->nodeRun(machine_->stats().factsDerived, stats_.factsIn, machine_->waitingNodes());
         if (outgoingBytes_ != 0 && (outgoingBytes_ >= kFlushBytes || ++runsSinceFlush_ >= kFlushRuns)) flush();
         continue;
       }
@@ -89,6 +90,7 @@ void Worker::loop() {
   } catch (...) {
     shared_.fail(std::current_exception());
   }
+  if (profile_) profile_->finish(machine_->stats().factsDerived, stats_.factsIn);
   stats_.busySeconds = std::max(0.0, secondsSince(start) - stats_.idleSeconds);
 }
 
@@ -185,6 +187,7 @@ void Worker::flush() {
 bool Worker::waitForWork() {
   const Clock::time_point start = Clock::now();
   ++stats_.waits;
+  if (profile_) profile_->idleBegin(machine_->stats().factsDerived, stats_.factsIn);
   bool work = false;
   if (shared_.active.fetch_sub(1) == 1) {
     shared_.finish();  // the last busy thread and nothing in transit: quiescence
@@ -212,6 +215,7 @@ bool Worker::waitForWork() {
     }
   }
   stats_.idleSeconds += secondsSince(start);
+  if (profile_) profile_->idleEnd();
   return work;
 }
 

@@ -13,6 +13,7 @@
 #include "meldvm/machine.hpp"
 #include "meldvm/threaded_machine.hpp"
 #include "node_directory.hpp"
+#include "profile_recorder.hpp"
 #include "shared_state.hpp"
 
 namespace meldvm::threads {
@@ -30,6 +31,11 @@ class Worker final : public ShardLink {
   Machine& machine() { return *machine_; }
   const Machine& machine() const { return *machine_; }
   ThreadStats stats() const;
+  // Records a timeline of this thread's run (before launch()).
+  void recordProfile(std::chrono::steady_clock::time_point origin) {
+    profile_ = std::make_unique<ProfileRecorder>(origin);
+  }
+  const ProfileRecorder* profile() const { return profile_.get(); }
 
   // ShardLink.
   ThreadId ownerOf(NodeId n) const override { return directory_.ownerOf(n); }
@@ -67,6 +73,7 @@ class Worker final : public ShardLink {
   Bytes incoming_;
   DecodedFact fact_;  // the decoder's storage, reused
   ThreadStats stats_;
+  std::unique_ptr<ProfileRecorder> profile_;
   std::thread thread_;
 };
 

@@ -110,6 +110,7 @@ class Machine : private SchedulerView {
   // A coordination fact (§5.7) that another thread sent for a node of this shard.
   void coordinateOwned(Opcode op, NodeId n, double value);
   const ShardPlacement& placement() const { return placement_; }
+  std::size_t waitingNodes() const { return sched_.waiting(); }  // queued for a run
   // The garbage collection of created nodes (§6.10) in pieces, for a threaded run whose nodes
   // refer to each other across shards: the created nodes here with no fact, the nodes the facts
   // here refer to (`referenced` grows as needed), and the removal.
