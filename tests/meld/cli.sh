@@ -17,6 +17,14 @@ roll(A, randint(1000000)).
 here(@0). here(@1). here(@2).
 MELD
 
+cat >"$WORK/reach.meld" <<'MELD'
+type route edge(node, node).
+type reach(node, min int).
+!edge(@0, @1). !edge(@1, @2). !edge(@2, @3). !edge(@3, @0). !edge(@1, @3).
+!reach(@0, 0).
+!reach(A, D), !edge(A, B) -o !reach(B, D + 1).
+MELD
+
 case_seed() {
   # The same seed gives the same draws, another seed others.
   run 0 "$WORK/roll.meld" --dump --seed 5
@@ -79,6 +87,42 @@ case_help() {
   run 0 --help
   has "$OUT" "--seed S"
   has "$OUT" "--max-steps N"
+  has "$OUT" "-j N, --threads N"
+  has "$OUT" "--profile FILE.json"
+}
+
+case_threads() {
+  # -j N gives the serial dump of a program that does not depend on the schedule, prints the
+  # per-thread table with --stats, and refuses a bad count and --why.
+  run 0 "$WORK/reach.meld" --dump
+  cp "$OUT" "$WORK/serial"
+  run 0 "$WORK/reach.meld" --dump -j 3 --stats
+  cmp -s "$OUT" "$WORK/serial" || fail "-j 3 and the serial VM gave two dumps"
+  has "$ERR" "threads: 3"
+  has "$ERR" "busy %"
+  run 0 "$WORK/reach.meld" --dump --threads 2
+  cmp -s "$OUT" "$WORK/serial" || fail "--threads 2 and the serial VM gave two dumps"
+  run 2 "$WORK/reach.meld" -j 0
+  has "$ERR" "-j/--threads expects a thread count from 1 to 1024, got '0'"
+  run 2 "$WORK/reach.meld" -j two
+  has "$ERR" "got 'two'"
+  run 2 "$WORK/reach.meld" -j 2 --why 'reach(@1, 1)'
+  has "$ERR" "--why records derivations in serial runs only"
+}
+
+case_profile() {
+  # --profile writes a Chrome trace: a name per worker thread, spans of node runs, counters.
+  run 0 "$WORK/roll.meld" -j 2 --profile "$WORK/p.json"
+  has "$WORK/p.json" '"traceEvents"'
+  has "$WORK/p.json" '"name":"worker 0"'
+  has "$WORK/p.json" '"name":"worker 1"'
+  has "$WORK/p.json" '"name":"node runs"'
+  has "$WORK/p.json" '"facts derived per ms, thread 0"'
+  if command -v python3 >/dev/null; then
+    python3 -c 'import json, sys; json.load(open(sys.argv[1]))' "$WORK/p.json" || fail "--profile wrote invalid JSON"
+  fi
+  run 2 "$WORK/roll.meld" --profile "$WORK/no/such/dir/p.json"
+  has "$ERR" "--profile: cannot write"
 }
 
 "case_$CASE"
