@@ -85,6 +85,23 @@ void printThreadTable(const std::vector<meldvm::ThreadStats>& threads) {
   }
 }
 
+// Runs the machine (serial or threaded) and prints its dump if asked; false after a run-time
+// error (reported).
+template <class AnyMachine>
+bool runAndDump(AnyMachine& machine, const Options& options, Clock::time_point runStart, double& wall) {
+  try {
+    machine.run();
+  } catch (const meldvm::RuntimeError& e) {
+    std::cout.flush();
+    std::cerr << "meld: " << e.what() << "\n";
+    return false;
+  }
+  wall = secondsSince(runStart);
+  if (options.dump) machine.dump(std::cout);
+  std::cout.flush();
+  return true;
+}
+
 int runSerial(const Options& options, const meldvm::Program& program, meldvm::MachineOptions mo, double loadSeconds) {
   const Clock::time_point runStart = Clock::now();
   meldvm::Machine machine(program, mo);
@@ -100,16 +117,8 @@ int runSerial(const Options& options, const meldvm::Program& program, meldvm::Ma
   }
   meldvm::DerivationLog derivations;
   if (!why.empty()) machine.recordDerivations(&derivations);
-  try {
-    machine.run();
-  } catch (const meldvm::RuntimeError& e) {
-    std::cout.flush();
-    std::cerr << "meld: " << e.what() << "\n";
-    return kExitRuntimeError;
-  }
-  const double wall = secondsSince(runStart);
-  if (options.dump) machine.dump(std::cout);
-  std::cout.flush();
+  double wall = 0;
+  if (!runAndDump(machine, options, runStart, wall)) return kExitRuntimeError;
   int status = kExitOk;
   for (std::size_t i = 0; i < why.size(); ++i) {
     if (!meldvm::printWhy(std::cout, derivations, why[i])) {
@@ -142,16 +151,8 @@ int runThreaded(const Options& options, const meldvm::Program& program, meldvm::
   const Clock::time_point runStart = Clock::now();
   meldvm::ThreadedMachine machine(program, mo, options.threads);
   if (profile.is_open()) machine.recordProfile();
-  try {
-    machine.run();
-  } catch (const meldvm::RuntimeError& e) {
-    std::cout.flush();
-    std::cerr << "meld: " << e.what() << "\n";
-    return kExitRuntimeError;
-  }
-  const double wall = secondsSince(runStart);
-  if (options.dump) machine.dump(std::cout);
-  std::cout.flush();
+  double wall = 0;
+  if (!runAndDump(machine, options, runStart, wall)) return kExitRuntimeError;
   if (options.stats) {
     printStats(machine.stats(), loadSeconds, wall);
     printThreadTable(machine.threadStats());
