@@ -406,7 +406,7 @@ void Machine::send(NodeId host, NodeId dest, PredId p, const Value* args, bool n
   // at once.
   if (!host_) delayMs = 0;
   if (dest == host && delayMs == 0) return derive(host, p, args, negative);
-  if (shard_ && !ownedHere(dest)) [[unlikely]] {
+  if (shard_) [[unlikely]] {
     const ThreadId owner = shard_->ownerOf(dest);
     if (owner == kNoThread) noSuchNode(p, dest);
     if (owner != placement_.self) {  // routed when the run ends (postOrRoute)
@@ -559,6 +559,38 @@ NodeId Machine::newNode() {
 NodeId Machine::addHostNode() {
   start();
   return appendNode(false);
+}
+
+// ---- work stealing (threaded runs) ----
+
+std::vector<NodeId> Machine::pickNodesToGive(std::size_t max) {
+  std::vector<NodeId> nodes;
+  sched_.takeForSteal(max, nodes, [&](NodeId n) { return n < initialNodes_ && n != threadNode_; });
+  return nodes;
+}
+
+SerialScheduler::Carried Machine::giveNode(NodeId n, const StoredFactVisitor& stored,
+                                           const PendingFactVisitor& pending) {
+  db_->forEachStored(n, stored);
+  mail_->forEach(n, [](PredId) { return true; }, [&](PredId p, bool negative, const Value* args) { pending(p, args, negative); });
+  mail_->forEach(n, [](PredId) { return true; }, [&](PredId p, bool, const Value* args) { releaseArgs(p, args); });
+  mail_->release(n);
+  db_->clearNode(n);
+  std::fill_n(candidates_.data() + std::size_t(n) * tables_.ruleWords, tables_.ruleWords, 0);
+  return sched_.carried(n);
+}
+
+void Machine::takeStoredFact(NodeId n, PredId p, const Value* args, std::uint32_t copies) {
+  if (program_.predicates[p].linear) {
+    db_->addLinear(n, p, args);
+    factAdded(n, p);
+    return;
+  }
+  if (db_->derive(n, p, args, copies).added) factAdded(n, p);
+}
+
+void Machine::takeNodeDone(NodeId n) {
+  if (hasWork(n) || hasCandidate(n)) sched_.wake(n);
 }
 
 // ---- end of the run ----

@@ -74,6 +74,12 @@ NodeId Database::addNodes(NodeId count) {
 }
 
 void Database::removeNode(NodeId n) {
+  clearNode(n);
+  alive_[n] = 0;
+  ++removedNodes_;
+}
+
+void Database::clearNode(NodeId n) {
   checkNode(n);
   clearScratch();
   for (std::uint32_t t = 0; t < tableCount_; ++t) {
@@ -81,8 +87,6 @@ void Database::removeNode(NodeId n) {
     while (h.first != kNoFact) tables_[t].erase(h, h.first);
   }
   for (GroupInputs& g : nodeInputs_) g.clear(n);
-  alive_[n] = 0;
-  ++removedNodes_;
 }
 
 std::uint32_t Database::requestIndex(PredId p, std::uint32_t field) {

@@ -10,7 +10,10 @@ NodeDirectory::NodeDirectory(NodeId graphNodes, ThreadId threads, bool threadNod
     : graph_(graphNodes),
       threads_(threads),
       createdBase_(graphNodes + (threadNodes ? threads : 0)),
+      owner_(new std::atomic<std::uint16_t>[graphNodes]),
       blockOwner_(new std::atomic<ThreadId>[kMaxBlocks]) {
+  for (ThreadId t = 0; t < threads; ++t)
+    for (NodeId n = firstOwned(t); n < endOwned(t); ++n) owner_[n].store(std::uint16_t(t), std::memory_order_relaxed);
   for (std::uint32_t b = 0; b < kMaxBlocks; ++b) blockOwner_[b].store(kNoThread, std::memory_order_relaxed);
 }
 

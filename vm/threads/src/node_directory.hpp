@@ -1,8 +1,9 @@
-// Which thread owns which node in a threaded run. The graph's nodes are cut into contiguous
-// ranges, one per thread (the established VM's static partition); thread t's thread node is
-// N + t; a thread creates nodes (exists) from blocks of 16384 ids it takes in turn (§6.10).
-// Read by every thread on every fact for another thread's node: no lock, the initial ranges are
-// arithmetic and a block's owner is written before any of its ids can appear in a fact.
+// Which thread owns which node in a threaded run. The graph's nodes start cut into contiguous
+// ranges, one per thread (the established VM's static partition), and move when threads steal
+// them; thread t's thread node is N + t; a thread creates nodes (exists) from blocks of 16384
+// ids it takes in turn (§6.10). Read by every thread on every fact it sends: no lock. A graph
+// node's owner changes only while every thread waits in the rebalancing barrier (worker.cpp),
+// and a block's owner is written before any of its ids can appear in a fact.
 #pragma once
 
 #include <atomic>
@@ -26,11 +27,13 @@ class NodeDirectory {
   NodeId endOwned(ThreadId t) const { return firstOwned(t + 1); }
 
   ThreadId ownerOf(NodeId n) const {
-    if (n < graph_) return ThreadId((std::uint64_t(n + 1) * threads_ + graph_ - 1) / graph_ - 1);
+    if (n < graph_) return owner_[n].load(std::memory_order_relaxed);
     if (n < createdBase_) return n - graph_;  // a thread node
     const std::uint64_t block = (n - createdBase_) / kBlockIds;
     return block < kMaxBlocks ? blockOwner_[block].load(std::memory_order_acquire) : kNoThread;
   }
+  // Graph node n now belongs to thread t (only inside the rebalancing barrier).
+  void moveNode(NodeId n, ThreadId t) { owner_[n].store(std::uint16_t(t), std::memory_order_relaxed); }
   // A block of ids for nodes thread t creates; throws RuntimeError when ids run out.
   NodeId allocateBlock(ThreadId t, NodeId& count);
   // One past the highest id handed out so far (the dump walks the ids below it).
@@ -40,6 +43,7 @@ class NodeDirectory {
   NodeId graph_;
   ThreadId threads_;
   NodeId createdBase_;  // the first id of the first block of created nodes
+  std::unique_ptr<std::atomic<std::uint16_t>[]> owner_;  // per graph node (threads <= 1024)
   std::unique_ptr<std::atomic<ThreadId>[]> blockOwner_;
   std::atomic<std::uint32_t> blocks_{0};
 };

@@ -7,6 +7,7 @@
 #include <exception>
 #include <memory>
 #include <mutex>
+#include <thread>
 
 #include "channel.hpp"
 #include "meldvm/shard.hpp"
@@ -47,6 +48,22 @@ struct SharedState {
   }
   bool over() const { return done.load(std::memory_order_relaxed) || stop.load(std::memory_order_relaxed); }
 
+  // The rebalancing barrier: every thread arrives, the last one lets them all go on. False if the
+  // run ended meanwhile (stop-program, an error).
+  bool arriveAndWait() {
+    const std::uint32_t generation = barrierGeneration.load();
+    if (barrierArrived.fetch_add(1) + 1 == threads) {
+      barrierArrived.store(0);
+      barrierGeneration.fetch_add(1);
+      return true;
+    }
+    for (unsigned spin = 0; barrierGeneration.load() == generation; ++spin) {
+      if (over()) return false;
+      if (spin >= 64) std::this_thread::yield();
+    }
+    return true;
+  }
+
   const ThreadId threads;
   // Quiescence: threads that are busy plus batches pushed and not yet taken. A thread going idle
   // takes itself off; one that finds a batch while idle counts itself back on before the batch
@@ -56,10 +73,21 @@ struct SharedState {
   std::atomic<bool> done{false}, stop{false};
   std::unique_ptr<Channel[]> channels;  // [from * threads + to]
 
+  // Work stealing: a thread out of work asks for a rebalance, every thread joins it between
+  // node runs (worker.cpp). The next one may come kRebalanceGap times the last one's duration
+  // later (at least kRebalanceNanos): rebalancing takes at most about 1/kRebalanceGap of the run,
+  // even when node runs are long or the nodes carry many facts.
+  std::atomic<bool> rebalanceWanted{false};
+  std::atomic<std::int64_t> nextRebalanceNs{0};
+  static constexpr std::int64_t kRebalanceNanos = 500'000;
+  static constexpr std::int64_t kRebalanceGap = 20;
+  std::atomic<std::uint32_t> barrierArrived{0}, barrierGeneration{0};
+
   struct alignas(64) PerThread {
     std::atomic<std::uint32_t> signal{0};
     std::atomic<bool> sleeping{false};
     std::atomic<std::int32_t> staticNodes{0};
+    std::atomic<std::uint32_t> queued{0};  // nodes waiting to run, as of the thread's last node run
   };
   std::unique_ptr<PerThread[]> perThread;
 

@@ -10,7 +10,10 @@ namespace {
 // A record in a channel: its kind (u8), the node (u32), then for a fact its length (u32) and the
 // fact as meldvm/fact_codec.hpp encodes it, for a coordination fact the opcode (u32) and the
 // value (f64). Native byte order: the bytes never leave the process.
-enum RecordKind : std::uint8_t { kFact = 0, kCoordination = 1 };
+// A node moving to the thread: kMigrate, the node, its scheduling state (f64 priority, f64
+// default priority, u8 static), then its stored facts (u32 count; each u32 copies, u32 length,
+// the fact) and its waiting messages (u32 count; each u32 length, the fact).
+enum RecordKind : std::uint8_t { kFact = 0, kCoordination = 1, kMigrate = 2 };
 
 template <class T>
 void put(Bytes& out, T v) {
@@ -36,12 +39,19 @@ inline void cpuRelax() {
 
 using Clock = std::chrono::steady_clock;
 double secondsSince(Clock::time_point t) { return std::chrono::duration<double>(Clock::now() - t).count(); }
+std::int64_t nowNanos() {
+  return std::chrono::duration_cast<std::chrono::nanoseconds>(Clock::now().time_since_epoch()).count();
+}
 
 }  // namespace
 
 Worker::Worker(const Program& program, MachineOptions options, ThreadId self, NodeDirectory& directory,
                SharedState& shared, std::mutex& outputLock)
-    : program_(program), self_(self), directory_(directory), shared_(shared) {
+    : program_(program),
+      self_(self),
+      directory_(directory),
+      shared_(shared),
+      stealing_(!program.scheduling.staticNodes && directory.threads() > 1) {
   if (options.output) {
     lineOutput_ = std::make_unique<LineOutput>(*options.output, outputLock);
     output_ = std::make_unique<std::ostream>(lineOutput_.get());
@@ -77,14 +87,18 @@ void Worker::loop() {
         machine_->requestStop();
         break;
       }
+      if (shared_.rebalanceWanted.load(std::memory_order_relaxed)) rebalance();
       takeMail();
       if (machine_->runNext()) {
+        shared_.perThread[self_].queued.store(std::uint32_t(machine_->waitingNodes()), std::memory_order_relaxed);
         if (profile_) profile_->nodeRun(machine_->stats().factsDerived, stats_.factsIn, machine_->waitingNodes());
         if (outgoingBytes_ != 0 && (outgoingBytes_ >= kFlushBytes || ++runsSinceFlush_ >= kFlushRuns)) flush();
         continue;
       }
       flush();
       if (takeMail()) continue;
+      shared_.perThread[self_].queued.store(0, std::memory_order_relaxed);
+      if (requestRebalance()) continue;
       if (!waitForWork()) break;
     }
   } catch (...) {
@@ -121,6 +135,11 @@ void Worker::decode(const Bytes& in) {
   for (std::size_t pos = 0; pos < in.size();) {
     const auto kind = get<std::uint8_t>(in, pos);
     const NodeId node = get<std::uint32_t>(in, pos);
+    if (kind == kMigrate) {
+      pos -= sizeof(std::uint32_t);
+      takeNode(in, pos);
+      continue;
+    }
     if (kind == kCoordination) {
       const auto op = Opcode(get<std::uint32_t>(in, pos));
       const double value = get<double>(in, pos);
@@ -194,7 +213,7 @@ bool Worker::waitForWork() {
   } else {
     SharedState::PerThread& me = shared_.perThread[self_];
     for (unsigned spin = 0; !shared_.over(); ++spin) {
-      if (mailWaiting()) {
+      if (mailWaiting() || shared_.rebalanceWanted.load()) {
         shared_.active.fetch_add(1);  // busy again, before the batch's own count comes off
         work = true;
         break;
@@ -209,7 +228,7 @@ bool Worker::waitForWork() {
         // slip between the check and the wait unnoticed.
         const std::uint32_t seen = me.signal.load();
         me.sleeping.store(true);
-        if (!mailWaiting() && !shared_.over()) me.signal.wait(seen);
+        if (!mailWaiting() && !shared_.over() && !shared_.rebalanceWanted.load()) me.signal.wait(seen);
         me.sleeping.store(false);
       }
     }
@@ -217,6 +236,138 @@ bool Worker::waitForWork() {
   stats_.idleSeconds += secondsSince(start);
   if (profile_) profile_->idleEnd();
   return work;
+}
+
+// ---- work stealing ----
+//
+// Shards own their nodes' facts, so a stolen node moves: its facts and waiting messages go to the
+// thief's store. That is only safe when no fact for it is on its way, so nodes move inside a
+// barrier: every thread flushes what it has for others and stops sending (phase 1), takes in
+// everything sent to it (2: nothing is in transit now), the most loaded threads hand half the
+// difference of their queues to the least loaded ones and the owner table changes (3), the
+// takers store what they received (4). Then every fact sent goes to the new owner, and the
+// order of the facts from one node to another is kept across the move.
+
+bool Worker::requestRebalance() {
+  if (!stealing_) return false;
+  std::uint32_t longest = 0;
+  for (ThreadId t = 0; t < shared_.threads; ++t)
+    if (t != self_) longest = std::max(longest, shared_.perThread[t].queued.load(std::memory_order_relaxed));
+  if (longest < 2 * kMinStealQueue) return false;
+  if (nowNanos() < shared_.nextRebalanceNs.load()) return false;
+  bool expected = false;
+  if (shared_.rebalanceWanted.compare_exchange_strong(expected, true)) shared_.wakeAll();
+  return true;
+}
+
+void Worker::rebalance() {
+  const Clock::time_point start = Clock::now();
+  ++stats_.rebalances;
+  flush();
+  if (!shared_.arriveAndWait()) return;  // 1
+  const Clock::time_point allThere = Clock::now();  // the cost of a rebalance starts here
+  if (self_ == 0) shared_.rebalanceWanted.store(false);
+  takeMail();
+  shared_.perThread[self_].queued.store(std::uint32_t(machine_->waitingNodes()));
+  if (!shared_.arriveAndWait()) return;  // 2
+  // The same plan on every thread: the i-th most loaded thread gives to the i-th least loaded.
+  std::vector<ThreadId> order(shared_.threads);
+  std::vector<std::uint32_t> load(shared_.threads);
+  for (ThreadId t = 0; t < shared_.threads; ++t) order[t] = t, load[t] = shared_.perThread[t].queued.load();
+  std::stable_sort(order.begin(), order.end(), [&](ThreadId a, ThreadId b) { return load[a] > load[b]; });
+  for (std::size_t i = 0; i < order.size() / 2; ++i) {
+    const ThreadId giver = order[i], taker = order[order.size() - 1 - i];
+    if (giver == self_ && load[giver] >= load[taker] + 2 * kMinStealQueue)
+      giveNodes(taker, (load[giver] - load[taker]) / 2);
+  }
+  flush();
+  if (!shared_.arriveAndWait()) return;  // 3
+  takeMail();
+  shared_.perThread[self_].queued.store(std::uint32_t(machine_->waitingNodes()));
+  shared_.arriveAndWait();  // 4
+  const double seconds = secondsSince(start);
+  stats_.rebalanceSeconds += seconds;
+  if (self_ == 0) {
+    const auto cost = std::int64_t(secondsSince(allThere) * 1e9);
+    shared_.nextRebalanceNs.store(nowNanos() + std::max(SharedState::kRebalanceNanos, cost * SharedState::kRebalanceGap));
+  }
+}
+
+void Worker::giveNodes(ThreadId to, std::size_t count) {
+  Bytes& out = outgoing_[to];
+  const std::size_t before = out.size();
+  for (NodeId n : machine_->pickNodesToGive(count)) {
+    put<std::uint8_t>(out, kMigrate);
+    put<std::uint32_t>(out, n);
+    const std::size_t stateAt = out.size();
+    put<double>(out, 0.0);
+    put<double>(out, 0.0);
+    put<std::uint8_t>(out, 0);
+    std::uint32_t stored = 0, pending = 0;
+    std::size_t countAt = out.size();
+    put<std::uint32_t>(out, 0);
+    auto fact = [&](PredId p, const Value* args, bool negative) {
+      put<std::uint32_t>(out, 0);
+      const std::size_t at = out.size();
+      encodeFact(out, program_.predicates, p, args, negative);
+      const auto length = std::uint32_t(out.size() - at);
+      std::memcpy(out.data() + at - sizeof length, &length, sizeof length);
+    };
+    const SerialScheduler::Carried state = machine_->giveNode(
+        n,
+        [&](PredId p, const Value* args, std::uint32_t copies) {
+          put<std::uint32_t>(out, copies);
+          fact(p, args, false);
+          ++stored;
+        },
+        [&](PredId p, const Value* args, bool negative) {
+          if (pending == 0) {  // the stored facts are all out: their count, then the messages'
+            std::memcpy(out.data() + countAt, &stored, sizeof stored);
+            countAt = out.size();
+            put<std::uint32_t>(out, 0);
+          }
+          fact(p, args, negative);
+          ++pending;
+        });
+    if (pending == 0) {
+      std::memcpy(out.data() + countAt, &stored, sizeof stored);
+      put<std::uint32_t>(out, 0);
+    } else {
+      std::memcpy(out.data() + countAt, &pending, sizeof pending);
+    }
+    std::memcpy(out.data() + stateAt, &state.prio, sizeof state.prio);
+    std::memcpy(out.data() + stateAt + 8, &state.defaultPrio, sizeof state.defaultPrio);
+    out[stateAt + 16] = state.isStatic ? 1 : 0;
+    directory_.moveNode(n, to);
+    ++stats_.nodesGiven;
+  }
+  outgoingBytes_ += out.size() - before;
+}
+
+void Worker::takeNode(const Bytes& in, std::size_t& pos) {
+  Heap& heap = machine_->heap();
+  const NodeId n = get<std::uint32_t>(in, pos);
+  SerialScheduler::Carried state{};
+  state.prio = get<double>(in, pos);
+  state.defaultPrio = get<double>(in, pos);
+  state.isStatic = get<std::uint8_t>(in, pos) != 0;
+  machine_->takeNode(n, state);
+  auto eachFact = [&](auto&& use) {
+    const auto length = get<std::uint32_t>(in, pos);
+    decodeFact(in.data() + pos, length, program_.predicates, heap, fact_);
+    pos += length;
+    use();
+    const PredicateDesc& d = program_.predicates[fact_.pred];
+    for (std::uint32_t i = 0; i < d.arity(); ++i) heap.release(d.fields[i], fact_.args[i]);
+  };
+  for (std::uint32_t i = 0, count = get<std::uint32_t>(in, pos); i < count; ++i) {
+    const auto copies = get<std::uint32_t>(in, pos);
+    eachFact([&] { machine_->takeStoredFact(n, fact_.pred, fact_.args.data(), copies); });
+  }
+  for (std::uint32_t i = 0, count = get<std::uint32_t>(in, pos); i < count; ++i)
+    eachFact([&] { machine_->takePendingFact(n, fact_.pred, fact_.args.data(), fact_.negative); });
+  machine_->takeNodeDone(n);
+  ++stats_.nodesTaken;
 }
 
 }  // namespace meldvm::threads

@@ -59,6 +59,13 @@ class Worker final : public ShardLink {
   void decode(const Bytes& records);
   void flush();
   bool waitForWork();  // false: the run is over (quiescence, stop-program or an error)
+  // Work stealing (see worker.cpp): ask for a rebalance when out of work while another thread
+  // has a long queue; take part in one.
+  bool requestRebalance();
+  void rebalance();
+  void giveNodes(ThreadId to, std::size_t count);
+  void takeNode(const Bytes& in, std::size_t& pos);
+  static constexpr std::uint32_t kMinStealQueue = 1;
 
   const Program& program_;
   const ThreadId self_;
@@ -71,6 +78,7 @@ class Worker final : public ShardLink {
   std::size_t outgoingBytes_ = 0;
   unsigned runsSinceFlush_ = 0;
   Bytes incoming_;
+  const bool stealing_;  // not with `priority @static`
   DecodedFact fact_;  // the decoder's storage, reused
   ThreadStats stats_;
   std::unique_ptr<ProfileRecorder> profile_;

@@ -10,6 +10,7 @@
 
 #include <atomic>
 #include <cstdint>
+#include <functional>
 #include <iosfwd>
 #include <memory>
 #include <string>
@@ -125,6 +126,19 @@ class Machine : private SchedulerView {
   }
   // The heap of this Machine's values (facts from other threads are rebuilt in it).
   Heap& heap() { return heap_; }
+
+  // Work stealing: nodes move between the shards of a threaded run, between node runs. The
+  // thread giving nodes away picks them from its queue (graph nodes only, not static ones),
+  // hands over each one's scheduling state, facts and waiting messages and forgets it; the taker
+  // adopts the state (takeNode), stores the facts, posts the messages, and queues the node.
+  std::vector<NodeId> pickNodesToGive(std::size_t max);
+  using StoredFactVisitor = std::function<void(PredId, const Value*, std::uint32_t copies)>;
+  using PendingFactVisitor = std::function<void(PredId, const Value*, bool negative)>;
+  SerialScheduler::Carried giveNode(NodeId n, const StoredFactVisitor& stored, const PendingFactVisitor& pending);
+  void takeNode(NodeId n, const SerialScheduler::Carried& state) { sched_.adopt(n, state); }
+  void takeStoredFact(NodeId n, PredId p, const Value* args, std::uint32_t copies);
+  void takePendingFact(NodeId n, PredId p, const Value* args, bool negative) { post(n, p, args, negative); }
+  void takeNodeDone(NodeId n);
   // The store's index on field `field` of `p` (requested at construction for every `index`
   // directive and every ITER_KEY of the program).
   std::uint32_t keyIndex(PredId p, std::uint32_t field) const {
@@ -165,10 +179,8 @@ class Machine : private SchedulerView {
   void coordination(Opcode op, NodeId n, Value arg);
   void placeNode(Opcode op, NodeId n, Value arg);  // set-cpu, set-affinity
   void setStatic(NodeId n, bool isStatic);
-  bool ownedHere(NodeId n) const {  // the shard's initial range, or any node when serial
-    return n - placement_.firstOwned < placement_.endOwned - placement_.firstOwned;
-  }
-  ThreadId ownerOf(NodeId n) const { return ownedHere(n) ? placement_.self : shard_->ownerOf(n); }
+  bool ownedHere(NodeId n) const { return !shard_ || shard_->ownerOf(n) == placement_.self; }
+  ThreadId ownerOf(NodeId n) const { return shard_ ? shard_->ownerOf(n) : 0; }
   void growNodes(NodeId end);  // node arrays up to id end (a shard's block of created ids)
   void initNode(NodeId n);     // its _init fact
   void stopProgram() {

@@ -51,6 +51,31 @@ class SerialScheduler {
   void scheduleNext(NodeId n);
   void setStatic(NodeId n, bool isStatic) { nodes_[n].isStatic = isStatic; }
 
+  // Work stealing (a threaded run): up to `max` nodes waiting in the FIFO, latest queued first,
+  // that `movable(n)` allows and are not static, leave the queue into `out`.
+  template <class Movable>
+  void takeForSteal(std::size_t max, std::vector<NodeId>& out, Movable&& movable) {
+    for (std::size_t i = fifo_.size(); i > fifoHead_ && out.size() < max; --i) {
+      const FifoEntry e = fifo_[i - 1];
+      NodeState& s = nodes_[e.node];
+      if (s.where != Where::Fifo || s.ticket != e.ticket || s.isStatic || !movable(e.node)) continue;
+      s.where = Where::Idle;  // the entry goes stale
+      --fifoLive_;
+      out.push_back(e.node);
+    }
+  }
+  // A node's scheduling state, carried along when it moves to another thread.
+  struct Carried {
+    double prio, defaultPrio;
+    bool isStatic;
+  };
+  Carried carried(NodeId n) const { return {nodes_[n].prio, nodes_[n].defaultPrio, nodes_[n].isStatic != 0}; }
+  void adopt(NodeId n, const Carried& c) {
+    nodes_[n].prio = c.prio;
+    nodes_[n].defaultPrio = c.defaultPrio;
+    nodes_[n].isStatic = c.isStatic;
+  }
+
   double priority(NodeId n) const { return nodes_[n].prio; }
   bool isStatic(NodeId n) const { return nodes_[n].isStatic != 0; }
   // A hint that `wake(n)` comes soon (always inlined: GCC drops calls to prefetch-only functions).

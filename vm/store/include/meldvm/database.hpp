@@ -49,6 +49,25 @@ class Database {
   bool alive(NodeId n) const { return removedNodes_ == 0 || alive_[n] != 0; }
   // Drops every fact of the node (created nodes collected by the GC, §6.10); the dump skips it.
   void removeNode(NodeId n);
+  // Drops every fact of the node, which stays alive (a node that moved to another store).
+  void clearNode(NodeId n);
+  // What the node stores, as the facts to store again elsewhere to rebuild it: linear facts in
+  // list order, persistent facts in store order with their copies, and for an aggregated
+  // predicate its inputs (not its values). f(PredId, const Value* args, std::uint32_t copies).
+  template <class F>
+  void forEachStored(NodeId n, F&& f) const {
+    for (PredId p = 0; p < preds_.size(); ++p) {
+      if (preds_[p].action) continue;
+      if (const std::uint32_t g = groupInputs_[p]; g != kNoTable) {
+        const GroupInputs& in = nodeInputs_[g];
+        for (std::uint32_t i = 0; i < in.size(n); ++i) f(p, in.args(n, i), in.count(n, i));
+        continue;
+      }
+      const std::uint32_t t = inputTable_[p] != kNoTable ? inputTable_[p] : p;
+      for (FactRef x = head(n, t).first; x != kNoFact; x = tables_[t].next(x))
+        if (tables_[t].count(x) != 0) f(p, tables_[t].args(x), preds_[p].linear ? 1u : tables_[t].count(x));
+    }
+  }
 
   // An index on one field (home excluded), for `index p/N` or wherever match plans look facts up
   // by a bound field. Must be requested before any fact of the predicate is stored. Idempotent;

@@ -33,7 +33,9 @@ struct ThreadStats {
   std::uint64_t factsOut = 0, factsIn = 0;  // facts sent to / received from other threads
   std::uint64_t batchesOut = 0;             // channel pushes (each one or more facts)
   std::uint64_t waits = 0;                  // times the thread ran out of work
-  double busySeconds = 0, idleSeconds = 0;
+  std::uint64_t rebalances = 0;             // work-stealing rounds it took part in
+  std::uint64_t nodesTaken = 0, nodesGiven = 0;
+  double busySeconds = 0, idleSeconds = 0, rebalanceSeconds = 0;
 };
 
 class ThreadedMachine {
