@@ -118,6 +118,7 @@ case_profile() {
   has "$WORK/p.json" '"name":"worker 1"'
   has "$WORK/p.json" '"name":"node runs"'
   has "$WORK/p.json" '"facts derived per ms, thread 0"'
+  has "$WORK/p.json" '"name":"idle"'
   if command -v python3 >/dev/null; then
     python3 -c 'import json, sys; json.load(open(sys.argv[1]))' "$WORK/p.json" || fail "--profile wrote invalid JSON"
   fi

@@ -173,11 +173,11 @@ BOOST_AUTO_TEST_CASE(per_thread_statistics_add_up) {
 
 BOOST_AUTO_TEST_CASE(an_idle_thread_steals_queued_nodes_and_the_dump_is_unchanged) {
   // 64 nodes; the 32 of thread 0's range (the literals seen last get the low ids, §6.1) count
-  // down from 20000 in their first run, the others have nothing to do: thread 1 runs out of
+  // down from 100000 in their first run, the others have nothing to do: thread 1 runs out of
   // work at once and takes nodes waiting in thread 0's queue, facts, messages and all.
   std::string s = "type linear w(node, int).\ntype route edge(node, node).\ntype linear got(node, int).\n";
   for (int i = 0; i < 64; ++i) {
-    s += "w(@" + std::to_string(i) + ", " + (i >= 32 ? "20000" : "1") + ").\n";
+    s += "w(@" + std::to_string(i) + ", " + (i >= 32 ? "100000" : "1") + ").\n";
     s += "!edge(@" + std::to_string(i) + ", @" + std::to_string((i + 1) % 64) + ").\n";
   }
   s += "w(A, N), N > 0 -o w(A, N - 1).\n"

@@ -14,7 +14,7 @@ namespace meldvm::threads {
 
 class ProfileRecorder {
  public:
-  enum class Kind : std::uint8_t { Run, Idle };
+  enum class Kind : std::uint8_t { Run, Idle, Steal };
   struct Span {
     Kind kind;
     std::int64_t beginNs, endNs;  // since the run's start
@@ -31,14 +31,15 @@ class ProfileRecorder {
     const std::int64_t now = nanos();
     if (now - spanBegin_ >= kSpanNanos) closeRun(now, derived, factsIn, waiting);
   }
-  // The thread ran out of work: the running span ends, an idle one begins.
-  void idleBegin(std::uint64_t derived, std::uint64_t factsIn) {
+  // The thread ran out of work (Idle) or joined a rebalance (Steal): the running span ends, a
+  // pause begins; pauseEnd records it (nodes: taken by the thread during a Steal).
+  void pauseBegin(std::uint64_t derived, std::uint64_t factsIn) {
     closeRun(nanos(), derived, factsIn, 0);
-    idleBegin_ = spanBegin_;
+    pauseBegin_ = spanBegin_;
   }
-  void idleEnd() {
+  void pauseEnd(Kind kind, std::uint64_t nodes = 0) {
     const std::int64_t now = nanos();
-    spans_.push_back({Kind::Idle, idleBegin_, now, 0, 0, 0, 0});
+    spans_.push_back({kind, pauseBegin_, now, nodes, 0, 0, 0});
     spanBegin_ = now;
   }
   void finish(std::uint64_t derived, std::uint64_t factsIn) { closeRun(nanos(), derived, factsIn, 0); }
@@ -63,7 +64,7 @@ class ProfileRecorder {
 
   std::chrono::steady_clock::time_point origin_;
   std::vector<Span> spans_;
-  std::int64_t spanBegin_ = 0, idleBegin_ = 0;
+  std::int64_t spanBegin_ = 0, pauseBegin_ = 0;
   std::uint64_t runs_ = 0, derivedAt_ = 0, factsInAt_ = 0;
   unsigned sinceClock_ = 0;
 };

@@ -20,6 +20,14 @@ void writeSpan(std::ostream& out, unsigned tid, const threads::ProfileRecorder::
     out << line;
     return;
   }
+  if (s.kind == threads::ProfileRecorder::Kind::Steal) {
+    std::snprintf(line, sizeof line,
+                  ",\n{\"name\":\"steal\",\"cat\":\"steal\",\"ph\":\"X\",\"pid\":1,\"tid\":%u,\"ts\":%.3f,"
+                  "\"dur\":%.3f,\"args\":{\"nodes taken\":%llu}}",
+                  tid, ts, dur, (unsigned long long)s.nodeRuns);
+    out << line;
+    return;
+  }
   std::snprintf(line, sizeof line,
                 ",\n{\"name\":\"node runs\",\"cat\":\"run\",\"ph\":\"X\",\"pid\":1,\"tid\":%u,\"ts\":%.3f,"
                 "\"dur\":%.3f,\"args\":{\"node runs\":%llu,\"facts derived\":%llu,\"facts from other threads\":%llu}}",

@@ -78,6 +78,7 @@ struct SharedState {
   // later (at least kRebalanceNanos): rebalancing takes at most about 1/kRebalanceGap of the run,
   // even when node runs are long or the nodes carry many facts.
   std::atomic<bool> rebalanceWanted{false};
+  std::atomic<std::uint32_t> idleThreads{0};  // threads in waitForWork: a busy one with a queue asks for them
   std::atomic<std::int64_t> nextRebalanceNs{0};
   static constexpr std::int64_t kRebalanceNanos = 500'000;
   static constexpr std::int64_t kRebalanceGap = 20;

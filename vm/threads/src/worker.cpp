@@ -90,7 +90,9 @@ void Worker::loop() {
       if (shared_.rebalanceWanted.load(std::memory_order_relaxed)) rebalance();
       takeMail();
       if (machine_->runNext()) {
-        shared_.perThread[self_].queued.store(std::uint32_t(machine_->waitingNodes()), std::memory_order_relaxed);
+        const auto queued = std::uint32_t(machine_->waitingNodes());
+        shared_.perThread[self_].queued.store(queued, std::memory_order_relaxed);
+        if (queued >= 2 * kMinStealQueue && shared_.idleThreads.load(std::memory_order_relaxed) != 0) offerWork();
         if (profile_) profile_->nodeRun(machine_->stats().factsDerived, stats_.factsIn, machine_->waitingNodes());
         if (outgoingBytes_ != 0 && (outgoingBytes_ >= kFlushBytes || ++runsSinceFlush_ >= kFlushRuns)) flush();
         continue;
@@ -206,7 +208,8 @@ void Worker::flush() {
 bool Worker::waitForWork() {
   const Clock::time_point start = Clock::now();
   ++stats_.waits;
-  if (profile_) profile_->idleBegin(machine_->stats().factsDerived, stats_.factsIn);
+  shared_.idleThreads.fetch_add(1);
+  if (profile_) profile_->pauseBegin(machine_->stats().factsDerived, stats_.factsIn);
   bool work = false;
   if (shared_.active.fetch_sub(1) == 1) {
     shared_.finish();  // the last busy thread and nothing in transit: quiescence
@@ -233,8 +236,9 @@ bool Worker::waitForWork() {
       }
     }
   }
+  shared_.idleThreads.fetch_sub(1);
   stats_.idleSeconds += secondsSince(start);
-  if (profile_) profile_->idleEnd();
+  if (profile_) profile_->pauseEnd(ProfileRecorder::Kind::Idle);
   return work;
 }
 
@@ -260,9 +264,27 @@ bool Worker::requestRebalance() {
   return true;
 }
 
+// A thread with nodes waiting sees another thread idle: it asks for the rebalance itself (the
+// idle thread looked before this queue grew, and now sleeps).
+void Worker::offerWork() {
+  if (!stealing_ || shared_.rebalanceWanted.load(std::memory_order_relaxed)) return;
+  if (nowNanos() < shared_.nextRebalanceNs.load()) return;
+  bool expected = false;
+  if (shared_.rebalanceWanted.compare_exchange_strong(expected, true)) shared_.wakeAll();
+}
+
 void Worker::rebalance() {
   const Clock::time_point start = Clock::now();
   ++stats_.rebalances;
+  if (profile_) profile_->pauseBegin(machine_->stats().factsDerived, stats_.factsIn);
+  const std::uint64_t takenBefore = stats_.nodesTaken;
+  struct EndSpan {  // the steal span ends however the rebalance does
+    Worker& w;
+    std::uint64_t before;
+    ~EndSpan() {
+      if (w.profile_) w.profile_->pauseEnd(ProfileRecorder::Kind::Steal, w.stats_.nodesTaken - before);
+    }
+  } endSpan{*this, takenBefore};
   flush();
   if (!shared_.arriveAndWait()) return;  // 1
   const Clock::time_point allThere = Clock::now();  // the cost of a rebalance starts here

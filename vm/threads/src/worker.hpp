@@ -62,6 +62,7 @@ class Worker final : public ShardLink {
   // Work stealing (see worker.cpp): ask for a rebalance when out of work while another thread
   // has a long queue; take part in one.
   bool requestRebalance();
+  void offerWork();
   void rebalance();
   void giveNodes(ThreadId to, std::size_t count);
   void takeNode(const Bytes& in, std::size_t& pos);

@@ -51,8 +51,8 @@ class ThreadedMachine {
   // Runs to quiescence or stop-program. Throws RuntimeError (the first error of any thread).
   void run();
   // The timelines as a Chrome trace-event file (Perfetto, chrome://tracing): per thread, spans
-  // of node runs (coalesced: about 1 ms each) and idle spans, and counters of facts derived and
-  // queued nodes. Call after run() with recordProfile().
+  // of node runs (coalesced: about 1 ms each), idle spans and steal spans (rebalances), and
+  // counters of facts derived and queued nodes. Call after run() with recordProfile().
   void writeProfile(std::ostream& out) const;
 
   void dump(std::ostream& out) const;
