@@ -192,3 +192,27 @@ BOOST_AUTO_TEST_CASE(an_idle_thread_steals_queued_nodes_and_the_dump_is_unchange
   BOOST_TEST(taken > 0u);
   BOOST_TEST(taken == given);
 }
+
+BOOST_AUTO_TEST_CASE(set_cpu_moves_nodes_to_another_thread_where_they_get_just_moved) {
+  // Every node asks to go to the leader thread #T0: the nodes of the other threads move there
+  // (facts and all), are pinned, and only then get just-moved (§5.7), so every node ends with
+  // cpu-id #T0 and thread 0 counts all 8 as static in the end.
+  const auto p = compile(
+      "type linear go(node).\ntype linear where(node, thread, int).\n"
+      "go(@0). go(@1). go(@2). go(@3). go(@4). go(@5). go(@6). go(@7).\n"
+      "go(A), !leader-thread(T, L) -o set-cpu(A, L).\n"
+      "just-moved(A) -o where(A, cpu-id(A), cpu-static(A)).\n");
+  for (unsigned threads : {2u, 3u}) {
+    meldvm::ThreadedMachine m(*p, {}, threads);
+    m.run();
+    const std::string dump = m.dump();
+    std::size_t onLeader = 0;
+    for (std::size_t at = dump.find("where(#T0, "); at != std::string::npos; at = dump.find("where(#T0, ", at + 1))
+      ++onLeader;
+    BOOST_TEST(onLeader == 8u, dump);
+    BOOST_TEST(dump.find("where(#T1") == std::string::npos, dump);
+    // Thread 0 took at least every node that did not start on it (more if some were stolen
+    // from it first).
+    BOOST_TEST(m.threadStats()[0].nodesTaken >= 8u - 8u / threads, "threads " << threads);
+  }
+}

@@ -569,6 +569,17 @@ std::vector<NodeId> Machine::pickNodesToGive(std::size_t max) {
   return nodes;
 }
 
+bool Machine::unqueueToGive(NodeId n) {
+  if (n >= initialNodes_ || !ownedHere(n)) return false;
+  sched_.unqueue(n);
+  return true;
+}
+
+void Machine::settleMovedNode(NodeId n) {
+  setStatic(n, true);
+  if (tables_.justMoved != Program::kNoPred) post(n, tables_.justMoved, kNoArgs, false);
+}
+
 SerialScheduler::Carried Machine::giveNode(NodeId n, const StoredFactVisitor& stored,
                                            const PendingFactVisitor& pending) {
   db_->forEachStored(n, stored);
@@ -577,7 +588,14 @@ SerialScheduler::Carried Machine::giveNode(NodeId n, const StoredFactVisitor& st
   mail_->release(n);
   db_->clearNode(n);
   std::fill_n(candidates_.data() + std::size_t(n) * tables_.ruleWords, tables_.ruleWords, 0);
-  return sched_.carried(n);
+  const SerialScheduler::Carried state = sched_.carried(n);
+  if (state.isStatic) setStatic(n, false);  // static here no more (the count of this thread)
+  return state;
+}
+
+void Machine::takeNode(NodeId n, const SerialScheduler::Carried& state) {
+  sched_.adopt(n, {state.prio, state.defaultPrio, false});
+  if (state.isStatic) setStatic(n, true);  // counted for this thread (cpu-static)
 }
 
 void Machine::takeStoredFact(NodeId n, PredId p, const Value* args, std::uint32_t copies) {

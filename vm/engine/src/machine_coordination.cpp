@@ -99,12 +99,14 @@ void Machine::placeNode(Opcode op, NodeId n, Value arg) {
     if (target == kNoThread)
       throw RuntimeError("set-affinity: node " + nodeName(arg.asNode()) + " does not exist");
   }
-  // Moving a node between threads would move its facts between shards; until the runtime does
-  // that, a request that needs it stops the run rather than pinning the node in the wrong place.
-  if (owner != target)
-    throw RuntimeError(std::string(what) + ": moving node " + nodeName(n) + " from thread #T" +
-                       std::to_string(owner) + " to #T" + std::to_string(target) +
-                       " is not supported yet (`meld -j N` keeps every node on its first thread)");
+  // Another thread: the node moves there at the next rebalance (its facts go to that shard),
+  // where it is pinned and just-moved is added when it arrives (§5.7).
+  if (owner != target) {
+    if (n >= initialNodes_)
+      throw RuntimeError(std::string(what) + ": node " + nodeName(n) +
+                         " is a thread node or was created by exists; only the graph's nodes move between threads");
+    return shard_->requestMove(n, target);
+  }
   if (owner == placement_.self)
     setStatic(n, true);
   else

@@ -8,6 +8,8 @@
 #include <memory>
 #include <mutex>
 #include <thread>
+#include <utility>
+#include <vector>
 
 #include "channel.hpp"
 #include "meldvm/shard.hpp"
@@ -83,6 +85,9 @@ struct SharedState {
   static constexpr std::int64_t kRebalanceNanos = 500'000;
   static constexpr std::int64_t kRebalanceGap = 20;
   std::atomic<std::uint32_t> barrierArrived{0}, barrierGeneration{0};
+  // set-cpu / set-affinity requests, carried out at the next rebalance.
+  std::mutex movesLock;
+  std::vector<std::pair<NodeId, ThreadId>> moves;
 
   struct alignas(64) PerThread {
     std::atomic<std::uint32_t> signal{0};

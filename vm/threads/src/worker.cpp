@@ -11,7 +11,7 @@ namespace {
 // fact as meldvm/fact_codec.hpp encodes it, for a coordination fact the opcode (u32) and the
 // value (f64). Native byte order: the bytes never leave the process.
 // A node moving to the thread: kMigrate, the node, its scheduling state (f64 priority, f64
-// default priority, u8 static), then its stored facts (u32 count; each u32 copies, u32 length,
+// default priority, u8 static), u8 1 if set-cpu moved it (0: stolen), then its stored facts (u32 count; each u32 copies, u32 length,
 // the fact) and its waiting messages (u32 count; each u32 length, the fact).
 enum RecordKind : std::uint8_t { kFact = 0, kCoordination = 1, kMigrate = 2 };
 
@@ -297,7 +297,10 @@ void Worker::rebalance() {
   std::vector<std::uint32_t> load(shared_.threads);
   for (ThreadId t = 0; t < shared_.threads; ++t) order[t] = t, load[t] = shared_.perThread[t].queued.load();
   std::stable_sort(order.begin(), order.end(), [&](ThreadId a, ThreadId b) { return load[a] > load[b]; });
-  for (std::size_t i = 0; i < order.size() / 2; ++i) {
+  // set-cpu / set-affinity first (every thread reads the list; thread 0 clears it in phase 4).
+  for (const auto& [n, to] : shared_.moves)
+    if (to != self_ && directory_.ownerOf(n) == self_ && machine_->unqueueToGive(n)) giveNode(to, n, true);
+  for (std::size_t i = 0; stealing_ && i < order.size() / 2; ++i) {
     const ThreadId giver = order[i], taker = order[order.size() - 1 - i];
     if (giver == self_ && load[giver] >= load[taker] + 2 * kMinStealQueue)
       giveNodes(taker, (load[giver] - load[taker]) / 2);
@@ -306,6 +309,7 @@ void Worker::rebalance() {
   if (!shared_.arriveAndWait()) return;  // 3
   takeMail();
   shared_.perThread[self_].queued.store(std::uint32_t(machine_->waitingNodes()));
+  if (self_ == 0) shared_.moves.clear();  // nobody reads it in phase 4, nobody adds to it in a rebalance
   shared_.arriveAndWait();  // 4
   const double seconds = secondsSince(start);
   stats_.rebalanceSeconds += seconds;
@@ -316,53 +320,65 @@ void Worker::rebalance() {
 }
 
 void Worker::giveNodes(ThreadId to, std::size_t count) {
+  for (NodeId n : machine_->pickNodesToGive(count)) giveNode(to, n, false);
+}
+
+void Worker::requestMove(NodeId n, ThreadId to) {
+  {
+    std::lock_guard<std::mutex> lock(shared_.movesLock);
+    shared_.moves.emplace_back(n, to);
+  }
+  bool expected = false;  // no waiting for the next allowed rebalance: the program asked
+  if (shared_.rebalanceWanted.compare_exchange_strong(expected, true)) shared_.wakeAll();
+}
+
+void Worker::giveNode(ThreadId to, NodeId n, bool moved) {
   Bytes& out = outgoing_[to];
   const std::size_t before = out.size();
-  for (NodeId n : machine_->pickNodesToGive(count)) {
-    put<std::uint8_t>(out, kMigrate);
-    put<std::uint32_t>(out, n);
-    const std::size_t stateAt = out.size();
-    put<double>(out, 0.0);
-    put<double>(out, 0.0);
-    put<std::uint8_t>(out, 0);
-    std::uint32_t stored = 0, pending = 0;
-    std::size_t countAt = out.size();
+  put<std::uint8_t>(out, kMigrate);
+  put<std::uint32_t>(out, n);
+  const std::size_t stateAt = out.size();
+  put<double>(out, 0.0);
+  put<double>(out, 0.0);
+  put<std::uint8_t>(out, 0);
+  put<std::uint8_t>(out, moved ? 1 : 0);
+  std::uint32_t stored = 0, pending = 0;
+  std::size_t countAt = out.size();
+  put<std::uint32_t>(out, 0);
+  auto fact = [&](PredId p, const Value* args, bool negative) {
     put<std::uint32_t>(out, 0);
-    auto fact = [&](PredId p, const Value* args, bool negative) {
-      put<std::uint32_t>(out, 0);
-      const std::size_t at = out.size();
-      encodeFact(out, program_.predicates, p, args, negative);
-      const auto length = std::uint32_t(out.size() - at);
-      std::memcpy(out.data() + at - sizeof length, &length, sizeof length);
-    };
-    const SerialScheduler::Carried state = machine_->giveNode(
-        n,
-        [&](PredId p, const Value* args, std::uint32_t copies) {
-          put<std::uint32_t>(out, copies);
-          fact(p, args, false);
-          ++stored;
-        },
-        [&](PredId p, const Value* args, bool negative) {
-          if (pending == 0) {  // the stored facts are all out: their count, then the messages'
-            std::memcpy(out.data() + countAt, &stored, sizeof stored);
-            countAt = out.size();
-            put<std::uint32_t>(out, 0);
-          }
-          fact(p, args, negative);
-          ++pending;
-        });
-    if (pending == 0) {
-      std::memcpy(out.data() + countAt, &stored, sizeof stored);
-      put<std::uint32_t>(out, 0);
-    } else {
-      std::memcpy(out.data() + countAt, &pending, sizeof pending);
-    }
-    std::memcpy(out.data() + stateAt, &state.prio, sizeof state.prio);
-    std::memcpy(out.data() + stateAt + 8, &state.defaultPrio, sizeof state.defaultPrio);
-    out[stateAt + 16] = state.isStatic ? 1 : 0;
-    directory_.moveNode(n, to);
-    ++stats_.nodesGiven;
+    const std::size_t at = out.size();
+    encodeFact(out, program_.predicates, p, args, negative);
+    const auto length = std::uint32_t(out.size() - at);
+    std::memcpy(out.data() + at - sizeof length, &length, sizeof length);
+  };
+  const SerialScheduler::Carried state = machine_->giveNode(
+      n,
+      [&](PredId p, const Value* args, std::uint32_t copies) {
+        put<std::uint32_t>(out, copies);
+        fact(p, args, false);
+        ++stored;
+      },
+      [&](PredId p, const Value* args, bool negative) {
+        if (pending == 0) {  // the stored facts are all out: their count, then the messages'
+          std::memcpy(out.data() + countAt, &stored, sizeof stored);
+          countAt = out.size();
+          put<std::uint32_t>(out, 0);
+        }
+        fact(p, args, negative);
+        ++pending;
+      });
+  if (pending == 0) {
+    std::memcpy(out.data() + countAt, &stored, sizeof stored);
+    put<std::uint32_t>(out, 0);
+  } else {
+    std::memcpy(out.data() + countAt, &pending, sizeof pending);
   }
+  std::memcpy(out.data() + stateAt, &state.prio, sizeof state.prio);
+  std::memcpy(out.data() + stateAt + 8, &state.defaultPrio, sizeof state.defaultPrio);
+  out[stateAt + 16] = state.isStatic ? 1 : 0;
+  directory_.moveNode(n, to);
+  ++stats_.nodesGiven;
   outgoingBytes_ += out.size() - before;
 }
 
@@ -373,6 +389,7 @@ void Worker::takeNode(const Bytes& in, std::size_t& pos) {
   state.prio = get<double>(in, pos);
   state.defaultPrio = get<double>(in, pos);
   state.isStatic = get<std::uint8_t>(in, pos) != 0;
+  const bool moved = get<std::uint8_t>(in, pos) != 0;
   machine_->takeNode(n, state);
   auto eachFact = [&](auto&& use) {
     const auto length = get<std::uint32_t>(in, pos);
@@ -388,6 +405,7 @@ void Worker::takeNode(const Bytes& in, std::size_t& pos) {
   }
   for (std::uint32_t i = 0, count = get<std::uint32_t>(in, pos); i < count; ++i)
     eachFact([&] { machine_->takePendingFact(n, fact_.pred, fact_.args.data(), fact_.negative); });
+  if (moved) machine_->settleMovedNode(n);
   machine_->takeNodeDone(n);
   ++stats_.nodesTaken;
 }

@@ -43,6 +43,7 @@ class Worker final : public ShardLink {
   void coordinateRemote(ThreadId to, Opcode op, NodeId n, double value) override;
   NodeId allocateNodeBlock(ThreadId self, NodeId& count) override { return directory_.allocateBlock(self, count); }
   void stopAll() override { shared_.stopAll(); }
+  void requestMove(NodeId n, ThreadId to) override;
   void staticChanged(ThreadId t, int delta) override { shared_.perThread[t].staticNodes.fetch_add(delta); }
   std::int32_t staticNodes(ThreadId t) const override {
     return t < shared_.threads ? shared_.perThread[t].staticNodes.load() : 0;
@@ -65,6 +66,7 @@ class Worker final : public ShardLink {
   void offerWork();
   void rebalance();
   void giveNodes(ThreadId to, std::size_t count);
+  void giveNode(ThreadId to, NodeId n, bool moved);  // moved: by set-cpu (pin it, just-moved)
   void takeNode(const Bytes& in, std::size_t& pos);
   static constexpr std::uint32_t kMinStealQueue = 1;
 

@@ -132,10 +132,15 @@ class Machine : private SchedulerView {
   // hands over each one's scheduling state, facts and waiting messages and forgets it; the taker
   // adopts the state (takeNode), stores the facts, posts the messages, and queues the node.
   std::vector<NodeId> pickNodesToGive(std::size_t max);
+  // A node set-cpu sends to another thread: out of the queue, to be given away (false: it is
+  // no longer here, or not a node of the graph).
+  bool unqueueToGive(NodeId n);
+  // The taker's side of set-cpu: the node is pinned and just-moved is added (§5.7).
+  void settleMovedNode(NodeId n);
   using StoredFactVisitor = std::function<void(PredId, const Value*, std::uint32_t copies)>;
   using PendingFactVisitor = std::function<void(PredId, const Value*, bool negative)>;
   SerialScheduler::Carried giveNode(NodeId n, const StoredFactVisitor& stored, const PendingFactVisitor& pending);
-  void takeNode(NodeId n, const SerialScheduler::Carried& state) { sched_.adopt(n, state); }
+  void takeNode(NodeId n, const SerialScheduler::Carried& state);
   void takeStoredFact(NodeId n, PredId p, const Value* args, std::uint32_t copies);
   void takePendingFact(NodeId n, PredId p, const Value* args, bool negative) { post(n, p, args, negative); }
   void takeNodeDone(NodeId n);

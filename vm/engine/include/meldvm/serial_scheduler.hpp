@@ -64,6 +64,13 @@ class SerialScheduler {
       out.push_back(e.node);
     }
   }
+  // Takes the node out of the queue, wherever it waits (set-cpu moves it to another thread).
+  void unqueue(NodeId n) {
+    NodeState& s = nodes_[n];
+    if (s.where == Where::Heap) heapRemove(n);
+    if (s.where == Where::Fifo) --fifoLive_;  // its entry goes stale
+    s.where = Where::Idle;
+  }
   // A node's scheduling state, carried along when it moves to another thread.
   struct Carried {
     double prio, defaultPrio;

@@ -41,6 +41,9 @@ class ShardLink {
   virtual void coordinateRemote(ThreadId to, Opcode op, NodeId n, double value) = 0;
   // A block of fresh node ids for nodes this shard creates (exists): [first, first + count).
   virtual NodeId allocateNodeBlock(ThreadId self, NodeId& count) = 0;
+  // set-cpu / set-affinity: node n (a node of the graph) moves to thread `to` at the next
+  // rebalance, where it is pinned and gets its just-moved fact.
+  virtual void requestMove(NodeId n, ThreadId to) = 0;
   // stop-program: every thread stops after its current node run.
   virtual void stopAll() = 0;
   // set-static / set-moving changed how many nodes of thread t are static (cpu-static, §5.7).
