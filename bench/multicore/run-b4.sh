@@ -4,7 +4,8 @@
 # over -j 1, efficiency (speedup / N), facts derived (they differ between thread counts for the
 # programs whose result depends on the schedule: heat-transfer, n-queens), Mfacts/s and the
 # threads' busy and steal shares; writes one profile per program and thread count (a separate,
-# untimed run) as Chrome trace JSON.
+# untimed run) as Chrome trace JSON. `vsim-ide --profile-view F.j1.json --profile-view F.j2.json`
+# shows one program's profiles with their speedup table.
 #   bench/multicore/run-b4.sh [--threads "1 2"] [--runs K] [--quick] [--only "prog1 prog2"]
 #                             [--profiles DIR]
 # Default thread counts: 1 and every power of two up to the number of cores. MELD=/path/to/meld
@@ -17,7 +18,7 @@ meld="${MELD:-$repo/build/release/apps/meld/meld}"
 profiles="$repo/build/bench/multicore"
 runs=3 quick="" only="" threads=""
 
-usage() { sed -n '2,12p' "$0" | sed 's/^# \{0,1\}//'; }
+usage() { awk 'NR > 1 && /^#/ { sub(/^# ?/, ""); print; next } NR > 1 { exit }' "$0"; }
 while [ $# -gt 0 ]; do
   case "$1" in
     --threads) threads="$2"; shift 2 ;;
@@ -73,7 +74,7 @@ for file in "${files[@]}"; do
     # busy and steal shares: averages over the threads of the last run's table (-j 1: the VM is busy throughout)
     read -r busy steal < <(awk '/^thread +busy/ { on = 1; next } on && NF >= 12 { b += $2; s += $12; n++ }
         END { if (n) printf "%.1f %.1f\n", b / n, s / n; else print "100.0 0.0" }' "$log")
-    if [ "$t" != 1 ]; then "$meld" "$file" -j "$t" --profile "$profiles/$name.j$t.json" > /dev/null 2>&1 || true; fi
+    "$meld" "$file" -j "$t" --profile "$profiles/$name.j$t.json" > /dev/null 2>&1 || true
     awk -v p="$program" -v t="$t" -v w="$wall" -v b="$base" -v d="$derived" -v busy="$busy" -v steal="$steal" 'BEGIN {
         s = (w > 0) ? b / w : 0
         printf "| %-20s | %7d | %8.3f | %7.2f | %10.2f | %13d | %8.2f | %7s | %7s |\n", p, t, w, s, s / t, d, (w > 0 ? d / w / 1e6 : 0), busy, steal }'

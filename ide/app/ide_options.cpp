@@ -50,13 +50,16 @@ IdeOptions parseIdeOptions(int argc, char** argv) {
       continue;
     }
     if (name != "--screenshot" && name != "--size" && name != "--frame-time" && name != "--select" &&
-        name != "--frames" && name != "--every") {
+        name != "--frames" && name != "--every" && name != "--profile-view") {
       rest.push_back(argv[i]);
       continue;
     }
     if (!hasInline && i + 1 >= argc) throw vsim::UsageError(std::string(name) + " needs a value");
     const std::string_view value = hasInline ? inlineValue : std::string_view(argv[++i]);
-    if (name == "--screenshot") {
+    if (name == "--profile-view") {
+      if (value.empty()) throw vsim::UsageError("--profile-view needs a file written by meld --profile");
+      o.profiles.emplace_back(value);
+    } else if (name == "--screenshot") {
       if (value.empty()) throw vsim::UsageError("--screenshot needs a file name");
       o.screenshot = value;
     } else if (name == "--size") {
@@ -107,6 +110,9 @@ events, same fingerprint), in a thread of its own; the window draws snapshots of
 In the window:
   --run                 start the run at once (at the speed chosen last time)
   --select ID           show block ID in the inspector
+  --profile-view F.json open a profile that `meld -j N --profile F.json` wrote: per-thread
+                        timelines, busy/idle/steal summary; repeat it with the profiles of
+                        one program at several thread counts for their speedup table
   --why FACT@BLOCK      record derivations, run, and show why the fact exists when the run
                         ends, like --why 'dist(2)@10' (a click on a fact in the inspector does
                         the same once Run > Record derivations is on)

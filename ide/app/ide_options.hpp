@@ -4,6 +4,7 @@
 
 #include <QSize>
 #include <string>
+#include <vector>
 
 #include "options.hpp"
 #include "simcore/time.hpp"
@@ -19,6 +20,7 @@ struct IdeOptions {
   int frameTimes = 0;      // --frame-time N: also draw N frames offscreen and print the time per frame
   bool runAtOnce = false;  // --run: start the run when the window opens
   std::uint32_t select = 0xFFFFFFFFu;  // --select ID: the block the inspector shows
+  std::vector<std::string> profiles;   // --profile-view FILE.json (repeatable): open in the profile view
 };
 
 // Throws vsim::UsageError.

@@ -44,5 +44,10 @@ int main(int argc, char** argv) {
   start.select = options.select;
   ide::MainWindow window(options.run, start);
   window.show();
+  if (!options.profiles.empty()) {
+    QStringList paths;
+    for (const std::string& p : options.profiles) paths << QString::fromStdString(p);
+    window.openProfiles(paths);
+  }
   return app.exec();
 }

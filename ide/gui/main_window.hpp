@@ -57,6 +57,9 @@ class MainWindow : public QMainWindow {
   // Applies the newest snapshot and console lines now (the timer does it 30 times a second).
   void poll();
   bool saveScreenshot(const QString& path);
+  // Opens `meld --profile` files in a profile window (several: with their speedup table); the
+  // window, or nullptr after a message saying which file could not be read.
+  QWidget* openProfiles(const QStringList& paths);
   // The run from its start, a frame every `every` of simulated time, seen from the view's camera,
   // into `folder` (frame-000000.png ...); the number written, -1 on error (said in the console).
   int exportFrames(const QString& folder, simcore::SimTime every);

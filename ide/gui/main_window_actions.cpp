@@ -15,6 +15,7 @@
 #include "console_panel.hpp"
 #include "frame_export.hpp"
 #include "main_window.hpp"
+#include "profile_view.hpp"
 #include "world_view.hpp"
 
 namespace ide {
@@ -64,9 +65,34 @@ void MainWindow::buildFileMenu() {
     if (!path.isEmpty()) saveScreenshot(path);
   });
   file->addAction("Export &frames...", this, &MainWindow::exportFramesAsked);
+  file->addAction("Open p&rofiles...", this, [this] {
+    const QStringList paths = QFileDialog::getOpenFileNames(
+        this, "Open profiles of meld -j N (several: the speedup table)", {}, "meld --profile files (*.json)");
+    if (!paths.isEmpty()) openProfiles(paths);
+  });
   file->addSeparator();
   file->addAction("&Quit", QKeySequence::Quit, this, &QWidget::close);
   refreshRecentMenu();
+}
+
+QWidget* MainWindow::openProfiles(const QStringList& paths) {
+  std::vector<Profile> profiles;
+  for (const QString& path : paths) {
+    QString error;
+    std::optional<Profile> p = loadProfile(path, error);
+    if (!p) {
+      QMessageBox::warning(this, "Open profiles", error);
+      return nullptr;
+    }
+    profiles.push_back(std::move(*p));
+  }
+  auto* window = new ProfileView(std::move(profiles), this);
+  window->setWindowFlag(Qt::Window);
+  window->setAttribute(Qt::WA_DeleteOnClose);
+  window->setWindowTitle("Profile — " + QFileInfo(paths.front()).fileName());
+  window->resize(1000, 640);
+  window->show();
+  return window;
 }
 
 void MainWindow::buildRunActions() {

@@ -1,0 +1,116 @@
+// The profile view of the multicore target: profiles that `meld -j N --profile` wrote for a
+// program at 1 and 2 threads are read back (spans, per-thread summary, the speedup table), the
+// timeline draws them and zooms, and files that are not such profiles are refused with a reason.
+// With PROFILE_VIEW_PNG set, the view is also saved there (the picture in the closing note).
+#include <QImage>
+#include <QProcess>
+#include <QTableWidget>
+#include <QTemporaryDir>
+#include <QWheelEvent>
+#include <QtTest>
+
+#include "profile_view.hpp"
+
+using namespace ide;
+
+class ProfileViewTest : public QObject {
+  Q_OBJECT
+
+ private:
+  QTemporaryDir dir_;
+  QString profileAt(int threads) const { return dir_.filePath(QString("ring.j%1.json").arg(threads)); }
+
+ private Q_SLOTS:
+  void initTestCase() {
+    // A ring of 64 nodes passing 200 tokens around 30 times: enough node runs for both threads.
+    QString source = "type route edge(node, node).\ntype linear token(node, int).\n";
+    for (int i = 0; i < 64; ++i) source += QString("!edge(@%1, @%2).\n").arg(i).arg((i + 1) % 64);
+    for (int i = 0; i < 200; ++i) source += QString("token(@%1, 30).\n").arg(i % 64);
+    source += "token(A, N), N > 0, !edge(A, B) -o token(B, N - 1).\n";
+    QFile f(dir_.filePath("ring.meld"));
+    QVERIFY(f.open(QIODevice::WriteOnly));
+    f.write(source.toUtf8());
+    f.close();
+    for (int threads : {1, 2}) {
+      QProcess meld;
+      meld.start(MELD_BINARY_DIR "/apps/meld/meld",
+                 {f.fileName(), "-j", QString::number(threads), "--profile", profileAt(threads)});
+      QVERIFY(meld.waitForFinished(60000));
+      QCOMPARE(meld.exitCode(), 0);
+    }
+  }
+
+  void readsTheThreadsTheirSpansAndTheSweep() {
+    QString error;
+    const std::optional<Profile> one = loadProfile(profileAt(1), error), two = loadProfile(profileAt(2), error);
+    QVERIFY2(one && two, qPrintable(error));
+    QCOMPARE(one->title, QString("meld -j 1"));
+    QCOMPARE(int(one->threads.size()), 1);
+    QCOMPARE(int(two->threads.size()), 2);
+    unsigned long long runs = 0;
+    for (const ThreadSummary& s : two->summary) {
+      runs += s.nodeRuns;
+      QVERIFY(s.runUs + s.idleUs + s.stealUs <= two->endUs * 1.001);
+    }
+    QVERIFY(runs >= 64u);  // every node ran at least once
+    QCOMPARE(one->summary[0].facts, 6264ull);  // 64 edges, 200 tokens, 200 x 30 hops
+    const std::vector<SweepRow> rows = sweep({*two, *one});
+    QCOMPARE(int(rows.size()), 2);
+    QCOMPARE(rows[0].threads, 1);
+    QCOMPARE(rows[0].speedup, 1.0);
+    QCOMPARE(rows[1].threads, 2);
+    QVERIFY(std::abs(rows[1].efficiency - rows[1].speedup / 2) < 1e-9);
+  }
+
+  void showsTheTimelineTheSummaryAndZooms() {
+    QString error;
+    std::vector<Profile> profiles{*loadProfile(profileAt(1), error), *loadProfile(profileAt(2), error)};
+    ProfileView view(std::move(profiles));
+    view.resize(1000, 640);
+    view.show();
+    QVERIFY(QTest::qWaitForWindowExposed(&view));
+    QCOMPARE(view.summaryTable()->rowCount(), 2);  // the 2-thread run first
+    QCOMPARE(view.sweepTable()->rowCount(), 2);
+    QCOMPARE(view.sweepTable()->item(0, 2)->text(), QString("1.00"));
+    // The timeline draws the run spans in green.
+    const QImage picture = view.timeline()->grab().toImage();
+    int green = 0;
+    for (int y = 0; y < picture.height(); ++y)
+      for (int x = 0; x < picture.width(); ++x) {
+        const QColor c = picture.pixelColor(x, y);
+        green += c.green() > c.red() + 30 && c.green() > c.blue() + 30;
+      }
+    QVERIFY2(green > 500, qPrintable(QString("%1 green pixels").arg(green)));
+    if (qEnvironmentVariableIsSet("PROFILE_VIEW_PNG")) view.grab().save(qEnvironmentVariable("PROFILE_VIEW_PNG"));
+    // The wheel zooms in around the mouse; a double click shows the whole run again.
+    const double whole = view.timeline()->viewEnd() - view.timeline()->viewBegin();
+    const QPointF at(500, 40);
+    QWheelEvent wheel(at, view.timeline()->mapToGlobal(at), {}, {0, 120}, Qt::NoButton, Qt::NoModifier,
+                      Qt::NoScrollPhase, false);
+    QApplication::sendEvent(view.timeline(), &wheel);
+    QVERIFY(view.timeline()->viewEnd() - view.timeline()->viewBegin() < whole * 0.9);
+    QTest::mouseDClick(view.timeline(), Qt::LeftButton, {}, QPoint(500, 40));
+    QCOMPARE(view.timeline()->viewEnd() - view.timeline()->viewBegin(), whole);
+  }
+
+  void refusesWhatIsNotAProfile() {
+    QString error;
+    QFile junk(dir_.filePath("junk.json"));
+    QVERIFY(junk.open(QIODevice::WriteOnly));
+    junk.write("{\"traceEvents\": [");
+    junk.close();
+    QVERIFY(!loadProfile(junk.fileName(), error));
+    QVERIFY2(error.contains("not JSON"), qPrintable(error));
+    QFile other(dir_.filePath("other.json"));
+    QVERIFY(other.open(QIODevice::WriteOnly));
+    other.write("{\"traceEvents\": [{\"name\": \"x\", \"ph\": \"X\", \"ts\": 1, \"dur\": 2, \"tid\": 0}]}");
+    other.close();
+    QVERIFY(!loadProfile(other.fileName(), error));
+    QVERIFY2(error.contains("not a profile written by `meld --profile`"), qPrintable(error));
+    QVERIFY(!loadProfile(dir_.filePath("missing.json"), error));
+    QVERIFY2(error.contains("cannot read"), qPrintable(error));
+  }
+};
+
+QTEST_MAIN(ProfileViewTest)
+#include "qtest_profile_view.moc"
