@@ -52,7 +52,8 @@ std::unique_ptr<meldvm::Program> loadProgram(const Options& options, int& status
   meldc::SourceManager sources;
   meldc::Diagnostics diag(sources, std::cerr);
   try {
-    auto program = meldc::compileProgram({options.program, options.includeDirs, options.defines}, sources, diag);
+    auto program =
+        meldc::compileProgram({options.program, options.includeDirs, options.defines}, sources, diag);
     if (!program) status = kExitCompileErrors;
     return program;
   } catch (const meldc::InternalCompilerError& e) {
@@ -67,23 +68,25 @@ void printStats(const meldvm::MachineStats& s, double loadSeconds, double wall) 
                "facts derived: %llu\nfacts consumed: %llu\nfacts sent: %llu\nrules fired: %llu\n"
                "node runs: %llu\nload s: %.3f\nwall s: %.3f\nfacts/s: %.0f\npeak RSS MB: %.1f\n",
                (unsigned long long)s.factsDerived, (unsigned long long)s.factsConsumed,
-               (unsigned long long)s.factsSent, (unsigned long long)s.rulesFired, (unsigned long long)s.nodeRuns,
-               loadSeconds, wall, wall > 0 ? double(s.factsDerived) / wall : 0.0, peakRssMb());
+               (unsigned long long)s.factsSent, (unsigned long long)s.rulesFired,
+               (unsigned long long)s.nodeRuns, loadSeconds, wall,
+               wall > 0 ? double(s.factsDerived) / wall : 0.0, peakRssMb());
 }
 
 void printThreadTable(const std::vector<meldvm::ThreadStats>& threads) {
-  std::fprintf(stderr, "threads: %zu\n%-6s %7s %10s %12s %13s %11s %11s %9s %7s %8s %8s %8s\n", threads.size(),
-               "thread", "busy %", "node runs", "rules fired", "facts derived", "facts out", "facts in", "batches",
-               "waits", "stolen", "given", "steal %");
+  std::fprintf(stderr, "threads: %zu\n%-6s %7s %10s %12s %13s %11s %11s %9s %7s %8s %8s %8s\n",
+               threads.size(), "thread", "busy %", "node runs", "rules fired", "facts derived", "facts out",
+               "facts in", "batches", "waits", "stolen", "given", "steal %");
   for (std::size_t t = 0; t < threads.size(); ++t) {
     const meldvm::ThreadStats& s = threads[t];
     const double total = s.busySeconds + s.idleSeconds;
     std::fprintf(stderr, "%-6zu %7.1f %10llu %12llu %13llu %11llu %11llu %9llu %7llu %8llu %8llu %8.1f\n", t,
                  total > 0 ? 100.0 * (s.busySeconds - s.rebalanceSeconds) / total : 0.0,
                  (unsigned long long)s.nodeRuns, (unsigned long long)s.rulesFired,
-                 (unsigned long long)s.factsDerived, (unsigned long long)s.factsOut, (unsigned long long)s.factsIn,
-                 (unsigned long long)s.batchesOut, (unsigned long long)s.waits, (unsigned long long)s.nodesTaken,
-                 (unsigned long long)s.nodesGiven, total > 0 ? 100.0 * s.rebalanceSeconds / total : 0.0);
+                 (unsigned long long)s.factsDerived, (unsigned long long)s.factsOut,
+                 (unsigned long long)s.factsIn, (unsigned long long)s.batchesOut, (unsigned long long)s.waits,
+                 (unsigned long long)s.nodesTaken, (unsigned long long)s.nodesGiven,
+                 total > 0 ? 100.0 * s.rebalanceSeconds / total : 0.0);
   }
 }
 
@@ -104,7 +107,8 @@ bool runAndDump(AnyMachine& machine, const Options& options, Clock::time_point r
   return true;
 }
 
-int runSerial(const Options& options, const meldvm::Program& program, meldvm::MachineOptions mo, double loadSeconds) {
+int runSerial(const Options& options, const meldvm::Program& program, meldvm::MachineOptions mo,
+              double loadSeconds) {
   const Clock::time_point runStart = Clock::now();
   meldvm::Machine machine(program, mo);
   // Facts asked about are checked before the run: a typo fails at once.
@@ -200,5 +204,5 @@ int main(int argc, char** argv) {
   mo.maxSteps = options->maxSteps;
   const double loadSeconds = secondsSince(start);
   return options->threads > 1 || !options->profile.empty() ? runThreaded(*options, *program, mo, loadSeconds)
-                                                          : runSerial(*options, *program, mo, loadSeconds);
+                                                           : runSerial(*options, *program, mo, loadSeconds);
 }

@@ -27,8 +27,8 @@ struct Options {
   std::vector<std::string> includeDirs;                      // -I (for .meld)
   std::vector<std::pair<std::string, std::string>> defines;  // -D NAME=VALUE (for .meld)
   std::vector<std::string> programArgs;                      // after `--`: @arg1 ...
-  std::uint64_t seed = 0;      // --seed: the random stream of randint & co. (0: the default one)
-  std::uint64_t maxSteps = 0;  // --max-steps: rule and process runs allowed (0: no limit)
+  std::uint64_t seed = 0;        // --seed: the random stream of randint & co. (0: the default one)
+  std::uint64_t maxSteps = 0;    // --max-steps: rule and process runs allowed (0: no limit)
   std::vector<std::string> why;  // --why FACT: print its derivation tree after the run
   unsigned threads = 1;          // -j N / --threads N: worker threads (1: the serial VM)
   std::string profile;           // --profile FILE.json: the threads' timelines (Chrome trace)

@@ -91,7 +91,8 @@ std::optional<Profile> loadProfile(const QString& path, QString& error) {
 std::vector<SweepRow> sweep(const std::vector<Profile>& profiles) {
   std::vector<SweepRow> rows;
   for (const Profile& p : profiles) rows.push_back({int(p.threads.size()), p.endUs / 1e6, 0, 0});
-  std::stable_sort(rows.begin(), rows.end(), [](const auto& a, const auto& b) { return a.threads < b.threads; });
+  std::stable_sort(rows.begin(), rows.end(),
+                   [](const auto& a, const auto& b) { return a.threads < b.threads; });
   if (rows.empty()) return rows;
   const SweepRow base = rows.front();
   for (SweepRow& r : rows) {

@@ -23,10 +23,10 @@ struct ThreadSummary {
 };
 
 struct Profile {
-  QString path, title;                        // title: the process name ("meld -j 2")
+  QString path, title;                            // title: the process name ("meld -j 2")
   std::vector<std::vector<ProfileSpan>> threads;  // per worker thread, in time order
-  double endUs = 0;                           // the last span's end: the run's wall time
-  std::vector<ThreadSummary> summary;         // per thread
+  double endUs = 0;                               // the last span's end: the run's wall time
+  std::vector<ThreadSummary> summary;             // per thread
 };
 
 // Reads a profile; on failure nullopt and `error` says why (file, JSON, or not a meld profile).

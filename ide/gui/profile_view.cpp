@@ -104,9 +104,10 @@ void Timeline::paintEvent(QPaintEvent*) {
     for (const ProfileSpan& s : profile_->threads[t]) {
       if (s.endUs < begin_ || s.beginUs > end_) continue;
       const double x0 = std::max(xOf(s.beginUs), double(kLabelWidth)), x1 = xOf(s.endUs);
-      QColor c = s.kind == ProfileSpan::Kind::Idle    ? kIdle
-                 : s.kind == ProfileSpan::Kind::Steal ? kSteal
-                                                      : runColour(double(s.facts) / std::max(1e-9, s.endUs - s.beginUs), maxRate_);
+      QColor c = s.kind == ProfileSpan::Kind::Idle ? kIdle
+                 : s.kind == ProfileSpan::Kind::Steal
+                     ? kSteal
+                     : runColour(double(s.facts) / std::max(1e-9, s.endUs - s.beginUs), maxRate_);
       const int pad = rowHeight_ >= 12 ? 4 : 1;
       g.fillRect(QRectF(x0, y + pad, std::max(1.0, x1 - x0), rowHeight_ - 2 * pad), c);
     }
@@ -142,8 +143,9 @@ void Timeline::mouseMoveEvent(QMouseEvent* e) {
                              ? QString("rebalance: %1 nodes taken").arg(s->nodeRuns)
                              : QString("%1 node runs, %2 facts derived").arg(s->nodeRuns).arg(s->facts);
     QToolTip::showText(e->globalPosition().toPoint(),
-                       QString("worker %1, %2 from %3: %4").arg(thread).arg(duration(s->endUs - s->beginUs),
-                                                                          duration(s->beginUs), what),
+                       QString("worker %1, %2 from %3: %4")
+                           .arg(thread)
+                           .arg(duration(s->endUs - s->beginUs), duration(s->beginUs), what),
                        this);
   } else {
     QToolTip::hideText();
@@ -156,7 +158,8 @@ const ProfileSpan* Timeline::spanAt(QPoint p, int& thread) const {
   if (std::size_t(thread) >= profile_->threads.size()) return nullptr;
   const double at = usAt(p.x());
   const auto& spans = profile_->threads[std::size_t(thread)];
-  auto it = std::upper_bound(spans.begin(), spans.end(), at, [](double v, const ProfileSpan& s) { return v < s.beginUs; });
+  auto it = std::upper_bound(spans.begin(), spans.end(), at,
+                             [](double v, const ProfileSpan& s) { return v < s.beginUs; });
   if (it == spans.begin()) return nullptr;
   --it;
   return at <= it->endUs ? &*it : nullptr;
@@ -172,7 +175,8 @@ ProfileView::ProfileView(std::vector<Profile> profiles, QWidget* parent)
   timeline_ = new Timeline(this);
   summary_ = new QTableWidget(this);
   summary_->setColumnCount(7);
-  summary_->setHorizontalHeaderLabels({"thread", "busy %", "idle %", "steal %", "node runs", "facts derived", "nodes stolen"});
+  summary_->setHorizontalHeaderLabels(
+      {"thread", "busy %", "idle %", "steal %", "node runs", "facts derived", "nodes stolen"});
   summary_->verticalHeader()->hide();
   summary_->horizontalHeader()->setSectionResizeMode(QHeaderView::Stretch);
   sweep_ = new QTableWidget(this);
@@ -199,15 +203,17 @@ ProfileView::ProfileView(std::vector<Profile> profiles, QWidget* parent)
   layout->addWidget(timeline_);
   layout->addWidget(legend);
   layout->addWidget(summary_, 2);
-  auto* sweepLabel = new QLabel("Speedup over the run with the fewest threads (the profiles opened together):", this);
+  auto* sweepLabel =
+      new QLabel("Speedup over the run with the fewest threads (the profiles opened together):", this);
   layout->addWidget(sweepLabel);
   layout->addWidget(sweep_, 1);
   sweepLabel->setVisible(profiles_.size() > 1);
   sweep_->setVisible(profiles_.size() > 1);
   connect(chooser_, qOverload<int>(&QComboBox::currentIndexChanged), this, [this](int i) { showProfile(i); });
   // The most threads first: the run one opens a profile for.
-  const auto most = std::max_element(profiles_.begin(), profiles_.end(),
-                                     [](const Profile& a, const Profile& b) { return a.threads.size() < b.threads.size(); });
+  const auto most = std::max_element(
+      profiles_.begin(), profiles_.end(),
+      [](const Profile& a, const Profile& b) { return a.threads.size() < b.threads.size(); });
   const int first = profiles_.empty() ? -1 : int(most - profiles_.begin());
   if (first >= 0) chooser_->setCurrentIndex(first);
   showProfile(first);
@@ -219,7 +225,10 @@ void ProfileView::showProfile(int index) {
     return;
   }
   const Profile& p = profiles_[std::size_t(index)];
-  heading_->setText(QString("<b>%1</b> — %2 worker threads, %3 s").arg(p.title).arg(p.threads.size()).arg(p.endUs / 1e6, 0, 'f', 3));
+  heading_->setText(QString("<b>%1</b> — %2 worker threads, %3 s")
+                        .arg(p.title)
+                        .arg(p.threads.size())
+                        .arg(p.endUs / 1e6, 0, 'f', 3));
   timeline_->setProfile(&p);
   summary_->setRowCount(int(p.summary.size()));
   for (int t = 0; t < int(p.summary.size()); ++t) {

@@ -42,7 +42,8 @@ class ProfileViewTest : public QObject {
 
   void readsTheThreadsTheirSpansAndTheSweep() {
     QString error;
-    const std::optional<Profile> one = loadProfile(profileAt(1), error), two = loadProfile(profileAt(2), error);
+    const std::optional<Profile> one = loadProfile(profileAt(1), error),
+                                 two = loadProfile(profileAt(2), error);
     QVERIFY2(one && two, qPrintable(error));
     QCOMPARE(one->title, QString("meld -j 1"));
     QCOMPARE(int(one->threads.size()), 1);
@@ -52,7 +53,7 @@ class ProfileViewTest : public QObject {
       runs += s.nodeRuns;
       QVERIFY(s.runUs + s.idleUs + s.stealUs <= two->endUs * 1.001);
     }
-    QVERIFY(runs >= 64u);  // every node ran at least once
+    QVERIFY(runs >= 64u);                      // every node ran at least once
     QCOMPARE(one->summary[0].facts, 6264ull);  // 64 edges, 200 tokens, 200 x 30 hops
     const std::vector<SweepRow> rows = sweep({*two, *one});
     QCOMPARE(int(rows.size()), 2);
@@ -81,7 +82,8 @@ class ProfileViewTest : public QObject {
         green += c.green() > c.red() + 30 && c.green() > c.blue() + 30;
       }
     QVERIFY2(green > 500, qPrintable(QString("%1 green pixels").arg(green)));
-    if (qEnvironmentVariableIsSet("PROFILE_VIEW_PNG")) view.grab().save(qEnvironmentVariable("PROFILE_VIEW_PNG"));
+    if (qEnvironmentVariableIsSet("PROFILE_VIEW_PNG"))
+      view.grab().save(qEnvironmentVariable("PROFILE_VIEW_PNG"));
     // The wheel zooms in around the mouse; a double click shows the whole run again.
     const double whole = view.timeline()->viewEnd() - view.timeline()->viewBegin();
     const QPointF at(500, 40);

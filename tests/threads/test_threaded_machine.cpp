@@ -3,7 +3,6 @@
 // one thread, and the serial dump for schedule-independent programs at several thread counts.
 #define BOOST_TEST_MODULE threads_threaded_machine
 #include <boost/test/unit_test.hpp>
-
 #include <regex>
 #include <set>
 #include <sstream>
@@ -52,7 +51,8 @@ std::string ringProgram() {
       "type linear token(node, list int, string, :(int, float), int).\n"
       "type linear seen(node, list int, string, :(int, float)).\n"
       "token(@0, [], \"go\", :(0, 0.5), 23).\n";
-  for (int i = 0; i < 24; ++i) s += "!edge(@" + std::to_string(i) + ", @" + std::to_string((i + 1) % 24) + ").\n";
+  for (int i = 0; i < 24; ++i)
+    s += "!edge(@" + std::to_string(i) + ", @" + std::to_string((i + 1) % 24) + ").\n";
   s += "token(A, L, S, P, N), !edge(A, B), N > 0 -o "
        "token(B, [N | L], concatenate(S, int2str(N)), P, N - 1), seen(A, L, S, P).\n"
        "token(A, L, S, P, 0) -o seen(A, L, S, P).\n";
@@ -66,7 +66,8 @@ BOOST_AUTO_TEST_CASE(boxed_values_cross_threads_and_the_dump_is_the_serial_one) 
   const std::string serial = serialDump(*p);
   BOOST_TEST(serial.find("seen([1,2,3,4,5,6,7,8,9,10,11,12,13,14,15,16,17,18,19,20,21,22,23], ") !=
              std::string::npos);
-  for (unsigned threads : {2u, 3u, 4u, 7u}) BOOST_TEST(threadedDump(*p, threads) == serial, "threads " << threads);
+  for (unsigned threads : {2u, 3u, 4u, 7u})
+    BOOST_TEST(threadedDump(*p, threads) == serial, "threads " << threads);
 }
 
 BOOST_AUTO_TEST_CASE(more_threads_than_nodes) {
@@ -80,8 +81,9 @@ BOOST_AUTO_TEST_CASE(nodes_created_on_every_thread_are_collected_like_the_serial
   std::string s =
       "type linear grow(node, node, int).\ntype linear back(node, int).\ntype linear kept(node, int).\n"
       "type linear total(node, int).\n";
-  for (int i = 0; i < 8; ++i) s += "grow(@" + std::to_string(i) + ", @" + std::to_string(i) + ", 3). total(@" +
-                                   std::to_string(i) + ", 0).\n";
+  for (int i = 0; i < 8; ++i)
+    s += "grow(@" + std::to_string(i) + ", @" + std::to_string(i) + ", 3). total(@" + std::to_string(i) +
+         ", 0).\n";
   s += "grow(A, R, N), N > 0 -o exists B. (grow(B, R, N - 1)).\n"
        "grow(A, R, 0) -o back(R, 1), kept(A, 1).\n"
        "back(A, X), total(A, T) -o total(A, T + X).\n";
@@ -109,7 +111,8 @@ BOOST_AUTO_TEST_CASE(thread_facts_are_sent_to_other_threads) {
   for (unsigned threads : {2u, 3u}) {
     const std::string dump = threadedDump(*p, threads);
     std::size_t count = 0;
-    for (std::size_t at = dump.find("hello(1)"); at != std::string::npos; at = dump.find("hello(1)", at + 1)) ++count;
+    for (std::size_t at = dump.find("hello(1)"); at != std::string::npos; at = dump.find("hello(1)", at + 1))
+      ++count;
     BOOST_TEST(count == threads * (threads - 1), dump);
   }
 }
@@ -207,7 +210,8 @@ BOOST_AUTO_TEST_CASE(set_cpu_moves_nodes_to_another_thread_where_they_get_just_m
     m.run();
     const std::string dump = m.dump();
     std::size_t onLeader = 0;
-    for (std::size_t at = dump.find("where(#T0, "); at != std::string::npos; at = dump.find("where(#T0, ", at + 1))
+    for (std::size_t at = dump.find("where(#T0, "); at != std::string::npos;
+         at = dump.find("where(#T0, ", at + 1))
       ++onLeader;
     BOOST_TEST(onLeader == 8u, dump);
     BOOST_TEST(dump.find("where(#T1") == std::string::npos, dump);

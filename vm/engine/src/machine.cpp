@@ -123,7 +123,8 @@ void Machine::reserveForAxioms() {
       if (Opcode(b.code[pc]) == Opcode::DERIVE) ++facts[b.code[pc + 1]];
     });
   // A shard stores about its share of them.
-  const double share = initialNodes_ ? double(placement_.endOwned - placement_.firstOwned) / initialNodes_ : 1;
+  const double share =
+      initialNodes_ ? double(placement_.endOwned - placement_.firstOwned) / initialNodes_ : 1;
   for (PredId p = 0; p < facts.size(); ++p)
     if (facts[p] != 0 && !program_.predicates[p].action)
       db_->reserve(p, std::size_t(double(facts[p]) * share) + (share < 1 ? 64 : 0));
@@ -418,7 +419,8 @@ void Machine::send(NodeId host, NodeId dest, PredId p, const Value* args, bool n
       if (d.linear && negative) return;
       if (!negative) ++stats_.factsDerived, ++runDerived_;
       ++stats_.factsSent;
-      (d.linear ? sentLinear_ : sentPersistent_).push_back({dest, p, negative, std::uint32_t(sentArgs_.size())});
+      (d.linear ? sentLinear_ : sentPersistent_)
+          .push_back({dest, p, negative, std::uint32_t(sentArgs_.size())});
       pushArgs(sentArgs_, p, args);
       return;
     }
@@ -583,8 +585,11 @@ void Machine::settleMovedNode(NodeId n) {
 SerialScheduler::Carried Machine::giveNode(NodeId n, const StoredFactVisitor& stored,
                                            const PendingFactVisitor& pending) {
   db_->forEachStored(n, stored);
-  mail_->forEach(n, [](PredId) { return true; }, [&](PredId p, bool negative, const Value* args) { pending(p, args, negative); });
-  mail_->forEach(n, [](PredId) { return true; }, [&](PredId p, bool, const Value* args) { releaseArgs(p, args); });
+  mail_->forEach(
+      n, [](PredId) { return true; },
+      [&](PredId p, bool negative, const Value* args) { pending(p, args, negative); });
+  mail_->forEach(
+      n, [](PredId) { return true; }, [&](PredId p, bool, const Value* args) { releaseArgs(p, args); });
   mail_->release(n);
   db_->clearNode(n);
   std::fill_n(candidates_.data() + std::size_t(n) * tables_.ruleWords, tables_.ruleWords, 0);

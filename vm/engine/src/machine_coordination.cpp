@@ -88,7 +88,8 @@ void Machine::placeNode(Opcode op, NodeId n, Value arg) {
   }
   const char* what = op == Opcode::SET_CPU ? "set-cpu" : "set-affinity";
   const ThreadId owner = ownerOf(n);
-  if (owner == kNoThread) throw RuntimeError(std::string(what) + " for node " + nodeName(n) + ", which does not exist");
+  if (owner == kNoThread)
+    throw RuntimeError(std::string(what) + " for node " + nodeName(n) + ", which does not exist");
   ThreadId target = kNoThread;
   if (op == Opcode::SET_CPU) {
     target = arg.asThread();
@@ -103,8 +104,9 @@ void Machine::placeNode(Opcode op, NodeId n, Value arg) {
   // where it is pinned and just-moved is added when it arrives (§5.7).
   if (owner != target) {
     if (n >= initialNodes_)
-      throw RuntimeError(std::string(what) + ": node " + nodeName(n) +
-                         " is a thread node or was created by exists; only the graph's nodes move between threads");
+      throw RuntimeError(
+          std::string(what) + ": node " + nodeName(n) +
+          " is a thread node or was created by exists; only the graph's nodes move between threads");
     return shard_->requestMove(n, target);
   }
   if (owner == placement_.self)

@@ -51,7 +51,8 @@ void Machine::postAll(const std::vector<PendingFact>& facts) {
   for (std::size_t i = 0; i < n && i < kTailAhead; ++i)
     if (facts[i].node < nodes) mail_->prefetchTail(facts[i].node);
   for (std::size_t i = 0; i < n; ++i) {
-    if (i + kTailAhead < n && facts[i + kTailAhead].node < nodes) mail_->prefetchTail(facts[i + kTailAhead].node);
+    if (i + kTailAhead < n && facts[i + kTailAhead].node < nodes)
+      mail_->prefetchTail(facts[i + kTailAhead].node);
     const PendingFact& e = facts[i];
     const Value* args = sentArgs_.data() + e.args;
     postOrRoute(e, args);

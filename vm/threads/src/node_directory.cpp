@@ -13,7 +13,8 @@ NodeDirectory::NodeDirectory(NodeId graphNodes, ThreadId threads, bool threadNod
       owner_(new std::atomic<std::uint16_t>[graphNodes]),
       blockOwner_(new std::atomic<ThreadId>[kMaxBlocks]) {
   for (ThreadId t = 0; t < threads; ++t)
-    for (NodeId n = firstOwned(t); n < endOwned(t); ++n) owner_[n].store(std::uint16_t(t), std::memory_order_relaxed);
+    for (NodeId n = firstOwned(t); n < endOwned(t); ++n)
+      owner_[n].store(std::uint16_t(t), std::memory_order_relaxed);
   for (std::uint32_t b = 0; b < kMaxBlocks; ++b) blockOwner_[b].store(kNoThread, std::memory_order_relaxed);
 }
 

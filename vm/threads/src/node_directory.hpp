@@ -42,7 +42,7 @@ class NodeDirectory {
  private:
   NodeId graph_;
   ThreadId threads_;
-  NodeId createdBase_;  // the first id of the first block of created nodes
+  NodeId createdBase_;                                   // the first id of the first block of created nodes
   std::unique_ptr<std::atomic<std::uint16_t>[]> owner_;  // per graph node (threads <= 1024)
   std::unique_ptr<std::atomic<ThreadId>[]> blockOwner_;
   std::atomic<std::uint32_t> blocks_{0};

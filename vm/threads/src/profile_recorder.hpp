@@ -17,11 +17,13 @@ class ProfileRecorder {
   enum class Kind : std::uint8_t { Run, Idle, Steal };
   struct Span {
     Kind kind;
-    std::int64_t beginNs, endNs;  // since the run's start
+    std::int64_t beginNs, endNs;                             // since the run's start
     std::uint64_t nodeRuns, factsDerived, factsIn, waiting;  // during the span; waiting: queue at its end
   };
 
-  explicit ProfileRecorder(std::chrono::steady_clock::time_point origin) : origin_(origin) { spans_.reserve(4096); }
+  explicit ProfileRecorder(std::chrono::steady_clock::time_point origin) : origin_(origin) {
+    spans_.reserve(4096);
+  }
 
   // A node run ended (derived: the thread's facts derived so far; waiting: its queue length).
   void nodeRun(std::uint64_t derived, std::uint64_t factsIn, std::size_t waiting) {
@@ -50,11 +52,13 @@ class ProfileRecorder {
   static constexpr unsigned kClockEvery = 8;
 
   std::int64_t nanos() const {
-    return std::chrono::duration_cast<std::chrono::nanoseconds>(std::chrono::steady_clock::now() - origin_).count();
+    return std::chrono::duration_cast<std::chrono::nanoseconds>(std::chrono::steady_clock::now() - origin_)
+        .count();
   }
   void closeRun(std::int64_t now, std::uint64_t derived, std::uint64_t factsIn, std::size_t waiting) {
     if (runs_ != 0)
-      spans_.push_back({Kind::Run, spanBegin_, now, runs_, derived - derivedAt_, factsIn - factsInAt_, waiting});
+      spans_.push_back(
+          {Kind::Run, spanBegin_, now, runs_, derived - derivedAt_, factsIn - factsInAt_, waiting});
     runs_ = 0;
     sinceClock_ = 0;
     derivedAt_ = derived;

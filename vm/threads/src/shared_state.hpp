@@ -18,7 +18,9 @@ namespace meldvm::threads {
 
 struct SharedState {
   explicit SharedState(ThreadId threads)
-      : threads(threads), channels(new Channel[std::size_t(threads) * threads]), perThread(new PerThread[threads]) {
+      : threads(threads),
+        channels(new Channel[std::size_t(threads) * threads]),
+        perThread(new PerThread[threads]) {
     active.store(threads);
   }
 

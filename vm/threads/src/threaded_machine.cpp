@@ -22,7 +22,8 @@ ThreadedMachine::ThreadedMachine(const Program& program, MachineOptions options,
   directory_ = std::make_unique<threads::NodeDirectory>(graph, threads, tables.hasThreads);
   shared_ = std::make_unique<threads::SharedState>(threads);
   for (ThreadId t = 0; t < threads; ++t)
-    workers_.push_back(std::make_unique<threads::Worker>(program, options, t, *directory_, *shared_, outputLock_));
+    workers_.push_back(
+        std::make_unique<threads::Worker>(program, options, t, *directory_, *shared_, outputLock_));
 }
 
 ThreadedMachine::~ThreadedMachine() {

@@ -11,8 +11,8 @@ namespace {
 // fact as meldvm/fact_codec.hpp encodes it, for a coordination fact the opcode (u32) and the
 // value (f64). Native byte order: the bytes never leave the process.
 // A node moving to the thread: kMigrate, the node, its scheduling state (f64 priority, f64
-// default priority, u8 static), u8 1 if set-cpu moved it (0: stolen), then its stored facts (u32 count; each u32 copies, u32 length,
-// the fact) and its waiting messages (u32 count; each u32 length, the fact).
+// default priority, u8 static), u8 1 if set-cpu moved it (0: stolen), then its stored facts (u32 count; each
+// u32 copies, u32 length, the fact) and its waiting messages (u32 count; each u32 length, the fact).
 enum RecordKind : std::uint8_t { kFact = 0, kCoordination = 1, kMigrate = 2 };
 
 template <class T>
@@ -92,9 +92,12 @@ void Worker::loop() {
       if (machine_->runNext()) {
         const auto queued = std::uint32_t(machine_->waitingNodes());
         shared_.perThread[self_].queued.store(queued, std::memory_order_relaxed);
-        if (queued >= 2 * kMinStealQueue && shared_.idleThreads.load(std::memory_order_relaxed) != 0) offerWork();
-        if (profile_) profile_->nodeRun(machine_->stats().factsDerived, stats_.factsIn, machine_->waitingNodes());
-        if (outgoingBytes_ != 0 && (outgoingBytes_ >= kFlushBytes || ++runsSinceFlush_ >= kFlushRuns)) flush();
+        if (queued >= 2 * kMinStealQueue && shared_.idleThreads.load(std::memory_order_relaxed) != 0)
+          offerWork();
+        if (profile_)
+          profile_->nodeRun(machine_->stats().factsDerived, stats_.factsIn, machine_->waitingNodes());
+        if (outgoingBytes_ != 0 && (outgoingBytes_ >= kFlushBytes || ++runsSinceFlush_ >= kFlushRuns))
+          flush();
         continue;
       }
       flush();
@@ -286,7 +289,7 @@ void Worker::rebalance() {
     }
   } endSpan{*this, takenBefore};
   flush();
-  if (!shared_.arriveAndWait()) return;  // 1
+  if (!shared_.arriveAndWait()) return;             // 1
   const Clock::time_point allThere = Clock::now();  // the cost of a rebalance starts here
   if (self_ == 0) shared_.rebalanceWanted.store(false);
   takeMail();
@@ -310,12 +313,13 @@ void Worker::rebalance() {
   takeMail();
   shared_.perThread[self_].queued.store(std::uint32_t(machine_->waitingNodes()));
   if (self_ == 0) shared_.moves.clear();  // nobody reads it in phase 4, nobody adds to it in a rebalance
-  shared_.arriveAndWait();  // 4
+  shared_.arriveAndWait();                // 4
   const double seconds = secondsSince(start);
   stats_.rebalanceSeconds += seconds;
   if (self_ == 0) {
     const auto cost = std::int64_t(secondsSince(allThere) * 1e9);
-    shared_.nextRebalanceNs.store(nowNanos() + std::max(SharedState::kRebalanceNanos, cost * SharedState::kRebalanceGap));
+    shared_.nextRebalanceNs.store(nowNanos() +
+                                  std::max(SharedState::kRebalanceNanos, cost * SharedState::kRebalanceGap));
   }
 }
 

@@ -24,7 +24,9 @@ class Worker final : public ShardLink {
          SharedState& shared, std::mutex& outputLock);
   ~Worker() override;
 
-  void launch() { thread_ = std::thread([this] { loop(); }); }
+  void launch() {
+    thread_ = std::thread([this] { loop(); });
+  }
   void join() {
     if (thread_.joinable()) thread_.join();
   }
@@ -41,7 +43,9 @@ class Worker final : public ShardLink {
   ThreadId ownerOf(NodeId n) const override { return directory_.ownerOf(n); }
   void sendRemote(ThreadId to, NodeId from, NodeId dest, PredId p, const Value* args, bool negative) override;
   void coordinateRemote(ThreadId to, Opcode op, NodeId n, double value) override;
-  NodeId allocateNodeBlock(ThreadId self, NodeId& count) override { return directory_.allocateBlock(self, count); }
+  NodeId allocateNodeBlock(ThreadId self, NodeId& count) override {
+    return directory_.allocateBlock(self, count);
+  }
   void stopAll() override { shared_.stopAll(); }
   void requestMove(NodeId n, ThreadId to) override;
   void staticChanged(ThreadId t, int delta) override { shared_.perThread[t].staticNodes.fetch_add(delta); }
@@ -82,7 +86,7 @@ class Worker final : public ShardLink {
   unsigned runsSinceFlush_ = 0;
   Bytes incoming_;
   const bool stealing_;  // not with `priority @static`
-  DecodedFact fact_;  // the decoder's storage, reused
+  DecodedFact fact_;     // the decoder's storage, reused
   ThreadStats stats_;
   std::unique_ptr<ProfileRecorder> profile_;
   std::thread thread_;

@@ -139,7 +139,8 @@ class Machine : private SchedulerView {
   void settleMovedNode(NodeId n);
   using StoredFactVisitor = std::function<void(PredId, const Value*, std::uint32_t copies)>;
   using PendingFactVisitor = std::function<void(PredId, const Value*, bool negative)>;
-  SerialScheduler::Carried giveNode(NodeId n, const StoredFactVisitor& stored, const PendingFactVisitor& pending);
+  SerialScheduler::Carried giveNode(NodeId n, const StoredFactVisitor& stored,
+                                    const PendingFactVisitor& pending);
   void takeNode(NodeId n, const SerialScheduler::Carried& state);
   void takeStoredFact(NodeId n, PredId p, const Value* args, std::uint32_t copies);
   void takePendingFact(NodeId n, PredId p, const Value* args, bool negative) { post(n, p, args, negative); }
