@@ -26,9 +26,18 @@ QColor runColour(double rate, double maxRate) {
 
 QString duration(double us) {
   if (us == 0) return "0";
-  if (us >= 1e6) return QString::number(us / 1e6, 'f', 3) + " s";
-  if (us >= 1e3) return QString::number(us / 1e3, 'f', 2) + " ms";
-  return QString::number(us, 'f', 1) + " µs";
+  // At most three significant decimals, without trailing zeros ("500 ms", "1.25 s").
+  auto number = [](double v, int decimals) {
+    QString t = QString::number(v, 'f', decimals);
+    if (t.contains('.')) {
+      while (t.endsWith('0')) t.chop(1);
+      if (t.endsWith('.')) t.chop(1);
+    }
+    return t;
+  };
+  if (us >= 1e6) return number(us / 1e6, 3) + " s";
+  if (us >= 1e3) return number(us / 1e3, 2) + " ms";
+  return number(us, 1) + " µs";
 }
 
 // A tick step of 1, 2 or 5 times a power of ten giving ticks at least `minUs` apart.

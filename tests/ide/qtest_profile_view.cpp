@@ -19,6 +19,12 @@ class ProfileViewTest : public QObject {
  private:
   QTemporaryDir dir_;
   QString profileAt(int threads) const { return dir_.filePath(QString("ring.j%1.json").arg(threads)); }
+  // Writes `text` into the test's folder; returns the path (empty if it could not).
+  QString write(const QString& name, const QByteArray& text) const {
+    QFile f(dir_.filePath(name));
+    if (!f.open(QIODevice::WriteOnly) || f.write(text) != text.size()) return {};
+    return f.fileName();
+  }
 
  private Q_SLOTS:
   void initTestCase() {
@@ -27,14 +33,12 @@ class ProfileViewTest : public QObject {
     for (int i = 0; i < 64; ++i) source += QString("!edge(@%1, @%2).\n").arg(i).arg((i + 1) % 64);
     for (int i = 0; i < 200; ++i) source += QString("token(@%1, 30).\n").arg(i % 64);
     source += "token(A, N), N > 0, !edge(A, B) -o token(B, N - 1).\n";
-    QFile f(dir_.filePath("ring.meld"));
-    QVERIFY(f.open(QIODevice::WriteOnly));
-    f.write(source.toUtf8());
-    f.close();
+    const QString program = write("ring.meld", source.toUtf8());
+    QVERIFY(!program.isEmpty());
     for (int threads : {1, 2}) {
       QProcess meld;
       meld.start(MELD_BINARY_DIR "/apps/meld/meld",
-                 {f.fileName(), "-j", QString::number(threads), "--profile", profileAt(threads)});
+                 {program, "-j", QString::number(threads), "--profile", profileAt(threads)});
       QVERIFY(meld.waitForFinished(60000));
       QCOMPARE(meld.exitCode(), 0);
     }
@@ -97,17 +101,12 @@ class ProfileViewTest : public QObject {
 
   void refusesWhatIsNotAProfile() {
     QString error;
-    QFile junk(dir_.filePath("junk.json"));
-    QVERIFY(junk.open(QIODevice::WriteOnly));
-    junk.write("{\"traceEvents\": [");
-    junk.close();
-    QVERIFY(!loadProfile(junk.fileName(), error));
+    QVERIFY(!loadProfile(write("junk.json", "{\"traceEvents\": ["), error));
     QVERIFY2(error.contains("not JSON"), qPrintable(error));
-    QFile other(dir_.filePath("other.json"));
-    QVERIFY(other.open(QIODevice::WriteOnly));
-    other.write("{\"traceEvents\": [{\"name\": \"x\", \"ph\": \"X\", \"ts\": 1, \"dur\": 2, \"tid\": 0}]}");
-    other.close();
-    QVERIFY(!loadProfile(other.fileName(), error));
+    QVERIFY(!loadProfile(
+        write("other.json",
+              "{\"traceEvents\": [{\"name\": \"x\", \"ph\": \"X\", \"ts\": 1, \"dur\": 2, \"tid\": 0}]}"),
+        error));
     QVERIFY2(error.contains("not a profile written by `meld --profile`"), qPrintable(error));
     QVERIFY(!loadProfile(dir_.filePath("missing.json"), error));
     QVERIFY2(error.contains("cannot read"), qPrintable(error));
