@@ -63,7 +63,8 @@ std::unique_ptr<meldvm::Program> loadProgram(const Options& options, int& status
   }
 }
 
-void printStats(const meldvm::MachineStats& s, double loadSeconds, double wall) {
+void printStats(const meldvm::MachineStats& s, double loadSeconds, double wall, std::size_t vmBytes,
+                std::size_t nodes) {
   std::fprintf(stderr,
                "facts derived: %llu\nfacts consumed: %llu\nfacts sent: %llu\nrules fired: %llu\n"
                "node runs: %llu\nload s: %.3f\nwall s: %.3f\nfacts/s: %.0f\npeak RSS MB: %.1f\n",
@@ -71,6 +72,9 @@ void printStats(const meldvm::MachineStats& s, double loadSeconds, double wall) 
                (unsigned long long)s.factsSent, (unsigned long long)s.rulesFired,
                (unsigned long long)s.nodeRuns, loadSeconds, wall,
                wall > 0 ? double(s.factsDerived) / wall : 0.0, peakRssMb());
+  // The VM's own memory (stores, heaps, mailboxes, schedulers; all threads), per node of the graph.
+  std::fprintf(stderr, "VM MB: %.1f\nVM bytes per node: %.0f\n", double(vmBytes) / 1e6,
+               nodes ? double(vmBytes) / double(nodes) : 0.0);
 }
 
 void printThreadTable(const std::vector<meldvm::ThreadStats>& threads) {
@@ -136,7 +140,7 @@ int runSerial(const Options& options, const meldvm::Program& program, meldvm::Ma
   }
   std::cout.flush();
   if (options.stats) {
-    printStats(machine.stats(), loadSeconds, wall);
+    printStats(machine.stats(), loadSeconds, wall, machine.bytesInUse(), program.nodeSourceIds.size());
     if (!why.empty())
       std::fprintf(stderr, "derivations recorded: %zu (%.1f MB)\n", derivations.size(),
                    double(derivations.bytesInUse()) / 1e6);
@@ -160,7 +164,7 @@ int runThreaded(const Options& options, const meldvm::Program& program, meldvm::
   double wall = 0;
   if (!runAndDump(machine, options, runStart, wall)) return kExitRuntimeError;
   if (options.stats) {
-    printStats(machine.stats(), loadSeconds, wall);
+    printStats(machine.stats(), loadSeconds, wall, machine.bytesInUse(), program.nodeSourceIds.size());
     printThreadTable(machine.threadStats());
   }
   if (profile.is_open()) {
