@@ -16,7 +16,7 @@ void Machine::post(NodeId dest, PredId p, const Value* args, bool negative) {
 void Machine::postOrRoute(const PendingFact& e, const Value* args) {
   if (shard_) [[unlikely]] {
     if (const ThreadId owner = shard_->ownerOf(e.node); owner != placement_.self) {
-      shard_->sendRemote(owner, running_, e.node, e.pred, args, e.negative);
+      shard_->sendRemote(owner, e.node, e.pred, args, e.negative);
       return;
     }
   }

@@ -35,6 +35,11 @@ struct SharedState {
   void wakeAll() {
     for (ThreadId t = 0; t < threads; ++t) wake(t);
   }
+  // Every thread joins a rebalance between two node runs (worker.cpp).
+  void askForRebalance() {
+    bool expected = false;
+    if (rebalanceWanted.compare_exchange_strong(expected, true)) wakeAll();
+  }
   void finish() {
     done.store(true);
     wakeAll();

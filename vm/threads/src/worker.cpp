@@ -135,52 +135,58 @@ bool Worker::takeMail() {
   return any;
 }
 
-void Worker::decode(const Bytes& in) {
-  Heap& heap = machine_->heap();
-  for (std::size_t pos = 0; pos < in.size();) {
-    const auto kind = get<std::uint8_t>(in, pos);
-    const NodeId node = get<std::uint32_t>(in, pos);
-    if (kind == kMigrate) {
-      pos -= sizeof(std::uint32_t);
-      takeNode(in, pos);
-      continue;
-    }
-    if (kind == kCoordination) {
-      const auto op = Opcode(get<std::uint32_t>(in, pos));
-      const double value = get<double>(in, pos);
-      if (!machine_->holdsNode(node))
-        throw RuntimeError("coordination fact for node @" + std::to_string(node) + ", which does not exist");
-      machine_->coordinateOwned(op, node, value);
-      continue;
-    }
-    const auto length = get<std::uint32_t>(in, pos);
-    decodeFact(in.data() + pos, length, program_.predicates, heap, fact_);
-    pos += length;
-    ++stats_.factsIn;
-    const PredicateDesc& d = program_.predicates[fact_.pred];
-    auto release = [&] {
-      for (std::uint32_t i = 0; i < d.arity(); ++i) heap.release(d.fields[i], fact_.args[i]);
-    };
-    try {
-      machine_->receive(node, fact_.pred, fact_.args.data(), fact_.negative);
-    } catch (...) {
-      release();
-      throw;
-    }
-    release();
-  }
-}
-
-void Worker::sendRemote(ThreadId to, NodeId, NodeId dest, PredId p, const Value* args, bool negative) {
-  Bytes& out = outgoing_[to];
-  const std::size_t before = out.size();
-  put<std::uint8_t>(out, kFact);
-  put<std::uint32_t>(out, dest);
+void Worker::putFact(Bytes& out, PredId p, const Value* args, bool negative) {
   put<std::uint32_t>(out, 0);  // the length, once known
   const std::size_t start = out.size();
   encodeFact(out, program_.predicates, p, args, negative);
   const auto length = std::uint32_t(out.size() - start);
   std::memcpy(out.data() + start - sizeof length, &length, sizeof length);
+}
+
+template <class Use>
+void Worker::readFact(const Bytes& in, std::size_t& pos, Use&& use) {
+  Heap& heap = machine_->heap();
+  const auto length = get<std::uint32_t>(in, pos);
+  decodeFact(in.data() + pos, length, program_.predicates, heap, fact_);
+  pos += length;
+  const PredicateDesc& d = program_.predicates[fact_.pred];
+  auto release = [&] {
+    for (std::uint32_t i = 0; i < d.arity(); ++i) heap.release(d.fields[i], fact_.args[i]);
+  };
+  try {
+    use();
+  } catch (...) {
+    release();
+    throw;
+  }
+  release();
+}
+
+void Worker::decode(const Bytes& in) {
+  for (std::size_t pos = 0; pos < in.size();) {
+    const auto kind = get<std::uint8_t>(in, pos);
+    const NodeId node = get<std::uint32_t>(in, pos);
+    if (kind == kMigrate) {
+      takeNode(node, in, pos);
+    } else if (kind == kCoordination) {
+      const auto op = Opcode(get<std::uint32_t>(in, pos));
+      const double value = get<double>(in, pos);
+      if (!machine_->holdsNode(node))
+        throw RuntimeError("coordination fact for node @" + std::to_string(node) + ", which does not exist");
+      machine_->coordinateOwned(op, node, value);
+    } else {
+      ++stats_.factsIn;
+      readFact(in, pos, [&] { machine_->receive(node, fact_.pred, fact_.args.data(), fact_.negative); });
+    }
+  }
+}
+
+void Worker::sendRemote(ThreadId to, NodeId dest, PredId p, const Value* args, bool negative) {
+  Bytes& out = outgoing_[to];
+  const std::size_t before = out.size();
+  put<std::uint8_t>(out, kFact);
+  put<std::uint32_t>(out, dest);
+  putFact(out, p, args, negative);
   outgoingBytes_ += out.size() - before;
   ++stats_.factsOut;
 }
@@ -262,8 +268,7 @@ bool Worker::requestRebalance() {
     if (t != self_) longest = std::max(longest, shared_.perThread[t].queued.load(std::memory_order_relaxed));
   if (longest < 2 * kMinStealQueue) return false;
   if (nowNanos() < shared_.nextRebalanceNs.load()) return false;
-  bool expected = false;
-  if (shared_.rebalanceWanted.compare_exchange_strong(expected, true)) shared_.wakeAll();
+  shared_.askForRebalance();
   return true;
 }
 
@@ -272,8 +277,7 @@ bool Worker::requestRebalance() {
 void Worker::offerWork() {
   if (!stealing_ || shared_.rebalanceWanted.load(std::memory_order_relaxed)) return;
   if (nowNanos() < shared_.nextRebalanceNs.load()) return;
-  bool expected = false;
-  if (shared_.rebalanceWanted.compare_exchange_strong(expected, true)) shared_.wakeAll();
+  shared_.askForRebalance();
 }
 
 void Worker::rebalance() {
@@ -332,8 +336,7 @@ void Worker::requestMove(NodeId n, ThreadId to) {
     std::lock_guard<std::mutex> lock(shared_.movesLock);
     shared_.moves.emplace_back(n, to);
   }
-  bool expected = false;  // no waiting for the next allowed rebalance: the program asked
-  if (shared_.rebalanceWanted.compare_exchange_strong(expected, true)) shared_.wakeAll();
+  shared_.askForRebalance();  // no waiting for the next allowed rebalance: the program asked
 }
 
 void Worker::giveNode(ThreadId to, NodeId n, bool moved) {
@@ -341,43 +344,27 @@ void Worker::giveNode(ThreadId to, NodeId n, bool moved) {
   const std::size_t before = out.size();
   put<std::uint8_t>(out, kMigrate);
   put<std::uint32_t>(out, n);
-  const std::size_t stateAt = out.size();
-  put<double>(out, 0.0);
-  put<double>(out, 0.0);
-  put<std::uint8_t>(out, 0);
+  const std::size_t stateAt = out.size();  // written once the node is given (giveNode returns it)
+  out.resize(stateAt + kStateBytes);
   put<std::uint8_t>(out, moved ? 1 : 0);
-  std::uint32_t stored = 0, pending = 0;
-  std::size_t countAt = out.size();
+  const std::size_t storedAt = out.size();
   put<std::uint32_t>(out, 0);
-  auto fact = [&](PredId p, const Value* args, bool negative) {
-    put<std::uint32_t>(out, 0);
-    const std::size_t at = out.size();
-    encodeFact(out, program_.predicates, p, args, negative);
-    const auto length = std::uint32_t(out.size() - at);
-    std::memcpy(out.data() + at - sizeof length, &length, sizeof length);
-  };
+  std::uint32_t stored = 0, pending = 0;
+  pendingScratch_.clear();  // the messages come after all stored facts: kept apart meanwhile
   const SerialScheduler::Carried state = machine_->giveNode(
       n,
       [&](PredId p, const Value* args, std::uint32_t copies) {
         put<std::uint32_t>(out, copies);
-        fact(p, args, false);
+        putFact(out, p, args, false);
         ++stored;
       },
       [&](PredId p, const Value* args, bool negative) {
-        if (pending == 0) {  // the stored facts are all out: their count, then the messages'
-          std::memcpy(out.data() + countAt, &stored, sizeof stored);
-          countAt = out.size();
-          put<std::uint32_t>(out, 0);
-        }
-        fact(p, args, negative);
+        putFact(pendingScratch_, p, args, negative);
         ++pending;
       });
-  if (pending == 0) {
-    std::memcpy(out.data() + countAt, &stored, sizeof stored);
-    put<std::uint32_t>(out, 0);
-  } else {
-    std::memcpy(out.data() + countAt, &pending, sizeof pending);
-  }
+  std::memcpy(out.data() + storedAt, &stored, sizeof stored);
+  put<std::uint32_t>(out, pending);
+  out.insert(out.end(), pendingScratch_.begin(), pendingScratch_.end());
   std::memcpy(out.data() + stateAt, &state.prio, sizeof state.prio);
   std::memcpy(out.data() + stateAt + 8, &state.defaultPrio, sizeof state.defaultPrio);
   out[stateAt + 16] = state.isStatic ? 1 : 0;
@@ -386,29 +373,19 @@ void Worker::giveNode(ThreadId to, NodeId n, bool moved) {
   outgoingBytes_ += out.size() - before;
 }
 
-void Worker::takeNode(const Bytes& in, std::size_t& pos) {
-  Heap& heap = machine_->heap();
-  const NodeId n = get<std::uint32_t>(in, pos);
+void Worker::takeNode(NodeId n, const Bytes& in, std::size_t& pos) {
   SerialScheduler::Carried state{};
   state.prio = get<double>(in, pos);
   state.defaultPrio = get<double>(in, pos);
   state.isStatic = get<std::uint8_t>(in, pos) != 0;
   const bool moved = get<std::uint8_t>(in, pos) != 0;
   machine_->takeNode(n, state);
-  auto eachFact = [&](auto&& use) {
-    const auto length = get<std::uint32_t>(in, pos);
-    decodeFact(in.data() + pos, length, program_.predicates, heap, fact_);
-    pos += length;
-    use();
-    const PredicateDesc& d = program_.predicates[fact_.pred];
-    for (std::uint32_t i = 0; i < d.arity(); ++i) heap.release(d.fields[i], fact_.args[i]);
-  };
   for (std::uint32_t i = 0, count = get<std::uint32_t>(in, pos); i < count; ++i) {
     const auto copies = get<std::uint32_t>(in, pos);
-    eachFact([&] { machine_->takeStoredFact(n, fact_.pred, fact_.args.data(), copies); });
+    readFact(in, pos, [&] { machine_->takeStoredFact(n, fact_.pred, fact_.args.data(), copies); });
   }
   for (std::uint32_t i = 0, count = get<std::uint32_t>(in, pos); i < count; ++i)
-    eachFact([&] { machine_->takePendingFact(n, fact_.pred, fact_.args.data(), fact_.negative); });
+    readFact(in, pos, [&] { machine_->takePendingFact(n, fact_.pred, fact_.args.data(), fact_.negative); });
   if (moved) machine_->settleMovedNode(n);
   machine_->takeNodeDone(n);
   ++stats_.nodesTaken;

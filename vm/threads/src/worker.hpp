@@ -41,7 +41,7 @@ class Worker final : public ShardLink {
 
   // ShardLink.
   ThreadId ownerOf(NodeId n) const override { return directory_.ownerOf(n); }
-  void sendRemote(ThreadId to, NodeId from, NodeId dest, PredId p, const Value* args, bool negative) override;
+  void sendRemote(ThreadId to, NodeId dest, PredId p, const Value* args, bool negative) override;
   void coordinateRemote(ThreadId to, Opcode op, NodeId n, double value) override;
   NodeId allocateNodeBlock(ThreadId self, NodeId& count) override {
     return directory_.allocateBlock(self, count);
@@ -62,6 +62,10 @@ class Worker final : public ShardLink {
   bool takeMail();  // takes in every batch waiting for this thread; false if there was none
   bool mailWaiting() const;
   void decode(const Bytes& records);
+  void putFact(Bytes& out, PredId p, const Value* args, bool negative);  // u32 length, the fact
+  // Decodes the fact at `pos` into fact_, runs use(), releases what decoding built.
+  template <class Use>
+  void readFact(const Bytes& in, std::size_t& pos, Use&& use);
   void flush();
   bool waitForWork();  // false: the run is over (quiescence, stop-program or an error)
   // Work stealing (see worker.cpp): ask for a rebalance when out of work while another thread
@@ -71,7 +75,8 @@ class Worker final : public ShardLink {
   void rebalance();
   void giveNodes(ThreadId to, std::size_t count);
   void giveNode(ThreadId to, NodeId n, bool moved);  // moved: by set-cpu (pin it, just-moved)
-  void takeNode(const Bytes& in, std::size_t& pos);
+  void takeNode(NodeId n, const Bytes& in, std::size_t& pos);
+  static constexpr std::size_t kStateBytes = 17;  // priority, default priority (f64), static (u8)
   static constexpr std::uint32_t kMinStealQueue = 1;
 
   const Program& program_;
@@ -85,8 +90,9 @@ class Worker final : public ShardLink {
   std::size_t outgoingBytes_ = 0;
   unsigned runsSinceFlush_ = 0;
   Bytes incoming_;
-  const bool stealing_;  // not with `priority @static`
-  DecodedFact fact_;     // the decoder's storage, reused
+  const bool stealing_;   // not with `priority @static`
+  DecodedFact fact_;      // the decoder's storage, reused
+  Bytes pendingScratch_;  // a moving node's waiting messages, until its stored facts are out
   ThreadStats stats_;
   std::unique_ptr<ProfileRecorder> profile_;
   std::thread thread_;
