@@ -92,7 +92,7 @@ void Worker::loop() {
       if (machine_->runNext()) {
         const auto queued = std::uint32_t(machine_->waitingNodes());
         shared_.perThread[self_].queued.store(queued, std::memory_order_relaxed);
-        if (queued >= 2 * kMinStealQueue && shared_.idleThreads.load(std::memory_order_relaxed) != 0)
+        if (queued >= kStealableQueue && shared_.idleThreads.load(std::memory_order_relaxed) != 0)
           offerWork();
         if (profile_)
           profile_->nodeRun(machine_->stats().factsDerived, stats_.factsIn, machine_->waitingNodes());
@@ -266,7 +266,7 @@ bool Worker::requestRebalance() {
   std::uint32_t longest = 0;
   for (ThreadId t = 0; t < shared_.threads; ++t)
     if (t != self_) longest = std::max(longest, shared_.perThread[t].queued.load(std::memory_order_relaxed));
-  if (longest < 2 * kMinStealQueue) return false;
+  if (longest < kStealableQueue) return false;
   if (nowNanos() < shared_.nextRebalanceNs.load()) return false;
   shared_.askForRebalance();
   return true;
@@ -309,7 +309,7 @@ void Worker::rebalance() {
     if (to != self_ && directory_.ownerOf(n) == self_ && machine_->unqueueToGive(n)) giveNode(to, n, true);
   for (std::size_t i = 0; stealing_ && i < order.size() / 2; ++i) {
     const ThreadId giver = order[i], taker = order[order.size() - 1 - i];
-    if (giver == self_ && load[giver] >= load[taker] + 2 * kMinStealQueue)
+    if (giver == self_ && load[giver] >= load[taker] + kStealableQueue)
       giveNodes(taker, (load[giver] - load[taker]) / 2);
   }
   flush();

@@ -77,7 +77,8 @@ class Worker final : public ShardLink {
   void giveNode(ThreadId to, NodeId n, bool moved);  // moved: by set-cpu (pin it, just-moved)
   void takeNode(NodeId n, const Bytes& in, std::size_t& pos);
   static constexpr std::size_t kStateBytes = 17;  // priority, default priority (f64), static (u8)
-  static constexpr std::uint32_t kMinStealQueue = 1;
+  // A thread with this many nodes waiting has one to spare for an idle thread.
+  static constexpr std::uint32_t kStealableQueue = 2;
 
   const Program& program_;
   const ThreadId self_;
