@@ -9,6 +9,7 @@
 #include <optional>
 
 #include "meldvm/derivation_log.hpp"
+#include "multicore_run.hpp"
 #include "options.hpp"
 #include "progress.hpp"
 #include "report.hpp"
@@ -207,6 +208,7 @@ int main(int argc, char** argv) {
     return kExitOk;
   }
   try {
+    if (options.isMulticore()) return runMulticore(options);
     return runVsim(options);
   } catch (const SessionError& e) {
     return reportFailure(Failure{e.code, e.message});

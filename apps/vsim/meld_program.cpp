@@ -11,7 +11,7 @@ namespace vsim {
 
 std::unique_ptr<meldvm::Program> loadMeldProgram(const std::string& path,
                                                  const std::vector<std::string>& includeDirs,
-                                                 std::ostream* diagnostics) {
+                                                 std::ostream* diagnostics, bool robots) {
   const bool bytecode = path.size() >= 4 && path.compare(path.size() - 4, 4, ".mbc") == 0;
   if (bytecode) {
     try {
@@ -24,7 +24,7 @@ std::unique_ptr<meldvm::Program> loadMeldProgram(const std::string& path,
   std::ostringstream discarded;
   meldc::Diagnostics diag(sources, diagnostics ? *diagnostics : discarded);
   meldc::FrontEndInput input{path, includeDirs, {}};
-  input.identityNodes = true;  // node ids are block ids
+  input.identityNodes = robots;  // node ids are block ids
   std::unique_ptr<meldvm::Program> program;
   try {
     program = meldc::compileProgram(input, sources, diag);

@@ -12,15 +12,16 @@
 
 namespace vsim {
 
-// A .meld file is compiled with node ids = block ids (compile errors go to `diagnostics` in the
-// usual file:line:col form; nullptr: discarded); a .mbc file is loaded and verified. Throws
-// ProgramLoadError.
+// A .meld file is compiled with node ids = block ids (robots: the program runs on a world's blocks;
+// false: on its own graph, as `meld` runs it, for the multicore target); compile errors go to
+// `diagnostics` in the usual file:line:col form (nullptr: discarded); a .mbc file is loaded and
+// verified. Throws ProgramLoadError.
 class ProgramLoadError : public std::runtime_error {
  public:
   using std::runtime_error::runtime_error;
 };
 std::unique_ptr<meldvm::Program> loadMeldProgram(const std::string& path,
                                                  const std::vector<std::string>& includeDirs,
-                                                 std::ostream* diagnostics);
+                                                 std::ostream* diagnostics, bool robots = true);
 
 }  // namespace vsim

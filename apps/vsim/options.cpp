@@ -8,6 +8,7 @@ namespace vsim {
 
 const char* usageText() {
   return R"(usage: vsim WORLD.xml [--code LIB.so | --program PROG.meld|PROG.mbc] [options]
+       vsim --target multicore --program PROG.meld|PROG.mbc [--cores N[,N...]] [options] [-- ARGS]
 
 Runs the block program LIB.so, or the Meld program PROG (one Meld node per block, node id = block
 id; a .meld file is compiled first), on every block of the world WORLD.xml (headless) and prints a
@@ -64,6 +65,26 @@ options:
   --help, -h            this text
   --version             the version
 
+the multicore target (--target multicore, no world file): the Meld program on its own graph (as
+`meld` runs it) on a simulated chip of N cores; nodes are placed as `meld -j N` places them on
+threads, a rule firing and a fact cost core time, a fact for another core's node crosses the
+interconnect, idle cores steal nodes. Prints the predicted run time, the speedup over one core
+(a one-core run is simulated too) and each core's busy/idle/steal shares; with a list of counts,
+one line per count (output, dump and profile are those of the last count).
+  --cores N[,N...]      cores of the chip, 1 to 1024 (default 4)
+  --topology mesh|ring|full
+                        interconnect: 2-D mesh (hops = Manhattan distance), ring, or every pair
+                        one hop apart (default mesh)
+  --hop-latency NS      nanoseconds for a batch of facts to cross one hop (default 50)
+  --costs NAME=NS,...   core time of: node (a node run), rule (a rule firing), fact (a fact
+                        derived), send / receive (a fact to / from another core), rebalance (a
+                        work-stealing round), move (a node moved); defaults calibrated on the
+                        project's 2-core machine (bench/multicore/README.md)
+  --no-steal            no work stealing (the static partition only)
+  --profile FILE.json   the run's per-core timeline in the `meld --profile` format
+  --dump                the final facts, as `meld --dump` prints them
+  --seed S, -I DIR, --quiet as above; -- ARGS: the program's arguments (@arg1 ...)
+
 exit codes:
   0    the run completed (queue empty or --until reached)
   1    runtime error: the simulation failed, or an output file could not be written
@@ -77,6 +98,7 @@ examples:
        --tap 2@1s --trace 'kinds=tap,color'
   vsim examples/worlds/meld-gradient-tap.xml --program examples/meld/gradient-tap.meld \
        --tap 0@1s --dump
+  vsim --target multicore --program bench/meld/pagerank/pagerank.meld --cores 1,2,4,8,16,32
 )";
 }
 
@@ -126,7 +148,7 @@ void parseTaps(std::string_view text, std::vector<TapRequest>& taps) {
 
 Options parseOptions(int argc, char** argv, bool worldRequired) {
   Options o;
-  bool traceFormatOrFile = false;
+  bool traceFormatOrFile = false, multicoreOption = false;
   for (int i = 1; i < argc; ++i) {
     std::string_view arg = argv[i];
     // Both "--opt value" and "--opt=value".
@@ -147,6 +169,15 @@ Options parseOptions(int argc, char** argv, bool worldRequired) {
       if (inlineValue) throw UsageError(std::string(arg) + " takes no value");
     };
 
+    if (arg == "--") {  // the rest: the Meld program's arguments (@arg1 ...)
+      for (++i; i < argc; ++i) o.programArgs.emplace_back(argv[i]);
+      break;
+    }
+    if (arg == "--no-steal") flag();
+    if (parseMulticoreOption(arg, value, o.multicore)) {
+      multicoreOption = true;
+      continue;
+    }
     if (arg == "--help" || arg == "-h")
       flag(), o.help = true;
     else if (arg == "--version")
@@ -221,7 +252,8 @@ Options parseOptions(int argc, char** argv, bool worldRequired) {
     }
   }
   if (o.help || o.version) return o;
-  if (o.world.empty() && worldRequired)
+  checkMulticoreOptions(o, multicoreOption);
+  if (o.world.empty() && worldRequired && !o.isMulticore())
     throw UsageError("no world file given (usage: vsim WORLD.xml --code LIB.so; see --help)");
   if (!o.program.empty() && !o.code.empty()) throw UsageError("give --code or --program, not both");
   if (traceFormatOrFile) o.trace = true;

@@ -2,11 +2,14 @@
 #pragma once
 
 #include <cstdint>
+#include <functional>
 #include <optional>
 #include <stdexcept>
 #include <string>
+#include <string_view>
 #include <vector>
 
+#include "multicore/chip.hpp"
 #include "simcore/future_event_set.hpp"
 #include "simcore/time.hpp"
 #include "simcore/trace.hpp"
@@ -30,6 +33,13 @@ class UsageError : public std::runtime_error {
 struct TapRequest {
   std::uint32_t block = 0;
   simcore::SimTime time = 0;
+};
+
+// --target multicore: a Meld program on a simulated chip (multicore_run.hpp).
+struct MulticoreOptions {
+  std::vector<unsigned> cores;  // --cores N[,N...]; empty: 4
+  multicore::ChipSpec chip;     // --topology, --hop-latency, --costs, --no-steal
+  std::string profile;          // --profile FILE.json
 };
 
 struct Options {
@@ -60,10 +70,19 @@ struct Options {
   bool progress = true;  // --no-progress turns the terminal progress line off
   bool help = false;
   bool version = false;
+  std::vector<std::string> programArgs;  // after `--`: @arg1 ... (the multicore target)
+  MulticoreOptions multicore;
+  bool isMulticore() const;  // --target multicore
 };
 
 // Parses argv; throws UsageError with a one-line message. The IDE can start without a world.
 Options parseOptions(int argc, char** argv, bool worldRequired = true);
+
+// The options of --target multicore (multicore_options.cpp): true if `arg` is one of them.
+bool parseMulticoreOption(std::string_view arg, const std::function<std::string_view()>& value,
+                          MulticoreOptions& m);
+// Refuses world options with --target multicore and multicore options without it; fills defaults.
+void checkMulticoreOptions(Options& o, bool multicoreOptionGiven);
 
 // The --help text.
 const char* usageText();

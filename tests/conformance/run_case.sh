@@ -1,12 +1,15 @@
 #!/usr/bin/env bash
 # Runs one conformance case and compares its dump with the hand-derived golden file.
 #
-# usage: run_case.sh MELD_BINARY CASE_DIR NAME [THREADS]
+# usage: run_case.sh MELD_BINARY CASE_DIR NAME [THREADS [VSIM_BINARY]]
 #
 # Runs `MELD_BINARY NAME.meld --dump [-j THREADS] [-- ARGS]` inside CASE_DIR (ARGS: the single
 # line of NAME.args, split on blanks, if that file exists) with a 20 s timeout, and compares
 # standard output byte for byte with NAME.expected. Exit 0 on a match; otherwise a unified diff
 # (expected -> actual) is printed and the exit status is non-zero.
+#
+# With VSIM_BINARY, the case runs on a simulated chip of THREADS cores instead (the multicore
+# target: `VSIM_BINARY --target multicore --cores THREADS --program NAME.meld --dump --quiet`).
 #
 # With THREADS > 1, a case listed in threads.list (its result depends on the order nodes run in)
 # is compared through its check instead, applied to both the golden and the output:
@@ -22,8 +25,8 @@
 # rewrites them; it only prints a note.
 set -u
 
-if [ "$#" -ne 3 ] && [ "$#" -ne 4 ]; then
-  echo "usage: $0 MELD_BINARY CASE_DIR NAME [THREADS]" >&2
+if [ "$#" -lt 3 ] || [ "$#" -gt 5 ]; then
+  echo "usage: $0 MELD_BINARY CASE_DIR NAME [THREADS [VSIM_BINARY]]" >&2
   exit 2
 fi
 
@@ -31,11 +34,16 @@ meld=$1
 dir=$2
 name=$3
 threads=${4:-1}
+vsim=${5:-}
 here=$(cd "$(dirname "$0")" && pwd)
 
 case "$meld" in
   /*) ;;
   *) meld=$(pwd)/$meld ;;
+esac
+case "$vsim" in
+  /* | "") ;;
+  *) vsim=$(pwd)/$vsim ;;
 esac
 
 if [ ! -d "$dir" ]; then
@@ -97,10 +105,17 @@ actual=$(mktemp "${TMPDIR:-/tmp}/meld-conf.$name.XXXXXX") || exit 2
 errors=$(mktemp "${TMPDIR:-/tmp}/meld-conf.$name.err.XXXXXX") || { rm -f "$actual"; exit 2; }
 trap 'rm -f "$actual" "$errors"' EXIT
 
+run=("$meld" "$name.meld" --dump "${jobs[@]}")
+mode="-j $threads"
+if [ -n "$vsim" ]; then
+  run=("$vsim" --target multicore --cores "$threads" --program "$name.meld" --dump --quiet)
+  mode="a $threads-core chip"
+  meld=$vsim
+fi
 if [ "${#args[@]}" -gt 0 ]; then
-  timeout 20 "$meld" "$name.meld" --dump "${jobs[@]}" -- "${args[@]}" > "$actual" 2> "$errors"
+  timeout 20 "${run[@]}" -- "${args[@]}" > "$actual" 2> "$errors"
 else
-  timeout 20 "$meld" "$name.meld" --dump "${jobs[@]}" > "$actual" 2> "$errors"
+  timeout 20 "${run[@]}" > "$actual" 2> "$errors"
 fi
 status=$?
 
@@ -132,7 +147,7 @@ if [ "$check" != same ]; then
   if [ "$expected_view" = "$actual_view" ] && [ "$status" -eq 0 ]; then
     exit 0
   fi
-  echo "run_case: $name: with -j $threads, the check '$check' differs (threads.list)" >&2
+  echo "run_case: $name: with $mode, the check '$check' differs (threads.list)" >&2
   diff -u --label "$name.expected ($check)" --label "$name (actual, $check)" <(echo "$expected_view") <(echo "$actual_view")
   exit 1
 fi

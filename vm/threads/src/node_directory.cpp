@@ -1,4 +1,4 @@
-#include "node_directory.hpp"
+#include "meldvm/node_directory.hpp"
 
 #include <string>
 

@@ -10,16 +10,14 @@
 #include <cstdint>
 #include <vector>
 
+#include "support/profile_trace.hpp"
+
 namespace meldvm::threads {
 
 class ProfileRecorder {
  public:
-  enum class Kind : std::uint8_t { Run, Idle, Steal };
-  struct Span {
-    Kind kind;
-    std::int64_t beginNs, endNs;                             // since the run's start
-    std::uint64_t nodeRuns, factsDerived, factsIn, waiting;  // during the span; waiting: queue at its end
-  };
+  using Kind = support::ProfileSpan::Kind;
+  using Span = support::ProfileSpan;
 
   explicit ProfileRecorder(std::chrono::steady_clock::time_point origin) : origin_(origin) {
     spans_.reserve(4096);

@@ -3,8 +3,8 @@
 #include <chrono>
 #include <sstream>
 
-#include "meldvm/dump.hpp"
-#include "node_directory.hpp"
+#include "meldvm/shard_set.hpp"
+#include "meldvm/node_directory.hpp"
 #include "shared_state.hpp"
 #include "worker.hpp"
 
@@ -43,45 +43,23 @@ void ThreadedMachine::run() {
 
 bool ThreadedMachine::stopped() const { return shared_->stop.load(); }
 
+std::vector<const Machine*> ThreadedMachine::shards() const {
+  std::vector<const Machine*> all;
+  for (const auto& w : workers_) all.push_back(&w->machine());
+  return all;
+}
+
 void ThreadedMachine::collectGarbageNodes() {
-  // §6.10 over all shards: a created node with no facts that no fact anywhere refers to.
-  std::vector<std::uint8_t> referenced;
-  bool anyEmpty = false;
-  for (auto& w : workers_) anyEmpty = anyEmpty || !w->machine().emptyCreatedNodes().empty();
-  if (!anyEmpty) return;
-  for (auto& w : workers_) w->machine().markReferencedNodes(referenced);
-  for (auto& w : workers_)
-    for (NodeId n : w->machine().emptyCreatedNodes())
-      if (n >= referenced.size() || !referenced[n]) w->machine().removeNode(n);
+  std::vector<Machine*> all;
+  for (auto& w : workers_) all.push_back(&w->machine());
+  meldvm::collectGarbageNodes(all);
 }
 
 void ThreadedMachine::dump(std::ostream& out) const { out << dump(); }
 
-std::string ThreadedMachine::dump() const {
-  std::string out;
-  const std::vector<PredId> order = dumpOrder(program_.predicates);
-  const NodeId end = directory_->idEnd();
-  for (NodeId n = 0; n < end; ++n) {
-    const ThreadId t = directory_->ownerOf(n);
-    if (t == kNoThread) continue;
-    const Machine& m = workers_[t]->machine();
-    if (m.holdsNode(n)) appendNodeDump(out, m.database(), n, order);
-  }
-  return out;
-}
+std::string ThreadedMachine::dump() const { return dumpShards(program_, *directory_, shards()); }
 
-MachineStats ThreadedMachine::stats() const {
-  MachineStats all;
-  for (const auto& w : workers_) {
-    const MachineStats& s = w->machine().stats();
-    all.factsDerived += s.factsDerived;
-    all.factsConsumed += s.factsConsumed;
-    all.factsSent += s.factsSent;
-    all.rulesFired += s.rulesFired;
-    all.nodeRuns += s.nodeRuns;
-  }
-  return all;
-}
+MachineStats ThreadedMachine::stats() const { return sumStats(shards()); }
 
 std::vector<ThreadStats> ThreadedMachine::threadStats() const {
   std::vector<ThreadStats> s;

@@ -1,33 +1,10 @@
 #include "worker.hpp"
 
 #include <algorithm>
-#include <cstring>
 
 namespace meldvm::threads {
 
 namespace {
-
-// A record in a channel: its kind (u8), the node (u32), then for a fact its length (u32) and the
-// fact as meldvm/fact_codec.hpp encodes it, for a coordination fact the opcode (u32) and the
-// value (f64). Native byte order: the bytes never leave the process.
-// A node moving to the thread: kMigrate, the node, its scheduling state (f64 priority, f64
-// default priority, u8 static), u8 1 if set-cpu moved it (0: stolen), then its stored facts (u32 count; each
-// u32 copies, u32 length, the fact) and its waiting messages (u32 count; each u32 length, the fact).
-enum RecordKind : std::uint8_t { kFact = 0, kCoordination = 1, kMigrate = 2 };
-
-template <class T>
-void put(Bytes& out, T v) {
-  const std::size_t at = out.size();
-  out.resize(at + sizeof(T));
-  std::memcpy(out.data() + at, &v, sizeof(T));
-}
-template <class T>
-T get(const Bytes& in, std::size_t& pos) {
-  T v;
-  std::memcpy(&v, in.data() + pos, sizeof(T));
-  pos += sizeof(T);
-  return v;
-}
 
 inline void cpuRelax() {
 #if defined(__x86_64__) || defined(__i386__)
@@ -51,7 +28,8 @@ Worker::Worker(const Program& program, MachineOptions options, ThreadId self, No
       self_(self),
       directory_(directory),
       shared_(shared),
-      stealing_(!program.scheduling.staticNodes && directory.threads() > 1) {
+      stealing_(!program.scheduling.staticNodes && directory.threads() > 1),
+      mail_(program) {
   if (options.output) {
     lineOutput_ = std::make_unique<LineOutput>(*options.output, outputLock);
     output_ = std::make_unique<std::ostream>(lineOutput_.get());
@@ -135,69 +113,26 @@ bool Worker::takeMail() {
   return any;
 }
 
-void Worker::putFact(Bytes& out, PredId p, const Value* args, bool negative) {
-  put<std::uint32_t>(out, 0);  // the length, once known
-  const std::size_t start = out.size();
-  encodeFact(out, program_.predicates, p, args, negative);
-  const auto length = std::uint32_t(out.size() - start);
-  std::memcpy(out.data() + start - sizeof length, &length, sizeof length);
-}
-
-template <class Use>
-void Worker::readFact(const Bytes& in, std::size_t& pos, Use&& use) {
-  Heap& heap = machine_->heap();
-  const auto length = get<std::uint32_t>(in, pos);
-  decodeFact(in.data() + pos, length, program_.predicates, heap, fact_);
-  pos += length;
-  const PredicateDesc& d = program_.predicates[fact_.pred];
-  auto release = [&] {
-    for (std::uint32_t i = 0; i < d.arity(); ++i) heap.release(d.fields[i], fact_.args[i]);
-  };
-  try {
-    use();
-  } catch (...) {
-    release();
-    throw;
-  }
-  release();
-}
-
 void Worker::decode(const Bytes& in) {
-  for (std::size_t pos = 0; pos < in.size();) {
-    const auto kind = get<std::uint8_t>(in, pos);
-    const NodeId node = get<std::uint32_t>(in, pos);
-    if (kind == kMigrate) {
-      takeNode(node, in, pos);
-    } else if (kind == kCoordination) {
-      const auto op = Opcode(get<std::uint32_t>(in, pos));
-      const double value = get<double>(in, pos);
-      if (!machine_->holdsNode(node))
-        throw RuntimeError("coordination fact for node @" + std::to_string(node) + ", which does not exist");
-      machine_->coordinateOwned(op, node, value);
-    } else {
-      ++stats_.factsIn;
-      readFact(in, pos, [&] { machine_->receive(node, fact_.pred, fact_.args.data(), fact_.negative); });
-    }
-  }
+  ShardMail::Taken taken;
+  mail_.apply(*machine_, in, taken);
+  stats_.factsIn += taken.facts;
+  stats_.nodesTaken += taken.nodes;
 }
 
 void Worker::sendRemote(ThreadId to, NodeId dest, PredId p, const Value* args, bool negative) {
   Bytes& out = outgoing_[to];
   const std::size_t before = out.size();
-  put<std::uint8_t>(out, kFact);
-  put<std::uint32_t>(out, dest);
-  putFact(out, p, args, negative);
+  mail_.putFact(out, dest, p, args, negative);
   outgoingBytes_ += out.size() - before;
   ++stats_.factsOut;
 }
 
 void Worker::coordinateRemote(ThreadId to, Opcode op, NodeId n, double value) {
   Bytes& out = outgoing_[to];
-  put<std::uint8_t>(out, kCoordination);
-  put<std::uint32_t>(out, n);
-  put<std::uint32_t>(out, std::uint32_t(op));
-  put<double>(out, value);
-  outgoingBytes_ += 17;
+  const std::size_t before = out.size();
+  mail_.putCoordination(out, n, op, value);
+  outgoingBytes_ += out.size() - before;
 }
 
 void Worker::flush() {
@@ -342,53 +277,10 @@ void Worker::requestMove(NodeId n, ThreadId to) {
 void Worker::giveNode(ThreadId to, NodeId n, bool moved) {
   Bytes& out = outgoing_[to];
   const std::size_t before = out.size();
-  put<std::uint8_t>(out, kMigrate);
-  put<std::uint32_t>(out, n);
-  const std::size_t stateAt = out.size();  // written once the node is given (giveNode returns it)
-  out.resize(stateAt + kStateBytes);
-  put<std::uint8_t>(out, moved ? 1 : 0);
-  const std::size_t storedAt = out.size();
-  put<std::uint32_t>(out, 0);
-  std::uint32_t stored = 0, pending = 0;
-  pendingScratch_.clear();  // the messages come after all stored facts: kept apart meanwhile
-  const SerialScheduler::Carried state = machine_->giveNode(
-      n,
-      [&](PredId p, const Value* args, std::uint32_t copies) {
-        put<std::uint32_t>(out, copies);
-        putFact(out, p, args, false);
-        ++stored;
-      },
-      [&](PredId p, const Value* args, bool negative) {
-        putFact(pendingScratch_, p, args, negative);
-        ++pending;
-      });
-  std::memcpy(out.data() + storedAt, &stored, sizeof stored);
-  put<std::uint32_t>(out, pending);
-  out.insert(out.end(), pendingScratch_.begin(), pendingScratch_.end());
-  std::memcpy(out.data() + stateAt, &state.prio, sizeof state.prio);
-  std::memcpy(out.data() + stateAt + 8, &state.defaultPrio, sizeof state.defaultPrio);
-  out[stateAt + 16] = state.isStatic ? 1 : 0;
+  mail_.putNode(out, *machine_, n, moved);
   directory_.moveNode(n, to);
   ++stats_.nodesGiven;
   outgoingBytes_ += out.size() - before;
-}
-
-void Worker::takeNode(NodeId n, const Bytes& in, std::size_t& pos) {
-  SerialScheduler::Carried state{};
-  state.prio = get<double>(in, pos);
-  state.defaultPrio = get<double>(in, pos);
-  state.isStatic = get<std::uint8_t>(in, pos) != 0;
-  const bool moved = get<std::uint8_t>(in, pos) != 0;
-  machine_->takeNode(n, state);
-  for (std::uint32_t i = 0, count = get<std::uint32_t>(in, pos); i < count; ++i) {
-    const auto copies = get<std::uint32_t>(in, pos);
-    readFact(in, pos, [&] { machine_->takeStoredFact(n, fact_.pred, fact_.args.data(), copies); });
-  }
-  for (std::uint32_t i = 0, count = get<std::uint32_t>(in, pos); i < count; ++i)
-    readFact(in, pos, [&] { machine_->takePendingFact(n, fact_.pred, fact_.args.data(), fact_.negative); });
-  if (moved) machine_->settleMovedNode(n);
-  machine_->takeNodeDone(n);
-  ++stats_.nodesTaken;
 }
 
 }  // namespace meldvm::threads

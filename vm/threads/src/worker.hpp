@@ -9,10 +9,10 @@
 #include <vector>
 
 #include "line_output.hpp"
-#include "meldvm/fact_codec.hpp"
+#include "meldvm/shard_mail.hpp"
 #include "meldvm/machine.hpp"
 #include "meldvm/threaded_machine.hpp"
-#include "node_directory.hpp"
+#include "meldvm/node_directory.hpp"
 #include "profile_recorder.hpp"
 #include "shared_state.hpp"
 
@@ -62,10 +62,6 @@ class Worker final : public ShardLink {
   bool takeMail();  // takes in every batch waiting for this thread; false if there was none
   bool mailWaiting() const;
   void decode(const Bytes& records);
-  void putFact(Bytes& out, PredId p, const Value* args, bool negative);  // u32 length, the fact
-  // Decodes the fact at `pos` into fact_, runs use(), releases what decoding built.
-  template <class Use>
-  void readFact(const Bytes& in, std::size_t& pos, Use&& use);
   void flush();
   bool waitForWork();  // false: the run is over (quiescence, stop-program or an error)
   // Work stealing (see worker.cpp): ask for a rebalance when out of work while another thread
@@ -75,8 +71,6 @@ class Worker final : public ShardLink {
   void rebalance();
   void giveNodes(ThreadId to, std::size_t count);
   void giveNode(ThreadId to, NodeId n, bool moved);  // moved: by set-cpu (pin it, just-moved)
-  void takeNode(NodeId n, const Bytes& in, std::size_t& pos);
-  static constexpr std::size_t kStateBytes = 17;  // priority, default priority (f64), static (u8)
   // A thread with this many nodes waiting has one to spare for an idle thread.
   static constexpr std::uint32_t kStealableQueue = 2;
 
@@ -92,8 +86,7 @@ class Worker final : public ShardLink {
   unsigned runsSinceFlush_ = 0;
   Bytes incoming_;
   const bool stealing_;   // not with `priority @static`
-  DecodedFact fact_;      // the decoder's storage, reused
-  Bytes pendingScratch_;  // a moving node's waiting messages, until its stored facts are out
+  ShardMail mail_;
   ThreadStats stats_;
   std::unique_ptr<ProfileRecorder> profile_;
   std::thread thread_;

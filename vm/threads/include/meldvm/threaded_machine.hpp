@@ -66,6 +66,7 @@ class ThreadedMachine {
 
  private:
   void collectGarbageNodes();
+  std::vector<const Machine*> shards() const;
 
   const Program& program_;
   std::unique_ptr<threads::NodeDirectory> directory_;

@@ -1,0 +1,165 @@
+#include "multicore_run.hpp"
+
+#include <chrono>
+#include <cstdio>
+#include <fstream>
+#include <iostream>
+#include <memory>
+
+#include "meld_chip.hpp"
+#include "meld_program.hpp"
+#include "simcore/time.hpp"
+
+namespace vsim {
+
+namespace {
+
+struct ChipRun {
+  unsigned cores = 0;
+  simcore::SimTime time = 0;
+  std::uint64_t rebalances = 0, factsAcross = 0;
+  std::vector<multicore::CoreStats> perCore;
+  meldvm::MachineStats totals;
+  double hostSeconds = 0;
+};
+
+class RunFailure : public std::runtime_error {
+ public:
+  using std::runtime_error::runtime_error;
+};
+
+// One simulated run. The last run of a command is the one the user sees: its write-string
+// output, its dump, its profile; the others (the one-core baseline, the other counts) are silent.
+ChipRun simulate(const meldvm::Program& program, const Options& o, unsigned cores, bool shown,
+                 std::ostream* profile) {
+  meldvm::MachineOptions mo;
+  mo.args = o.programArgs;
+  mo.output = shown ? &std::cout : nullptr;
+  mo.seed = o.seed.value_or(0);
+  const auto start = std::chrono::steady_clock::now();
+  MeldChip chip(program, mo, cores);
+  multicore::ChipSpec spec = o.multicore.chip;
+  spec.cores = cores;
+  spec.stealing = spec.stealing && chip.stealable();
+  multicore::ChipSimulator sim(spec, chip, profile != nullptr);
+  try {
+    sim.run();
+  } catch (const meldvm::RuntimeError& e) {
+    std::cout.flush();
+    throw RunFailure(std::string("Meld program failed on the ") + std::to_string(cores) + "-core chip: " + e.what());
+  }
+  chip.finish();
+  ChipRun r;
+  r.cores = cores;
+  r.time = sim.endTime();
+  r.rebalances = sim.rebalances();
+  r.perCore = sim.cores();
+  for (const auto& c : r.perCore) r.factsAcross += c.factsOut;
+  r.totals = chip.stats();
+  r.hostSeconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  if (shown && o.dump) std::cout << chip.dump();
+  if (profile) sim.writeProfile(*profile);
+  return r;
+}
+
+void printSweep(std::ostream& out, const std::vector<ChipRun>& runs, const ChipRun& base) {
+  out << "  cores  predicted time  speedup  efficiency  rebalances  facts across cores  host s\n";
+  for (const ChipRun& r : runs) {
+    const double speedup = r.time > 0 ? double(base.time) / double(r.time) : 1.0;
+    char line[160];
+    std::snprintf(line, sizeof line, "  %5u  %14s  %7.2f  %10.2f  %10llu  %18llu  %6.2f\n", r.cores,
+                  simcore::formatTime(r.time).c_str(), speedup, speedup / r.cores,
+                  (unsigned long long)r.rebalances, (unsigned long long)r.factsAcross, r.hostSeconds);
+    out << line;
+  }
+}
+
+void printCores(std::ostream& out, const ChipRun& r) {
+  out << "per core (" << r.cores << " cores):\n"
+      << "  core  busy %  idle %  steal %  node runs  rules fired  facts derived  facts out  facts in"
+         "  taken  given\n";
+  for (std::size_t c = 0; c < r.perCore.size(); ++c) {
+    const multicore::CoreStats& s = r.perCore[c];
+    const double t = r.time > 0 ? double(r.time) : 1.0;
+    char line[200];
+    std::snprintf(line, sizeof line, "  %4zu  %6.1f  %6.1f  %7.1f  %9llu  %11llu  %13llu  %9llu  %8llu  %5llu  %5llu\n",
+                  c, 100.0 * double(s.busyNs) / t, 100.0 * double(s.idleNs) / t, 100.0 * double(s.stealNs) / t,
+                  (unsigned long long)s.nodeRuns, (unsigned long long)s.rules, (unsigned long long)s.facts,
+                  (unsigned long long)s.factsOut, (unsigned long long)s.factsIn,
+                  (unsigned long long)s.nodesTaken, (unsigned long long)s.nodesGiven);
+    out << line;
+  }
+}
+
+void printHeader(std::ostream& out, const Options& o, const meldvm::Program& program) {
+  const multicore::ChipSpec& chip = o.multicore.chip;
+  const multicore::CoreCosts& k = chip.costs;
+  char line[400];
+  std::snprintf(line, sizeof line,
+                "multicore: %s, %.0f ns per hop, stealing %s; costs (ns): node %.0f, rule %.0f, fact %.0f, "
+                "send %.0f, receive %.0f, rebalance %.0f, move %.0f\nprogram: %s, %zu nodes\n",
+                multicore::topologyName(chip.topology), chip.hopLatency, chip.stealing ? "on" : "off", k.nodeRun,
+                k.rule, k.fact, k.send, k.receive, k.rebalance, k.nodeMoved, o.program.c_str(),
+                program.nodeSourceIds.size());
+  out << line;
+}
+
+}  // namespace
+
+int runMulticore(const Options& o) {
+  std::ofstream profile;
+  if (!o.multicore.profile.empty()) {
+    profile.open(o.multicore.profile, std::ios::binary);
+    if (!profile) {
+      std::cerr << "vsim: error: --profile: cannot write '" << o.multicore.profile << "'\n";
+      return kExitRuntime;
+    }
+  }
+  std::unique_ptr<meldvm::Program> program;
+  try {
+    program = loadMeldProgram(o.program, o.includeDirs, &std::cerr, /*robots=*/false);
+  } catch (const ProgramLoadError& e) {
+    std::cerr << "vsim: error: " << e.what() << '\n';
+    return kExitInput;
+  }
+  const std::vector<unsigned>& counts = o.multicore.cores;
+  std::vector<ChipRun> runs;
+  try {
+    bool haveBase = false;
+    for (unsigned n : counts) haveBase = haveBase || n == 1;
+    std::optional<ChipRun> base;
+    if (!haveBase) base = simulate(*program, o, 1, false, nullptr);
+    for (std::size_t i = 0; i < counts.size(); ++i) {
+      const bool last = i + 1 == counts.size();
+      runs.push_back(simulate(*program, o, counts[i], last, last && profile.is_open() ? &profile : nullptr));
+      if (counts[i] == 1 && !base) base = runs.back();
+    }
+    std::cout.flush();
+    if (!o.quiet) {
+      printHeader(std::cout, o, *program);
+      printSweep(std::cout, runs, *base);
+      printCores(std::cout, runs.back());
+      const meldvm::MachineStats& t = runs.back().totals;
+      std::printf("facts derived %llu, rules fired %llu, node runs %llu (%u cores)\n",
+                  (unsigned long long)t.factsDerived, (unsigned long long)t.rulesFired,
+                  (unsigned long long)t.nodeRuns, runs.back().cores);
+    }
+  } catch (const RunFailure& e) {
+    std::cerr << "vsim: error: " << e.what() << '\n';
+    return kExitRuntime;
+  } catch (const std::exception& e) {  // bad_alloc, invalid_argument
+    std::cerr << "vsim: error: " << e.what() << '\n';
+    return kExitRuntime;
+  }
+  std::cout.flush();
+  if (profile.is_open()) {
+    profile.close();
+    if (!profile) {
+      std::cerr << "vsim: error: --profile: writing '" << o.multicore.profile << "' failed\n";
+      return kExitRuntime;
+    }
+  }
+  return kExitOk;
+}
+
+}  // namespace vsim

@@ -1,0 +1,13 @@
+// vsim --target multicore --program P.meld --cores N [-- ARGS]: the Meld program on a simulated
+// chip of N cores (targets/multicore), no world file. Prints the predicted run time, the speedup
+// over one core and each core's use; --dump prints the final facts as `meld --dump` does; with
+// several core counts (--cores 1,2,4,...), one line per count. Returns vsim's exit code.
+#pragma once
+
+#include "options.hpp"
+
+namespace vsim {
+
+int runMulticore(const Options& options);
+
+}  // namespace vsim

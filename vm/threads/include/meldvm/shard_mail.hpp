@@ -1,0 +1,47 @@
+// The records shards send each other (worker threads through their channels, the simulated cores
+// of `vsim --target multicore` through the simulated interconnect): a fact for a node, a
+// coordination fact (§5.7) for a node, or a whole node moving to another shard (work stealing,
+// set-cpu). One encoder and one decoder for both, so that a simulated chip moves exactly what
+// the threads move.
+#pragma once
+
+#include <cstdint>
+#include <vector>
+
+#include "meldvm/fact_codec.hpp"
+#include "meldvm/machine.hpp"
+
+namespace meldvm {
+
+using MailBytes = std::vector<std::uint8_t>;
+
+class ShardMail {
+ public:
+  explicit ShardMail(const Program& program) : program_(program) {}
+
+  void putFact(MailBytes& out, NodeId dest, PredId p, const Value* args, bool negative);
+  void putCoordination(MailBytes& out, NodeId n, Opcode op, double value);
+  // Node n leaves `from` with its stored facts, waiting messages and scheduling state (it must be
+  // out of from's queue: Machine::unqueueToGive or pickNodesToGive). moved: by set-cpu (the taker
+  // pins it and gives it just-moved).
+  void putNode(MailBytes& out, Machine& from, NodeId n, bool moved);
+
+  struct Taken {
+    std::uint64_t facts = 0, nodes = 0;
+  };
+  // Applies every record of `in` to shard `to`; counts what it took. Throws RuntimeError for a
+  // coordination fact whose node does not exist.
+  void apply(Machine& to, const MailBytes& in, Taken& taken);
+
+ private:
+  void putLengthAndFact(MailBytes& out, PredId p, const Value* args, bool negative);
+  template <class Use>
+  void readFact(Machine& to, const MailBytes& in, std::size_t& pos, Use&& use);
+  void takeNode(Machine& to, NodeId n, const MailBytes& in, std::size_t& pos);
+
+  const Program& program_;
+  DecodedFact fact_;         // the decoder's storage, reused
+  MailBytes pendingScratch_;  // a moving node's waiting messages, until its stored facts are out
+};
+
+}  // namespace meldvm

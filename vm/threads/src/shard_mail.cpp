@@ -1,0 +1,142 @@
+#include "meldvm/shard_mail.hpp"
+
+#include <cstring>
+#include <string>
+
+namespace meldvm {
+
+namespace {
+
+// A record: its kind (u8), the node (u32), then for a fact its length (u32) and the fact as
+// meldvm/fact_codec.hpp encodes it, for a coordination fact the opcode (u32) and the value (f64).
+// Native byte order: the bytes never leave the process.
+// A moving node: kMigrate, the node, its scheduling state (f64 priority, f64 default priority, u8
+// static), u8 1 if set-cpu moved it (0: stolen), then its stored facts (u32 count; each u32
+// copies, u32 length, the fact) and its waiting messages (u32 count; each u32 length, the fact).
+enum RecordKind : std::uint8_t { kFact = 0, kCoordination = 1, kMigrate = 2 };
+constexpr std::size_t kStateBytes = 17;  // priority, default priority (f64), static (u8)
+
+template <class T>
+void put(MailBytes& out, T v) {
+  const std::size_t at = out.size();
+  out.resize(at + sizeof(T));
+  std::memcpy(out.data() + at, &v, sizeof(T));
+}
+template <class T>
+T get(const MailBytes& in, std::size_t& pos) {
+  T v;
+  std::memcpy(&v, in.data() + pos, sizeof(T));
+  pos += sizeof(T);
+  return v;
+}
+
+}  // namespace
+
+void ShardMail::putLengthAndFact(MailBytes& out, PredId p, const Value* args, bool negative) {
+  put<std::uint32_t>(out, 0);  // the length, once known
+  const std::size_t start = out.size();
+  encodeFact(out, program_.predicates, p, args, negative);
+  const auto length = std::uint32_t(out.size() - start);
+  std::memcpy(out.data() + start - sizeof length, &length, sizeof length);
+}
+
+void ShardMail::putFact(MailBytes& out, NodeId dest, PredId p, const Value* args, bool negative) {
+  put<std::uint8_t>(out, kFact);
+  put<std::uint32_t>(out, dest);
+  putLengthAndFact(out, p, args, negative);
+}
+
+void ShardMail::putCoordination(MailBytes& out, NodeId n, Opcode op, double value) {
+  put<std::uint8_t>(out, kCoordination);
+  put<std::uint32_t>(out, n);
+  put<std::uint32_t>(out, std::uint32_t(op));
+  put<double>(out, value);
+}
+
+void ShardMail::putNode(MailBytes& out, Machine& from, NodeId n, bool moved) {
+  put<std::uint8_t>(out, kMigrate);
+  put<std::uint32_t>(out, n);
+  const std::size_t stateAt = out.size();  // written once the node is given (giveNode returns it)
+  out.resize(stateAt + kStateBytes);
+  put<std::uint8_t>(out, moved ? 1 : 0);
+  const std::size_t storedAt = out.size();
+  put<std::uint32_t>(out, 0);
+  std::uint32_t stored = 0, pending = 0;
+  pendingScratch_.clear();  // the messages come after all stored facts: kept apart meanwhile
+  const SerialScheduler::Carried state = from.giveNode(
+      n,
+      [&](PredId p, const Value* args, std::uint32_t copies) {
+        put<std::uint32_t>(out, copies);
+        putLengthAndFact(out, p, args, false);
+        ++stored;
+      },
+      [&](PredId p, const Value* args, bool negative) {
+        putLengthAndFact(pendingScratch_, p, args, negative);
+        ++pending;
+      });
+  std::memcpy(out.data() + storedAt, &stored, sizeof stored);
+  put<std::uint32_t>(out, pending);
+  out.insert(out.end(), pendingScratch_.begin(), pendingScratch_.end());
+  std::memcpy(out.data() + stateAt, &state.prio, sizeof state.prio);
+  std::memcpy(out.data() + stateAt + 8, &state.defaultPrio, sizeof state.defaultPrio);
+  out[stateAt + 16] = state.isStatic ? 1 : 0;
+}
+
+// Decodes the fact at `pos` into fact_, runs use(), releases what decoding built.
+template <class Use>
+void ShardMail::readFact(Machine& to, const MailBytes& in, std::size_t& pos, Use&& use) {
+  Heap& heap = to.heap();
+  const auto length = get<std::uint32_t>(in, pos);
+  decodeFact(in.data() + pos, length, program_.predicates, heap, fact_);
+  pos += length;
+  const PredicateDesc& d = program_.predicates[fact_.pred];
+  auto release = [&] {
+    for (std::uint32_t i = 0; i < d.arity(); ++i) heap.release(d.fields[i], fact_.args[i]);
+  };
+  try {
+    use();
+  } catch (...) {
+    release();
+    throw;
+  }
+  release();
+}
+
+void ShardMail::apply(Machine& to, const MailBytes& in, Taken& taken) {
+  for (std::size_t pos = 0; pos < in.size();) {
+    const auto kind = get<std::uint8_t>(in, pos);
+    const NodeId node = get<std::uint32_t>(in, pos);
+    if (kind == kMigrate) {
+      takeNode(to, node, in, pos);
+      ++taken.nodes;
+    } else if (kind == kCoordination) {
+      const auto op = Opcode(get<std::uint32_t>(in, pos));
+      const double value = get<double>(in, pos);
+      if (!to.holdsNode(node))
+        throw RuntimeError("coordination fact for node @" + std::to_string(node) + ", which does not exist");
+      to.coordinateOwned(op, node, value);
+    } else {
+      ++taken.facts;
+      readFact(to, in, pos, [&] { to.receive(node, fact_.pred, fact_.args.data(), fact_.negative); });
+    }
+  }
+}
+
+void ShardMail::takeNode(Machine& to, NodeId n, const MailBytes& in, std::size_t& pos) {
+  SerialScheduler::Carried state{};
+  state.prio = get<double>(in, pos);
+  state.defaultPrio = get<double>(in, pos);
+  state.isStatic = get<std::uint8_t>(in, pos) != 0;
+  const bool moved = get<std::uint8_t>(in, pos) != 0;
+  to.takeNode(n, state);
+  for (std::uint32_t i = 0, count = get<std::uint32_t>(in, pos); i < count; ++i) {
+    const auto copies = get<std::uint32_t>(in, pos);
+    readFact(to, in, pos, [&] { to.takeStoredFact(n, fact_.pred, fact_.args.data(), copies); });
+  }
+  for (std::uint32_t i = 0, count = get<std::uint32_t>(in, pos); i < count; ++i)
+    readFact(to, in, pos, [&] { to.takePendingFact(n, fact_.pred, fact_.args.data(), fact_.negative); });
+  if (moved) to.settleMovedNode(n);
+  to.takeNodeDone(n);
+}
+
+}  // namespace meldvm
