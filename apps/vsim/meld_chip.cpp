@@ -76,7 +76,8 @@ MeldChip::~MeldChip() = default;
 
 multicore::Work MeldChip::workSince(unsigned core, const meldvm::MachineStats& before) const {
   const meldvm::MachineStats& now = cores_[core]->machine->stats();
-  return {now.rulesFired - before.rulesFired, now.factsDerived - before.factsDerived};
+  return {now.rulesFired - before.rulesFired, now.factsDerived - before.factsDerived,
+          now.factsTried - before.factsTried};
 }
 
 multicore::Work MeldChip::start(unsigned core) {
@@ -106,7 +107,7 @@ void MeldChip::takeOutgoing(unsigned core, std::vector<multicore::Batch>& out) {
       freeBatches_.pop_back();
     }
     batches_[handle].swap(bytes);  // the emptied buffer of an earlier batch goes back to the core
-    out.push_back({to, facts, handle});
+    out.push_back({to, facts, batches_[handle].size(), handle});
   });
 }
 
@@ -117,26 +118,27 @@ void MeldChip::deliver(unsigned core, std::uint64_t handle) {
   freeBatches_.push_back(handle);
 }
 
-void MeldChip::moveNode(unsigned from, unsigned to, NodeId n, bool moved) {
+std::uint64_t MeldChip::moveNode(unsigned from, unsigned to, NodeId n, bool moved) {
   moving_.clear();
   mail_.putNode(moving_, *cores_[from]->machine, n, moved);
   directory_->moveNode(n, to);
   meldvm::ShardMail::Taken taken;
   mail_.apply(*cores_[to]->machine, moving_, taken);
+  return moving_.size();
 }
 
-std::size_t MeldChip::moveNodes(unsigned from, unsigned to, std::size_t count) {
+std::size_t MeldChip::moveNodes(unsigned from, unsigned to, std::size_t count, std::uint64_t& bytes) {
   const std::vector<NodeId> nodes = cores_[from]->machine->pickNodesToGive(count);
-  for (NodeId n : nodes) moveNode(from, to, n, false);
+  for (NodeId n : nodes) bytes += moveNode(from, to, n, false);
   return nodes.size();
 }
 
-std::size_t MeldChip::applyRequestedMoves() {
+std::size_t MeldChip::applyRequestedMoves(std::uint64_t& bytes) {
   std::size_t moved = 0;
   for (const auto& [n, to] : moves_) {
     const ThreadId from = directory_->ownerOf(n);
     if (from == to || from == meldvm::kNoThread || !cores_[from]->machine->unqueueToGive(n)) continue;
-    moveNode(from, to, n, true);
+    bytes += moveNode(from, to, n, true);
     ++moved;
   }
   moves_.clear();

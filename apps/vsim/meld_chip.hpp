@@ -29,9 +29,9 @@ class MeldChip final : public multicore::CoreWorkload {
   std::size_t queued(unsigned core) const override;
   void takeOutgoing(unsigned core, std::vector<multicore::Batch>& out) override;
   void deliver(unsigned core, std::uint64_t handle) override;
-  std::size_t moveNodes(unsigned from, unsigned to, std::size_t count) override;
+  std::size_t moveNodes(unsigned from, unsigned to, std::size_t count, std::uint64_t& bytes) override;
   bool movesRequested() const override { return !moves_.empty(); }
-  std::size_t applyRequestedMoves() override;
+  std::size_t applyRequestedMoves(std::uint64_t& bytes) override;
   bool stopped() const override { return stop_.load(std::memory_order_relaxed); }
 
   // After the run: the created nodes nobody refers to go (§6.10), unless the program stopped.
@@ -45,7 +45,7 @@ class MeldChip final : public multicore::CoreWorkload {
  private:
   class CoreShard;
   multicore::Work workSince(unsigned core, const meldvm::MachineStats& before) const;
-  void moveNode(unsigned from, unsigned to, meldvm::NodeId n, bool moved);
+  std::uint64_t moveNode(unsigned from, unsigned to, meldvm::NodeId n, bool moved);  // returns its bytes
   std::vector<const meldvm::Machine*> shards() const;
 
   const meldvm::Program& program_;

@@ -18,12 +18,12 @@ bool equalsNoCase(std::string_view a, std::string_view b) {
   return true;
 }
 
-double parseNanos(std::string_view option, std::string_view text) {
+double parseNumber(std::string_view option, std::string_view text, const char* what = "number") {
   const std::string s(text);
   char* end = nullptr;
   const double v = std::strtod(s.c_str(), &end);
   if (s.empty() || *end || !(v >= 0) || v > 1e12)
-    throw UsageError(std::string(option) + " wants a non-negative number of nanoseconds, got '" + s + "'");
+    throw UsageError(std::string(option) + " wants a non-negative " + what + ", got '" + s + "'");
   return v;
 }
 
@@ -51,7 +51,7 @@ void parseCosts(std::string_view text, multicore::CoreCosts& costs) {
     if (eq == std::string_view::npos)
       throw UsageError("--costs wants NAME=NS pairs like rule=150,send=200, got '" + std::string(item) + "'");
     const std::string_view name = item.substr(0, eq);
-    const double v = parseNanos("--costs " + std::string(name), item.substr(eq + 1));
+    const double v = parseNumber("--costs " + std::string(name), item.substr(eq + 1));
     if (name == "node") costs.nodeRun = v;
     else if (name == "rule") costs.rule = v;
     else if (name == "fact") costs.fact = v;
@@ -59,9 +59,12 @@ void parseCosts(std::string_view text, multicore::CoreCosts& costs) {
     else if (name == "receive") costs.receive = v;
     else if (name == "rebalance") costs.rebalance = v;
     else if (name == "move") costs.nodeMoved = v;
+    else if (name == "contention") costs.contention = v;
+    else if (name == "byte") costs.byte = v;
+    else if (name == "tried") costs.tried = v;
     else
       throw UsageError("--costs: unknown cost '" + std::string(name) +
-                       "' (node, rule, fact, send, receive, rebalance, move)");
+                       "' (node, rule, fact, tried, send, receive, byte, rebalance, move, contention)");
     if (comma == std::string_view::npos) return;
     text.remove_prefix(comma + 1);
   }
@@ -81,7 +84,7 @@ bool parseMulticoreOption(std::string_view arg, const std::function<std::string_
     if (!t) throw UsageError("--topology is mesh, ring or full, got '" + std::string(name) + "'");
     m.chip.topology = *t;
   } else if (arg == "--hop-latency") {
-    m.chip.hopLatency = parseNanos("--hop-latency", value());
+    m.chip.hopLatency = parseNumber("--hop-latency", value(), "number of nanoseconds");
   } else if (arg == "--costs") {
     parseCosts(value(), m.chip.costs);
   } else if (arg == "--no-steal") {

@@ -8,7 +8,6 @@
 
 #include "meld_chip.hpp"
 #include "meld_program.hpp"
-#include "simcore/time.hpp"
 
 namespace vsim {
 
@@ -63,12 +62,12 @@ ChipRun simulate(const meldvm::Program& program, const Options& o, unsigned core
 }
 
 void printSweep(std::ostream& out, const std::vector<ChipRun>& runs, const ChipRun& base) {
-  out << "  cores  predicted time  speedup  efficiency  rebalances  facts across cores  host s\n";
+  out << "  cores    predicted ms  speedup  efficiency  rebalances  facts across cores  host s\n";
   for (const ChipRun& r : runs) {
     const double speedup = r.time > 0 ? double(base.time) / double(r.time) : 1.0;
     char line[160];
-    std::snprintf(line, sizeof line, "  %5u  %14s  %7.2f  %10.2f  %10llu  %18llu  %6.2f\n", r.cores,
-                  simcore::formatTime(r.time).c_str(), speedup, speedup / r.cores,
+    std::snprintf(line, sizeof line, "  %5u  %14.6f  %7.2f  %10.2f  %10llu  %18llu  %6.2f\n", r.cores,
+                  double(r.time) / 1e6, speedup, speedup / r.cores,
                   (unsigned long long)r.rebalances, (unsigned long long)r.factsAcross, r.hostSeconds);
     out << line;
   }
@@ -96,10 +95,10 @@ void printHeader(std::ostream& out, const Options& o, const meldvm::Program& pro
   const multicore::CoreCosts& k = chip.costs;
   char line[400];
   std::snprintf(line, sizeof line,
-                "multicore: %s, %.0f ns per hop, stealing %s; costs (ns): node %.0f, rule %.0f, fact %.0f, "
-                "send %.0f, receive %.0f, rebalance %.0f, move %.0f\nprogram: %s, %zu nodes\n",
+                "multicore: %s, %.0f ns per hop, stealing %s; costs (ns): node %.0f, rule %.0f, fact %.0f, tried %.1f, "
+                "send %.0f, receive %.0f, byte %.1f, rebalance %.0f, move %.0f; contention %.2f\nprogram: %s, %zu nodes\n",
                 multicore::topologyName(chip.topology), chip.hopLatency, chip.stealing ? "on" : "off", k.nodeRun,
-                k.rule, k.fact, k.send, k.receive, k.rebalance, k.nodeMoved, o.program.c_str(),
+                k.rule, k.fact, k.tried, k.send, k.receive, k.byte, k.rebalance, k.nodeMoved, k.contention, o.program.c_str(),
                 program.nodeSourceIds.size());
   out << line;
 }
@@ -125,15 +124,13 @@ int runMulticore(const Options& o) {
   const std::vector<unsigned>& counts = o.multicore.cores;
   std::vector<ChipRun> runs;
   try {
-    bool haveBase = false;
-    for (unsigned n : counts) haveBase = haveBase || n == 1;
     std::optional<ChipRun> base;
-    if (!haveBase) base = simulate(*program, o, 1, false, nullptr);
     for (std::size_t i = 0; i < counts.size(); ++i) {
       const bool last = i + 1 == counts.size();
       runs.push_back(simulate(*program, o, counts[i], last, last && profile.is_open() ? &profile : nullptr));
       if (counts[i] == 1 && !base) base = runs.back();
     }
+    if (!base) base = simulate(*program, o, 1, false, nullptr);  // the speedups' reference
     std::cout.flush();
     if (!o.quiet) {
       printHeader(std::cout, o, *program);

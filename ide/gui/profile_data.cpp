@@ -75,15 +75,22 @@ std::optional<Profile> loadProfile(const QString& path, QString& error) {
     if (ph == "M" && e.value("name").toString() == "process_name")
       p.title = e.value("args").toObject().value("name").toString();
     const int tid = e.value("tid").toInt(-1);
-    if (ph == "M" && e.value("name").toString() == "thread_name" && tid >= 0 && tid < 4096 &&
-        std::size_t(tid) >= p.threads.size())
-      p.threads.resize(std::size_t(tid) + 1);  // a thread with no span still has its row
+    if (ph == "M" && e.value("name").toString() == "thread_name" && tid >= 0 && tid < 4096) {
+      if (std::size_t(tid) >= p.threads.size()) p.threads.resize(std::size_t(tid) + 1);  // a row even without spans
+      if (std::size_t(tid) >= p.laneNames.size()) p.laneNames.resize(std::size_t(tid) + 1);
+      p.laneNames[std::size_t(tid)] = e.value("args").toObject().value("name").toString();
+    }
     if (ph == "X" && tid >= 0 && tid < 4096) addSpan(p, tid, e);
   }
-  if (!p.title.startsWith("meld -j ") || p.threads.empty()) {
-    error = path + ": not a profile written by `meld --profile` (no worker threads in it)";
+  p.simulated = p.title.startsWith("vsim multicore ");
+  if ((!p.title.startsWith("meld -j ") && !p.simulated) || p.threads.empty()) {
+    error = path + ": not a profile written by `meld --profile` or `vsim --target multicore --profile`"
+                   " (no worker threads or cores in it)";
     return std::nullopt;
   }
+  p.laneNames.resize(p.threads.size());
+  for (std::size_t t = 0; t < p.laneNames.size(); ++t)
+    if (p.laneNames[t].isEmpty()) p.laneNames[t] = (p.simulated ? "core " : "worker ") + QString::number(t);
   summarize(p);
   return p;
 }

@@ -1,5 +1,6 @@
-// A profile of the multicore target as `meld --profile FILE.json` writes it (Chrome trace
-// events, vm/threads/src/profile_writer.cpp): per worker thread, spans of node runs, idle spans
+// A profile of the multicore target as `meld --profile FILE.json` (worker threads) or
+// `vsim --target multicore --profile FILE.json` (the cores of a simulated chip) writes it (Chrome
+// trace events, support/profile_trace.hpp): per thread or core, spans of node runs, idle spans
 // and steal spans. Read back here for the IDE's profile view; several profiles of the same
 // program at different thread counts make a speedup table.
 #pragma once
@@ -23,8 +24,10 @@ struct ThreadSummary {
 };
 
 struct Profile {
-  QString path, title;                            // title: the process name ("meld -j 2")
-  std::vector<std::vector<ProfileSpan>> threads;  // per worker thread, in time order
+  QString path, title;                            // title: "meld -j 2", "vsim multicore 16 cores"
+  std::vector<std::vector<ProfileSpan>> threads;  // per worker thread (or core), in time order
+  std::vector<QString> laneNames;                 // per thread: "worker 0", "core 0"
+  bool simulated = false;                         // a simulated chip: its times are predicted
   double endUs = 0;                               // the last span's end: the run's wall time
   std::vector<ThreadSummary> summary;             // per thread
 };

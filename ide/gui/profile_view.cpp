@@ -108,7 +108,7 @@ void Timeline::paintEvent(QPaintEvent*) {
     const int y = kAxisHeight + int(t) * rowHeight_;
     g.setPen(Qt::black);
     if (rowHeight_ >= 12)
-      g.drawText(QRect(4, y, kLabelWidth - 8, rowHeight_), Qt::AlignVCenter, "worker " + QString::number(t));
+      g.drawText(QRect(4, y, kLabelWidth - 8, rowHeight_), Qt::AlignVCenter, profile_->laneNames[t]);
     g.setPen(Qt::NoPen);
     for (const ProfileSpan& s : profile_->threads[t]) {
       if (s.endUs < begin_ || s.beginUs > end_) continue;
@@ -152,8 +152,8 @@ void Timeline::mouseMoveEvent(QMouseEvent* e) {
                              ? QString("rebalance: %1 nodes taken").arg(s->nodeRuns)
                              : QString("%1 node runs, %2 facts derived").arg(s->nodeRuns).arg(s->facts);
     QToolTip::showText(e->globalPosition().toPoint(),
-                       QString("worker %1, %2 from %3: %4")
-                           .arg(thread)
+                       QString("%1, %2 from %3: %4")
+                           .arg(profile_->laneNames[std::size_t(thread)])
                            .arg(duration(s->endUs - s->beginUs), duration(s->beginUs), what),
                        this);
   } else {
@@ -185,12 +185,12 @@ ProfileView::ProfileView(std::vector<Profile> profiles, QWidget* parent)
   summary_ = new QTableWidget(this);
   summary_->setColumnCount(7);
   summary_->setHorizontalHeaderLabels(
-      {"thread", "busy %", "idle %", "steal %", "node runs", "facts derived", "nodes stolen"});
+      {"thread / core", "busy %", "idle %", "steal %", "node runs", "facts derived", "nodes stolen"});
   summary_->verticalHeader()->hide();
   summary_->horizontalHeader()->setSectionResizeMode(QHeaderView::Stretch);
   sweep_ = new QTableWidget(this);
   sweep_->setColumnCount(4);
-  sweep_->setHorizontalHeaderLabels({"threads", "wall s", "speedup", "efficiency"});
+  sweep_->setHorizontalHeaderLabels({"threads / cores", "wall s (chip: predicted)", "speedup", "efficiency"});
   sweep_->verticalHeader()->hide();
   sweep_->horizontalHeader()->setSectionResizeMode(QHeaderView::Stretch);
   const std::vector<SweepRow> rows = sweep(profiles_);
@@ -213,7 +213,7 @@ ProfileView::ProfileView(std::vector<Profile> profiles, QWidget* parent)
   layout->addWidget(legend);
   layout->addWidget(summary_, 2);
   auto* sweepLabel =
-      new QLabel("Speedup over the run with the fewest threads (the profiles opened together):", this);
+      new QLabel("Speedup over the run with the fewest threads or cores (the profiles opened together):", this);
   layout->addWidget(sweepLabel);
   layout->addWidget(sweep_, 1);
   sweepLabel->setVisible(profiles_.size() > 1);
@@ -234,7 +234,8 @@ void ProfileView::showProfile(int index) {
     return;
   }
   const Profile& p = profiles_[std::size_t(index)];
-  heading_->setText(QString("<b>%1</b> — %2 worker threads, %3 s")
+  heading_->setText(QString(p.simulated ? "<b>%1</b> — %2 simulated cores, predicted %3 s"
+                                         : "<b>%1</b> — %2 worker threads, %3 s")
                         .arg(p.title)
                         .arg(p.threads.size())
                         .arg(p.endUs / 1e6, 0, 'f', 3));
@@ -243,7 +244,7 @@ void ProfileView::showProfile(int index) {
   for (int t = 0; t < int(p.summary.size()); ++t) {
     const ThreadSummary& s = p.summary[std::size_t(t)];
     const double total = std::max(1e-9, p.endUs);
-    summary_->setItem(t, 0, cell("worker " + QString::number(t)));
+    summary_->setItem(t, 0, cell(p.laneNames[std::size_t(t)]));
     summary_->setItem(t, 1, cell(QString::number(100 * s.runUs / total, 'f', 1)));
     summary_->setItem(t, 2, cell(QString::number(100 * s.idleUs / total, 'f', 1)));
     summary_->setItem(t, 3, cell(QString::number(100 * s.stealUs / total, 'f', 1)));

@@ -15,16 +15,23 @@ enum class Topology { Mesh, Ring, Full };
 std::optional<Topology> parseTopology(std::string_view name);
 const char* topologyName(Topology t);
 
-// Nanoseconds of core time. The defaults are calibrated on the project's 2-core machine by
-// bench/multicore/calibrate.sh (its README has the fit and how to redo it for another machine).
+// Nanoseconds of core time. The defaults are fitted by bench/multicore/calibrate.sh to `meld -j 1`
+// and `-j 2` runs of the five B2 programs on the project's 2-core machine (2026-11-25; its README
+// has the fit, how well it predicts, and how to redo it for another machine). A zero is what the
+// fit found: that count added nothing the others did not already explain.
 struct CoreCosts {
-  double nodeRun = 120;  // choosing a node and running it, beyond what its rules cost
-  double rule = 150;     // one rule firing
-  double fact = 100;     // one fact derived (stored, indexed, or queued for its node)
-  double send = 150;     // one fact sent to another core (encoded into the batch)
-  double receive = 200;  // one fact received from another core (decoded, stored)
-  double rebalance = 20000;  // one work-stealing round (all cores wait in it)
-  double nodeMoved = 2000;   // one node moved by it (its facts travel along)
+  double nodeRun = 0;    // choosing a node and running it, beyond what its rules cost
+  double rule = 76;      // one rule firing
+  double fact = 0;       // one fact derived (stored, indexed, or queued for its node)
+  double tried = 68.64;  // one fact a rule looked at, whether it matched or not
+  double send = 0;       // one fact sent to another core (encoded into the batch)
+  double receive = 0;    // one fact received from another core (decoded, stored)
+  double byte = 8.53;    // one byte of such a fact's record (or of a moving node's), at each end
+  double rebalance = 5917586;  // one work-stealing round (all cores wait in it)
+  double nodeMoved = 12023;    // one node moved by it (its facts travel along)
+  // Not ns: how much slower a core runs while all the others are busy too (shared caches and
+  // memory), 0.3 = 30 %; with k of N cores busy, a run costs (1 + contention (k-1)/(N-1)) times more.
+  double contention = 0;
 };
 
 struct ChipSpec {

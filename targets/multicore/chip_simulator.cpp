@@ -34,7 +34,7 @@ ChipSimulator::ChipSimulator(const ChipSpec& chip, CoreWorkload& workload, bool 
 void ChipSimulator::run() {
   for (unsigned c = 0; c < chip_.cores; ++c) {
     const Work w = work_.start(c);
-    const double cost = double(w.rules) * chip_.costs.rule + double(w.facts) * chip_.costs.fact;
+    const double cost = workCost(w);
     stats_[c].rules += w.rules;
     stats_[c].facts += w.facts;
     const double total = cost + send(c, 0, cost);
@@ -79,8 +79,10 @@ void ChipSimulator::runCore(unsigned c, simcore::SimTime now) {
     return goIdle(c, now);
   }
   const CoreCosts& k = chip_.costs;
-  double cost = k.nodeRun + double(w.rules) * k.rule + double(w.facts) * k.fact + core.owedNs;
+  double cost = k.nodeRun + workCost(w) + core.owedNs;
   core.owedNs = 0;
+  if (chip_.cores > 1 && k.contention > 0)  // the cores busy now, this one included
+    cost *= 1 + k.contention * double(chip_.cores - idleCores_ - 1) / double(chip_.cores - 1);
   cost += send(c, now, cost);
   const simcore::SimTime done = now + ns(cost);
   CoreStats& s = stats_[c];
@@ -103,7 +105,7 @@ double ChipSimulator::send(unsigned c, simcore::SimTime now, double runNs) {
   outgoing_.clear();
   work_.takeOutgoing(c, outgoing_);
   double cost = 0;
-  for (const Batch& b : outgoing_) cost += double(b.facts) * chip_.costs.send;
+  for (const Batch& b : outgoing_) cost += double(b.facts) * chip_.costs.send + double(b.bytes) * chip_.costs.byte;
   const simcore::SimTime leave = now + ns(runNs + cost);
   for (const Batch& b : outgoing_) {
     const simcore::SimTime arrival = leave + ns(double(hops(chip_, c, b.to)) * chip_.hopLatency);
@@ -115,7 +117,7 @@ double ChipSimulator::send(unsigned c, simcore::SimTime now, double runNs) {
       slot = freeSlots_.back();
       freeSlots_.pop_back();
     }
-    inFlight_[slot] = {b.to, b.facts, b.handle, arrival, false};
+    inFlight_[slot] = {b.to, b.facts, b.bytes, b.handle, arrival, false};
     queue_.schedule(arrival, simcore::PriorityClass::Message, b.to, kArrival, 0, slot);
     stats_[c].factsOut += b.facts;
     ++stats_[c].batchesOut;
@@ -132,7 +134,7 @@ void ChipSimulator::arrive(std::uint64_t slot, simcore::SimTime now) {
   work_.deliver(c, f.handle);
   stats_[c].factsIn += f.facts;
   if (!timelines_.empty()) timelines_[c].factsIn(f.facts);
-  core_[c].owedNs += double(f.facts) * chip_.costs.receive;
+  core_[c].owedNs += receiveCost(f);
   Core& core = core_[c];
   if (core.scheduled || core.inBarrier) return;
   // The core was idle: it wakes now.
@@ -185,13 +187,15 @@ void ChipSimulator::completeBarrier(simcore::SimTime now) {
     f.delivered = true;
     work_.deliver(f.to, f.handle);
     stats_[f.to].factsIn += f.facts;
-    core_[f.to].owedNs += double(f.facts) * chip_.costs.receive;
+    core_[f.to].owedNs += receiveCost(f);
   }
   std::vector<std::uint64_t> takenBefore(chip_.cores);
   for (unsigned c = 0; c < chip_.cores; ++c) takenBefore[c] = stats_[c].nodesTaken;
-  std::size_t moved = work_.applyRequestedMoves();
-  if (chip_.stealing) moved += stealPlan();
-  const double cost = chip_.costs.rebalance + double(moved) * chip_.costs.nodeMoved;
+  std::uint64_t bytes = 0;  // a moving node's facts are encoded and rebuilt, as a crossing fact's are
+  std::size_t moved = work_.applyRequestedMoves(bytes);
+  if (chip_.stealing) moved += stealPlan(bytes);
+  const double cost =
+      chip_.costs.rebalance + double(moved) * chip_.costs.nodeMoved + 2 * double(bytes) * chip_.costs.byte;
   const simcore::SimTime resume = drained + ns(cost);
   ++rebalances_;
   for (unsigned c = 0; c < chip_.cores; ++c) {
@@ -209,7 +213,7 @@ void ChipSimulator::completeBarrier(simcore::SimTime now) {
 }
 
 // The i-th most loaded core gives half the difference of queues to the i-th least loaded.
-std::size_t ChipSimulator::stealPlan() {
+std::size_t ChipSimulator::stealPlan(std::uint64_t& bytes) {
   std::vector<unsigned> order(chip_.cores);
   std::vector<std::size_t> load(chip_.cores);
   std::iota(order.begin(), order.end(), 0u);
@@ -219,7 +223,7 @@ std::size_t ChipSimulator::stealPlan() {
   for (std::size_t i = 0; i < order.size() / 2; ++i) {
     const unsigned giver = order[i], taker = order[order.size() - 1 - i];
     if (load[giver] < load[taker] + kStealableQueue) continue;
-    const std::size_t n = work_.moveNodes(giver, taker, (load[giver] - load[taker]) / 2);
+    const std::size_t n = work_.moveNodes(giver, taker, (load[giver] - load[taker]) / 2, bytes);
     stats_[giver].nodesGiven += n;
     stats_[taker].nodesTaken += n;
     moved += n;

@@ -23,11 +23,12 @@ namespace multicore {
 // What one node run (or a core's start) did; the chip turns it into time.
 struct Work {
   std::uint64_t rules = 0, facts = 0;
+  std::uint64_t tried = 0;  // facts the rules looked at, matching or not
 };
 // Facts one core sent another during a run; the workload keeps them under `handle`.
 struct Batch {
   unsigned to = 0;
-  std::uint64_t facts = 0;
+  std::uint64_t facts = 0, bytes = 0;
   std::uint64_t handle = 0;
 };
 
@@ -42,12 +43,13 @@ class CoreWorkload {
   // The batches `core` sent since the last call, at most one per destination.
   virtual void takeOutgoing(unsigned core, std::vector<Batch>& out) = 0;
   virtual void deliver(unsigned core, std::uint64_t handle) = 0;
-  // Work stealing: moves up to `count` of from's queued nodes to `to`; returns how many moved.
-  virtual std::size_t moveNodes(unsigned from, unsigned to, std::size_t count) = 0;
+  // Work stealing: moves up to `count` of from's queued nodes to `to`; returns how many moved
+  // and adds the bytes they carried (their facts) to `bytes`.
+  virtual std::size_t moveNodes(unsigned from, unsigned to, std::size_t count, std::uint64_t& bytes) = 0;
   // set-cpu / set-affinity: whether moves wait, and doing them (inside the barrier); returns how
-  // many nodes moved.
+  // many nodes moved (and adds their bytes).
   virtual bool movesRequested() const = 0;
-  virtual std::size_t applyRequestedMoves() = 0;
+  virtual std::size_t applyRequestedMoves(std::uint64_t& bytes) = 0;
   virtual bool stopped() const = 0;  // stop-program
 };
 
@@ -72,7 +74,7 @@ class ChipSimulator {
  private:
   struct InFlight {
     unsigned to;
-    std::uint64_t facts, handle;
+    std::uint64_t facts, bytes, handle;
     simcore::SimTime arrival;
     bool delivered;
   };
@@ -91,9 +93,16 @@ class ChipSimulator {
   void requestRebalance(simcore::SimTime now, bool forced);
   void arriveAtBarrier(unsigned core, simcore::SimTime now);
   void completeBarrier(simcore::SimTime now);
-  std::size_t stealPlan();
+  std::size_t stealPlan(std::uint64_t& bytes);
   bool someoneCanGive(unsigned except) const;
   simcore::SimTime ns(double v) const { return simcore::SimTime(v + 0.5); }
+  double workCost(const Work& w) const {
+    return double(w.rules) * chip_.costs.rule + double(w.facts) * chip_.costs.fact +
+           double(w.tried) * chip_.costs.tried;
+  }
+  double receiveCost(const InFlight& f) const {
+    return double(f.facts) * chip_.costs.receive + double(f.bytes) * chip_.costs.byte;
+  }
 
   ChipSpec chip_;
   CoreWorkload& work_;

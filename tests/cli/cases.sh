@@ -194,6 +194,64 @@ case_why() {
   has "$ERR" "--why, --time-per-rule and -I go with a Meld program"
 }
 
+# --- the multicore target (a Meld program on a simulated chip) -----------------------------
+
+case_multicore() {
+  # The conformance suite runs on a 4-core chip (conformance.chip4.*); here: the report, a sweep,
+  # program arguments after --, the options of the chip, the profile, and the dump (the same on
+  # any chip).
+  P="$SRC/tests/conformance/args.meld"
+  run 0 --target multicore --program "$P" --cores 1,2,4 -- 7 hello
+  has "$OUT" "multicore: mesh, 50 ns per hop, stealing on"
+  has "$OUT" "  cores    predicted ms  speedup  efficiency"
+  has "$OUT" "per core (4 cores):"
+  [ "$(awk '/predicted ms/ { on = 1; next } /^per core/ { on = 0 } on' "$OUT" | awk '{ print $1 }' | tr '\n' ' ')" = "1 2 4 " ] ||
+    fail "not one sweep line per core count"
+  run 0 --target multicore --program "$P" --cores 3 --topology ring --hop-latency 10 --no-steal \
+    --costs rule=5,send=1 --dump --quiet --profile "$WORK/chip.json" -- 7 hello
+  (cd "$SRC/tests/conformance" && "$VSIM" --target multicore --program args.meld --dump --quiet -- 7 hello) >"$WORK/dump" ||
+    fail "the dump run failed"
+  cmp -s "$OUT" "$WORK/dump" || fail "the dump depends on the chip's topology or costs"
+  diff -u "$SRC/tests/conformance/args.expected" "$OUT" >&2 || fail "the chip's dump differs from the golden"
+  has "$WORK/chip.json" '"name":"vsim multicore 3 cores"'
+  has "$WORK/chip.json" '"name":"core 2"'
+}
+
+case_multicore_errors() {
+  P="$SRC/tests/conformance/args.meld"
+  run 2 --target multicore
+  has "$ERR" "--target multicore needs --program PROG.meld|PROG.mbc"
+  run 2 "$WORLDS/color-flood.xml" --target multicore --program "$P"
+  has "$ERR" "no world file (got"
+  run 2 --target multicore --program "$P" --cores 0
+  has "$ERR" "--cores wants core counts from 1 to 1024"
+  run 2 --target multicore --program "$P" --cores 2,x
+  has "$ERR" "got 'x'"
+  run 2 --target multicore --program "$P" --topology torus
+  has "$ERR" "--topology is mesh, ring or full, got 'torus'"
+  run 2 --target multicore --program "$P" --costs rule
+  has "$ERR" "--costs wants NAME=NS pairs"
+  run 2 --target multicore --program "$P" --costs speed=3
+  has "$ERR" "--costs: unknown cost 'speed'"
+  run 2 --target multicore --program "$P" --hop-latency -5
+  has "$ERR" "--hop-latency wants a non-negative number of nanoseconds"
+  run 2 --target multicore --program "$P" --tap 1@1s
+  has "$ERR" "--tap is for worlds, not for --target multicore"
+  run 2 "$WORLDS/color-flood.xml" --code "$FLOOD" --cores 4
+  has "$ERR" "are for --target multicore"
+  run 3 --target multicore --program "$WORK/nosuch.meld"
+  has "$ERR" "nosuch.meld"
+  printf 'type route e(node, node).\nthis is not meld\n' >"$WORK/bad.meld"
+  run 3 --target multicore --program "$WORK/bad.meld"
+  has "$ERR" "bad.meld:2:"
+  run 1 --target multicore --program "$P" --profile "$WORK/no/such/dir/p.json"
+  has "$ERR" "--profile: cannot write"
+  # A run-time error on the chip: integer division by zero.
+  printf 'type linear p(node, int).\np(@0, 1).\np(A, X) -o p(A, 1 / (X - 1)).\n' >"$WORK/div.meld"
+  run 1 --target multicore --program "$WORK/div.meld" --cores 2
+  has "$ERR" "Meld program failed on the 2-core chip"
+}
+
 case_visiblesim_world() {
   # VisibleSim's forms (vs root, gridsize, bitmap rows, blockBox, #RRGGBB) with a Meld program
   # named by the world: 13 blocks; the 12 connected ones elect id 11 (blue, 11 % 6 = 5), block 12

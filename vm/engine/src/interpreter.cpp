@@ -188,7 +188,9 @@ bool Interpreter::loop(Frame& f, std::uint32_t pc) {
   slot.fixed = nullptr;
 
   machine_.countStep();                     // each loop run: a join that never fires is work too
+  std::uint64_t tried = 0;                  // added to the statistics once, after the loop
   auto visit = [&](FactRef fact) -> bool {  // false: stop the loop
+    ++tried;
     if (linear && skipFact(f, s, p, fact)) return true;
     slot.fact = fact;
     if (exec(f, body) == Status::Fired) {
@@ -229,6 +231,7 @@ bool Interpreter::loop(Frame& f, std::uint32_t pc) {
       if (!visit(sorted_[i])) break;
     sorted_.resize(begin);
   }
+  machine_.stats_.factsTried += tried;
   slot.fact = kNoFact;
   return fired;
 }

@@ -34,6 +34,7 @@ MachineStats sumStats(const std::vector<const Machine*>& shards) {
   for (const Machine* m : shards) {
     const MachineStats& s = m->stats();
     all.factsDerived += s.factsDerived;
+    all.factsTried += s.factsTried;
     all.factsConsumed += s.factsConsumed;
     all.factsSent += s.factsSent;
     all.rulesFired += s.rulesFired;

@@ -53,6 +53,7 @@ ThreadStats Worker::stats() const {
   s.nodeRuns = m.nodeRuns;
   s.rulesFired = m.rulesFired;
   s.factsDerived = m.factsDerived;
+  s.factsTried = m.factsTried;
   return s;
 }
 
@@ -125,6 +126,7 @@ void Worker::sendRemote(ThreadId to, NodeId dest, PredId p, const Value* args, b
   const std::size_t before = out.size();
   mail_.putFact(out, dest, p, args, negative);
   outgoingBytes_ += out.size() - before;
+  stats_.bytesOut += out.size() - before;
   ++stats_.factsOut;
 }
 

@@ -70,6 +70,9 @@ struct MachineStats {
   std::uint64_t factsConsumed = 0;  // linear facts consumed
   std::uint64_t factsSent = 0;      // facts sent to another node
   std::uint64_t rulesFired = 0;     // rule firings (a comprehension's matches not counted)
+  // Facts the rules' loops looked at, whether they matched or not: the work of rules that do not
+  // fire (the multicore target's chip charges it).
+  std::uint64_t factsTried = 0;
   std::uint64_t nodeRuns = 0;
 };
 

@@ -29,8 +29,9 @@ struct SharedState;
 
 // What one worker thread did (meld --stats prints the table).
 struct ThreadStats {
-  std::uint64_t nodeRuns = 0, rulesFired = 0, factsDerived = 0;
+  std::uint64_t nodeRuns = 0, rulesFired = 0, factsDerived = 0, factsTried = 0;
   std::uint64_t factsOut = 0, factsIn = 0;  // facts sent to / received from other threads
+  std::uint64_t bytesOut = 0;               // the records of the facts sent (fact_codec's bytes)
   std::uint64_t batchesOut = 0;             // channel pushes (each one or more facts)
   std::uint64_t waits = 0;                  // times the thread ran out of work
   std::uint64_t rebalances = 0;             // work-stealing rounds it took part in
