@@ -5,18 +5,11 @@
 #include <string>
 
 #include "options.hpp"
+#include "support/text.hpp"
 
 namespace vsim {
 
 namespace {
-
-bool equalsNoCase(std::string_view a, std::string_view b) {
-  if (a.size() != b.size()) return false;
-  for (std::size_t i = 0; i < a.size(); ++i)
-    if (std::tolower(static_cast<unsigned char>(a[i])) != std::tolower(static_cast<unsigned char>(b[i])))
-      return false;
-  return true;
-}
 
 double parseNumber(std::string_view option, std::string_view text, const char* what = "number") {
   const std::string s(text);
@@ -72,7 +65,7 @@ void parseCosts(std::string_view text, multicore::CoreCosts& costs) {
 
 }  // namespace
 
-bool Options::isMulticore() const { return equalsNoCase(target, "multicore"); }
+bool Options::isMulticore() const { return support::sameIgnoringCase(target, "multicore"); }
 
 bool parseMulticoreOption(std::string_view arg, const std::function<std::string_view()>& value,
                           MulticoreOptions& m) {

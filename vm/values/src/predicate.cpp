@@ -3,17 +3,13 @@
 #include <cctype>
 #include <stdexcept>
 
+#include "support/text.hpp"
+
 namespace meldvm {
 
 namespace {
 
-bool sameIgnoringCase(std::string_view a, std::string_view b) {
-  if (a.size() != b.size()) return false;
-  for (std::size_t i = 0; i < a.size(); ++i)
-    if (std::tolower(static_cast<unsigned char>(a[i])) != std::tolower(static_cast<unsigned char>(b[i])))
-      return false;
-  return true;
-}
+using support::sameIgnoringCase;
 
 bool numeric(const TypeTable& types, TypeId t) {
   return types.kind(t) == TypeKind::Int || types.kind(t) == TypeKind::Float;
