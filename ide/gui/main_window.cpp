@@ -249,6 +249,7 @@ void MainWindow::selectBlock(std::uint32_t block) {
 }
 
 void MainWindow::poll() {
+  takeProfiles();
   console_->append(controller_.takeConsoleLines());
   // Fastest runs: draw at most a fifth of the time (a software renderer shares the kernel's
   // cores), and ask for no snapshot in between (each one costs the kernel a copy of the world).

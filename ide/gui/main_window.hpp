@@ -4,10 +4,12 @@
 // window polls its snapshots on a timer and never touches the simulation.
 #pragma once
 
+#include <QPointer>
 #include <QMainWindow>
 #include <memory>
 
 #include "options.hpp"
+#include "profile_runner.hpp"
 #include "sim_controller.hpp"
 
 class QComboBox;
@@ -60,6 +62,12 @@ class MainWindow : public QMainWindow {
   // Opens `meld --profile` files in a profile window (several: with their speedup table); the
   // window, or nullptr after a message saying which file could not be read.
   QWidget* openProfiles(const QStringList& paths);
+  // Run > Profile on threads: the editor's program (compiled as `meld` compiles it) at each
+  // thread count, in the background; the profile window opens when the runs are over. False
+  // (said in the console) with no program, compile errors, or runs already going.
+  bool profileProgram(const std::vector<unsigned>& threads = ProfileRunner::defaultThreadCounts());
+  // The window the last profiling opened (nullptr until then), for tests.
+  QWidget* lastProfileWindow() const { return lastProfileWindow_; }
   // The run from its start, a frame every `every` of simulated time, seen from the view's camera,
   // into `folder` (frame-000000.png ...); the number written, -1 on error (said in the console).
   int exportFrames(const QString& folder, simcore::SimTime every);
@@ -101,6 +109,10 @@ class MainWindow : public QMainWindow {
   std::uint64_t shownSerial_ = 0, shownSession_ = 0;
   bool drawingFastest_ = false;  // the last snapshot shown was of a running run
   bool whyAtEnd_ = false;        // --why: ask once the run is over
+  ProfileRunner profiler_;
+  QString profileFolder_;
+  QPointer<QWidget> lastProfileWindow_;
+  void takeProfiles();
 };
 
 }  // namespace ide

@@ -1,6 +1,8 @@
 // The window's menus and toolbar, and the actions behind them that ask the user something
 // (run until, export frames) or keep the recent files.
 #include <QApplication>
+#include <QCoreApplication>
+#include <QDir>
 #include <QComboBox>
 #include <QFileDialog>
 #include <QFileInfo>
@@ -11,10 +13,13 @@
 #include <QSettings>
 #include <QStatusBar>
 #include <QToolBar>
+#include <sstream>
 
+#include "code_editor.hpp"
 #include "console_panel.hpp"
 #include "frame_export.hpp"
 #include "main_window.hpp"
+#include "meld_program.hpp"
 #include "profile_view.hpp"
 #include "world_view.hpp"
 
@@ -95,6 +100,50 @@ QWidget* MainWindow::openProfiles(const QStringList& paths) {
   return window;
 }
 
+bool MainWindow::profileProgram(const std::vector<unsigned>& threads) {
+  const QString path = editor_->path();
+  if (path.isEmpty() || !(path.endsWith(".meld") || path.endsWith(".mbc"))) {
+    console_->appendMessage("Profile: open a Meld program first");
+    return false;
+  }
+  if (profiler_.running()) {
+    console_->appendMessage("Profile: the runs of the last profiling are still going");
+    return false;
+  }
+  if (path.endsWith(".meld") && !compile()) return false;  // saves it; its errors are listed
+  std::shared_ptr<const meldvm::Program> program;
+  std::ostringstream messages;
+  try {
+    program = vsim::loadMeldProgram(path.toStdString(), options_.includeDirs, &messages, /*robots=*/false);
+  } catch (const vsim::ProgramLoadError& e) {
+    console_->appendMessage("Profile: " + QString::fromStdString(messages.str() + e.what()));
+    return false;
+  }
+  if (profileFolder_.isEmpty()) {
+    profileFolder_ = QDir::temp().filePath(QString("vsim-ide-profiles-%1").arg(QCoreApplication::applicationPid()));
+    QDir().mkpath(profileFolder_);
+  }
+  QStringList counts;
+  for (unsigned n : threads) counts << QString::number(n);
+  profiler_.start(program, options_.programArgs, threads, profileFolder_.toStdString(),
+                  QFileInfo(path).completeBaseName().toStdString());
+  console_->appendMessage("Profile: running " + QFileInfo(path).fileName() + " at -j " + counts.join(", ") +
+                          " (the profile window opens when the runs are over)");
+  return true;
+}
+
+void MainWindow::takeProfiles() {
+  std::optional<ProfileRunner::Result> r = profiler_.take();
+  if (!r) return;
+  if (!r->error.empty()) {
+    console_->appendMessage("Profile: the run failed: " + QString::fromStdString(r->error));
+    return;
+  }
+  QStringList files;
+  for (const std::string& f : r->files) files << QString::fromStdString(f);
+  lastProfileWindow_ = openProfiles(files);
+}
+
 void MainWindow::buildRunActions() {
   QToolBar* bar = addToolBar("Run");
   bar->setObjectName("run");
@@ -114,6 +163,11 @@ void MainWindow::buildRunActions() {
     run->addAction(a);
   }
   run->addSeparator();
+  QAction* profile = run->addAction("Profile on threads (meld -j 1, 2, ...)");
+  profile->setToolTip(
+      "Run the editor's program on its own graph (as meld does) at 1 thread and every power of two up "
+      "to the cores, and open the threads' timelines and the speedup table");
+  connect(profile, &QAction::triggered, this, [this] { profileProgram(); });
   QAction* record = run->addAction("Record derivations (why a fact exists)");
   record->setCheckable(true);
   record->setToolTip("The VM notes where every fact comes from; the run starts again");

@@ -39,7 +39,7 @@ void ChipSimulator::run() {
     stats_[c].facts += w.facts;
     const double total = cost + send(c, 0, cost);
     stats_[c].busyNs += ns(total);
-    if (!timelines_.empty()) timelines_[c].run(0, ns(total), w.facts, work_.queued(c));
+    if (!timelines_.empty()) timelines_[c].run(0, ns(total), w.facts, work_.queued(c), 0);
     wake(c, ns(total));
   }
   simcore::Event e;
@@ -53,7 +53,7 @@ void ChipSimulator::run() {
   for (unsigned c = 0; c < chip_.cores; ++c) {
     if (core_[c].idleSince < end_ && !core_[c].scheduled) {
       stats_[c].idleNs += end_ - core_[c].idleSince;
-      if (!timelines_.empty()) timelines_[c].pause(support::ProfileSpan::Kind::Idle, core_[c].idleSince, end_);
+      if (!timelines_.empty()) timelines_[c].idle(core_[c].idleSince, end_);
     }
     if (!timelines_.empty()) timelines_[c].finish();
   }
@@ -140,7 +140,7 @@ void ChipSimulator::arrive(std::uint64_t slot, simcore::SimTime now) {
   // The core was idle: it wakes now.
   --idleCores_;
   stats_[c].idleNs += now - core.idleSince;
-  if (!timelines_.empty()) timelines_[c].pause(support::ProfileSpan::Kind::Idle, core.idleSince, now);
+  if (!timelines_.empty()) timelines_[c].idle(core.idleSince, now);
   wake(c, now);
 }
 
@@ -167,7 +167,7 @@ void ChipSimulator::requestRebalance(simcore::SimTime now, bool forced) {
     if (core_[c].scheduled) continue;
     --idleCores_;
     stats_[c].idleNs += now - core_[c].idleSince;
-    if (!timelines_.empty()) timelines_[c].pause(support::ProfileSpan::Kind::Idle, core_[c].idleSince, now);
+    if (!timelines_.empty()) timelines_[c].idle(core_[c].idleSince, now);
     arriveAtBarrier(c, now);
   }
 }
@@ -204,8 +204,7 @@ void ChipSimulator::completeBarrier(simcore::SimTime now) {
     ++stats_[c].rebalances;
     stats_[c].stealNs += resume - core.barrierSince;
     if (!timelines_.empty())
-      timelines_[c].pause(support::ProfileSpan::Kind::Steal, core.barrierSince, resume,
-                          stats_[c].nodesTaken - takenBefore[c]);
+      timelines_[c].steal(core.barrierSince, resume, stats_[c].nodesTaken - takenBefore[c]);
     wake(c, resume);  // a core with nothing to do goes idle again at once
   }
   barrier_ = false;

@@ -68,6 +68,8 @@ class ChipSimulator {
   simcore::SimTime endTime() const { return end_; }
   const std::vector<CoreStats>& cores() const { return stats_; }
   std::uint64_t rebalances() const { return rebalances_; }
+  // A core's profile spans (with recordProfile).
+  const std::vector<support::ProfileSpan>& spans(unsigned core) const { return timelines_.at(core).spans(); }
   // The run in the profile format of `meld --profile` (support/profile_trace.hpp), one lane per core.
   void writeProfile(std::ostream& out) const;
 

@@ -6,6 +6,7 @@
 #include <QListWidget>
 #include <QProcess>
 #include <QStandardPaths>
+#include <QTableWidget>
 #include <QTemporaryDir>
 #include <QTest>
 #include <QTextBlock>
@@ -16,6 +17,7 @@
 #include "console_panel.hpp"
 #include "main_window.hpp"
 #include "meld_highlighter.hpp"
+#include "profile_view.hpp"
 #include "world_view.hpp"
 
 namespace {
@@ -155,6 +157,35 @@ class MainWindowTest : public QObject {
     QVERIFY2(w.restart(), qPrintable(w.console()->text()));
     QCOMPARE(w.diagnosticsList()->count(), 0);
     QVERIFY(w.controller().isOpen());
+  }
+
+  void profilesTheProgramOnThreads() {
+    // Run > Profile on threads: a ring of tokens (a program on its own graph) at -j 1 and -j 2 in
+    // the background; the window stays live, then the profile view opens with both profiles and
+    // their speedup table.
+    QTemporaryDir dir;
+    QString source = "type route edge(node, node).\ntype linear token(node, int).\n";
+    for (int i = 0; i < 32; ++i) source += QString("!edge(@%1, @%2).\n").arg(i).arg((i + 1) % 32);
+    for (int i = 0; i < 64; ++i) source += QString("token(@%1, 20).\n").arg(i % 32);
+    source += "token(A, N), N > 0, !edge(A, B) -o token(B, N - 1).\n";
+    QFile f(dir.filePath("ring.meld"));
+    QVERIFY(f.open(QIODevice::WriteOnly));
+    f.write(source.toUtf8());
+    f.close();
+    vsim::Options o;
+    ide::MainWindow w(o);
+    QVERIFY(!w.profileProgram({1, 2}));  // no program yet: a message, nothing runs
+    QVERIFY(w.console()->text().contains("open a Meld program first"));
+    QVERIFY(w.openProgram(f.fileName()));
+    QVERIFY2(w.profileProgram({1, 2}), qPrintable(w.console()->text()));
+    QTRY_VERIFY_WITH_TIMEOUT((w.poll(), w.lastProfileWindow() != nullptr), 60000);
+    auto* view = qobject_cast<ide::ProfileView*>(w.lastProfileWindow());
+    QVERIFY(view);
+    QCOMPARE(int(view->profiles().size()), 2);
+    QCOMPARE(view->sweepTable()->rowCount(), 2);
+    unsigned long long facts = 0;
+    for (const ide::ThreadSummary& s : view->profiles()[1].summary) facts += s.facts;
+    QCOMPARE(facts, 32ull + 64 + 64 * 20);  // edges, tokens, every hop
   }
 
   void badWorldIsAMessage() {

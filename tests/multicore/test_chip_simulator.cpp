@@ -162,6 +162,16 @@ BOOST_AUTO_TEST_CASE(runs_are_deterministic_and_profiles_have_one_lane_per_core)
     ChipSimulator sim(chipOf(3, true), w, true);
     // Spawning stops by itself: only units with sendFacts > 0 send, and spawned units send nothing.
     sim.run();
+    for (unsigned c = 0; c < 3; ++c) {  // the profile's spans add up to the core's statistics
+      std::int64_t run = 0, idle = 0, steal = 0;
+      for (const support::ProfileSpan& s : sim.spans(c))
+        (s.kind == support::ProfileSpan::Kind::Run ? run : s.kind == support::ProfileSpan::Kind::Idle ? idle : steal) +=
+            s.endNs - s.beginNs;
+      BOOST_TEST(run == sim.cores()[c].busyNs);
+      BOOST_TEST(idle == sim.cores()[c].idleNs);
+      BOOST_TEST(steal == sim.cores()[c].stealNs);
+      BOOST_TEST(run + idle + steal == sim.endTime());
+    }
     std::ostringstream out;
     sim.writeProfile(out);
     profile = out.str();

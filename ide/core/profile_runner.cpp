@@ -1,0 +1,59 @@
+#include "profile_runner.hpp"
+
+#include <fstream>
+
+#include "meldvm/threaded_machine.hpp"
+
+namespace ide {
+
+ProfileRunner::~ProfileRunner() { join(); }
+
+void ProfileRunner::join() {
+  if (worker_.joinable()) worker_.join();
+}
+
+std::vector<unsigned> ProfileRunner::defaultThreadCounts() {
+  const unsigned cores = std::max(1u, std::thread::hardware_concurrency());
+  std::vector<unsigned> counts{1};
+  for (unsigned n = 2; n <= cores; n *= 2) counts.push_back(n);
+  return counts;
+}
+
+bool ProfileRunner::start(std::shared_ptr<const meldvm::Program> program, std::vector<std::string> args,
+                          std::vector<unsigned> threads, const std::string& folder, const std::string& name) {
+  if (running_.load()) return false;
+  join();
+  result_ = {};
+  running_.store(true);
+  worker_ = std::thread([this, program, args = std::move(args), threads = std::move(threads), folder, name] {
+    Result r;
+    try {
+      for (unsigned n : threads) {
+        meldvm::MachineOptions options;
+        options.args = args;  // write-string output is not shown: the runs are for their timelines
+        meldvm::ThreadedMachine machine(*program, options, n);
+        machine.recordProfile();
+        machine.run();
+        const std::string path = folder + "/" + name + ".j" + std::to_string(n) + ".json";
+        std::ofstream out(path, std::ios::binary);
+        machine.writeProfile(out);
+        out.close();
+        if (!out) throw std::runtime_error("cannot write " + path);
+        r.files.push_back(path);
+      }
+    } catch (const std::exception& e) {
+      r.error = e.what();
+    }
+    result_ = std::move(r);
+    running_.store(false);  // after result_: take() reads it once this is false
+  });
+  return true;
+}
+
+std::optional<ProfileRunner::Result> ProfileRunner::take() {
+  if (running_.load() || !worker_.joinable()) return std::nullopt;
+  join();
+  return std::move(result_);
+}
+
+}  // namespace ide
