@@ -23,12 +23,24 @@ class MeldChip::CoreShard final : public meldvm::ShardLink {
 
   ThreadId ownerOf(NodeId n) const override { return chip_.directory_->ownerOf(n); }
   void sendRemote(ThreadId to, NodeId dest, meldvm::PredId p, const meldvm::Value* args, bool negative) override {
+    const std::size_t before = outgoing_[to].size();
     chip_.mail_.putFact(outgoing_[to], dest, p, args, negative);
+    bytes_ += outgoing_[to].size() - before;
     ++facts_[to];
   }
   void coordinateRemote(ThreadId to, meldvm::Opcode op, NodeId n, double value) override {
+    const std::size_t before = outgoing_[to].size();
     chip_.mail_.putCoordination(outgoing_[to], n, op, value);
+    bytes_ += outgoing_[to].size() - before;
     ++facts_[to];
+  }
+  // Whether the batches go now (meldvm::BatchPolicy, as the worker threads send them); called
+  // once per node run.
+  bool flushDue(bool force) {
+    if (bytes_ == 0) return false;
+    if (force || bytes_ >= meldvm::BatchPolicy::kFlushBytes || ++runsSinceFlush_ >= meldvm::BatchPolicy::kFlushRuns)
+      return true;
+    return false;
   }
   NodeId allocateNodeBlock(ThreadId self, NodeId& count) override {
     return chip_.directory_->allocateBlock(self, count);
@@ -49,6 +61,8 @@ class MeldChip::CoreShard final : public meldvm::ShardLink {
       outgoing_[to].clear();
       facts_[to] = 0;
     }
+    bytes_ = 0;
+    runsSinceFlush_ = 0;
   }
 
   std::unique_ptr<meldvm::Machine> machine;
@@ -57,6 +71,8 @@ class MeldChip::CoreShard final : public meldvm::ShardLink {
   MeldChip& chip_;
   std::vector<meldvm::MailBytes> outgoing_;
   std::vector<std::uint64_t> facts_;
+  std::size_t bytes_ = 0;
+  unsigned runsSinceFlush_ = 0;
 };
 
 MeldChip::MeldChip(const meldvm::Program& program, meldvm::MachineOptions options, unsigned cores)
@@ -96,7 +112,8 @@ bool MeldChip::runNext(unsigned core, multicore::Work& work) {
 
 std::size_t MeldChip::queued(unsigned core) const { return cores_[core]->machine->waitingNodes(); }
 
-void MeldChip::takeOutgoing(unsigned core, std::vector<multicore::Batch>& out) {
+void MeldChip::takeOutgoing(unsigned core, std::vector<multicore::Batch>& out, bool force) {
+  if (!cores_[core]->flushDue(force)) return;
   cores_[core]->drain([&](ThreadId to, std::uint64_t facts, meldvm::MailBytes& bytes) {
     std::uint64_t handle;
     if (freeBatches_.empty()) {

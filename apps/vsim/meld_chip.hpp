@@ -27,7 +27,7 @@ class MeldChip final : public multicore::CoreWorkload {
   multicore::Work start(unsigned core) override;
   bool runNext(unsigned core, multicore::Work& work) override;
   std::size_t queued(unsigned core) const override;
-  void takeOutgoing(unsigned core, std::vector<multicore::Batch>& out) override;
+  void takeOutgoing(unsigned core, std::vector<multicore::Batch>& out, bool force) override;
   void deliver(unsigned core, std::uint64_t handle) override;
   std::size_t moveNodes(unsigned from, unsigned to, std::size_t count, std::uint64_t& bytes) override;
   bool movesRequested() const override { return !moves_.empty(); }

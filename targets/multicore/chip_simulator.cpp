@@ -37,7 +37,7 @@ void ChipSimulator::run() {
     const double cost = workCost(w);
     stats_[c].rules += w.rules;
     stats_[c].facts += w.facts;
-    const double total = cost + send(c, 0, cost);
+    const double total = cost + send(c, 0, cost, false);
     stats_[c].busyNs += ns(total);
     if (!timelines_.empty()) timelines_[c].run(0, ns(total), w.facts, work_.queued(c), 0);
     wake(c, ns(total));
@@ -70,10 +70,14 @@ void ChipSimulator::runCore(unsigned c, simcore::SimTime now) {
   if (barrier_) return arriveAtBarrier(c, now);
   Work w;
   if (!work_.runNext(c, w)) {
-    if (core.owedNs > 0) {  // facts taken in while it had no node to run still cost
-      const simcore::SimTime t = ns(core.owedNs);
-      core.owedNs = 0;
+    // Out of nodes: what waits for other cores goes now, and facts taken in while there was no
+    // node to run still cost.
+    const double owed = core.owedNs + send(c, now, core.owedNs, true);
+    core.owedNs = 0;
+    if (owed > 0) {
+      const simcore::SimTime t = ns(owed);
       stats_[c].busyNs += t;
+      if (!timelines_.empty()) timelines_[c].run(now, now + t, 0, 0, 0);
       return wake(c, now + t);
     }
     return goIdle(c, now);
@@ -83,7 +87,7 @@ void ChipSimulator::runCore(unsigned c, simcore::SimTime now) {
   core.owedNs = 0;
   if (chip_.cores > 1 && k.contention > 0)  // the cores busy now, this one included
     cost *= 1 + k.contention * double(chip_.cores - idleCores_ - 1) / double(chip_.cores - 1);
-  cost += send(c, now, cost);
+  cost += send(c, now, cost, false);
   const simcore::SimTime done = now + ns(cost);
   CoreStats& s = stats_[c];
   ++s.nodeRuns;
@@ -101,9 +105,9 @@ void ChipSimulator::runCore(unsigned c, simcore::SimTime now) {
 
 // The batches of the run that took `runNs` from `now`: they leave when it ends. Returns the
 // sending cost, which the run pays too.
-double ChipSimulator::send(unsigned c, simcore::SimTime now, double runNs) {
+double ChipSimulator::send(unsigned c, simcore::SimTime now, double runNs, bool force) {
   outgoing_.clear();
-  work_.takeOutgoing(c, outgoing_);
+  work_.takeOutgoing(c, outgoing_, force);
   double cost = 0;
   for (const Batch& b : outgoing_) cost += double(b.facts) * chip_.costs.send + double(b.bytes) * chip_.costs.byte;
   const simcore::SimTime leave = now + ns(runNs + cost);
@@ -173,6 +177,7 @@ void ChipSimulator::requestRebalance(simcore::SimTime now, bool forced) {
 }
 
 void ChipSimulator::arriveAtBarrier(unsigned c, simcore::SimTime now) {
+  send(c, now, 0, true);  // what waits goes out first (the drain delivers it)
   core_[c].inBarrier = true;
   core_[c].barrierSince = now;
   if (++inBarrier_ == chip_.cores) completeBarrier(now);

@@ -40,8 +40,10 @@ class CoreWorkload {
   // Runs the core's next node; false when it has none.
   virtual bool runNext(unsigned core, Work& work) = 0;
   virtual std::size_t queued(unsigned core) const = 0;
-  // The batches `core` sent since the last call, at most one per destination.
-  virtual void takeOutgoing(unsigned core, std::vector<Batch>& out) = 0;
+  // The batches `core` has for other cores, at most one per destination, when the workload's
+  // batching sends them (after a node run; `force`: the core runs out of nodes, or stops for a
+  // rebalance, and sends everything).
+  virtual void takeOutgoing(unsigned core, std::vector<Batch>& out, bool force) = 0;
   virtual void deliver(unsigned core, std::uint64_t handle) = 0;
   // Work stealing: moves up to `count` of from's queued nodes to `to`; returns how many moved
   // and adds the bytes they carried (their facts) to `bytes`.
@@ -89,7 +91,7 @@ class ChipSimulator {
 
   void runCore(unsigned core, simcore::SimTime now);
   void arrive(std::uint64_t slot, simcore::SimTime now);
-  double send(unsigned core, simcore::SimTime now, double runNs);
+  double send(unsigned core, simcore::SimTime now, double runNs, bool force);
   void wake(unsigned core, simcore::SimTime at);
   void goIdle(unsigned core, simcore::SimTime now);
   void requestRebalance(simcore::SimTime now, bool forced);

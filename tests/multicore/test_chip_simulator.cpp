@@ -34,7 +34,7 @@ class FakeWorkload : public CoreWorkload {
     return true;
   }
   std::size_t queued(unsigned core) const override { return queue[core].size(); }
-  void takeOutgoing(unsigned core, std::vector<Batch>& out) override {
+  void takeOutgoing(unsigned core, std::vector<Batch>& out, bool) override {
     out.insert(out.end(), pending[core].begin(), pending[core].end());
     pending[core].clear();
   }

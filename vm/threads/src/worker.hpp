@@ -54,9 +54,8 @@ class Worker final : public ShardLink {
   }
 
  private:
-  // Batches go out when this many bytes wait, or after this many node runs.
-  static constexpr std::size_t kFlushBytes = 65536;
-  static constexpr unsigned kFlushRuns = 64;
+  static constexpr std::size_t kFlushBytes = BatchPolicy::kFlushBytes;
+  static constexpr unsigned kFlushRuns = BatchPolicy::kFlushRuns;
 
   void loop();
   bool takeMail();  // takes in every batch waiting for this thread; false if there was none

@@ -15,6 +15,14 @@ namespace meldvm {
 
 using MailBytes = std::vector<std::uint8_t>;
 
+// When a shard sends what it has for other shards: once this many bytes wait, or after this many
+// node runs with something waiting, or when it runs out of nodes to run. The worker threads and
+// the simulated chip both follow it, so the chip's node runs see the batches threads see.
+struct BatchPolicy {
+  static constexpr std::size_t kFlushBytes = 65536;
+  static constexpr unsigned kFlushRuns = 64;
+};
+
 class ShardMail {
  public:
   explicit ShardMail(const Program& program) : program_(program) {}
