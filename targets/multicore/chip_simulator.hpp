@@ -1,7 +1,8 @@
 // A chip of N cores simulated on the discrete-event kernel (simcore's event queue): each core
 // runs the nodes of its workload one at a time; a node run takes the core's time that its work
-// costs (chip.hpp's CoreCosts); the facts it sends another core leave when the run ends and
-// cross the interconnect (hops × hop latency); a core that receives them pays to take them in.
+// costs (chip.hpp's CoreCosts); the facts it sends another core leave in batches (when the
+// workload sends them, after a run) and cross the interconnect (hops × hop latency); a core
+// that receives them pays to take them in.
 // Idle cores steal as the threaded runtime does (vm/threads/worker.cpp): one core asks, every
 // core finishes its current run and waits (a barrier), what is in transit is delivered, the i-th
 // most loaded core gives half the difference of queues to the i-th least loaded, and rounds are
