@@ -77,13 +77,12 @@ one line per count (output, dump and profile are those of the last count).
                         one hop apart (default mesh)
   --hop-latency NS      nanoseconds for a batch of facts to cross one hop (default 50)
   --costs NAME=NS,...   core time of: node (a node run), rule (a rule firing), fact (a fact
-                        derived), send / receive (a fact to / from another core), byte (a byte
-                        of such a fact, at each end), rebalance (a
-                        work-stealing round), move (a node moved), tried (a fact a rule looked
-                        at, matching or not); contention=F: a run is (1 + F)
-                        times slower while every other core is busy too (shared caches, memory);
-                        defaults calibrated on the project's 2-core machine
-                        (bench/multicore/README.md)
+                        derived), tried (a fact a rule looked at, matching or not), send /
+                        receive (a fact to / from another core), byte (a byte of such a fact,
+                        at each end), rebalance (a work-stealing round), move (a node moved);
+                        and contention=F: a run is (1 + F) times slower while every other core
+                        is busy too (shared caches, memory). Defaults: fitted on the project's
+                        2-core machine (bench/multicore/README.md); vsim prints those it used
   --no-steal            no work stealing (the static partition only)
   --profile FILE.json   the run's per-core timeline in the `meld --profile` format
   --dump                the final facts, as `meld --dump` prints them
