@@ -7,6 +7,8 @@
 #include <string>
 #include <string_view>
 
+#include "support/text.hpp"
+
 namespace meldc {
 
 inline std::string lower(std::string_view s) {
@@ -15,12 +17,6 @@ inline std::string lower(std::string_view s) {
   return out;
 }
 
-inline bool sameName(std::string_view a, std::string_view b) {
-  if (a.size() != b.size()) return false;
-  for (std::size_t i = 0; i < a.size(); ++i)
-    if (std::tolower(static_cast<unsigned char>(a[i])) != std::tolower(static_cast<unsigned char>(b[i])))
-      return false;
-  return true;
-}
+inline bool sameName(std::string_view a, std::string_view b) { return support::sameIgnoringCase(a, b); }
 
 }  // namespace meldc
