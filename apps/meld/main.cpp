@@ -65,13 +65,14 @@ std::unique_ptr<meldvm::Program> loadProgram(const Options& options, int& status
 
 void printStats(const meldvm::MachineStats& s, double loadSeconds, double wall, std::size_t vmBytes,
                 std::size_t nodes) {
-  std::fprintf(stderr,
-               "facts derived: %llu\nfacts consumed: %llu\nfacts sent: %llu\nrules fired: %llu\n"
-               "node runs: %llu\nfacts tried: %llu\nload s: %.3f\nwall s: %.3f\nfacts/s: %.0f\npeak RSS MB: %.1f\n",
-               (unsigned long long)s.factsDerived, (unsigned long long)s.factsConsumed,
-               (unsigned long long)s.factsSent, (unsigned long long)s.rulesFired,
-               (unsigned long long)s.nodeRuns, (unsigned long long)s.factsTried, loadSeconds, wall,
-               wall > 0 ? double(s.factsDerived) / wall : 0.0, peakRssMb());
+  std::fprintf(
+      stderr,
+      "facts derived: %llu\nfacts consumed: %llu\nfacts sent: %llu\nrules fired: %llu\n"
+      "node runs: %llu\nfacts tried: %llu\nload s: %.3f\nwall s: %.3f\nfacts/s: %.0f\npeak RSS MB: %.1f\n",
+      (unsigned long long)s.factsDerived, (unsigned long long)s.factsConsumed,
+      (unsigned long long)s.factsSent, (unsigned long long)s.rulesFired, (unsigned long long)s.nodeRuns,
+      (unsigned long long)s.factsTried, loadSeconds, wall, wall > 0 ? double(s.factsDerived) / wall : 0.0,
+      peakRssMb());
   // The VM's own memory (stores, heaps, mailboxes, schedulers; all threads), per node of the graph.
   std::fprintf(stderr, "VM MB: %.1f\nVM bytes per node: %.0f\n", double(vmBytes) / 1e6,
                nodes ? double(vmBytes) / double(nodes) : 0.0);
@@ -80,18 +81,20 @@ void printStats(const meldvm::MachineStats& s, double loadSeconds, double wall, 
 void printThreadTable(const std::vector<meldvm::ThreadStats>& threads) {
   std::fprintf(stderr, "threads: %zu\n%-6s %7s %10s %12s %13s %11s %11s %9s %7s %8s %8s %8s %10s %12s %12s\n",
                threads.size(), "thread", "busy %", "node runs", "rules fired", "facts derived", "facts out",
-               "facts in", "batches", "waits", "stolen", "given", "steal %", "rebalances", "bytes out", "facts tried");
+               "facts in", "batches", "waits", "stolen", "given", "steal %", "rebalances", "bytes out",
+               "facts tried");
   for (std::size_t t = 0; t < threads.size(); ++t) {
     const meldvm::ThreadStats& s = threads[t];
     const double total = s.busySeconds + s.idleSeconds;
-    std::fprintf(stderr, "%-6zu %7.1f %10llu %12llu %13llu %11llu %11llu %9llu %7llu %8llu %8llu %8.1f %10llu %12llu %12llu\n", t,
-                 total > 0 ? 100.0 * (s.busySeconds - s.rebalanceSeconds) / total : 0.0,
-                 (unsigned long long)s.nodeRuns, (unsigned long long)s.rulesFired,
-                 (unsigned long long)s.factsDerived, (unsigned long long)s.factsOut,
-                 (unsigned long long)s.factsIn, (unsigned long long)s.batchesOut, (unsigned long long)s.waits,
-                 (unsigned long long)s.nodesTaken, (unsigned long long)s.nodesGiven,
-                 total > 0 ? 100.0 * s.rebalanceSeconds / total : 0.0, (unsigned long long)s.rebalances,
-                 (unsigned long long)s.bytesOut, (unsigned long long)s.factsTried);
+    std::fprintf(
+        stderr,
+        "%-6zu %7.1f %10llu %12llu %13llu %11llu %11llu %9llu %7llu %8llu %8llu %8.1f %10llu %12llu %12llu\n",
+        t, total > 0 ? 100.0 * (s.busySeconds - s.rebalanceSeconds) / total : 0.0,
+        (unsigned long long)s.nodeRuns, (unsigned long long)s.rulesFired, (unsigned long long)s.factsDerived,
+        (unsigned long long)s.factsOut, (unsigned long long)s.factsIn, (unsigned long long)s.batchesOut,
+        (unsigned long long)s.waits, (unsigned long long)s.nodesTaken, (unsigned long long)s.nodesGiven,
+        total > 0 ? 100.0 * s.rebalanceSeconds / total : 0.0, (unsigned long long)s.rebalances,
+        (unsigned long long)s.bytesOut, (unsigned long long)s.factsTried);
   }
 }
 

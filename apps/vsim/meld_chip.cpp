@@ -22,7 +22,8 @@ class MeldChip::CoreShard final : public meldvm::ShardLink {
   }
 
   ThreadId ownerOf(NodeId n) const override { return chip_.directory_->ownerOf(n); }
-  void sendRemote(ThreadId to, NodeId dest, meldvm::PredId p, const meldvm::Value* args, bool negative) override {
+  void sendRemote(ThreadId to, NodeId dest, meldvm::PredId p, const meldvm::Value* args,
+                  bool negative) override {
     const std::size_t before = outgoing_[to].size();
     chip_.mail_.putFact(outgoing_[to], dest, p, args, negative);
     bytes_ += outgoing_[to].size() - before;
@@ -38,7 +39,8 @@ class MeldChip::CoreShard final : public meldvm::ShardLink {
   // once per node run.
   bool flushDue(bool force) {
     if (bytes_ == 0) return false;
-    if (force || bytes_ >= meldvm::BatchPolicy::kFlushBytes || ++runsSinceFlush_ >= meldvm::BatchPolicy::kFlushRuns)
+    if (force || bytes_ >= meldvm::BatchPolicy::kFlushBytes ||
+        ++runsSinceFlush_ >= meldvm::BatchPolicy::kFlushRuns)
       return true;
     return false;
   }

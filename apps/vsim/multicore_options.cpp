@@ -28,7 +28,8 @@ void parseCoreList(std::string_view text, std::vector<unsigned>& cores) {
     unsigned n = 0;
     const auto [end, ec] = std::from_chars(item.data(), item.data() + item.size(), n);
     if (item.empty() || ec != std::errc() || end != item.data() + item.size() || n == 0 || n > 1024)
-      throw UsageError("--cores wants core counts from 1 to 1024 (N or N,M,...), got '" + std::string(item) + "'");
+      throw UsageError("--cores wants core counts from 1 to 1024 (N or N,M,...), got '" + std::string(item) +
+                       "'");
     cores.push_back(n);
     if (comma == std::string_view::npos) return;
     text.remove_prefix(comma + 1);
@@ -45,16 +46,26 @@ void parseCosts(std::string_view text, multicore::CoreCosts& costs) {
       throw UsageError("--costs wants NAME=NS pairs like rule=150,send=200, got '" + std::string(item) + "'");
     const std::string_view name = item.substr(0, eq);
     const double v = parseNumber("--costs " + std::string(name), item.substr(eq + 1));
-    if (name == "node") costs.nodeRun = v;
-    else if (name == "rule") costs.rule = v;
-    else if (name == "fact") costs.fact = v;
-    else if (name == "send") costs.send = v;
-    else if (name == "receive") costs.receive = v;
-    else if (name == "rebalance") costs.rebalance = v;
-    else if (name == "move") costs.nodeMoved = v;
-    else if (name == "contention") costs.contention = v;
-    else if (name == "byte") costs.byte = v;
-    else if (name == "tried") costs.tried = v;
+    if (name == "node")
+      costs.nodeRun = v;
+    else if (name == "rule")
+      costs.rule = v;
+    else if (name == "fact")
+      costs.fact = v;
+    else if (name == "send")
+      costs.send = v;
+    else if (name == "receive")
+      costs.receive = v;
+    else if (name == "rebalance")
+      costs.rebalance = v;
+    else if (name == "move")
+      costs.nodeMoved = v;
+    else if (name == "contention")
+      costs.contention = v;
+    else if (name == "byte")
+      costs.byte = v;
+    else if (name == "tried")
+      costs.tried = v;
     else
       throw UsageError("--costs: unknown cost '" + std::string(name) +
                        "' (node, rule, fact, tried, send, receive, byte, rebalance, move, contention)");
@@ -94,8 +105,9 @@ bool parseMulticoreOption(std::string_view arg, const std::function<std::string_
 void checkMulticoreOptions(Options& o, bool multicoreOptionGiven) {
   if (!o.isMulticore()) {
     if (multicoreOptionGiven || !o.programArgs.empty())
-      throw UsageError("--cores, --topology, --hop-latency, --costs, --no-steal, --profile and `-- ARGS` "
-                       "are for --target multicore");
+      throw UsageError(
+          "--cores, --topology, --hop-latency, --costs, --no-steal, --profile and `-- ARGS` "
+          "are for --target multicore");
     return;
   }
   if (!o.world.empty())

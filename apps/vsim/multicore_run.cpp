@@ -5,6 +5,8 @@
 #include <fstream>
 #include <iostream>
 #include <memory>
+#include <optional>
+#include <stdexcept>
 
 #include "meld_chip.hpp"
 #include "meld_program.hpp"
@@ -45,7 +47,8 @@ ChipRun simulate(const meldvm::Program& program, const Options& o, unsigned core
     sim.run();
   } catch (const meldvm::RuntimeError& e) {
     std::cout.flush();
-    throw RunFailure(std::string("Meld program failed on the ") + std::to_string(cores) + "-core chip: " + e.what());
+    throw RunFailure(std::string("Meld program failed on the ") + std::to_string(cores) +
+                     "-core chip: " + e.what());
   }
   chip.finish();
   ChipRun r;
@@ -67,8 +70,8 @@ void printSweep(std::ostream& out, const std::vector<ChipRun>& runs, const ChipR
     const double speedup = r.time > 0 ? double(base.time) / double(r.time) : 1.0;
     char line[160];
     std::snprintf(line, sizeof line, "  %5u  %14.6f  %7.2f  %10.2f  %10llu  %18llu  %6.2f\n", r.cores,
-                  double(r.time) / 1e6, speedup, speedup / r.cores,
-                  (unsigned long long)r.rebalances, (unsigned long long)r.factsAcross, r.hostSeconds);
+                  double(r.time) / 1e6, speedup, speedup / r.cores, (unsigned long long)r.rebalances,
+                  (unsigned long long)r.factsAcross, r.hostSeconds);
     out << line;
   }
 }
@@ -81,8 +84,9 @@ void printCores(std::ostream& out, const ChipRun& r) {
     const multicore::CoreStats& s = r.perCore[c];
     const double t = r.time > 0 ? double(r.time) : 1.0;
     char line[200];
-    std::snprintf(line, sizeof line, "  %4zu  %6.1f  %6.1f  %7.1f  %9llu  %11llu  %13llu  %9llu  %8llu  %5llu  %5llu\n",
-                  c, 100.0 * double(s.busyNs) / t, 100.0 * double(s.idleNs) / t, 100.0 * double(s.stealNs) / t,
+    std::snprintf(line, sizeof line,
+                  "  %4zu  %6.1f  %6.1f  %7.1f  %9llu  %11llu  %13llu  %9llu  %8llu  %5llu  %5llu\n", c,
+                  100.0 * double(s.busyNs) / t, 100.0 * double(s.idleNs) / t, 100.0 * double(s.stealNs) / t,
                   (unsigned long long)s.nodeRuns, (unsigned long long)s.rules, (unsigned long long)s.facts,
                   (unsigned long long)s.factsOut, (unsigned long long)s.factsIn,
                   (unsigned long long)s.nodesTaken, (unsigned long long)s.nodesGiven);
@@ -94,12 +98,14 @@ void printHeader(std::ostream& out, const Options& o, const meldvm::Program& pro
   const multicore::ChipSpec& chip = o.multicore.chip;
   const multicore::CoreCosts& k = chip.costs;
   char line[400];
-  std::snprintf(line, sizeof line,
-                "multicore: %s, %.0f ns per hop, stealing %s; costs (ns): node %.0f, rule %.0f, fact %.0f, tried %.1f, "
-                "send %.0f, receive %.0f, byte %.1f, rebalance %.0f, move %.0f; contention %.2f\nprogram: %s, %zu nodes\n",
-                multicore::topologyName(chip.topology), chip.hopLatency, chip.stealing ? "on" : "off", k.nodeRun,
-                k.rule, k.fact, k.tried, k.send, k.receive, k.byte, k.rebalance, k.nodeMoved, k.contention, o.program.c_str(),
-                program.nodeSourceIds.size());
+  std::snprintf(
+      line, sizeof line,
+      "multicore: %s, %.0f ns per hop, stealing %s; costs (ns): node %.0f, rule %.0f, fact %.0f, tried %.1f, "
+      "send %.0f, receive %.0f, byte %.1f, rebalance %.0f, move %.0f; contention %.2f\nprogram: %s, %zu "
+      "nodes\n",
+      multicore::topologyName(chip.topology), chip.hopLatency, chip.stealing ? "on" : "off", k.nodeRun,
+      k.rule, k.fact, k.tried, k.send, k.receive, k.byte, k.rebalance, k.nodeMoved, k.contention,
+      o.program.c_str(), program.nodeSourceIds.size());
   out << line;
 }
 

@@ -4,8 +4,8 @@
 // window polls its snapshots on a timer and never touches the simulation.
 #pragma once
 
-#include <QPointer>
 #include <QMainWindow>
+#include <QPointer>
 #include <memory>
 
 #include "options.hpp"

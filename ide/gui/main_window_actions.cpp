@@ -1,9 +1,9 @@
 // The window's menus and toolbar, and the actions behind them that ask the user something
 // (run until, export frames) or keep the recent files.
 #include <QApplication>
+#include <QComboBox>
 #include <QCoreApplication>
 #include <QDir>
-#include <QComboBox>
 #include <QFileDialog>
 #include <QFileInfo>
 #include <QInputDialog>
@@ -120,7 +120,8 @@ bool MainWindow::profileProgram(const std::vector<unsigned>& threads) {
     return false;
   }
   if (profileFolder_.isEmpty()) {
-    profileFolder_ = QDir::temp().filePath(QString("vsim-ide-profiles-%1").arg(QCoreApplication::applicationPid()));
+    profileFolder_ =
+        QDir::temp().filePath(QString("vsim-ide-profiles-%1").arg(QCoreApplication::applicationPid()));
     QDir().mkpath(profileFolder_);
   }
   QStringList counts;

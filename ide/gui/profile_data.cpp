@@ -76,7 +76,8 @@ std::optional<Profile> loadProfile(const QString& path, QString& error) {
       p.title = e.value("args").toObject().value("name").toString();
     const int tid = e.value("tid").toInt(-1);
     if (ph == "M" && e.value("name").toString() == "thread_name" && tid >= 0 && tid < 4096) {
-      if (std::size_t(tid) >= p.threads.size()) p.threads.resize(std::size_t(tid) + 1);  // a row even without spans
+      if (std::size_t(tid) >= p.threads.size())
+        p.threads.resize(std::size_t(tid) + 1);  // a row even without spans
       if (std::size_t(tid) >= p.laneNames.size()) p.laneNames.resize(std::size_t(tid) + 1);
       p.laneNames[std::size_t(tid)] = e.value("args").toObject().value("name").toString();
     }
@@ -84,8 +85,9 @@ std::optional<Profile> loadProfile(const QString& path, QString& error) {
   }
   p.simulated = p.title.startsWith("vsim multicore ");
   if ((!p.title.startsWith("meld -j ") && !p.simulated) || p.threads.empty()) {
-    error = path + ": not a profile written by `meld --profile` or `vsim --target multicore --profile`"
-                   " (no worker threads or cores in it)";
+    error = path +
+            ": not a profile written by `meld --profile` or `vsim --target multicore --profile`"
+            " (no worker threads or cores in it)";
     return std::nullopt;
   }
   p.laneNames.resize(p.threads.size());

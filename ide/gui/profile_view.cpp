@@ -212,8 +212,8 @@ ProfileView::ProfileView(std::vector<Profile> profiles, QWidget* parent)
   layout->addWidget(timeline_);
   layout->addWidget(legend);
   layout->addWidget(summary_, 2);
-  auto* sweepLabel =
-      new QLabel("Speedup over the run with the fewest threads or cores (the profiles opened together):", this);
+  auto* sweepLabel = new QLabel(
+      "Speedup over the run with the fewest threads or cores (the profiles opened together):", this);
   layout->addWidget(sweepLabel);
   layout->addWidget(sweep_, 1);
   sweepLabel->setVisible(profiles_.size() > 1);
@@ -235,7 +235,7 @@ void ProfileView::showProfile(int index) {
   }
   const Profile& p = profiles_[std::size_t(index)];
   heading_->setText(QString(p.simulated ? "<b>%1</b> — %2 simulated cores, predicted %3 s"
-                                         : "<b>%1</b> — %2 worker threads, %3 s")
+                                        : "<b>%1</b> — %2 worker threads, %3 s")
                         .arg(p.title)
                         .arg(p.threads.size())
                         .arg(p.endUs / 1e6, 0, 'f', 3));

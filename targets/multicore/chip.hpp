@@ -20,13 +20,13 @@ const char* topologyName(Topology t);
 // has the fit, how well it predicts, and how to redo it for another machine). A zero is what the
 // fit found: that count added nothing the others did not already explain.
 struct CoreCosts {
-  double nodeRun = 0;    // choosing a node and running it, beyond what its rules cost
-  double rule = 76;      // one rule firing
-  double fact = 0;       // one fact derived (stored, indexed, or queued for its node)
-  double tried = 68.64;  // one fact a rule looked at, whether it matched or not
-  double send = 0;       // one fact sent to another core (encoded into the batch)
-  double receive = 0;    // one fact received from another core (decoded, stored)
-  double byte = 8.53;    // one byte of such a fact's record (or of a moving node's), at each end
+  double nodeRun = 0;          // choosing a node and running it, beyond what its rules cost
+  double rule = 76;            // one rule firing
+  double fact = 0;             // one fact derived (stored, indexed, or queued for its node)
+  double tried = 68.64;        // one fact a rule looked at, whether it matched or not
+  double send = 0;             // one fact sent to another core (encoded into the batch)
+  double receive = 0;          // one fact received from another core (decoded, stored)
+  double byte = 8.53;          // one byte of such a fact's record (or of a moving node's), at each end
   double rebalance = 5917586;  // one work-stealing round (all cores wait in it)
   double nodeMoved = 12023;    // one node moved by it (its facts travel along)
   // Not ns: how much slower a core runs while all the others are busy too (shared caches and

@@ -15,9 +15,9 @@ namespace {
 // event (arg: its in-flight slot). Messages come first at equal times, as in the kernel.
 constexpr simcore::EventKind kRun = simcore::EventKind::Timer;
 constexpr simcore::EventKind kArrival = simcore::EventKind::Message;
-constexpr std::size_t kStealableQueue = 2;        // as vm/threads: a core with 2 queued has one to spare
+constexpr std::size_t kStealableQueue = 2;          // as vm/threads: a core with 2 queued has one to spare
 constexpr simcore::SimTime kRebalanceNs = 500'000;  // rebalances at least this far apart...
-constexpr double kRebalanceGap = 20;               // ...and 20 times their cost
+constexpr double kRebalanceGap = 20;                // ...and 20 times their cost
 
 }  // namespace
 
@@ -109,7 +109,8 @@ double ChipSimulator::send(unsigned c, simcore::SimTime now, double runNs, bool 
   outgoing_.clear();
   work_.takeOutgoing(c, outgoing_, force);
   double cost = 0;
-  for (const Batch& b : outgoing_) cost += double(b.facts) * chip_.costs.send + double(b.bytes) * chip_.costs.byte;
+  for (const Batch& b : outgoing_)
+    cost += double(b.facts) * chip_.costs.send + double(b.bytes) * chip_.costs.byte;
   const simcore::SimTime leave = now + ns(runNs + cost);
   for (const Batch& b : outgoing_) {
     const simcore::SimTime arrival = leave + ns(double(hops(chip_, c, b.to)) * chip_.hopLatency);

@@ -56,7 +56,8 @@ class CoreTimeline {
     const simcore::SimTime busyEnd = windowBegin_ + busy_;
     if (busy_ != 0 || runs_ != 0)
       spans_.push_back({support::ProfileSpan::Kind::Run, windowBegin_, busyEnd, runs_, facts_, in_, queued_});
-    if (idle_ != 0) spans_.push_back({support::ProfileSpan::Kind::Idle, busyEnd, busyEnd + idle_, 0, 0, 0, 0});
+    if (idle_ != 0)
+      spans_.push_back({support::ProfileSpan::Kind::Idle, busyEnd, busyEnd + idle_, 0, 0, 0, 0});
     windowOpen_ = false;
     busy_ = idle_ = 0;
     runs_ = facts_ = in_ = 0;

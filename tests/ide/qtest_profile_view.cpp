@@ -1,7 +1,8 @@
 // The profile view of the multicore target: profiles that `meld -j N --profile` wrote for a
-// program at 1 and 2 threads, and `vsim --target multicore --profile` for a simulated chip, are read back (spans, per-thread summary, the speedup table), the
-// timeline draws them and zooms, and files that are not such profiles are refused with a reason.
-// With PROFILE_VIEW_PNG set, the view is also saved there (the picture in the closing note).
+// program at 1 and 2 threads, and `vsim --target multicore --profile` for a simulated chip, are read back
+// (spans, per-thread summary, the speedup table), the timeline draws them and zooms, and files that are not
+// such profiles are refused with a reason. With PROFILE_VIEW_PNG set, the view is also saved there (the
+// picture in the closing note).
 #include <QImage>
 #include <QProcess>
 #include <QTableWidget>
@@ -43,8 +44,9 @@ class ProfileViewTest : public QObject {
       QCOMPARE(meld.exitCode(), 0);
     }
     QProcess vsim;  // the same program on a simulated 4-core chip
-    vsim.start(MELD_BINARY_DIR "/apps/vsim/vsim", {"--target", "multicore", "--program", program, "--cores", "4",
-                                                   "--quiet", "--profile", dir_.filePath("ring.chip4.json")});
+    vsim.start(MELD_BINARY_DIR "/apps/vsim/vsim",
+               {"--target", "multicore", "--program", program, "--cores", "4", "--quiet", "--profile",
+                dir_.filePath("ring.chip4.json")});
     QVERIFY(vsim.waitForFinished(60000));
     QCOMPARE(vsim.exitCode(), 0);
   }
@@ -59,7 +61,8 @@ class ProfileViewTest : public QObject {
     QCOMPARE(chip->laneNames[3], QString("core 3"));
     unsigned long long facts = 0;
     for (const ThreadSummary& s : chip->summary) facts += s.facts;
-    QCOMPARE(facts, 6264ull);  // the same facts as on threads (the ring's result does not depend on the schedule)
+    QCOMPARE(facts,
+             6264ull);  // the same facts as on threads (the ring's result does not depend on the schedule)
     ProfileView view({*chip});
     QVERIFY(view.timeline() != nullptr);
   }

@@ -2,7 +2,6 @@
 // timings can be worked out by hand.
 #define BOOST_TEST_MODULE chip_simulator
 #include <boost/test/unit_test.hpp>
-
 #include <deque>
 #include <sstream>
 
@@ -13,8 +12,8 @@ using namespace multicore;
 namespace {
 
 // A unit of work: a node run with `rules` rule firings and `facts` facts, sending `sendFacts`
-// facts (10 bytes each) to core `sendTo` (none when sendFacts is 0). A batch that arrives queues `spawn` units
-// of one rule and one fact on its core.
+// facts (10 bytes each) to core `sendTo` (none when sendFacts is 0). A batch that arrives queues `spawn`
+// units of one rule and one fact on its core.
 struct Unit {
   std::uint64_t rules = 1, facts = 1;
   unsigned sendTo = 0;
@@ -122,7 +121,7 @@ BOOST_AUTO_TEST_CASE(a_fact_crosses_the_mesh_and_is_paid_for_at_both_ends) {
   chip.costs.byte = 0.25;  // 50 bytes: 12.5 ns at each end
   ChipSimulator sim(chip, w);
   sim.run();
-  const double sendRun = 100 + 10 + 1 + 5 * 7 + 12.5;     // the run, its 5 sends and their bytes
+  const double sendRun = 100 + 10 + 1 + 5 * 7 + 12.5;                 // the run, its 5 sends and their bytes
   const std::int64_t arrival = std::int64_t(sendRun + 0.5) + 2 * 40;  // two hops
   const double receiveRun = 100 + 10 + 1 + 5 * 3 + 12.5;  // the spawned unit, the 5 receives, the bytes
   BOOST_TEST(w.arrived[3] == 5u);
@@ -165,8 +164,9 @@ BOOST_AUTO_TEST_CASE(runs_are_deterministic_and_profiles_have_one_lane_per_core)
     for (unsigned c = 0; c < 3; ++c) {  // the profile's spans add up to the core's statistics
       std::int64_t run = 0, idle = 0, steal = 0;
       for (const support::ProfileSpan& s : sim.spans(c))
-        (s.kind == support::ProfileSpan::Kind::Run ? run : s.kind == support::ProfileSpan::Kind::Idle ? idle : steal) +=
-            s.endNs - s.beginNs;
+        (s.kind == support::ProfileSpan::Kind::Run    ? run
+         : s.kind == support::ProfileSpan::Kind::Idle ? idle
+                                                      : steal) += s.endNs - s.beginNs;
       BOOST_TEST(run == sim.cores()[c].busyNs);
       BOOST_TEST(idle == sim.cores()[c].idleNs);
       BOOST_TEST(steal == sim.cores()[c].stealNs);
@@ -181,7 +181,8 @@ BOOST_AUTO_TEST_CASE(runs_are_deterministic_and_profiles_have_one_lane_per_core)
   BOOST_TEST(once(a) == once(b));
   BOOST_TEST(a == b);
   BOOST_TEST(a.find("\"name\":\"vsim multicore 3 cores\"") != std::string::npos);
-  for (const char* lane : {"\"core 0\"", "\"core 1\"", "\"core 2\""}) BOOST_TEST(a.find(lane) != std::string::npos);
+  for (const char* lane : {"\"core 0\"", "\"core 1\"", "\"core 2\""})
+    BOOST_TEST(a.find(lane) != std::string::npos);
   BOOST_TEST(a.find("\"cat\":\"run\"") != std::string::npos);
 }
 

@@ -79,7 +79,8 @@ inline std::string jsonEscaped(const std::string& s) {
 
 // `process` names the run: "meld -j N" for threads, "vsim multicore N cores" for a chip (the
 // IDE's profile view accepts these two).
-inline void writeProfileTrace(std::ostream& out, const std::string& process, const std::vector<ProfileLane>& lanes) {
+inline void writeProfileTrace(std::ostream& out, const std::string& process,
+                              const std::vector<ProfileLane>& lanes) {
   out << "{\"displayTimeUnit\":\"ms\",\"traceEvents\":[\n"
          "{\"name\":\"process_name\",\"ph\":\"M\",\"pid\":1,\"args\":{\"name\":\""
       << detail::jsonEscaped(process) << "\"}}";

@@ -3,8 +3,8 @@
 #include <chrono>
 #include <sstream>
 
-#include "meldvm/shard_set.hpp"
 #include "meldvm/node_directory.hpp"
+#include "meldvm/shard_set.hpp"
 #include "shared_state.hpp"
 #include "worker.hpp"
 

@@ -9,10 +9,10 @@
 #include <vector>
 
 #include "line_output.hpp"
-#include "meldvm/shard_mail.hpp"
 #include "meldvm/machine.hpp"
-#include "meldvm/threaded_machine.hpp"
 #include "meldvm/node_directory.hpp"
+#include "meldvm/shard_mail.hpp"
+#include "meldvm/threaded_machine.hpp"
 #include "profile_recorder.hpp"
 #include "shared_state.hpp"
 
@@ -84,7 +84,7 @@ class Worker final : public ShardLink {
   std::size_t outgoingBytes_ = 0;
   unsigned runsSinceFlush_ = 0;
   Bytes incoming_;
-  const bool stealing_;   // not with `priority @static`
+  const bool stealing_;  // not with `priority @static`
   ShardMail mail_;
   ThreadStats stats_;
   std::unique_ptr<ProfileRecorder> profile_;

@@ -48,7 +48,7 @@ class ShardMail {
   void takeNode(Machine& to, NodeId n, const MailBytes& in, std::size_t& pos);
 
   const Program& program_;
-  DecodedFact fact_;         // the decoder's storage, reused
+  DecodedFact fact_;          // the decoder's storage, reused
   MailBytes pendingScratch_;  // a moving node's waiting messages, until its stored facts are out
 };
 
