@@ -96,17 +96,18 @@ void printCores(std::ostream& out, const ChipRun& r) {
 
 void printHeader(std::ostream& out, const Options& o, const meldvm::Program& program) {
   const multicore::ChipSpec& chip = o.multicore.chip;
-  const multicore::CoreCosts& k = chip.costs;
-  char line[400];
-  std::snprintf(
-      line, sizeof line,
-      "multicore: %s, %.0f ns per hop, stealing %s; costs (ns): node %.0f, rule %.0f, fact %.0f, tried %.1f, "
-      "send %.0f, receive %.0f, byte %.1f, rebalance %.0f, move %.0f; contention %.2f\nprogram: %s, %zu "
-      "nodes\n",
-      multicore::topologyName(chip.topology), chip.hopLatency, chip.stealing ? "on" : "off", k.nodeRun,
-      k.rule, k.fact, k.tried, k.send, k.receive, k.byte, k.rebalance, k.nodeMoved, k.contention,
-      o.program.c_str(), program.nodeSourceIds.size());
+  char line[200];
+  std::snprintf(line, sizeof line,
+                "multicore: %s, %.0f ns per hop, stealing %s; costs (ns; contention: a factor):",
+                multicore::topologyName(chip.topology), chip.hopLatency, chip.stealing ? "on" : "off");
   out << line;
+  const char* sep = " ";
+  for (const multicore::CostName& c : multicore::kCostNames) {
+    std::snprintf(line, sizeof line, "%s%s %.10g", sep, c.name, chip.costs.*c.cost);
+    out << line;
+    sep = ", ";
+  }
+  out << "\nprogram: " << o.program << ", " << program.nodeSourceIds.size() << " nodes\n";
 }
 
 }  // namespace

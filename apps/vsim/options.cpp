@@ -123,31 +123,28 @@ simcore::SimTime parseTime(std::string_view option, std::string_view text) {
   return *t;
 }
 
-double parseRate(std::string_view option, std::string_view text) {
-  const std::string s(text);
-  char* end = nullptr;
-  const double v = std::strtod(s.c_str(), &end);
-  if (s.empty() || *end || !(v > 0) || v > 1e15)
-    throw UsageError(std::string(option) + " wants a positive number of bit/s like 1e6, got '" + s + "'");
-  return v;
-}
-
 void parseTaps(std::string_view text, std::vector<TapRequest>& taps) {
-  for (;;) {
-    const auto comma = text.find(',');
-    const std::string_view item = text.substr(0, comma);
+  forEachListItem(text, [&](std::string_view item) {
     const auto at = item.find('@');
     if (at == std::string_view::npos)
       throw UsageError("--tap wants BLOCK@TIME like 3@1.5s, got '" + std::string(item) + "'");
     const std::uint64_t block = parseCount("--tap block", item.substr(0, at));
     if (block > 0xFFFFFFFEull) throw UsageError("--tap: block id " + std::to_string(block) + " is too large");
     taps.push_back({std::uint32_t(block), parseTime("--tap time", item.substr(at + 1))});
-    if (comma == std::string_view::npos) return;
-    text.remove_prefix(comma + 1);
-  }
+  });
 }
 
 }  // namespace
+
+double parseNumber(std::string_view option, std::string_view text, bool positive, double max,
+                   const char* what) {
+  const std::string s(text);
+  char* end = nullptr;
+  const double v = std::strtod(s.c_str(), &end);
+  if (s.empty() || *end || !(positive ? v > 0 : v >= 0) || v > max)
+    throw UsageError(std::string(option) + " wants " + what + ", got '" + s + "'");
+  return v;
+}
 
 Options parseOptions(int argc, char** argv, bool worldRequired) {
   Options o;
@@ -220,7 +217,7 @@ Options parseOptions(int argc, char** argv, bool worldRequired) {
       if (!kind) throw UsageError("--fes is heap, calendar or ladder, got '" + std::string(name) + "'");
       o.fes = *kind;
     } else if (arg == "--link-rate")
-      o.linkRate = parseRate("--link-rate", value());
+      o.linkRate = parseNumber("--link-rate", value(), true, 1e15, "a positive number of bit/s like 1e6");
     else if (arg == "--link-latency")
       o.linkLatency = parseTime("--link-latency", value());
     else if (arg == "--link-jitter")

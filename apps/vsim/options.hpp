@@ -78,6 +78,20 @@ struct Options {
 // Parses argv; throws UsageError with a one-line message. The IDE can start without a world.
 Options parseOptions(int argc, char** argv, bool worldRequired = true);
 
+// Option values (options.cpp): a number in [0, max] (or (0, max] when `positive`), `what` naming
+// it in the message; and the items of a comma-separated list, each handed to `use`.
+double parseNumber(std::string_view option, std::string_view text, bool positive, double max,
+                   const char* what);
+template <class Use>
+void forEachListItem(std::string_view text, Use&& use) {
+  for (;;) {
+    const auto comma = text.find(',');
+    use(text.substr(0, comma));
+    if (comma == std::string_view::npos) return;
+    text.remove_prefix(comma + 1);
+  }
+}
+
 // The options of --target multicore (multicore_options.cpp): true if `arg` is one of them.
 bool parseMulticoreOption(std::string_view arg, const std::function<std::string_view()>& value,
                           MulticoreOptions& m);

@@ -34,6 +34,19 @@ struct CoreCosts {
   double contention = 0;
 };
 
+// The costs by name: vsim's --costs NAME=V, its report and bench/multicore/fit_costs.py's output
+// all use these names.
+struct CostName {
+  const char* name;
+  double CoreCosts::*cost;
+};
+inline constexpr CostName kCostNames[] = {
+    {"node", &CoreCosts::nodeRun},   {"rule", &CoreCosts::rule},
+    {"fact", &CoreCosts::fact},      {"tried", &CoreCosts::tried},
+    {"send", &CoreCosts::send},      {"receive", &CoreCosts::receive},
+    {"byte", &CoreCosts::byte},      {"rebalance", &CoreCosts::rebalance},
+    {"move", &CoreCosts::nodeMoved}, {"contention", &CoreCosts::contention}};
+
 struct ChipSpec {
   unsigned cores = 1;
   Topology topology = Topology::Mesh;
