@@ -19,7 +19,7 @@ meldc="${MELDC:-$repo/build/release/meldc/meldc}"
 logs="$repo/build/bench/multicore/calibration"
 runs=3 quick="" only="" curve="" costs="" topology=mesh
 
-usage() { awk 'NR > 1 && /^#/ { sub(/^# ?/, ""); print; next } NR > 1 { exit }' "$0"; }
+. "$here/common.sh"
 while [ $# -gt 0 ]; do
   case "$1" in
     --runs) runs="$2"; shift 2 ;;
@@ -38,10 +38,7 @@ for b in "$meld" "$vsim" "$meldc"; do
 done
 mkdir -p "$logs"
 
-gen_args=(--generate-only)
-[ -n "$quick" ] && gen_args+=(--quick)
-[ -n "$only" ] && gen_args+=(--only "$only")
-mapfile -t sources < <("$repo/bench/meld/run-b2.sh" "${gen_args[@]}" | grep '\.meld$')
+mapfile -t sources < <(b2_programs "$repo" "$quick" "$only")
 files=()
 for src in "${sources[@]}"; do
   mbc="${src%.meld}.mbc"
@@ -49,7 +46,6 @@ for src in "${sources[@]}"; do
   files+=("$mbc")
 done
 
-field() { awk -F': ' -v k="$1" '$1 == k { print $2 }' "$2"; }
 # Runs `meld FILE -j 1 --stats` and `-j 2` one after the other, RUNS times (the machine's speed
 # drifts: a pair run close together gives a fairer ratio); keeps the pair whose ratio is the
 # median as NAME.j1.log and NAME.j2.log.

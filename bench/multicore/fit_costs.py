@@ -101,7 +101,7 @@ def main():
     slowdown, crossing, byte = lstsq(cross_rows, cross_targets) if cross_rows else (1.0, 0.0, 0.0)
     contention = max(slowdown - 1, 0.0)
     rebalance, move = lstsq(steal_rows, steal_targets) if steal_rows else (0.0, 0.0)
-    ns = lambda v: v * 1e9
+    ns = lambda v: v * 1e9 + 0.0  # + 0.0: no "-0.00"
     print("fit (ns): node %.1f, rule %.1f, fact %.1f, fact tried %.2f; a fact crossing cores %.1f at each end,"
           " a byte %.2f at each end; rebalance %.0f, node moved %.0f; contention %.2f" % (
               ns(node), ns(rule), ns(fact), ns(tried), ns(crossing), ns(byte), ns(rebalance), ns(move),

@@ -18,7 +18,7 @@ meld="${MELD:-$repo/build/release/apps/meld/meld}"
 profiles="$repo/build/bench/multicore"
 runs=3 quick="" only="" threads=""
 
-usage() { awk 'NR > 1 && /^#/ { sub(/^# ?/, ""); print; next } NR > 1 { exit }' "$0"; }
+. "$here/common.sh"
 while [ $# -gt 0 ]; do
   case "$1" in
     --threads) threads="$2"; shift 2 ;;
@@ -42,13 +42,9 @@ for t in $threads; do
 done
 mkdir -p "$profiles"
 
-gen_args=(--generate-only)
-[ -n "$quick" ] && gen_args+=(--quick)
-[ -n "$only" ] && gen_args+=(--only "$only")
-mapfile -t files < <("$repo/bench/meld/run-b2.sh" "${gen_args[@]}" | grep '\.meld$')
+mapfile -t files < <(b2_programs "$repo" "$quick" "$only")
 
 median() { sort -g | awk '{ v[NR] = $1 } END { print (NR % 2) ? v[(NR + 1) / 2] : (v[NR / 2] + v[NR / 2 + 1]) / 2 }'; }
-field() { awk -v k="$1" 'index($0, k ": ") == 1 { print substr($0, length(k) + 3) }' "$2"; }
 
 echo "machine: $(nproc) cores, $(grep -m1 'model name' /proc/cpuinfo | sed 's/.*: //'), meld: $meld"
 printf '| %-20s | %7s | %8s | %7s | %10s | %13s | %8s | %7s | %7s |\n' program threads "wall s" speedup efficiency "facts derived" "Mfacts/s" "busy %" "steal %"

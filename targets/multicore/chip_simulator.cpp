@@ -178,7 +178,7 @@ void ChipSimulator::requestRebalance(simcore::SimTime now, bool forced) {
 }
 
 void ChipSimulator::arriveAtBarrier(unsigned c, simcore::SimTime now) {
-  send(c, now, 0, true);  // what waits goes out first (the drain delivers it)
+  core_[c].owedNs += send(c, now, 0, true);  // what waits goes out first (the drain delivers it); paid later
   core_[c].inBarrier = true;
   core_[c].barrierSince = now;
   if (++inBarrier_ == chip_.cores) completeBarrier(now);
