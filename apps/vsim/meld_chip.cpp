@@ -147,7 +147,7 @@ std::uint64_t MeldChip::moveNode(unsigned from, unsigned to, NodeId n, bool move
 }
 
 std::size_t MeldChip::moveNodes(unsigned from, unsigned to, std::size_t count, std::uint64_t& bytes) {
-  const std::vector<NodeId> nodes = cores_[from]->machine->pickNodesToGive(count);
+  const std::vector<NodeId> nodes = cores_[from]->machine->pickNodesToGive(count, to > from);
   for (NodeId n : nodes) bytes += moveNode(from, to, n, false);
   return nodes.size();
 }

@@ -1,5 +1,7 @@
 #include "meldvm/machine.hpp"
 
+#include <algorithm>
+#include <functional>
 #include <ostream>
 #include <sstream>
 
@@ -565,9 +567,42 @@ NodeId Machine::addHostNode() {
 
 // ---- work stealing (threaded runs) ----
 
-std::vector<NodeId> Machine::pickNodesToGive(std::size_t max) {
+// The nodes to give are a band at the end of this shard's ids that faces the taker: it holds
+// `max` of the queued nodes, and the idle nodes between them go too (up to kBandSlack times
+// `max`; past that, only the queued ones). Shards start as contiguous ranges and programs number
+// neighbours close together (§6.1's breadth-first numbering), so moving a band shifts the
+// boundary between two shards, where moving only the queued nodes would scatter them and
+// multiply the facts that cross threads.
+std::vector<NodeId> Machine::pickNodesToGive(std::size_t max, bool highestIds) {
+  constexpr std::size_t kBandSlack = 2;
+  auto movable = [&](NodeId n) { return n < initialNodes_ && n != threadNode_; };
   std::vector<NodeId> nodes;
-  sched_.takeForSteal(max, nodes, [&](NodeId n) { return n < initialNodes_ && n != threadNode_; });
+  sched_.queuedForSteal(nodes, movable);
+  if (nodes.empty() || max == 0) return {};
+  max = std::min(max, nodes.size());
+  const auto cut = nodes.begin() + std::ptrdiff_t(max - 1);
+  if (highestIds)
+    std::nth_element(nodes.begin(), cut, nodes.end(), std::greater<NodeId>());
+  else
+    std::nth_element(nodes.begin(), cut, nodes.end());
+  const NodeId edge = *cut;  // the band ends at the max-th queued node from the end
+  nodes.clear();
+  std::size_t idleLeft = max * kBandSlack;
+  auto take = [&](NodeId n) {
+    if (!ownedHere(n) || !movable(n) || sched_.isStatic(n)) return;
+    if (!sched_.waiting(n)) {
+      if (idleLeft == 0) return;
+      --idleLeft;
+    }
+    sched_.unqueue(n);
+    nodes.push_back(n);
+  };
+  if (highestIds) {
+    for (NodeId n = initialNodes_; n-- > edge;) take(n);
+    std::reverse(nodes.begin(), nodes.end());  // the taker queues them in id order
+  } else {
+    for (NodeId n = 0; n <= edge; ++n) take(n);
+  }
   return nodes;
 }
 

@@ -265,7 +265,7 @@ void Worker::rebalance() {
 }
 
 void Worker::giveNodes(ThreadId to, std::size_t count) {
-  for (NodeId n : machine_->pickNodesToGive(count)) giveNode(to, n, false);
+  for (NodeId n : machine_->pickNodesToGive(count, to > self_)) giveNode(to, n, false);
 }
 
 void Worker::requestMove(NodeId n, ThreadId to) {

@@ -131,10 +131,12 @@ class Machine : private SchedulerView {
   Heap& heap() { return heap_; }
 
   // Work stealing: nodes move between the shards of a threaded run, between node runs. The
-  // thread giving nodes away picks them from its queue (graph nodes only, not static ones),
-  // hands over each one's scheduling state, facts and waiting messages and forgets it; the taker
-  // adopts the state (takeNode), stores the facts, posts the messages, and queues the node.
-  std::vector<NodeId> pickNodesToGive(std::size_t max);
+  // thread giving nodes away picks `max` of its queued nodes and the idle ones among them, a band
+  // of its ids at the end that faces the taker (highestIds: the taker's range lies above this
+  // shard's); graph nodes only, not static ones. It hands over each one's scheduling state, facts
+  // and waiting messages and forgets it; the taker adopts the state (takeNode), stores the facts,
+  // posts the messages, and queues the node if it has work.
+  std::vector<NodeId> pickNodesToGive(std::size_t max, bool highestIds);
   // A node set-cpu sends to another thread: out of the queue, to be given away (false: it is
   // no longer here, or not a node of the graph).
   bool unqueueToGive(NodeId n);

@@ -51,17 +51,17 @@ class SerialScheduler {
   void scheduleNext(NodeId n);
   void setStatic(NodeId n, bool isStatic) { nodes_[n].isStatic = isStatic; }
 
-  // Work stealing (a threaded run): up to `max` nodes waiting in the FIFO, latest queued first,
-  // that `movable(n)` allows and are not static, leave the queue into `out`.
+  // Work stealing (a threaded run): the waiting nodes (heap and FIFO) that `movable(n)` allows
+  // and are not static, appended to `out` (they stay queued).
   template <class Movable>
-  void takeForSteal(std::size_t max, std::vector<NodeId>& out, Movable&& movable) {
-    for (std::size_t i = fifo_.size(); i > fifoHead_ && out.size() < max; --i) {
-      const FifoEntry e = fifo_[i - 1];
-      NodeState& s = nodes_[e.node];
-      if (s.where != Where::Fifo || s.ticket != e.ticket || s.isStatic || !movable(e.node)) continue;
-      s.where = Where::Idle;  // the entry goes stale
-      --fifoLive_;
-      out.push_back(e.node);
+  void queuedForSteal(std::vector<NodeId>& out, Movable&& movable) const {
+    for (NodeId n : heap_)
+      if (!nodes_[n].isStatic && movable(n)) out.push_back(n);
+    for (std::size_t i = fifoHead_; i < fifo_.size(); ++i) {
+      const FifoEntry e = fifo_[i];
+      const NodeState& s = nodes_[e.node];
+      if (s.where == Where::Fifo && s.ticket == e.ticket && !s.isStatic && movable(e.node))
+        out.push_back(e.node);
     }
   }
   // Takes the node out of the queue, wherever it waits (set-cpu moves it to another thread).
@@ -85,6 +85,7 @@ class SerialScheduler {
 
   double priority(NodeId n) const { return nodes_[n].prio; }
   bool isStatic(NodeId n) const { return nodes_[n].isStatic != 0; }
+  bool waiting(NodeId n) const { return nodes_[n].where != Where::Idle; }
   // A hint that `wake(n)` comes soon (always inlined: GCC drops calls to prefetch-only functions).
   [[gnu::always_inline]] void prefetch(NodeId n) const { __builtin_prefetch(&nodes_[n]); }
   std::size_t nodeCount() const { return nodes_.size(); }

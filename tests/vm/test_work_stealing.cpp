@@ -1,0 +1,98 @@
+// Which nodes a shard gives away when another thread steals work (Machine::pickNodesToGive): a
+// band at the end of its ids that faces the taker, holding the asked number of queued nodes and
+// the idle nodes between them (up to two per queued node), never nodes of other shards or static
+// ones.
+#define BOOST_TEST_MODULE vm_work_stealing
+#include <boost/test/unit_test.hpp>
+
+#include "bytecode_fixture.hpp"
+#include "meldvm/machine.hpp"
+
+using namespace bctest;
+
+namespace {
+
+// Thread 0 of two; node 11 belongs to thread 1, every other node to thread 0.
+class TwoShards final : public ShardLink {
+ public:
+  ThreadId ownerOf(NodeId n) const override { return n == 11 ? 1 : 0; }
+  void sendRemote(ThreadId, NodeId, PredId, const Value*, bool) override {}
+  void coordinateRemote(ThreadId, Opcode, NodeId, double) override {}
+  NodeId allocateNodeBlock(ThreadId, NodeId& count) override {
+    count = 0;
+    return 0;
+  }
+  void requestMove(NodeId, ThreadId) override {}
+  void stopAll() override {}
+  void staticChanged(ThreadId, int) override {}
+  std::int32_t staticNodes(ThreadId) const override { return 0; }
+};
+
+// 12 nodes, each starting with `_init` (queued), and one rule that consumes it.
+std::unique_ptr<Program> twelveNodes() {
+  auto p = std::make_unique<Program>();
+  p->initPredicate = pred(*p, "_init", {}, true);
+  emit(p->globalsInit, Opcode::RET);
+  for (std::uint32_t n = 0; n < 12; ++n) {
+    p->nodeSourceIds.push_back(n);
+    p->nodeAxioms.push_back(Program::kNoAxioms);
+  }
+  Rule r;
+  r.block.slots = 1;
+  r.bodyPredicates = {p->initPredicate};
+  loop(r.block, Opcode::ITER, {p->initPredicate, 0, kLinConsume | kIterConsumableClass},
+       [&] { emit(r.block, Opcode::FIRE, {0}); });
+  emit(r.block, Opcode::RET);
+  p->rules.push_back(std::move(r));
+  verifyProgram(*p);
+  return p;
+}
+
+// A shard owning nodes 0..10 that has run `runs` nodes. They start in the scheduler's heap, which
+// serves them 0, 10, 9, 8, ... (§6.11's start-up order): after 4 runs, 1..7 wait.
+struct Shard {
+  std::unique_ptr<Program> program = twelveNodes();
+  TwoShards link;
+  std::unique_ptr<Machine> machine;
+  explicit Shard(int runs = 4) {
+    MachineOptions o;
+    o.shard = &link;
+    o.placement = {0, 2, 0, 11};
+    machine = std::make_unique<Machine>(*program, std::move(o));
+    for (int i = 0; i < runs; ++i) BOOST_REQUIRE(machine->runNext());
+    BOOST_REQUIRE_EQUAL(machine->waitingNodes(), std::size_t(11 - runs));
+  }
+};
+
+using Nodes = std::vector<NodeId>;
+
+}  // namespace
+
+BOOST_AUTO_TEST_CASE(a_taker_above_gets_the_band_of_the_highest_ids_with_the_idle_nodes_in_it) {
+  Shard s;
+  // 6 and 7 are the two highest queued; 8, 9 and 10 (idle) lie beyond; 11 is thread 1's.
+  BOOST_TEST(s.machine->pickNodesToGive(2, true) == (Nodes{6, 7, 8, 9, 10}), boost::test_tools::per_element());
+  BOOST_TEST(s.machine->waitingNodes() == 5u);  // 1..5 stay queued
+}
+
+BOOST_AUTO_TEST_CASE(a_taker_below_gets_the_band_of_the_lowest_ids) {
+  Shard s;
+  BOOST_TEST(s.machine->pickNodesToGive(2, false) == (Nodes{0, 1, 2}), boost::test_tools::per_element());
+  BOOST_TEST(s.machine->waitingNodes() == 5u);  // 3..7
+}
+
+BOOST_AUTO_TEST_CASE(idle_nodes_beyond_two_per_queued_node_stay_but_the_queued_ones_still_go) {
+  Shard s(6);  // 1..5 wait; 6..10 are idle
+  BOOST_TEST(s.machine->pickNodesToGive(1, true) == (Nodes{5, 9, 10}), boost::test_tools::per_element());
+  Shard t;
+  t.machine->coordinateOwned(Opcode::SET_STATIC, 9, 0);  // pinned (§5.7): never given
+  BOOST_TEST(t.machine->pickNodesToGive(1, true) == (Nodes{7, 8, 10}), boost::test_tools::per_element());
+}
+
+BOOST_AUTO_TEST_CASE(more_than_the_queue_holds_gives_the_whole_queue_and_the_band_ends_at_its_last_node) {
+  Shard s;
+  BOOST_TEST(s.machine->pickNodesToGive(100, true) == (Nodes{1, 2, 3, 4, 5, 6, 7, 8, 9, 10}),
+             boost::test_tools::per_element());
+  BOOST_TEST(s.machine->waitingNodes() == 0u);
+  BOOST_TEST(s.machine->pickNodesToGive(3, true).empty());
+}
