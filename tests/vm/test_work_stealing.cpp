@@ -71,7 +71,8 @@ using Nodes = std::vector<NodeId>;
 BOOST_AUTO_TEST_CASE(a_taker_above_gets_the_band_of_the_highest_ids_with_the_idle_nodes_in_it) {
   Shard s;
   // 6 and 7 are the two highest queued; 8, 9 and 10 (idle) lie beyond; 11 is thread 1's.
-  BOOST_TEST(s.machine->pickNodesToGive(2, true) == (Nodes{6, 7, 8, 9, 10}), boost::test_tools::per_element());
+  BOOST_TEST(s.machine->pickNodesToGive(2, true) == (Nodes{6, 7, 8, 9, 10}),
+             boost::test_tools::per_element());
   BOOST_TEST(s.machine->waitingNodes() == 5u);  // 1..5 stay queued
 }
 
