@@ -10,10 +10,13 @@ namespace {
 // A record: its kind (u8), the node (u32), then for a fact its length (u32) and the fact as
 // meldvm/fact_codec.hpp encodes it, for a coordination fact the opcode (u32) and the value (f64).
 // Native byte order: the bytes never leave the process.
+// A fact of a predicate with only scalar fields (kScalarFact): the node (u32), the predicate with
+// the negative flag in its top bit (u32), then the arguments' bits (u64 each).
 // A moving node: kMigrate, the node, its scheduling state (f64 priority, f64 default priority, u8
 // static), u8 1 if set-cpu moved it (0: stolen), then its stored facts (u32 count; each u32
 // copies, u32 length, the fact) and its waiting messages (u32 count; each u32 length, the fact).
-enum RecordKind : std::uint8_t { kFact = 0, kCoordination = 1, kMigrate = 2 };
+enum RecordKind : std::uint8_t { kFact = 0, kCoordination = 1, kMigrate = 2, kScalarFact = 3 };
+constexpr std::uint32_t kNegativeBit = 0x80000000u;
 constexpr std::size_t kStateBytes = 17;  // priority, default priority (f64), static (u8)
 
 template <class T>
@@ -32,6 +35,13 @@ T get(const MailBytes& in, std::size_t& pos) {
 
 }  // namespace
 
+ShardMail::ShardMail(const Program& program) : program_(program), scalar_(program.predicates.size(), 1) {
+  const PredicateTable& preds = program.predicates;
+  for (PredId p = 0; p < preds.size(); ++p)
+    for (TypeId t : preds[p].fields)
+      if (preds.types().boxed(t)) scalar_[p] = 0;
+}
+
 void ShardMail::putLengthAndFact(MailBytes& out, PredId p, const Value* args, bool negative) {
   put<std::uint32_t>(out, 0);  // the length, once known
   const std::size_t start = out.size();
@@ -41,9 +51,37 @@ void ShardMail::putLengthAndFact(MailBytes& out, PredId p, const Value* args, bo
 }
 
 void ShardMail::putFact(MailBytes& out, NodeId dest, PredId p, const Value* args, bool negative) {
+  if (scalar_[p]) {
+    putScalarFact(out, dest, p, args, negative);
+    return;
+  }
   put<std::uint8_t>(out, kFact);
   put<std::uint32_t>(out, dest);
   putLengthAndFact(out, p, args, negative);
+}
+
+void ShardMail::putScalarFact(MailBytes& out, NodeId dest, PredId p, const Value* args, bool negative) {
+  const std::uint32_t arity = program_.predicates[p].arity();
+  const std::size_t at = out.size();
+  out.resize(at + 9 + 8 * std::size_t(arity));  // one resize for the whole record
+  std::uint8_t* w = out.data() + at;
+  const std::uint32_t predWord = p | (negative ? kNegativeBit : 0);
+  w[0] = kScalarFact;
+  std::memcpy(w + 1, &dest, 4);
+  std::memcpy(w + 5, &predWord, 4);
+  for (std::uint32_t i = 0; i < arity; ++i) {
+    const std::uint64_t bits = args[i].bits();
+    std::memcpy(w + 9 + 8 * std::size_t(i), &bits, 8);
+  }
+}
+
+void ShardMail::readScalarFact(Machine& to, NodeId node, const MailBytes& in, std::size_t& pos) {
+  const auto predWord = get<std::uint32_t>(in, pos);
+  const PredId p = predWord & ~kNegativeBit;
+  const std::uint32_t arity = program_.predicates[p].arity();
+  fact_.args.resize(arity);
+  for (std::uint32_t i = 0; i < arity; ++i) fact_.args[i] = Value::fromBits(get<std::uint64_t>(in, pos));
+  to.receive(node, p, fact_.args.data(), (predWord & kNegativeBit) != 0);
 }
 
 void ShardMail::putCoordination(MailBytes& out, NodeId n, Opcode op, double value) {
@@ -106,7 +144,10 @@ void ShardMail::apply(Machine& to, const MailBytes& in, Taken& taken) {
   for (std::size_t pos = 0; pos < in.size();) {
     const auto kind = get<std::uint8_t>(in, pos);
     const NodeId node = get<std::uint32_t>(in, pos);
-    if (kind == kMigrate) {
+    if (kind == kScalarFact) {
+      ++taken.facts;
+      readScalarFact(to, node, in, pos);
+    } else if (kind == kMigrate) {
       takeNode(to, node, in, pos);
       ++taken.nodes;
     } else if (kind == kCoordination) {

@@ -25,7 +25,7 @@ struct BatchPolicy {
 
 class ShardMail {
  public:
-  explicit ShardMail(const Program& program) : program_(program) {}
+  explicit ShardMail(const Program& program);
 
   void putFact(MailBytes& out, NodeId dest, PredId p, const Value* args, bool negative);
   void putCoordination(MailBytes& out, NodeId n, Opcode op, double value);
@@ -47,7 +47,13 @@ class ShardMail {
   void readFact(Machine& to, const MailBytes& in, std::size_t& pos, Use&& use);
   void takeNode(Machine& to, NodeId n, const MailBytes& in, std::size_t& pos);
 
+  void putScalarFact(MailBytes& out, NodeId dest, PredId p, const Value* args, bool negative);
+  void readScalarFact(Machine& to, NodeId node, const MailBytes& in, std::size_t& pos);
+
   const Program& program_;
+  // Per predicate: every field is a scalar (no heap object), so a fact for another shard travels
+  // as its values' bits, without the codec: most facts that cross threads are such.
+  std::vector<std::uint8_t> scalar_;
   DecodedFact fact_;          // the decoder's storage, reused
   MailBytes pendingScratch_;  // a moving node's waiting messages, until its stored facts are out
 };
