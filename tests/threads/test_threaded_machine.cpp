@@ -43,6 +43,14 @@ std::string threadedDump(const meldvm::Program& p, unsigned threads, std::string
   return m.dump();
 }
 
+// `!edge(@i, @i+1)` round a ring of n nodes.
+std::string ringEdges(int n) {
+  std::string s;
+  for (int i = 0; i < n; ++i)
+    s += "!edge(@" + std::to_string(i) + ", @" + std::to_string((i + 1) % n) + ").\n";
+  return s;
+}
+
 // A ring of 24 nodes (the literals are renumbered in order of appearance, so the ring visits
 // every thread's range in turn) carrying a list, a string and a struct all the way round.
 std::string ringProgram() {
@@ -51,8 +59,7 @@ std::string ringProgram() {
       "type linear token(node, list int, string, :(int, float), int).\n"
       "type linear seen(node, list int, string, :(int, float)).\n"
       "token(@0, [], \"go\", :(0, 0.5), 23).\n";
-  for (int i = 0; i < 24; ++i)
-    s += "!edge(@" + std::to_string(i) + ", @" + std::to_string((i + 1) % 24) + ").\n";
+  s += ringEdges(24);
   s += "token(A, L, S, P, N), !edge(A, B), N > 0 -o "
        "token(B, [N | L], concatenate(S, int2str(N)), P, N - 1), seen(A, L, S, P).\n"
        "token(A, L, S, P, 0) -o seen(A, L, S, P).\n";
@@ -86,8 +93,7 @@ BOOST_AUTO_TEST_CASE(scalar_facts_cross_threads_bit_for_bit_and_so_do_retraction
       "type report(node, node).\n"
       "tok(@0, 23, 0.1, @0).\n"
       "!dist(@30, 0).\n";
-  for (int i = 0; i < 24; ++i)
-    s += "!edge(@" + std::to_string(i) + ", @" + std::to_string((i + 1) % 24) + ").\n";
+  s += ringEdges(24);
   for (int i = 30; i < 44; ++i)
     s += "!road(@" + std::to_string(i) + ", @" + std::to_string(i + 1) + ", 10).\n";
   for (int i = 50; i < 70; ++i)
