@@ -589,7 +589,7 @@ std::vector<NodeId> Machine::pickNodesToGive(std::size_t max, bool highestIds) {
   nodes.clear();
   std::size_t idleLeft = max * kBandSlack;
   auto take = [&](NodeId n) {
-    if (!ownedHere(n) || !movable(n) || sched_.isStatic(n)) return;
+    if (!sched_.held(n) || !movable(n) || sched_.isStatic(n)) return;
     if (!sched_.waiting(n)) {
       if (idleLeft == 0) return;
       --idleLeft;
@@ -630,6 +630,7 @@ SerialScheduler::Carried Machine::giveNode(NodeId n, const StoredFactVisitor& st
   db_->clearNode(n);
   std::fill_n(candidates_.data() + std::size_t(n) * tables_.ruleWords, tables_.ruleWords, 0);
   const SerialScheduler::Carried state = sched_.carried(n);
+  sched_.letGo(n);
   if (state.isStatic) setStatic(n, false);  // static here no more (the count of this thread)
   return state;
 }

@@ -15,7 +15,10 @@ void SerialScheduler::start(NodeId nodes, NodeId first, NodeId end) {
   init.prio = initial_;
   init.defaultPrio = default_;
   nodes_.assign(nodes, init);
-  for (NodeId n = first; n < end; ++n) wake(n);
+  for (NodeId n = first; n < end; ++n) {
+    nodes_[n].held = 1;
+    wake(n);
+  }
 }
 
 void SerialScheduler::addNode() {

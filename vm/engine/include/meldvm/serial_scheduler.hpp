@@ -81,7 +81,13 @@ class SerialScheduler {
     nodes_[n].prio = c.prio;
     nodes_[n].defaultPrio = c.defaultPrio;
     nodes_[n].isStatic = c.isStatic;
+    nodes_[n].held = 1;
   }
+  void letGo(NodeId n) { nodes_[n].held = 0; }
+  // The node is one of the graph's nodes queued at start() or adopted since, and not given away
+  // since: its facts are here. Unlike the owner table, which another thread changes while a
+  // rebalance hands nodes over, this shard alone changes it.
+  bool held(NodeId n) const { return nodes_[n].held != 0; }
 
   double priority(NodeId n) const { return nodes_[n].prio; }
   bool isStatic(NodeId n) const { return nodes_[n].isStatic != 0; }
@@ -112,6 +118,7 @@ class SerialScheduler {
     std::uint32_t heapIndex = 0, ticket = 0;
     Where where = Where::Idle;
     std::uint8_t isStatic = 0;
+    std::uint8_t held = 0;  // a threaded run: the node's facts are in this shard (see held())
   };
   LargeVector<NodeState> nodes_;
   std::vector<NodeId> heap_;
