@@ -63,8 +63,9 @@ std::unique_ptr<meldvm::Program> loadProgram(const Options& options, int& status
   }
 }
 
-void printStats(const meldvm::MachineStats& s, double loadSeconds, double wall, std::size_t vmBytes,
+void printStats(const meldvm::MachineStats& s, double loadSeconds, double wall, const meldvm::MemoryUse& vm,
                 std::size_t nodes) {
+  const std::size_t vmBytes = vm.total();
   std::fprintf(
       stderr,
       "facts derived: %llu\nfacts consumed: %llu\nfacts sent: %llu\nrules fired: %llu\n"
@@ -76,6 +77,10 @@ void printStats(const meldvm::MachineStats& s, double loadSeconds, double wall, 
   // The VM's own memory (stores, heaps, mailboxes, schedulers; all threads), per node of the graph.
   std::fprintf(stderr, "VM MB: %.1f\nVM bytes per node: %.0f\n", double(vmBytes) / 1e6,
                nodes ? double(vmBytes) / double(nodes) : 0.0);
+  std::fprintf(stderr,
+               "VM MB by part: fact tables %.1f, list heads %.1f, heaps %.1f, mailboxes %.1f, scheduling %.1f\n",
+               double(vm.factTables) / 1e6, double(vm.listHeads) / 1e6, double(vm.heaps) / 1e6,
+               double(vm.mailboxes) / 1e6, double(vm.scheduling) / 1e6);
 }
 
 void printThreadTable(const std::vector<meldvm::ThreadStats>& threads) {
@@ -144,7 +149,7 @@ int runSerial(const Options& options, const meldvm::Program& program, meldvm::Ma
   }
   std::cout.flush();
   if (options.stats) {
-    printStats(machine.stats(), loadSeconds, wall, machine.bytesInUse(), program.nodeSourceIds.size());
+    printStats(machine.stats(), loadSeconds, wall, machine.memoryUse(), program.nodeSourceIds.size());
     if (!why.empty())
       std::fprintf(stderr, "derivations recorded: %zu (%.1f MB)\n", derivations.size(),
                    double(derivations.bytesInUse()) / 1e6);
@@ -168,7 +173,7 @@ int runThreaded(const Options& options, const meldvm::Program& program, meldvm::
   double wall = 0;
   if (!runAndDump(machine, options, runStart, wall)) return kExitRuntimeError;
   if (options.stats) {
-    printStats(machine.stats(), loadSeconds, wall, machine.bytesInUse(), program.nodeSourceIds.size());
+    printStats(machine.stats(), loadSeconds, wall, machine.memoryUse(), program.nodeSourceIds.size());
     printThreadTable(machine.threadStats());
   }
   if (profile.is_open()) {

@@ -66,9 +66,15 @@ Machine::~Machine() {
   db_.reset();
 }
 
-std::size_t Machine::bytesInUse() const {
-  return db_->bytesReserved() + heap_.bytesReserved() + mail_->bytesReserved() +
-         candidates_.capacity() * sizeof(std::uint64_t) + created_.capacity() + (sched_.nodeCount() + 1) * 32;
+MemoryUse Machine::memoryUse() const {
+  MemoryUse m;
+  m.factTables = db_->tableBytes();
+  m.listHeads = db_->headBytes();
+  m.heaps = heap_.bytesReserved();
+  m.mailboxes = mail_->bytesReserved();
+  m.scheduling =
+      candidates_.capacity() * sizeof(std::uint64_t) + created_.capacity() + sched_.bytesReserved();
+  return m;
 }
 
 bool Machine::hasWork(NodeId n) const { return !mail_->empty(n); }

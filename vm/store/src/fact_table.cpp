@@ -1,5 +1,6 @@
 #include "meldvm/fact_table.hpp"
 
+#include <algorithm>
 #include <functional>
 #include <stdexcept>
 
@@ -48,6 +49,15 @@ void FactTable::reserve(std::size_t facts) {
   words_.reserve(facts * stride_);
   if (dedup_) facts_.reserve(std::uint32_t(facts));
   for (Index& x : indexes_) x.heads.reserve(std::uint32_t(facts));
+}
+
+void FactTable::growForOneMore() {
+  // By a quarter, not the vector's doubling: a threaded run's shards each reserve their share of
+  // the facts and grow when stolen nodes bring theirs, and doubling then left each shard room for
+  // nearly all of them (pagerank at -j 2: 10.2 MB of slots for 5.1 MB of facts).
+  if (words_.size() + stride_ <= words_.capacity()) return;
+  const std::size_t slots = words_.capacity() / stride_;
+  words_.reserve((slots + std::max<std::size_t>(slots / 4, 4)) * stride_);
 }
 
 std::uint64_t FactTable::dedupHash(NodeId n, const Value* key) const {
@@ -152,6 +162,7 @@ FactRef FactTable::place(ListHead& list, NodeId n, const Value* a, std::uint32_t
   } else {
     if (words_.size() / stride_ >= kNoFact - 1) throw std::length_error("meldvm: too many facts");
     f = FactRef(words_.size() / stride_);
+    growForOneMore();
     // `a` may point into words_ (arguments read from this very table), which the resize may move:
     // re-point it into the new array then.
     const Value* begin = words_.data();

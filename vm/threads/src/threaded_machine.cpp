@@ -67,10 +67,10 @@ std::vector<ThreadStats> ThreadedMachine::threadStats() const {
   return s;
 }
 
-std::size_t ThreadedMachine::bytesInUse() const {
-  std::size_t b = 0;
-  for (const auto& w : workers_) b += w->machine().bytesInUse();
-  return b;
+MemoryUse ThreadedMachine::memoryUse() const {
+  MemoryUse m;
+  for (const auto& w : workers_) m += w->machine().memoryUse();
+  return m;
 }
 
 }  // namespace meldvm

@@ -65,6 +65,24 @@ struct MachineOptions {
   const std::atomic<bool>* stopFlag = nullptr;
 };
 
+// Memory a machine holds for its nodes, by part (capacities, not what is in use).
+struct MemoryUse {
+  std::size_t factTables = 0;  // fact slots, their hash tables, aggregate inputs
+  std::size_t listHeads = 0;   // per-node list heads and liveness marks
+  std::size_t heaps = 0;       // boxed values (lists, strings, ...)
+  std::size_t mailboxes = 0;   // pending facts and per-node boxes
+  std::size_t scheduling = 0;  // scheduler records, candidate sets, created-node marks
+  std::size_t total() const { return factTables + listHeads + heaps + mailboxes + scheduling; }
+  MemoryUse& operator+=(const MemoryUse& o) {
+    factTables += o.factTables;
+    listHeads += o.listHeads;
+    heaps += o.heaps;
+    mailboxes += o.mailboxes;
+    scheduling += o.scheduling;
+    return *this;
+  }
+};
+
 struct MachineStats {
   std::uint64_t factsDerived = 0;   // facts derived by heads (linear and persistent, sent ones included)
   std::uint64_t factsConsumed = 0;  // linear facts consumed
@@ -173,7 +191,8 @@ class Machine : private SchedulerView {
   const Database& database() const { return *db_; }
   const Program& program() const { return program_; }
   // Memory the VM holds for its nodes: fact store, values, mailboxes, scheduler, candidate sets.
-  std::size_t bytesInUse() const;
+  std::size_t bytesInUse() const { return memoryUse().total(); }
+  MemoryUse memoryUse() const;
 
  private:
   friend class Interpreter;

@@ -95,6 +95,10 @@ class SerialScheduler {
   // A hint that `wake(n)` comes soon (always inlined: GCC drops calls to prefetch-only functions).
   [[gnu::always_inline]] void prefetch(NodeId n) const { __builtin_prefetch(&nodes_[n]); }
   std::size_t nodeCount() const { return nodes_.size(); }
+  std::size_t bytesReserved() const {
+    return nodes_.capacity() * sizeof(NodeState) + heap_.capacity() * sizeof(NodeId) +
+           fifo_.capacity() * sizeof(FifoEntry);
+  }
   std::size_t waiting() const { return heap_.size() + fifoLive_; }
   // Urgency order: true when a is strictly more urgent than b.
   bool moreUrgent(double a, double b) const { return desc_ ? a > b : a < b; }

@@ -75,12 +75,14 @@ class Database {
   std::uint32_t requestIndex(PredId p, std::uint32_t field);
 
   // Memory held by the store: fact tables, their hash tables, the per-node list heads.
-  std::size_t bytesReserved() const {
-    std::size_t b = heads_.capacity() * sizeof(ListHead) + alive_.capacity();
+  std::size_t bytesReserved() const { return tableBytes() + headBytes(); }
+  std::size_t tableBytes() const {
+    std::size_t b = 0;
     for (const FactTable& t : tables_) b += t.bytesReserved();
     for (const GroupInputs& g : nodeInputs_) b += g.bytesReserved();
     return b;
   }
+  std::size_t headBytes() const { return heads_.capacity() * sizeof(ListHead) + alive_.capacity(); }
   // Room for that many facts of p (all nodes together) without growing.
   void reserve(PredId p, std::size_t facts) { tables_[p].reserve(facts); }
 
