@@ -100,6 +100,12 @@ case_threads() {
   cmp -s "$OUT" "$WORK/serial" || fail "-j 3 and the serial VM gave two dumps"
   has "$ERR" "threads: 3"
   has "$ERR" "busy %"
+  # The VM's memory by part adds up to its total (all threads together).
+  has "$ERR" "VM MB by part: fact tables "
+  awk -F'[:,] *' '/^VM MB: / {total = $2}
+    /^VM MB by part:/ {for (i = 2; i <= NF; ++i) {n = split($i, w, " "); sum += w[n]}; seen = 1}
+    END {d = total - sum; if (!seen || d > 0.3 || d < -0.3) exit 1}' "$ERR" ||
+    fail "the VM's memory by part does not add up to its total"
   run 0 "$WORK/reach.meld" --dump --threads 2
   cmp -s "$OUT" "$WORK/serial" || fail "--threads 2 and the serial VM gave two dumps"
   run 2 "$WORK/reach.meld" -j 0
