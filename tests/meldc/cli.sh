@@ -61,6 +61,21 @@ case_emit_bytecode() {
   run 0 --emit=bytecode "$WORK/g.meld" -o "$WORK/out.mbc"
   cmp -s "$WORK/g.mbc" "$WORK/out.mbc" || fail "-o output differs from the default output"
 }
+case_output_dash() {
+  # -o - is standard output, bytecode included (for a pipe), and never a file named '-'.
+  cp valid/gradient.meld "$WORK/g.meld"
+  (cd "$WORK" && "$BIN" g.meld) || fail "meldc g.meld failed"  # the bytecode names g.meld as given
+  (cd "$WORK" && "$BIN" g.meld -o - >"$OUT" 2>"$ERR" </dev/null) || fail "meldc -o - failed"
+  cmp -s "$WORK/g.mbc" "$OUT" || fail "-o - did not write the bytecode to standard output"
+  [ -e "$WORK/-" ] && fail "-o - wrote a file named '-'"
+  run 0 --emit=asm "$WORK/g.meld" -o -
+  has "$OUT" "rule 0"
+  # Not onto a terminal (script(1), from bsdutils, gives the run one).
+  script -qec "'$BIN' '$WORK/g.meld' -o -" /dev/null >"$OUT" 2>&1 </dev/null
+  rc=$?
+  [ "$rc" -eq 2 ] || fail "bytecode onto a terminal: exit code $rc, expected 2"
+  has "$OUT" "refusing to write bytecode to a terminal"
+}
 case_emit_asm() {
   run 0 --emit=asm valid/gradient.meld
   has "$OUT" "rule 0"

@@ -1,5 +1,7 @@
 // meldc: the Meld compiler driver. Runs the front end, then either prints the AST / node table or
 // lowers the program and writes bytecode (.mbc) or its disassembly.
+#include <unistd.h>
+
 #include <fstream>
 #include <iostream>
 #include <sstream>
@@ -20,7 +22,12 @@
 namespace {
 
 // Writes `text` to `path` (binary); false on failure.
+// "-" is standard output.
 bool writeFile(const std::string& path, const std::string& bytes) {
+  if (path == "-") {
+    std::cout.write(bytes.data(), std::streamsize(bytes.size()));
+    return bool(std::cout.flush());
+  }
   std::ofstream out(path, std::ios::binary);
   if (out) out.write(bytes.data(), std::streamsize(bytes.size()));
   return out && (out.close(), bool(out));
@@ -57,6 +64,11 @@ int main(int argc, char** argv) {
 
   SourceManager sources;
   Diagnostics diag(sources, std::cerr);
+  if (options->emit == EmitKind::Bytecode && options->output == "-" && isatty(STDOUT_FILENO)) {
+    std::cerr << "meldc: error: -o -: refusing to write bytecode to a terminal (redirect it, or "
+                 "use --emit=asm to read it)\n";
+    return kExitUsage;
+  }
   FrontEndInput input{options->input, options->includeDirs, options->defines};
   // After the -I folders, so that a program's own copy of a target file wins.
   if (!options->noStdlib && !defaultStdlibDir().empty()) input.includeDirs.push_back(defaultStdlibDir());

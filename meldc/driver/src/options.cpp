@@ -39,7 +39,7 @@ const char* usageText() {
          "  --emit=bytecode  write bytecode (default) to OUT, by default FILE with the extension .mbc\n"
          "  --emit=asm       print a disassembly of the bytecode\n"
          "  -o OUT           write the --emit output to OUT instead of standard output (bytecode:\n"
-         "                   instead of FILE.mbc)\n"
+         "                   instead of FILE.mbc); '-o -' is standard output, for bytecode too\n"
          "  -I DIR           search DIR for included files, after the including file's folder\n"
          "  --robots         node ids are block ids (for vsim --program): node literals keep their\n"
          "                   numbers and every id up to the largest exists (no renumbering, §6.1)\n"
