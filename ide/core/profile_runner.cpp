@@ -6,7 +6,16 @@
 
 namespace ide {
 
-ProfileRunner::~ProfileRunner() { join(); }
+ProfileRunner::~ProfileRunner() {
+  cancel();
+  join();
+}
+
+void ProfileRunner::cancel() {
+  std::lock_guard<std::mutex> lock(cancelLock_);
+  cancelled_ = true;
+  if (current_) current_->cancel();
+}
 
 void ProfileRunner::join() {
   if (worker_.joinable()) worker_.join();
@@ -24,30 +33,54 @@ bool ProfileRunner::start(std::shared_ptr<const meldvm::Program> program, std::v
   if (running_.load()) return false;
   join();
   result_ = {};
+  {
+    std::lock_guard<std::mutex> lock(cancelLock_);
+    cancelled_ = false;
+  }
   running_.store(true);
   worker_ = std::thread([this, program, args = std::move(args), threads = std::move(threads), folder, name] {
     Result r;
     try {
-      for (unsigned n : threads) {
-        meldvm::MachineOptions options;
-        options.args = args;  // write-string output is not shown: the runs are for their timelines
-        meldvm::ThreadedMachine machine(*program, options, n);
-        machine.recordProfile();
-        machine.run();
-        const std::string path = folder + "/" + name + ".j" + std::to_string(n) + ".json";
-        std::ofstream out(path, std::ios::binary);
-        machine.writeProfile(out);
-        out.close();
-        if (!out) throw std::runtime_error("cannot write " + path);
-        r.files.push_back(path);
-      }
+      for (unsigned n : threads)
+        r.files.push_back(profileAt(*program, args, n, folder + "/" + name + ".j" + std::to_string(n) + ".json"));
     } catch (const std::exception& e) {
       r.error = e.what();
+      r.files.clear();
     }
     result_ = std::move(r);
     running_.store(false);  // after result_: take() reads it once this is false
   });
   return true;
+}
+
+std::string ProfileRunner::profileAt(const meldvm::Program& program, const std::vector<std::string>& args,
+                                     unsigned threads, const std::string& path) {
+  meldvm::MachineOptions options;
+  options.args = args;  // write-string output is not shown: the runs are for their timelines
+  meldvm::ThreadedMachine machine(program, options, threads);
+  machine.recordProfile();
+  {
+    std::lock_guard<std::mutex> lock(cancelLock_);
+    if (cancelled_) throw std::runtime_error("cancelled");
+    current_ = &machine;
+  }
+  struct Detach {  // cancel() must not reach the machine once it is gone, whatever run() did
+    ProfileRunner& runner;
+    ~Detach() {
+      std::lock_guard<std::mutex> lock(runner.cancelLock_);
+      runner.current_ = nullptr;
+    }
+  } detach{*this};
+  machine.run();
+  {
+    std::lock_guard<std::mutex> lock(cancelLock_);
+    if (cancelled_) throw std::runtime_error("cancelled");  // stopped part-way: no timeline to show
+  }
+  std::ofstream out(path, std::ios::binary);
+  machine.writeProfile(out);
+  out.close();
+  if (!out) throw std::runtime_error("cannot write " + path);
+  return path;
 }
 
 std::optional<ProfileRunner::Result> ProfileRunner::take() {

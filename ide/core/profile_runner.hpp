@@ -6,12 +6,17 @@
 
 #include <atomic>
 #include <memory>
+#include <mutex>
 #include <optional>
 #include <string>
 #include <thread>
 #include <vector>
 
 #include "meldvm/program.hpp"
+
+namespace meldvm {
+class ThreadedMachine;
+}
 
 namespace ide {
 
@@ -23,7 +28,7 @@ class ProfileRunner {
   };
 
   ProfileRunner() = default;
-  ~ProfileRunner();  // waits for a run in progress to end
+  ~ProfileRunner();  // cancels a run in progress and waits for it to stop (closing the IDE)
   ProfileRunner(const ProfileRunner&) = delete;
   ProfileRunner& operator=(const ProfileRunner&) = delete;
 
@@ -32,6 +37,9 @@ class ProfileRunner {
   bool start(std::shared_ptr<const meldvm::Program> program, std::vector<std::string> args,
              std::vector<unsigned> threads, const std::string& folder, const std::string& name);
   bool running() const { return running_.load(); }
+  // Stops the runs: the one in progress stops after its current rule, the rest do not start;
+  // the result then says "cancelled" and lists no profile. Returns at once.
+  void cancel();
   // The result once the runs are over (once: it is handed over).
   std::optional<Result> take();
   // 1 and every power of two up to the machine's cores (as bench/multicore/run-b4.sh).
@@ -39,9 +47,17 @@ class ProfileRunner {
 
  private:
   void join();
+  // One run at `threads` threads, its profile written to `path` (returned); throws on an error
+  // or when cancelled.
+  std::string profileAt(const meldvm::Program& program, const std::vector<std::string>& args,
+                        unsigned threads, const std::string& path);
 
   std::thread worker_;
   std::atomic<bool> running_{false};
+  // cancel() and the worker meet here: the machine being run, if any, and whether to stop.
+  std::mutex cancelLock_;
+  meldvm::ThreadedMachine* current_ = nullptr;
+  bool cancelled_ = false;
   Result result_;  // written by the worker before running_ goes false
 };
 

@@ -66,6 +66,9 @@ class MainWindow : public QMainWindow {
   // thread count, in the background; the profile window opens when the runs are over. False
   // (said in the console) with no program, compile errors, or runs already going.
   bool profileProgram(const std::vector<unsigned>& threads = ProfileRunner::defaultThreadCounts());
+  // Run > Stop profiling: the run in progress stops after its current rule, the rest do not
+  // start, no profile window opens. False (said in the console) when nothing runs.
+  bool stopProfiling();
   // The window the last profiling opened (nullptr until then), for tests.
   QWidget* lastProfileWindow() const { return lastProfileWindow_; }
   // The run from its start, a frame every `every` of simulated time, seen from the view's camera,

@@ -133,9 +133,22 @@ bool MainWindow::profileProgram(const std::vector<unsigned>& threads) {
   return true;
 }
 
+bool MainWindow::stopProfiling() {
+  if (!profiler_.running()) {
+    console_->appendMessage("Profile: no profiling is running");
+    return false;
+  }
+  profiler_.cancel();
+  return true;
+}
+
 void MainWindow::takeProfiles() {
   std::optional<ProfileRunner::Result> r = profiler_.take();
   if (!r) return;
+  if (r->error == "cancelled") {
+    console_->appendMessage("Profile: stopped; no profile to show");
+    return;
+  }
   if (!r->error.empty()) {
     console_->appendMessage("Profile: the run failed: " + QString::fromStdString(r->error));
     return;
@@ -169,6 +182,9 @@ void MainWindow::buildRunActions() {
       "Run the editor's program on its own graph (as meld does) at 1 thread and every power of two up "
       "to the cores, and open the threads' timelines and the speedup table");
   connect(profile, &QAction::triggered, this, [this] { profileProgram(); });
+  QAction* stopProfile = run->addAction("Stop profiling");
+  stopProfile->setToolTip("Stop the profiling runs in progress (closing the window stops them too)");
+  connect(stopProfile, &QAction::triggered, this, [this] { stopProfiling(); });
   QAction* record = run->addAction("Record derivations (why a fact exists)");
   record->setCheckable(true);
   record->setToolTip("The VM notes where every fact comes from; the run starts again");

@@ -188,6 +188,25 @@ class MainWindowTest : public QObject {
     QCOMPARE(facts, 32ull + 64 + 64 * 20);  // edges, tokens, every hop
   }
 
+  void stopsAProfilingRun() {
+    // Run > Stop profiling: a run that would last minutes stops at once, and no window opens.
+    QTemporaryDir dir;
+    QFile f(dir.filePath("count.meld"));
+    QVERIFY(f.open(QIODevice::WriteOnly));
+    f.write("type linear count(node, int).\ncount(@0, 0).\ncount(A, N), N < 2000000000 -o count(A, N + 1).\n");
+    f.close();
+    vsim::Options o;
+    ide::MainWindow w(o);
+    QVERIFY(w.openProgram(f.fileName()));
+    QVERIFY(!w.stopProfiling());  // nothing runs yet
+    QVERIFY(w.console()->text().contains("no profiling is running"));
+    QVERIFY2(w.profileProgram({1, 2}), qPrintable(w.console()->text()));
+    QTest::qWait(200);
+    QVERIFY(w.stopProfiling());
+    QTRY_VERIFY_WITH_TIMEOUT((w.poll(), w.console()->text().contains("Profile: stopped")), 10000);
+    QVERIFY(w.lastProfileWindow() == nullptr);
+  }
+
   void badWorldIsAMessage() {
     vsim::Options o;
     ide::MainWindow w(o);

@@ -43,6 +43,8 @@ void ThreadedMachine::run() {
 
 bool ThreadedMachine::stopped() const { return shared_->stop.load(); }
 
+void ThreadedMachine::cancel() { shared_->stopAll(); }
+
 std::vector<const Machine*> ThreadedMachine::shards() const {
   std::vector<const Machine*> all;
   for (const auto& w : workers_) all.push_back(&w->machine());

@@ -51,6 +51,9 @@ class ThreadedMachine {
   void recordProfile() { profile_ = true; }
   // Runs to quiescence or stop-program. Throws RuntimeError (the first error of any thread).
   void run();
+  // Ends the run from another thread as stop-program would (each thread stops after its current
+  // rule); before run(), the run stops at once. Safe to call at any time, from any thread.
+  void cancel();
   // The timelines as a Chrome trace-event file (Perfetto, chrome://tracing): per thread, spans
   // of node runs (coalesced: about 1 ms each), idle spans and steal spans (rebalances), and
   // counters of facts derived and queued nodes. Call after run() with recordProfile().
