@@ -250,3 +250,39 @@ BOOST_AUTO_TEST_CASE(a_full_table_grows_by_a_quarter_not_by_doubling) {
   BOOST_TEST(double(grown) <= 1.26 * double(reserved));
   BOOST_TEST(db.factCount(0, p) == 1001u);
 }
+
+BOOST_AUTO_TEST_CASE(node_heads_take_memory_only_for_the_pages_written) {
+  // A shard of a threaded run stores the facts of some nodes only: untouched pages of 256 nodes
+  // read as empty heads and cost nothing but the shared empty page.
+  NodeHeads heads(4);
+  heads.addNodes(10000);
+  const std::size_t bare = heads.bytesReserved();
+  BOOST_TEST(heads.of(9000)[3].first == kNoFact);
+  BOOST_TEST(heads.of(9000)[3].size == 0u);
+  heads.forWrite(5000)[2].size = 7;
+  heads.forWrite(5100)[1].size = 8;  // the same page
+  const std::size_t page = 256 * 4 * sizeof(ListHead);
+  BOOST_TEST(heads.bytesReserved() - bare >= page);
+  BOOST_TEST(heads.bytesReserved() - bare < page + 64);  // one page (and its entry in the list)
+  BOOST_TEST(heads.of(5000)[2].size == 7u);
+  BOOST_TEST(heads.of(5100)[1].size == 8u);
+  BOOST_TEST(heads.of(5001)[2].size == 0u);
+  BOOST_TEST(heads.of(9000)[2].size == 0u);  // the shared empty page was not written
+  BOOST_TEST(heads.bytesReserved() < 10000 * 4 * sizeof(ListHead) / 4);
+}
+
+BOOST_AUTO_TEST_CASE(a_small_store_keeps_one_page_of_its_size_and_grows_past_it) {
+  NodeHeads heads(2);
+  heads.addNodes(3);  // a robot's machine: no page of 256 nodes for three
+  BOOST_TEST(heads.bytesReserved() < 3 * 2 * sizeof(ListHead) + 64);
+  heads.forWrite(2)[1].size = 5;
+  heads.addNodes(1);  // a created node
+  BOOST_TEST(heads.of(2)[1].size == 5u);
+  BOOST_TEST(heads.of(3)[1].size == 0u);
+  heads.addNodes(1000);  // past one page: the heads written stay
+  BOOST_TEST(heads.of(2)[1].size == 5u);
+  BOOST_TEST(heads.of(900)[0].first == kNoFact);
+  heads.forWrite(900)[0].size = 9;
+  BOOST_TEST(heads.of(900)[0].size == 9u);
+  BOOST_TEST(heads.of(2)[1].size == 5u);
+}

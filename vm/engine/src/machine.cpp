@@ -230,9 +230,11 @@ std::uint64_t Machine::runNode(NodeId n) {
   // the thread node's own candidates (rule 1, rules over thread facts only) compete with the
   // node's by rule number, running on the thread node.
   const bool withThread = threadNode_ != kNoNode && n != threadNode_;
-  if (withThread)
+  if (withThread) {
+    const ListHead* heads = db_->listHeads(n);
     for (std::uint32_t r : tables_.mixedRules)
-      if (allPresent(n, r)) cand[r / 64] |= std::uint64_t(1) << (r % 64);
+      if (allPresent(heads, r)) cand[r / 64] |= std::uint64_t(1) << (r % 64);
+  }
   while (!stopRequested()) {
     const std::uint64_t* threadCand =
         withThread ? candidates_.data() + std::size_t(threadNode_) * tables_.ruleWords : nullptr;
@@ -279,10 +281,11 @@ bool Machine::takeAxiomCandidates(std::uint64_t* cand) {
   if (!axiomsDeferred_) return false;
   axiomsDeferred_ = false;
   bool any = false;
+  const ListHead* heads = db_->listHeads(running_);
   for (std::uint32_t w = 0; w < tables_.ruleWords; ++w) {
     for (std::uint64_t bits = axiomCandidates_[w]; bits; bits &= bits - 1) {
       const std::uint32_t r = w * 64 + std::uint32_t(__builtin_ctzll(bits));
-      if (allPresent(running_, r)) {
+      if (allPresent(heads, r)) {
         cand[w] |= std::uint64_t(1) << (r % 64);
         any = true;
       }
@@ -339,9 +342,9 @@ void Machine::fail(const std::exception& e, NodeId n, const std::string& where) 
 
 // ---- candidate rules (§6.4.2) ----
 
-bool Machine::allPresent(NodeId n, std::uint32_t rule) const {
+bool Machine::allPresent(const ListHead* heads, std::uint32_t rule) const {
   for (PredId q : program_.rules[rule].bodyPredicates)
-    if (db_->factCount(tables_.isThreadPred[q] ? threadNode_ : n, q) == 0) return false;
+    if ((tables_.isThreadPred[q] ? db_->factCount(threadNode_, q) : heads[q].size) == 0) return false;
   return true;
 }
 
@@ -356,12 +359,14 @@ void Machine::factAdded(NodeId n, PredId p) {
   // A thread fact makes the thread node's own rules candidates, and the rules mixing node and
   // thread facts of the node that is running (others check them when they start a run).
   std::uint64_t* cand = candidates_.data() + std::size_t(n) * tables_.ruleWords;
+  const ListHead* heads = db_->listHeads(n);
   for (std::uint32_t r : tables_.rulesOf[p])
-    if (allPresent(n, r)) cand[r / 64] |= std::uint64_t(1) << (r % 64);
+    if (allPresent(heads, r)) cand[r / 64] |= std::uint64_t(1) << (r % 64);
   if (n != threadNode_ || !inRun_ || running_ == threadNode_) return;
   std::uint64_t* runningCand = candidates_.data() + std::size_t(running_) * tables_.ruleWords;
+  const ListHead* runningHeads = db_->listHeads(running_);
   for (std::uint32_t r : tables_.rulesOf[p])
-    if (tables_.isMixedRule[r] && allPresent(running_, r))
+    if (tables_.isMixedRule[r] && allPresent(runningHeads, r))
       runningCand[r / 64] |= std::uint64_t(1) << (r % 64);
 }
 

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <stdexcept>
 #include <string>
+#include <utility>
 
 #include "meldvm/value_ops.hpp"
 
@@ -51,6 +52,7 @@ Database::Database(const PredicateTable& preds, Heap& heap) : preds_(preds), hea
     tables_.back().addIndex({0, d.aggregateField});
   }
   tableCount_ = std::uint32_t(tables_.size());
+  heads_ = NodeHeads(tableCount_);
   for (auto* v : {&added_, &removed_, &input_, &next_}) v->reserve(maxArity);
 }
 
@@ -68,7 +70,7 @@ void Database::badPredicate(PredId p) const {
 NodeId Database::addNodes(NodeId count) {
   const NodeId firstNew = nodeCount();
   alive_.resize(alive_.size() + count, 1);
-  heads_.resize(alive_.size() * tableCount_);
+  heads_.addNodes(count);
   for (GroupInputs& g : nodeInputs_) g.addNodes(count);
   return firstNew;
 }
@@ -83,6 +85,7 @@ void Database::clearNode(NodeId n) {
   checkNode(n);
   clearScratch();
   for (std::uint32_t t = 0; t < tableCount_; ++t) {
+    if (std::as_const(*this).head(n, t).first == kNoFact) continue;  // no page to allocate
     ListHead& h = head(n, t);
     while (h.first != kNoFact) tables_[t].erase(h, h.first);
   }

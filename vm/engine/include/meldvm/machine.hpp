@@ -242,7 +242,9 @@ class Machine : private SchedulerView {
   void flushOutgoing();
   void applyPriorityRequests();
   void factAdded(NodeId n, PredId p);                   // candidate rules (§6.4.2)
-  bool allPresent(NodeId n, std::uint32_t rule) const;  // every body predicate has a fact
+  // Every body predicate has a fact at the node whose list heads are given (thread predicates:
+  // at the thread node).
+  bool allPresent(const ListHead* heads, std::uint32_t rule) const;
   bool hasCandidate(NodeId n) const;
   void reserveForAxioms();
   void startThreadNode();  // _init_thread and the special thread facts (§6.12)

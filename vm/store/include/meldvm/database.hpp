@@ -20,6 +20,7 @@
 #include "meldvm/group_inputs.hpp"
 #include "meldvm/heap.hpp"
 #include "meldvm/large_allocator.hpp"
+#include "meldvm/node_heads.hpp"
 #include "meldvm/predicate.hpp"
 
 namespace meldvm {
@@ -82,7 +83,7 @@ class Database {
     for (const GroupInputs& g : nodeInputs_) b += g.bytesReserved();
     return b;
   }
-  std::size_t headBytes() const { return heads_.capacity() * sizeof(ListHead) + alive_.capacity(); }
+  std::size_t headBytes() const { return heads_.bytesReserved() + alive_.capacity(); }
   // Room for that many facts of p (all nodes together) without growing.
   void reserve(PredId p, std::size_t facts) { tables_[p].reserve(facts); }
 
@@ -119,6 +120,9 @@ class Database {
   const Value* args(PredId p, FactRef f) const { return tables_[p].args(f); }
   std::uint32_t copies(PredId p, FactRef f) const { return tables_[p].count(f); }
   std::uint32_t factCount(NodeId n, PredId p) const { return head(n, p).size; }  // distinct facts
+  // The node's list heads, indexed by predicate (size: its distinct facts): one look-up for a
+  // caller that reads several predicates of the node.
+  const ListHead* listHeads(NodeId n) const { return heads_.of(n); }
   // The visible persistent fact with exactly these arguments, or kNoFact.
   FactRef find(NodeId n, PredId p, const Value* args) const;
   // Facts of the node whose indexed field equals key, in insertion order.
@@ -131,7 +135,7 @@ class Database {
   // A hint that node n runs soon: fetch its list heads (always inlined: GCC drops calls to
   // functions whose only effect is a prefetch).
   [[gnu::always_inline]] void prefetchNode(NodeId n) const {
-    const char* p = reinterpret_cast<const char*>(heads_.data() + std::size_t(n) * tableCount_);
+    const char* p = reinterpret_cast<const char*>(heads_.of(n));
     const std::size_t bytes = tableCount_ * sizeof(ListHead);
     for (std::size_t off = 0; off < bytes; off += 64) __builtin_prefetch(p + off);
     for (const GroupInputs& g : nodeInputs_) g.prefetchRun(n);
@@ -156,7 +160,7 @@ class Database {
   // The next stage, once the list heads are cached: the first facts of the node's lists (the
   // first two cache lines of each, which holds a few facts when they were stored together).
   [[gnu::always_inline]] void prefetchNodeFacts(NodeId n) const {
-    const ListHead* h = heads_.data() + std::size_t(n) * tableCount_;
+    const ListHead* h = heads_.of(n);
     for (std::size_t t = 0; t < tableCount_; ++t)
       if (h[t].first != kNoFact) {
         const char* p = reinterpret_cast<const char*>(tables_[t].slotAddress(h[t].first));
@@ -175,10 +179,8 @@ class Database {
  private:
   static constexpr std::uint32_t kNoTable = 0xFFFFFFFFu;
 
-  const ListHead& head(NodeId n, std::uint32_t table) const {
-    return heads_[std::size_t(n) * tableCount_ + table];
-  }
-  ListHead& head(NodeId n, std::uint32_t table) { return heads_[std::size_t(n) * tableCount_ + table]; }
+  const ListHead& head(NodeId n, std::uint32_t table) const { return heads_.of(n)[table]; }
+  ListHead& head(NodeId n, std::uint32_t table) { return heads_.forWrite(n)[table]; }
   // Checks on every store call, inline: the failures are out of line.
   const PredicateDesc& storedPredicate(PredId p, bool linear) const {
     if (p >= preds_.size() || preds_[p].action || preds_[p].linear != linear) badPredicate(p);
@@ -220,7 +222,7 @@ class Database {
   std::vector<std::uint32_t> groupInputs_;  // per predicate: its entry in nodeInputs_, or kNoTable
   std::vector<std::uint8_t> boxedPred_;     // per predicate: some field is boxed
   std::vector<std::uint8_t> intMinMax_;     // per predicate: `p(node, min int)` or max (intMinMaxChange)
-  LargeVector<ListHead> heads_;             // node-major: heads_[node * tables + table]
+  NodeHeads heads_{0};                      // set up once tableCount_ is known
   std::vector<std::uint8_t> alive_;
   std::uint32_t removedNodes_ = 0;
   std::vector<std::uint8_t> grouped_;  // per predicate: new persistent facts join their first-field group
