@@ -77,10 +77,11 @@ void printStats(const meldvm::MachineStats& s, double loadSeconds, double wall, 
   // The VM's own memory (stores, heaps, mailboxes, schedulers; all threads), per node of the graph.
   std::fprintf(stderr, "VM MB: %.1f\nVM bytes per node: %.0f\n", double(vmBytes) / 1e6,
                nodes ? double(vmBytes) / double(nodes) : 0.0);
-  std::fprintf(stderr,
-               "VM MB by part: fact tables %.1f, list heads %.1f, heaps %.1f, mailboxes %.1f, scheduling %.1f\n",
-               double(vm.factTables) / 1e6, double(vm.listHeads) / 1e6, double(vm.heaps) / 1e6,
-               double(vm.mailboxes) / 1e6, double(vm.scheduling) / 1e6);
+  std::fprintf(
+      stderr,
+      "VM MB by part: fact tables %.1f, list heads %.1f, heaps %.1f, mailboxes %.1f, scheduling %.1f\n",
+      double(vm.factTables) / 1e6, double(vm.listHeads) / 1e6, double(vm.heaps) / 1e6,
+      double(vm.mailboxes) / 1e6, double(vm.scheduling) / 1e6);
 }
 
 void printThreadTable(const std::vector<meldvm::ThreadStats>& threads) {

@@ -42,7 +42,8 @@ bool ProfileRunner::start(std::shared_ptr<const meldvm::Program> program, std::v
     Result r;
     try {
       for (unsigned n : threads)
-        r.files.push_back(profileAt(*program, args, n, folder + "/" + name + ".j" + std::to_string(n) + ".json"));
+        r.files.push_back(
+            profileAt(*program, args, n, folder + "/" + name + ".j" + std::to_string(n) + ".json"));
     } catch (const std::exception& e) {
       r.error = e.what();
       r.files.clear();

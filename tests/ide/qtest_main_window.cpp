@@ -60,6 +60,13 @@ QString fingerprintOf(const QString& vsimOut) {
   return {};
 }
 
+// Writes `text` into dir/name; its path, empty if it could not be written.
+QString writeFile(const QTemporaryDir& dir, const QString& name, const QByteArray& text) {
+  QFile f(dir.filePath(name));
+  if (!f.open(QIODevice::WriteOnly) || f.write(text) != text.size()) return {};
+  return f.fileName();
+}
+
 bool finished(ide::MainWindow& w) {
   w.poll();
   const auto s = w.controller().snapshot();
@@ -127,11 +134,10 @@ class MainWindowTest : public QObject {
 
   void compileErrorIsListedAndUnderlinedAtItsLine() {
     QTemporaryDir dir;
-    const QString path = dir.filePath("broken.meld");
-    QFile f(path);
-    QVERIFY(f.open(QIODevice::WriteOnly));
-    f.write("include #blinkyblocks.meld\n\ntype dist(node, min int).\n\n!dist(B, D) -o !setColor2(B, Q).\n");
-    f.close();
+    const QString path = writeFile(
+        dir, "broken.meld",
+        "include #blinkyblocks.meld\n\ntype dist(node, min int).\n\n!dist(B, D) -o !setColor2(B, Q).\n");
+    QVERIFY(!path.isEmpty());
     vsim::Options o = gradientOptions();
     o.program.clear();
     ide::MainWindow w(o);
@@ -168,15 +174,13 @@ class MainWindowTest : public QObject {
     for (int i = 0; i < 32; ++i) source += QString("!edge(@%1, @%2).\n").arg(i).arg((i + 1) % 32);
     for (int i = 0; i < 64; ++i) source += QString("token(@%1, 20).\n").arg(i % 32);
     source += "token(A, N), N > 0, !edge(A, B) -o token(B, N - 1).\n";
-    QFile f(dir.filePath("ring.meld"));
-    QVERIFY(f.open(QIODevice::WriteOnly));
-    f.write(source.toUtf8());
-    f.close();
+    const QString ring = writeFile(dir, "ring.meld", source.toUtf8());
+    QVERIFY(!ring.isEmpty());
     vsim::Options o;
     ide::MainWindow w(o);
     QVERIFY(!w.profileProgram({1, 2}));  // no program yet: a message, nothing runs
     QVERIFY(w.console()->text().contains("open a Meld program first"));
-    QVERIFY(w.openProgram(f.fileName()));
+    QVERIFY(w.openProgram(ring));
     QVERIFY2(w.profileProgram({1, 2}), qPrintable(w.console()->text()));
     QTRY_VERIFY_WITH_TIMEOUT((w.poll(), w.lastProfileWindow() != nullptr), 60000);
     auto* view = qobject_cast<ide::ProfileView*>(w.lastProfileWindow());
@@ -191,13 +195,13 @@ class MainWindowTest : public QObject {
   void stopsAProfilingRun() {
     // Run > Stop profiling: a run that would last minutes stops at once, and no window opens.
     QTemporaryDir dir;
-    QFile f(dir.filePath("count.meld"));
-    QVERIFY(f.open(QIODevice::WriteOnly));
-    f.write("type linear count(node, int).\ncount(@0, 0).\ncount(A, N), N < 2000000000 -o count(A, N + 1).\n");
-    f.close();
+    const QString count = writeFile(
+        dir, "count.meld",
+        "type linear count(node, int).\ncount(@0, 0).\ncount(A, N), N < 2000000000 -o count(A, N + 1).\n");
+    QVERIFY(!count.isEmpty());
     vsim::Options o;
     ide::MainWindow w(o);
-    QVERIFY(w.openProgram(f.fileName()));
+    QVERIFY(w.openProgram(count));
     QVERIFY(!w.stopProfiling());  // nothing runs yet
     QVERIFY(w.console()->text().contains("no profiling is running"));
     QVERIFY2(w.profileProgram({1, 2}), qPrintable(w.console()->text()));
@@ -256,10 +260,10 @@ class MainWindowTest : public QObject {
 
   void runTimeErrorsAndBadCodeAreMessages() {
     QTemporaryDir dir;
-    QFile f(dir.filePath("div.meld"));
-    QVERIFY(f.open(QIODevice::WriteOnly));
-    f.write("include #blinkyblocks.meld\ntype v(node, int).\n!at(B, X, _, _) -o !v(B, 10 / (X - X)).\n");
-    f.close();
+    QVERIFY(!writeFile(
+                 dir, "div.meld",
+                 "include #blinkyblocks.meld\ntype v(node, int).\n!at(B, X, _, _) -o !v(B, 10 / (X - X)).\n")
+                 .isEmpty());
     vsim::Options o = gradientOptions();
     o.program = dir.filePath("div.meld").toStdString();
     ide::MainWindow w(o);
@@ -274,13 +278,11 @@ class MainWindowTest : public QObject {
     w.controller().run();
     QTRY_VERIFY_WITH_TIMEOUT(finished(w), 30000);
 
-    QFile so(dir.filePath("bad.so"));
-    QVERIFY(so.open(QIODevice::WriteOnly));
-    so.write("not a shared object");
-    so.close();
+    const QString badSo = writeFile(dir, "bad.so", "not a shared object");
+    QVERIFY(!badSo.isEmpty());
     vsim::Options c;
     c.world = (kSource + "/examples/worlds/color-flood.xml").toStdString();
-    c.code = dir.filePath("bad.so").toStdString();
+    c.code = badSo.toStdString();
     ide::MainWindow broken(c);
     QVERIFY(!broken.controller().isOpen());
     QVERIFY(broken.console()->text().contains("is not a shared object"));

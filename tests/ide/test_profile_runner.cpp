@@ -2,12 +2,13 @@
 // and a run in progress stops when asked, or when the runner goes away with the window, instead
 // of holding the IDE open until it ends. No Qt: it runs under the tsan preset too.
 #define BOOST_TEST_MODULE ide_profile_runner
+#include <unistd.h>
+
 #include <boost/test/unit_test.hpp>
 #include <chrono>
 #include <filesystem>
 #include <fstream>
 #include <thread>
-#include <unistd.h>
 
 #include "meld_program.hpp"
 #include "profile_runner.hpp"
@@ -36,8 +37,10 @@ std::shared_ptr<const meldvm::Program> counter(const Folder& f, long limit) {
 bool endsWithin(const ide::ProfileRunner& runner, std::chrono::seconds limit) {
   const Clock::time_point deadline = Clock::now() + limit;
   while (runner.running())
-    if (Clock::now() > deadline) return false;
-    else std::this_thread::sleep_for(5ms);
+    if (Clock::now() > deadline)
+      return false;
+    else
+      std::this_thread::sleep_for(5ms);
   return true;
 }
 

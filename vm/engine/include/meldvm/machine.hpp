@@ -241,7 +241,7 @@ class Machine : private SchedulerView {
   void runProcesses(NodeId n, PredId p, const Value* args, bool negative);
   void flushOutgoing();
   void applyPriorityRequests();
-  void factAdded(NodeId n, PredId p);                   // candidate rules (§6.4.2)
+  void factAdded(NodeId n, PredId p);  // candidate rules (§6.4.2)
   // Every body predicate has a fact at the node whose list heads are given (thread predicates:
   // at the thread node).
   bool allPresent(const ListHead* heads, std::uint32_t rule) const;
