@@ -16,7 +16,7 @@ void SerialScheduler::start(NodeId nodes, NodeId first, NodeId end) {
   NodeState init;
   init.prio = initial_;
   init.defaultPrio = default_;
-  nodes_ = NodePages<NodeState>(1, init);
+  nodes_ = NodePages<NodeState, 1>(1, init);
   nodes_.addNodes(nodes);
   for (NodeId n = first; n < end; ++n) {
     at(n).held = 1;

@@ -126,7 +126,7 @@ class SerialScheduler {
     std::uint8_t held = 0;  // a threaded run: the node's facts are in this shard (see held())
   };
   // In pages (node_pages.hpp): a shard writes the records of the nodes it holds only.
-  NodePages<NodeState> nodes_{1, NodeState{}};
+  NodePages<NodeState, 1> nodes_;
   const NodeState& at(NodeId n) const { return *nodes_.of(n); }
   NodeState& at(NodeId n) { return *nodes_.forWrite(n); }
   std::vector<NodeId> heap_;

@@ -18,11 +18,13 @@
 
 namespace meldvm {
 
-template <class T>
+// kPerNode: the records per node when fixed at compile time (saves a multiplication on every
+// access); 0: given to the constructor.
+template <class T, std::uint32_t kPerNode = 0>
 class NodePages {
  public:
   // `fill`: what an unwritten record reads as.
-  explicit NodePages(std::uint32_t perNode, T fill = T{}) : perNode_(perNode), fill_(fill) {}
+  explicit NodePages(std::uint32_t perNode = kPerNode, T fill = T{}) : perNode_(perNode), fill_(fill) {}
 
   // Room for nodes [nodes(), nodes() + count), reading as `fill` until written. Records
   // obtained before may move (as they did in a growing array).
@@ -36,12 +38,12 @@ class NodePages {
   }
   NodeId nodes() const { return nodes_; }
 
-  const T* of(NodeId n) const { return pages_[n >> kShift] + std::size_t(n & kMask) * perNode_; }
+  const T* of(NodeId n) const { return pages_[n >> kShift] + std::size_t(n & kMask) * stride(); }
   T* forWrite(NodeId n) {
     T* page = pages_[n >> kShift];
     if (page == empty_.get()) [[unlikely]]
       page = allocate(n >> kShift);
-    return page + std::size_t(n & kMask) * perNode_;
+    return page + std::size_t(n & kMask) * stride();
   }
 
   // The records allocated (the shared page included) and the page table.
@@ -51,6 +53,7 @@ class NodePages {
 
  private:
   static constexpr std::uint32_t kShift = 8, kPageNodes = 1u << kShift, kMask = kPageNodes - 1;
+  std::uint32_t stride() const { return kPerNode != 0 ? kPerNode : perNode_; }
 
   std::unique_ptr<T[]> newPage(std::size_t nodes) {
     std::unique_ptr<T[]> page(new T[nodes * perNode_]);
