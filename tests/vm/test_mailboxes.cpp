@@ -147,28 +147,3 @@ BOOST_AUTO_TEST_CASE(argument_widths_follow_the_field_types) {
   BOOST_TEST((argWidth(TypeKind::String) == ArgWidth::Word));  // a pointer
   BOOST_TEST((argWidth(TypeKind::List) == ArgWidth::Word));
 }
-
-BOOST_AUTO_TEST_CASE(boxes_take_memory_for_the_nodes_posted_to_only) {
-  // A shard of a threaded run posts to its own nodes of a large graph: the boxes of the others
-  // are not allocated (pages of 256), and every box still reads as empty until posted to.
-  Mailboxes shard({{ArgWidth::Int32}});
-  Mailboxes all({{ArgWidth::Int32}});
-  shard.addNodes(100000);
-  all.addNodes(100000);
-  const std::vector<Value> v(2, Value::fromInt(7));
-  for (NodeId n = 60000; n < 60256; ++n) shard.post(n, 0, false, v.data());
-  for (NodeId n = 0; n < 100000; ++n) all.post(n, 0, false, v.data());
-  BOOST_TEST(shard.empty(59999));
-  BOOST_TEST(!shard.empty(60000));
-  BOOST_TEST(shard.empty(99999));
-  shard.release(10);  // an empty box: nothing to do
-  BOOST_TEST(shard.empty(10));
-  std::size_t pending = 0;
-  shard.forEachPending([&](PredId, const Value*) { ++pending; });
-  BOOST_TEST(pending == 256u);
-  // The first two slabs (1,040 chunks of 256 bytes: 266 KB) and two pages of boxes (6 KB); a box
-  // for every node would take 1.2 MB more.
-  BOOST_TEST(shard.bytesReserved() < 300 * 1024u);
-  BOOST_TEST(all.bytesReserved() > 100000 * 256u);  // a chunk per box posted to
-  for (NodeId n = 60000; n < 60256; ++n) shard.release(n);
-}

@@ -81,34 +81,3 @@ BOOST_AUTO_TEST_CASE(a_waiting_node_is_queued_once_and_a_finished_node_falls_bac
   BOOST_TEST(s.priority(0) == 4.0);
   BOOST_TEST(drain(s) == (std::vector<NodeId>{1}), boost::test_tools::per_element());
 }
-
-BOOST_AUTO_TEST_CASE(a_shard_keeps_records_only_for_the_nodes_it_queues) {
-  // A shard of a threaded run queues its own range of a large graph: the records of the others
-  // are not allocated, and read as idle, not held, with the initial priority.
-  SchedulingOptions o;
-  o.noInitialPriorities = true;  // initial = "no priority": created nodes need no record either
-  SerialScheduler shard(o);
-  shard.start(100000, 50000, 50512);  // two pages of 256 nodes
-  const std::size_t pages = shard.bytesReserved();
-  SerialScheduler serial(o);
-  serial.start(100000, 0, 100000);
-  BOOST_TEST(pages * 50 < serial.bytesReserved());
-  BOOST_TEST(!shard.waiting(10));
-  BOOST_TEST(!shard.held(10));
-  BOOST_TEST(shard.held(50000));
-  BOOST_TEST(shard.priority(10) == serial.priority(10));
-  for (int i = 0; i < 1000; ++i) shard.addNode();        // created nodes, no priority: still no pages
-  BOOST_TEST(shard.bytesReserved() < pages + 256 * 32);  // less than a page: the page table grew
-  BOOST_TEST(shard.nodeCount() == 101000u);
-  BOOST_TEST(drain(shard).size() == 512u);
-}
-
-BOOST_AUTO_TEST_CASE(a_created_node_starts_without_priority_when_that_is_not_the_initial_one) {
-  SerialScheduler s(SchedulingOptions{});  // initial: the most urgent value; none: the least
-  s.start(1000, 0, 2);
-  s.addNode();
-  BOOST_TEST(s.priority(1000) != s.priority(999));
-  BOOST_TEST(s.priority(1000) == s.noPriority());
-  s.wake(1000);
-  BOOST_TEST(drain(s) == (std::vector<NodeId>{0, 1, 1000}), boost::test_tools::per_element());
-}

@@ -251,10 +251,10 @@ BOOST_AUTO_TEST_CASE(a_full_table_grows_by_a_quarter_not_by_doubling) {
   BOOST_TEST(db.factCount(0, p) == 1001u);
 }
 
-BOOST_AUTO_TEST_CASE(node_pages_take_memory_only_for_the_pages_written) {
+BOOST_AUTO_TEST_CASE(node_heads_take_memory_only_for_the_pages_written) {
   // A shard of a threaded run stores the facts of some nodes only: untouched pages of 256 nodes
   // read as empty heads and cost nothing but the shared empty page.
-  NodePages<ListHead> heads(4);
+  NodeHeads heads(4);
   heads.addNodes(10000);
   const std::size_t bare = heads.bytesReserved();
   BOOST_TEST(heads.of(9000)[3].first == kNoFact);
@@ -272,7 +272,7 @@ BOOST_AUTO_TEST_CASE(node_pages_take_memory_only_for_the_pages_written) {
 }
 
 BOOST_AUTO_TEST_CASE(a_small_store_keeps_one_page_of_its_size_and_grows_past_it) {
-  NodePages<ListHead> heads(2);
+  NodeHeads heads(2);
   heads.addNodes(3);  // a robot's machine: no page of 256 nodes for three
   BOOST_TEST(heads.bytesReserved() < 3 * 2 * sizeof(ListHead) + 64);
   heads.forWrite(2)[1].size = 5;

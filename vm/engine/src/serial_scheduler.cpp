@@ -1,7 +1,5 @@
 #include "meldvm/serial_scheduler.hpp"
 
-#include <utility>
-
 namespace meldvm {
 
 SerialScheduler::SerialScheduler(const SchedulingOptions& o) : desc_(o.order == PriorityOrder::Desc) {
@@ -16,34 +14,32 @@ void SerialScheduler::start(NodeId nodes, NodeId first, NodeId end) {
   NodeState init;
   init.prio = initial_;
   init.defaultPrio = default_;
-  nodes_ = NodePages<NodeState, 1>(1, init);
-  nodes_.addNodes(nodes);
+  nodes_.assign(nodes, init);
   for (NodeId n = first; n < end; ++n) {
-    at(n).held = 1;
+    nodes_[n].held = 1;
     wake(n);
   }
 }
 
 void SerialScheduler::addNode() {
-  nodes_.addNodes(1);
-  // Unwritten records read as the initial state; a created node differs only when "no
-  // priority" is not the initial priority (writing it allocates the node's page).
-  if (noPriority_ != initial_) at(NodeId(nodes_.nodes() - 1)).prio = noPriority_;
+  NodeState fresh;
+  fresh.prio = noPriority_;
+  fresh.defaultPrio = default_;
+  nodes_.push_back(fresh);
 }
 
 bool SerialScheduler::pop(NodeId& node) {
   if (!heap_.empty()) {
     node = heap_[0];
     heapRemove(node);
-    at(node).where = Where::Idle;
+    nodes_[node].where = Where::Idle;
     return true;
   }
   while (fifoHead_ < fifo_.size()) {
     const FifoEntry e = fifo_[fifoHead_++];
-    const NodeState& seen = std::as_const(*this).at(e.node);  // stale entries write nothing
-    if (seen.where != Where::Fifo || seen.ticket != e.ticket) continue;
+    if (nodes_[e.node].where != Where::Fifo || nodes_[e.node].ticket != e.ticket) continue;
     --fifoLive_;
-    at(e.node).where = Where::Idle;
+    nodes_[e.node].where = Where::Idle;
     node = e.node;
     if (fifoHead_ > 4096 && fifoHead_ * 2 > fifo_.size()) {
       fifo_.erase(fifo_.begin(), fifo_.begin() + std::ptrdiff_t(fifoHead_));
@@ -55,97 +51,94 @@ bool SerialScheduler::pop(NodeId& node) {
 }
 
 void SerialScheduler::enqueue(NodeId n) {
-  NodeState& s = at(n);
-  if (s.prio != noPriority_) {
+  if (nodes_[n].prio != noPriority_) {
     heapPush(n);
   } else {
-    s.where = Where::Fifo;
-    fifo_.push_back({n, ++s.ticket});
+    nodes_[n].where = Where::Fifo;
+    fifo_.push_back({n, ++nodes_[n].ticket});
     ++fifoLive_;
   }
 }
 
 void SerialScheduler::finished(NodeId n, bool hasWork) {
-  NodeState& s = at(n);
-  s.prio = s.defaultPrio;
-  if (hasWork && s.where == Where::Idle) enqueue(n);
+  nodes_[n].prio = nodes_[n].defaultPrio;
+  if (hasWork) wake(n);
 }
 
 void SerialScheduler::changed(NodeId n) {
-  if (at(n).where == Where::Heap) {
-    if (at(n).prio == noPriority_) {  // back to the FIFO
+  if (nodes_[n].where == Where::Heap) {
+    if (nodes_[n].prio == noPriority_) {  // back to the FIFO
       heapRemove(n);
-      at(n).where = Where::Idle;
+      nodes_[n].where = Where::Idle;
       wake(n);
     } else {
-      siftUp(at(n).heapIndex);
-      siftDown(at(n).heapIndex);
+      siftUp(nodes_[n].heapIndex);
+      siftDown(nodes_[n].heapIndex);
     }
-  } else if (at(n).where == Where::Fifo && at(n).prio != noPriority_) {
-    at(n).where = Where::Idle;  // the FIFO entry goes stale
+  } else if (nodes_[n].where == Where::Fifo && nodes_[n].prio != noPriority_) {
+    nodes_[n].where = Where::Idle;  // the FIFO entry goes stale
     --fifoLive_;
     heapPush(n);
   }
 }
 
 void SerialScheduler::setPriority(NodeId n, double p) {
-  if (!moreUrgent(p, at(n).prio)) return;
-  at(n).prio = p;
+  if (!moreUrgent(p, nodes_[n].prio)) return;
+  nodes_[n].prio = p;
   changed(n);
 }
 
 void SerialScheduler::addPriority(NodeId n, double delta) {
   // Plain addition, as the established VM: "no priority" (-DBL_MAX, +DBL_MAX for asc) absorbs
   // any small delta, so a node without a priority keeps none.
-  at(n).prio += delta;
+  nodes_[n].prio += delta;
   changed(n);
 }
 
 void SerialScheduler::removePriority(NodeId n) {
-  at(n).prio = at(n).defaultPrio;
+  nodes_[n].prio = nodes_[n].defaultPrio;
   changed(n);
 }
 
 void SerialScheduler::setDefaultPriority(NodeId n, double p) {
-  const bool followsDefault = at(n).prio == at(n).defaultPrio;
-  at(n).defaultPrio = p;
+  const bool followsDefault = nodes_[n].prio == nodes_[n].defaultPrio;
+  nodes_[n].defaultPrio = p;
   if (followsDefault) {
-    at(n).prio = p;
+    nodes_[n].prio = p;
     changed(n);
   }
 }
 
 void SerialScheduler::scheduleNext(NodeId n) {
-  at(n).prio = desc_ ? DBL_MAX : -DBL_MAX;
+  nodes_[n].prio = desc_ ? DBL_MAX : -DBL_MAX;
   changed(n);
 }
 
 void SerialScheduler::heapPush(NodeId n) {
-  NodeState& s = at(n);
-  s.where = Where::Heap;
-  s.heapIndex = std::uint32_t(heap_.size());
+  nodes_[n].where = Where::Heap;
+  nodes_[n].heapIndex = std::uint32_t(heap_.size());
   heap_.push_back(n);
-  siftUp(s.heapIndex);
+  siftUp(nodes_[n].heapIndex);
 }
 
 void SerialScheduler::heapRemove(NodeId n) {
-  const std::uint32_t i = at(n).heapIndex;
+  const std::uint32_t i = nodes_[n].heapIndex;
   const NodeId last = heap_.back();
   heap_.pop_back();
   if (last == n) return;
   heap_[i] = last;
-  at(last).heapIndex = i;
+  nodes_[last].heapIndex = i;
   siftDown(i);
-  siftUp(at(last).heapIndex);
+  siftUp(nodes_[last].heapIndex);
 }
 
 void SerialScheduler::siftUp(std::uint32_t i) {
   while (i > 0) {
     const std::uint32_t parent = (i - 1) / 2;
-    if (!moreUrgent(priority(heap_[i]), priority(heap_[parent]))) break;
+    if (!moreUrgent(nodes_[heap_[i]].prio, nodes_[heap_[parent]].prio)) break;
     std::swap(heap_[i], heap_[parent]);
-    at(heap_[i]).heapIndex = i;
-    at(heap_[parent]).heapIndex = parent;
+    nodes_[heap_[i]].heapIndex = i;
+    nodes_[heap_[parent]].heapIndex = parent;
     i = parent;
   }
 }
@@ -155,12 +148,12 @@ void SerialScheduler::siftDown(std::uint32_t i) {
   for (;;) {
     const std::uint32_t left = 2 * i + 1, right = left + 1;
     std::uint32_t best = i;
-    if (left < size && moreUrgent(priority(heap_[left]), priority(heap_[best]))) best = left;
-    if (right < size && moreUrgent(priority(heap_[right]), priority(heap_[best]))) best = right;
+    if (left < size && moreUrgent(nodes_[heap_[left]].prio, nodes_[heap_[best]].prio)) best = left;
+    if (right < size && moreUrgent(nodes_[heap_[right]].prio, nodes_[heap_[best]].prio)) best = right;
     if (best == i) return;
     std::swap(heap_[i], heap_[best]);
-    at(heap_[i]).heapIndex = i;
-    at(heap_[best]).heapIndex = best;
+    nodes_[heap_[i]].heapIndex = i;
+    nodes_[heap_[best]].heapIndex = best;
     i = best;
   }
 }

@@ -52,7 +52,7 @@ Database::Database(const PredicateTable& preds, Heap& heap) : preds_(preds), hea
     tables_.back().addIndex({0, d.aggregateField});
   }
   tableCount_ = std::uint32_t(tables_.size());
-  heads_ = NodePages<ListHead>(tableCount_);
+  heads_ = NodeHeads(tableCount_);
   for (auto* v : {&added_, &removed_, &input_, &next_}) v->reserve(maxArity);
 }
 

@@ -6,11 +6,9 @@
 
 #include <cfloat>
 #include <cstdint>
-#include <utility>
 #include <vector>
 
 #include "meldvm/large_allocator.hpp"
-#include "meldvm/node_pages.hpp"
 #include "meldvm/program.hpp"
 #include "meldvm/value.hpp"
 
@@ -30,7 +28,7 @@ class SerialScheduler {
   bool pop(NodeId& node);
   // The node received work while not running: queue it unless it already waits.
   void wake(NodeId n) {  // inline: most wake-ups find the node already waiting
-    if (std::as_const(*this).at(n).where == Where::Idle) enqueue(n);
+    if (nodes_[n].where == Where::Idle) enqueue(n);
   }
   // The node that pop() will return after the next `ahead` pops, when it is already known (the
   // FIFO is served and holds that many nodes); false otherwise. For prefetching only.
@@ -51,24 +49,24 @@ class SerialScheduler {
   void removePriority(NodeId n);
   void setDefaultPriority(NodeId n, double p);
   void scheduleNext(NodeId n);
-  void setStatic(NodeId n, bool isStatic) { at(n).isStatic = isStatic; }
+  void setStatic(NodeId n, bool isStatic) { nodes_[n].isStatic = isStatic; }
 
   // Work stealing (a threaded run): the waiting nodes (heap and FIFO) that `movable(n)` allows
   // and are not static, appended to `out` (they stay queued).
   template <class Movable>
   void queuedForSteal(std::vector<NodeId>& out, Movable&& movable) const {
     for (NodeId n : heap_)
-      if (!at(n).isStatic && movable(n)) out.push_back(n);
+      if (!nodes_[n].isStatic && movable(n)) out.push_back(n);
     for (std::size_t i = fifoHead_; i < fifo_.size(); ++i) {
       const FifoEntry e = fifo_[i];
-      const NodeState& s = at(e.node);
+      const NodeState& s = nodes_[e.node];
       if (s.where == Where::Fifo && s.ticket == e.ticket && !s.isStatic && movable(e.node))
         out.push_back(e.node);
     }
   }
   // Takes the node out of the queue, wherever it waits (set-cpu moves it to another thread).
   void unqueue(NodeId n) {
-    NodeState& s = at(n);
+    NodeState& s = nodes_[n];
     if (s.where == Where::Heap) heapRemove(n);
     if (s.where == Where::Fifo) --fifoLive_;  // its entry goes stale
     s.where = Where::Idle;
@@ -78,27 +76,28 @@ class SerialScheduler {
     double prio, defaultPrio;
     bool isStatic;
   };
-  Carried carried(NodeId n) const { return {at(n).prio, at(n).defaultPrio, at(n).isStatic != 0}; }
+  Carried carried(NodeId n) const { return {nodes_[n].prio, nodes_[n].defaultPrio, nodes_[n].isStatic != 0}; }
   void adopt(NodeId n, const Carried& c) {
-    at(n).prio = c.prio;
-    at(n).defaultPrio = c.defaultPrio;
-    at(n).isStatic = c.isStatic;
-    at(n).held = 1;
+    nodes_[n].prio = c.prio;
+    nodes_[n].defaultPrio = c.defaultPrio;
+    nodes_[n].isStatic = c.isStatic;
+    nodes_[n].held = 1;
   }
-  void letGo(NodeId n) { at(n).held = 0; }
+  void letGo(NodeId n) { nodes_[n].held = 0; }
   // The node is one of the graph's nodes queued at start() or adopted since, and not given away
   // since: its facts are here. Unlike the owner table, which another thread changes while a
   // rebalance hands nodes over, this shard alone changes it.
-  bool held(NodeId n) const { return at(n).held != 0; }
+  bool held(NodeId n) const { return nodes_[n].held != 0; }
 
-  double priority(NodeId n) const { return at(n).prio; }
-  bool isStatic(NodeId n) const { return at(n).isStatic != 0; }
-  bool waiting(NodeId n) const { return at(n).where != Where::Idle; }
+  double priority(NodeId n) const { return nodes_[n].prio; }
+  bool isStatic(NodeId n) const { return nodes_[n].isStatic != 0; }
+  bool waiting(NodeId n) const { return nodes_[n].where != Where::Idle; }
   // A hint that `wake(n)` comes soon (always inlined: GCC drops calls to prefetch-only functions).
-  [[gnu::always_inline]] void prefetch(NodeId n) const { __builtin_prefetch(nodes_.of(n)); }
-  std::size_t nodeCount() const { return nodes_.nodes(); }
+  [[gnu::always_inline]] void prefetch(NodeId n) const { __builtin_prefetch(&nodes_[n]); }
+  std::size_t nodeCount() const { return nodes_.size(); }
   std::size_t bytesReserved() const {
-    return nodes_.bytesReserved() + heap_.capacity() * sizeof(NodeId) + fifo_.capacity() * sizeof(FifoEntry);
+    return nodes_.capacity() * sizeof(NodeState) + heap_.capacity() * sizeof(NodeId) +
+           fifo_.capacity() * sizeof(FifoEntry);
   }
   std::size_t waiting() const { return heap_.size() + fifoLive_; }
   // Urgency order: true when a is strictly more urgent than b.
@@ -125,10 +124,7 @@ class SerialScheduler {
     std::uint8_t isStatic = 0;
     std::uint8_t held = 0;  // a threaded run: the node's facts are in this shard (see held())
   };
-  // In pages (node_pages.hpp): a shard writes the records of the nodes it holds only.
-  NodePages<NodeState, 1> nodes_;
-  const NodeState& at(NodeId n) const { return *nodes_.of(n); }
-  NodeState& at(NodeId n) { return *nodes_.forWrite(n); }
+  LargeVector<NodeState> nodes_;
   std::vector<NodeId> heap_;
   // A node may leave the FIFO for the heap (a priority was set): its entry then goes stale, which
   // the ticket detects. Consumed from fifoHead_, compacted when the dead prefix is large.

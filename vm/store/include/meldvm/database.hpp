@@ -20,7 +20,7 @@
 #include "meldvm/group_inputs.hpp"
 #include "meldvm/heap.hpp"
 #include "meldvm/large_allocator.hpp"
-#include "meldvm/node_pages.hpp"
+#include "meldvm/node_heads.hpp"
 #include "meldvm/predicate.hpp"
 
 namespace meldvm {
@@ -222,7 +222,7 @@ class Database {
   std::vector<std::uint32_t> groupInputs_;  // per predicate: its entry in nodeInputs_, or kNoTable
   std::vector<std::uint8_t> boxedPred_;     // per predicate: some field is boxed
   std::vector<std::uint8_t> intMinMax_;     // per predicate: `p(node, min int)` or max (intMinMaxChange)
-  NodePages<ListHead> heads_{0};            // set up once tableCount_ is known
+  NodeHeads heads_{0};                      // set up once tableCount_ is known
   std::vector<std::uint8_t> alive_;
   std::uint32_t removedNodes_ = 0;
   std::vector<std::uint8_t> grouped_;  // per predicate: new persistent facts join their first-field group

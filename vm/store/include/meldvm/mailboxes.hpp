@@ -17,7 +17,6 @@
 #include <vector>
 
 #include "meldvm/large_allocator.hpp"
-#include "meldvm/node_pages.hpp"
 #include "meldvm/predicate.hpp"
 #include "meldvm/types.hpp"
 #include "meldvm/value.hpp"
@@ -41,12 +40,12 @@ class Mailboxes {
   Mailboxes(const Mailboxes&) = delete;
   Mailboxes& operator=(const Mailboxes&) = delete;
 
-  void addNodes(NodeId count) { boxes_.addNodes(count); }
+  void addNodes(NodeId count) { boxes_.resize(boxes_.size() + count); }
   // Appends a message; the arguments are stored as given (the caller owns their references, which
   // pass to whoever takes the message in).
   void post(NodeId dest, PredId p, bool negative, const Value* args) {
     const Shape& s = shape_[p];
-    Box& b = *boxes_.forWrite(dest);
+    Box& b = boxes_[dest];
     std::uint32_t c = b.last;
     if (c == kNone || b.used + s.words > chunkWords_ - 1) {
       const std::uint32_t fresh = newChunk();
@@ -71,13 +70,13 @@ class Mailboxes {
       for (std::uint32_t i = 0; i < s.arity; ++i) r[1 + i] = args[i];
     }
   }
-  bool empty(NodeId n) const { return boxes_.of(n)->first == kNone; }
+  bool empty(NodeId n) const { return boxes_[n].first == kNone; }
 
   // Calls f(pred, negative, args) for every message of node n whose predicate passes select(pred),
   // in arrival order, leaving them in the box (release() empties it). f must not post to n.
   template <class Select, class F>
   void forEach(NodeId n, Select&& select, F&& f) const {
-    const Box& b = *boxes_.of(n);
+    const Box& b = boxes_[n];
     for (std::uint32_t c = b.first; c != kNone;) {
       const Value* head = chunk(c);
       const std::uint32_t next = std::uint32_t(head[0].bits());
@@ -88,10 +87,8 @@ class Mailboxes {
   }
   // Empties node n's box; the messages' references must have been taken over or released.
   void release(NodeId n) {
-    if (empty(n)) return;  // nothing to write (and no page to allocate)
-    Box& b = *boxes_.forWrite(n);
-    std::uint32_t c = b.first;
-    b = Box{};
+    std::uint32_t c = boxes_[n].first;
+    boxes_[n] = Box{};
     while (c != kNone) {
       const std::uint32_t next = std::uint32_t(chunk(c)[0].bits());
       chunk(c)[0] = Value::fromBits(free_);
@@ -102,29 +99,27 @@ class Mailboxes {
   // Every message still waiting, in no particular order (to release references at the end).
   template <class F>
   void forEachPending(F&& f) const {
-    for (NodeId n = 0; n < boxes_.nodes(); ++n) {
-      const Box& b = *boxes_.of(n);
+    for (const Box& b : boxes_)
       for (std::uint32_t c = b.first; c != kNone; c = std::uint32_t(chunk(c)[0].bits()))
         forEachRecord(
             chunk(c), wordsUsed(b, c), [](PredId) { return true; },
             [&](PredId p, bool, const Value* args) { f(p, args); });
-    }
   }
 
   // Prefetch hints for a node that runs soon (always inlined: GCC drops calls to functions whose
   // only effect is a prefetch).
-  [[gnu::always_inline]] void prefetchBox(NodeId n) const { __builtin_prefetch(boxes_.of(n)); }
+  [[gnu::always_inline]] void prefetchBox(NodeId n) const { __builtin_prefetch(&boxes_[n]); }
   [[gnu::always_inline]] void prefetchMessages(NodeId n) const {
-    if (const std::uint32_t first = boxes_.of(n)->first; first != kNone) prefetchChunk(first);
+    if (boxes_[n].first != kNone) prefetchChunk(boxes_[n].first);
   }
   [[gnu::always_inline]] void prefetchTail(NodeId n) const {
-    const Box& b = *boxes_.of(n);
+    const Box& b = boxes_[n];
     if (b.last != kNone) __builtin_prefetch(chunk(b.last) + 1 + b.used, 1);
   }
   std::size_t bytesReserved() const {
     std::size_t chunks = 0;
     for (std::size_t s = 0; s < slabs_.size(); ++s) chunks += slabCapacity(s);
-    return chunks * chunkWords_ * sizeof(Value) + boxes_.bytesReserved();
+    return chunks * chunkWords_ * sizeof(Value) + boxes_.capacity() * sizeof(Box);
   }
 
  private:
@@ -194,7 +189,7 @@ class Mailboxes {
   std::vector<Value*> slabs_;   // from LargeAllocator, freed by the destructor
   std::uint32_t slabUsed_ = 0;  // chunks handed out of the last slab
   std::uint32_t free_ = kNone;
-  NodePages<Box, 1> boxes_;  // in pages (node_pages.hpp): a shard writes the boxes of its nodes
+  std::vector<Box> boxes_;
 };
 
 }  // namespace meldvm

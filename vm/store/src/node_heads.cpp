@@ -1,0 +1,43 @@
+#include "meldvm/node_heads.hpp"
+
+#include <algorithm>
+
+namespace meldvm {
+
+void NodeHeads::addNodes(NodeId count) {
+  nodes_ += count;
+  if (nodes_ <= kPageNodes) {
+    resizeFirstPage(nodes_);
+    return;
+  }
+  if (firstPageNodes_ != 0 && firstPageNodes_ < kPageNodes) resizeFirstPage(kPageNodes);
+  if (!empty_) {
+    empty_.reset(new ListHead[std::size_t(kPageNodes) * perNode_]);
+    headsAllocated_ += std::size_t(kPageNodes) * perNode_;
+  }
+  const std::size_t pages = (std::size_t(nodes_) + kMask) >> kShift;
+  if (pages > pages_.size()) pages_.resize(pages, empty_.get());
+}
+
+void NodeHeads::resizeFirstPage(std::size_t nodes) {
+  std::unique_ptr<ListHead[]> page(new ListHead[nodes * perNode_]);
+  if (firstPageNodes_ != 0) std::copy_n(pages_[0], firstPageNodes_ * perNode_, page.get());
+  headsAllocated_ += (nodes - firstPageNodes_) * perNode_;
+  firstPageNodes_ = nodes;
+  if (owned_.empty()) {
+    owned_.push_back(std::move(page));
+    pages_.assign(1, owned_[0].get());
+  } else {
+    owned_[0] = std::move(page);  // page 0 is the first and only page allocated so far
+    pages_[0] = owned_[0].get();
+  }
+}
+
+ListHead* NodeHeads::allocate(std::size_t page) {
+  owned_.push_back(std::unique_ptr<ListHead[]>(new ListHead[std::size_t(kPageNodes) * perNode_]));
+  headsAllocated_ += std::size_t(kPageNodes) * perNode_;
+  pages_[page] = owned_.back().get();
+  return pages_[page];
+}
+
+}  // namespace meldvm
