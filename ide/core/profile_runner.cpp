@@ -41,28 +41,32 @@ bool ProfileRunner::start(std::shared_ptr<const meldvm::Program> program, std::v
   worker_ = std::thread([this, program, args = std::move(args), threads = std::move(threads), folder, name] {
     Result r;
     try {
-      for (unsigned n : threads)
-        r.files.push_back(
-            profileAt(*program, args, n, folder + "/" + name + ".j" + std::to_string(n) + ".json"));
+      for (unsigned n : threads) {
+        r.files.push_back(folder + "/" + name + ".j" + std::to_string(n) + ".json");
+        if (!profileAt(*program, args, n, r.files.back())) {
+          r.cancelled = true;
+          break;
+        }
+      }
     } catch (const std::exception& e) {
       r.error = e.what();
-      r.files.clear();
     }
+    if (r.cancelled || !r.error.empty()) r.files.clear();
     result_ = std::move(r);
     running_.store(false);  // after result_: take() reads it once this is false
   });
   return true;
 }
 
-std::string ProfileRunner::profileAt(const meldvm::Program& program, const std::vector<std::string>& args,
-                                     unsigned threads, const std::string& path) {
+bool ProfileRunner::profileAt(const meldvm::Program& program, const std::vector<std::string>& args,
+                              unsigned threads, const std::string& path) {
   meldvm::MachineOptions options;
   options.args = args;  // write-string output is not shown: the runs are for their timelines
   meldvm::ThreadedMachine machine(program, options, threads);
   machine.recordProfile();
   {
     std::lock_guard<std::mutex> lock(cancelLock_);
-    if (cancelled_) throw std::runtime_error("cancelled");
+    if (cancelled_) return false;
     current_ = &machine;
   }
   struct Detach {  // cancel() must not reach the machine once it is gone, whatever run() did
@@ -75,13 +79,13 @@ std::string ProfileRunner::profileAt(const meldvm::Program& program, const std::
   machine.run();
   {
     std::lock_guard<std::mutex> lock(cancelLock_);
-    if (cancelled_) throw std::runtime_error("cancelled");  // stopped part-way: no timeline to show
+    if (cancelled_) return false;  // stopped part-way: no timeline to show
   }
   std::ofstream out(path, std::ios::binary);
   machine.writeProfile(out);
   out.close();
   if (!out) throw std::runtime_error("cannot write " + path);
-  return path;
+  return true;
 }
 
 std::optional<ProfileRunner::Result> ProfileRunner::take() {

@@ -25,6 +25,7 @@ class ProfileRunner {
   struct Result {
     std::vector<std::string> files;  // one profile per thread count, in the order asked
     std::string error;               // empty when every run succeeded
+    bool cancelled = false;          // cancel() stopped the runs: no error, no profile
   };
 
   ProfileRunner() = default;
@@ -38,7 +39,7 @@ class ProfileRunner {
              std::vector<unsigned> threads, const std::string& folder, const std::string& name);
   bool running() const { return running_.load(); }
   // Stops the runs: the one in progress stops after its current rule, the rest do not start;
-  // the result then says "cancelled" and lists no profile. Returns at once.
+  // the result is then `cancelled` and lists no profile. Returns at once.
   void cancel();
   // The result once the runs are over (once: it is handed over).
   std::optional<Result> take();
@@ -47,10 +48,10 @@ class ProfileRunner {
 
  private:
   void join();
-  // One run at `threads` threads, its profile written to `path` (returned); throws on an error
-  // or when cancelled.
-  std::string profileAt(const meldvm::Program& program, const std::vector<std::string>& args,
-                        unsigned threads, const std::string& path);
+  // One run at `threads` threads, its profile written to `path`; false when cancelled (nothing
+  // written); throws on an error.
+  bool profileAt(const meldvm::Program& program, const std::vector<std::string>& args, unsigned threads,
+                 const std::string& path);
 
   std::thread worker_;
   std::atomic<bool> running_{false};

@@ -145,7 +145,7 @@ bool MainWindow::stopProfiling() {
 void MainWindow::takeProfiles() {
   std::optional<ProfileRunner::Result> r = profiler_.take();
   if (!r) return;
-  if (r->error == "cancelled") {
+  if (r->cancelled) {
     console_->appendMessage("Profile: stopped; no profile to show");
     return;
   }

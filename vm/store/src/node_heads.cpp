@@ -11,18 +11,20 @@ void NodeHeads::addNodes(NodeId count) {
     return;
   }
   if (firstPageNodes_ != 0 && firstPageNodes_ < kPageNodes) resizeFirstPage(kPageNodes);
-  if (!empty_) {
-    empty_.reset(new ListHead[std::size_t(kPageNodes) * perNode_]);
-    headsAllocated_ += std::size_t(kPageNodes) * perNode_;
-  }
+  if (!empty_) empty_ = newPage(kPageNodes);
   const std::size_t pages = (std::size_t(nodes_) + kMask) >> kShift;
   if (pages > pages_.size()) pages_.resize(pages, empty_.get());
 }
 
+std::unique_ptr<ListHead[]> NodeHeads::newPage(std::size_t nodes) {
+  headsAllocated_ += nodes * perNode_;
+  return std::unique_ptr<ListHead[]>(new ListHead[nodes * perNode_]);
+}
+
 void NodeHeads::resizeFirstPage(std::size_t nodes) {
-  std::unique_ptr<ListHead[]> page(new ListHead[nodes * perNode_]);
+  std::unique_ptr<ListHead[]> page = newPage(nodes);
   if (firstPageNodes_ != 0) std::copy_n(pages_[0], firstPageNodes_ * perNode_, page.get());
-  headsAllocated_ += (nodes - firstPageNodes_) * perNode_;
+  headsAllocated_ -= firstPageNodes_ * perNode_;  // the old page goes
   firstPageNodes_ = nodes;
   if (owned_.empty()) {
     owned_.push_back(std::move(page));
@@ -34,8 +36,7 @@ void NodeHeads::resizeFirstPage(std::size_t nodes) {
 }
 
 ListHead* NodeHeads::allocate(std::size_t page) {
-  owned_.push_back(std::unique_ptr<ListHead[]>(new ListHead[std::size_t(kPageNodes) * perNode_]));
-  headsAllocated_ += std::size_t(kPageNodes) * perNode_;
+  owned_.push_back(newPage(kPageNodes));
   pages_[page] = owned_.back().get();
   return pages_[page];
 }

@@ -25,7 +25,6 @@ class NodeHeads {
   // Room for nodes [nodes(), nodes() + count): their heads read as empty until written. Heads
   // obtained before may move (as they did in a growing array).
   void addNodes(NodeId count);
-  NodeId nodes() const { return nodes_; }
 
   const ListHead* of(NodeId n) const { return pages_[n >> kShift] + std::size_t(n & kMask) * perNode_; }
   ListHead* forWrite(NodeId n) {
@@ -43,6 +42,7 @@ class NodeHeads {
 
  private:
   static constexpr std::uint32_t kShift = 8, kPageNodes = 1u << kShift, kMask = kPageNodes - 1;
+  std::unique_ptr<ListHead[]> newPage(std::size_t nodes);  // empty heads, counted
   ListHead* allocate(std::size_t page);
   // Page 0 for `nodes` nodes (all of a small store, or a full page), keeping its heads.
   void resizeFirstPage(std::size_t nodes);

@@ -65,7 +65,6 @@ class ThreadedMachine {
   MachineStats stats() const;  // all threads together
   std::vector<ThreadStats> threadStats() const;
   double wallSeconds() const { return wallSeconds_; }
-  std::size_t bytesInUse() const { return memoryUse().total(); }
   MemoryUse memoryUse() const;  // all threads together
   bool stopped() const;
 
