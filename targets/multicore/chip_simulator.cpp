@@ -6,6 +6,7 @@
 #include <string>
 
 #include "simcore/future_event_set.hpp"
+#include "support/steal_policy.hpp"
 
 namespace multicore {
 
@@ -15,9 +16,8 @@ namespace {
 // event (arg: its in-flight slot). Messages come first at equal times, as in the kernel.
 constexpr simcore::EventKind kRun = simcore::EventKind::Timer;
 constexpr simcore::EventKind kArrival = simcore::EventKind::Message;
-constexpr std::size_t kStealableQueue = 2;          // as vm/threads: a core with 2 queued has one to spare
-constexpr simcore::SimTime kRebalanceNs = 500'000;  // rebalances at least this far apart...
-constexpr double kRebalanceGap = 20;                // ...and 20 times their cost
+using support::StealPolicy;
+constexpr std::size_t kStealableQueue = StealPolicy::kStealableQueue;
 
 }  // namespace
 
@@ -26,7 +26,8 @@ ChipSimulator::ChipSimulator(const ChipSpec& chip, CoreWorkload& workload, bool 
       work_(workload),
       queue_(simcore::makeFutureEventSet(simcore::FesKind::Heap)),
       core_(chip.cores),
-      stats_(chip.cores) {
+      stats_(chip.cores),
+      idleAtWindow_(chip.cores) {
   if (chip.cores == 0) throw std::invalid_argument("a chip needs at least one core");
   if (recordProfile) timelines_.resize(chip.cores);
 }
@@ -199,7 +200,7 @@ void ChipSimulator::completeBarrier(simcore::SimTime now) {
   for (unsigned c = 0; c < chip_.cores; ++c) takenBefore[c] = stats_[c].nodesTaken;
   std::uint64_t bytes = 0;  // a moving node's facts are encoded and rebuilt, as a crossing fact's are
   std::size_t moved = work_.applyRequestedMoves(bytes);
-  if (chip_.stealing) moved += stealPlan(bytes);
+  if (chip_.stealing) moved += stealPlan(now, bytes);
   const double cost =
       chip_.costs.rebalance + double(moved) * chip_.costs.nodeMoved + 2 * double(bytes) * chip_.costs.byte;
   const simcore::SimTime resume = drained + ns(cost);
@@ -214,21 +215,33 @@ void ChipSimulator::completeBarrier(simcore::SimTime now) {
     wake(c, resume);  // a core with nothing to do goes idle again at once
   }
   barrier_ = false;
-  nextRebalance_ = resume + std::max(kRebalanceNs, ns(cost * kRebalanceGap));
+  nextRebalance_ = resume + std::max<simcore::SimTime>(StealPolicy::kRebalanceNanos,
+                                                       ns(cost * double(StealPolicy::kRebalanceGap)));
+  windowStart_ = resume;
+  for (unsigned c = 0; c < chip_.cores; ++c) idleAtWindow_[c] = stats_[c].idleNs;
 }
 
-// The i-th most loaded core gives half the difference of queues to the i-th least loaded.
-std::size_t ChipSimulator::stealPlan(std::uint64_t& bytes) {
+// The i-th most loaded core gives to the i-th least loaded (StealPolicy says how many nodes).
+std::size_t ChipSimulator::stealPlan(simcore::SimTime now, std::uint64_t& bytes) {
   std::vector<unsigned> order(chip_.cores);
   std::vector<std::size_t> load(chip_.cores);
+  std::vector<double> idle(chip_.cores);
   std::iota(order.begin(), order.end(), 0u);
-  for (unsigned c = 0; c < chip_.cores; ++c) load[c] = work_.queued(c);
+  const double window = double(now - windowStart_);
+  for (unsigned c = 0; c < chip_.cores; ++c) {
+    load[c] = work_.queued(c);
+    // Waiting in the barrier for the busy cores counts: a core that ran out and asked at once
+    // has been idle since, though not in goIdle's sense.
+    const double waited = double(stats_[c].idleNs - idleAtWindow_[c] + (now - core_[c].barrierSince));
+    idle[c] = window > 0 ? std::clamp(waited / window, 0.0, 1.0) : 0.0;
+  }
   std::stable_sort(order.begin(), order.end(), [&](unsigned a, unsigned b) { return load[a] > load[b]; });
   std::size_t moved = 0;
   for (std::size_t i = 0; i < order.size() / 2; ++i) {
     const unsigned giver = order[i], taker = order[order.size() - 1 - i];
-    if (load[giver] < load[taker] + kStealableQueue) continue;
-    const std::size_t n = work_.moveNodes(giver, taker, (load[giver] - load[taker]) / 2, bytes);
+    const std::size_t count = StealPolicy::nodesToGive(load[giver], load[taker], idle[giver], idle[taker]);
+    if (count == 0) continue;
+    const std::size_t n = work_.moveNodes(giver, taker, count, bytes);
     stats_[giver].nodesGiven += n;
     stats_[taker].nodesTaken += n;
     moved += n;

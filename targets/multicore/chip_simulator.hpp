@@ -5,8 +5,9 @@
 // that receives them pays to take them in.
 // Idle cores steal as the threaded runtime does (vm/threads/worker.cpp): one core asks, every
 // core finishes its current run and waits (a barrier), what is in transit is delivered, the i-th
-// most loaded core gives half the difference of queues to the i-th least loaded, and rounds are
-// spaced by 20× their cost (at least 0.5 ms). set-cpu moves go through the same barrier.
+// most loaded core gives to the i-th least loaded as many nodes as support::StealPolicy says (from
+// their queues and idle time), and rounds are spaced as it says. set-cpu moves go through the
+// same barrier.
 // Deterministic: ties are broken by the kernel's (time, class, sequence) order.
 #pragma once
 
@@ -98,7 +99,7 @@ class ChipSimulator {
   void requestRebalance(simcore::SimTime now, bool forced);
   void arriveAtBarrier(unsigned core, simcore::SimTime now);
   void completeBarrier(simcore::SimTime now);
-  std::size_t stealPlan(std::uint64_t& bytes);
+  std::size_t stealPlan(simcore::SimTime now, std::uint64_t& bytes);
   bool someoneCanGive(unsigned except) const;
   simcore::SimTime ns(double v) const { return simcore::SimTime(v + 0.5); }
   double workCost(const Work& w) const {
@@ -121,6 +122,8 @@ class ChipSimulator {
   unsigned idleCores_ = 0, inBarrier_ = 0;
   bool barrier_ = false;
   simcore::SimTime nextRebalance_ = 0, end_ = 0;
+  simcore::SimTime windowStart_ = 0;       // the last rebalance's end: the idle shares are since then
+  std::vector<std::int64_t> idleAtWindow_;  // per core
   std::uint64_t rebalances_ = 0;
 };
 

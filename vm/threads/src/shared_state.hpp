@@ -83,14 +83,10 @@ struct SharedState {
   std::unique_ptr<Channel[]> channels;  // [from * threads + to]
 
   // Work stealing: a thread out of work asks for a rebalance, every thread joins it between
-  // node runs (worker.cpp). The next one may come kRebalanceGap times the last one's duration
-  // later (at least kRebalanceNanos): rebalancing takes at most about 1/kRebalanceGap of the run,
-  // even when node runs are long or the nodes carry many facts.
+  // node runs (worker.cpp); support::StealPolicy says when the next may come.
   std::atomic<bool> rebalanceWanted{false};
   std::atomic<std::uint32_t> idleThreads{0};  // threads in waitForWork: a busy one with a queue asks for them
   std::atomic<std::int64_t> nextRebalanceNs{0};
-  static constexpr std::int64_t kRebalanceNanos = 500'000;
-  static constexpr std::int64_t kRebalanceGap = 20;
   std::atomic<std::uint32_t> barrierArrived{0}, barrierGeneration{0};
   // set-cpu / set-affinity requests, carried out at the next rebalance.
   std::mutex movesLock;
@@ -101,6 +97,7 @@ struct SharedState {
     std::atomic<bool> sleeping{false};
     std::atomic<std::int32_t> staticNodes{0};
     std::atomic<std::uint32_t> queued{0};  // nodes waiting to run, as of the thread's last node run
+    std::atomic<float> idleShare{0};       // of the time since the last rebalance (set in one)
   };
   std::unique_ptr<PerThread[]> perThread;
 

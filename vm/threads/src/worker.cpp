@@ -59,6 +59,7 @@ ThreadStats Worker::stats() const {
 
 void Worker::loop() {
   const Clock::time_point start = Clock::now();
+  windowStart_ = start;
   try {
     machine_->start();
     for (;;) {
@@ -235,19 +236,24 @@ void Worker::rebalance() {
   if (self_ == 0) shared_.rebalanceWanted.store(false);
   takeMail();
   shared_.perThread[self_].queued.store(std::uint32_t(machine_->waitingNodes()));
+  publishIdleShare(start, allThere);
   if (!shared_.arriveAndWait()) return;  // 2
   // The same plan on every thread: the i-th most loaded thread gives to the i-th least loaded.
   std::vector<ThreadId> order(shared_.threads);
   std::vector<std::uint32_t> load(shared_.threads);
-  for (ThreadId t = 0; t < shared_.threads; ++t) order[t] = t, load[t] = shared_.perThread[t].queued.load();
+  std::vector<double> idle(shared_.threads);
+  for (ThreadId t = 0; t < shared_.threads; ++t) {
+    order[t] = t, load[t] = shared_.perThread[t].queued.load();
+    idle[t] = shared_.perThread[t].idleShare.load();
+  }
   std::stable_sort(order.begin(), order.end(), [&](ThreadId a, ThreadId b) { return load[a] > load[b]; });
   // set-cpu / set-affinity first (every thread reads the list; thread 0 clears it in phase 4).
   for (const auto& [n, to] : shared_.moves)
     if (to != self_ && directory_.ownerOf(n) == self_ && machine_->unqueueToGive(n)) giveNode(to, n, true);
   for (std::size_t i = 0; stealing_ && i < order.size() / 2; ++i) {
     const ThreadId giver = order[i], taker = order[order.size() - 1 - i];
-    if (giver == self_ && load[giver] >= load[taker] + kStealableQueue)
-      giveNodes(taker, (load[giver] - load[taker]) / 2);
+    if (giver == self_)
+      giveNodes(taker, support::StealPolicy::nodesToGive(load[giver], load[taker], idle[giver], idle[taker]));
   }
   flush();
   if (!shared_.arriveAndWait()) return;  // 3
@@ -257,11 +263,22 @@ void Worker::rebalance() {
   shared_.arriveAndWait();                // 4
   const double seconds = secondsSince(start);
   stats_.rebalanceSeconds += seconds;
+  windowStart_ = Clock::now();
+  idleAtWindowStart_ = stats_.idleSeconds;
   if (self_ == 0) {
     const auto cost = std::int64_t(secondsSince(allThere) * 1e9);
-    shared_.nextRebalanceNs.store(nowNanos() +
-                                  std::max(SharedState::kRebalanceNanos, cost * SharedState::kRebalanceGap));
+    shared_.nextRebalanceNs.store(
+        nowNanos() + std::max(support::StealPolicy::kRebalanceNanos, cost * support::StealPolicy::kRebalanceGap));
   }
+}
+
+// The share of the time since the last rebalance this thread had nothing to run: its idle spans
+// and its wait in this rebalance's first barrier (a thread that ran out and asked at once has been
+// idle since, waiting for the busy ones to finish their node runs).
+void Worker::publishIdleShare(Clock::time_point arrived, Clock::time_point allThere) {
+  const double window = std::chrono::duration<double>(allThere - windowStart_).count();
+  const double idle = stats_.idleSeconds - idleAtWindowStart_ + std::chrono::duration<double>(allThere - arrived).count();
+  shared_.perThread[self_].idleShare.store(window > 0 ? float(std::clamp(idle / window, 0.0, 1.0)) : 0.0f);
 }
 
 void Worker::giveNodes(ThreadId to, std::size_t count) {

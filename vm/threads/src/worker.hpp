@@ -15,6 +15,7 @@
 #include "meldvm/threaded_machine.hpp"
 #include "profile_recorder.hpp"
 #include "shared_state.hpp"
+#include "support/steal_policy.hpp"
 
 namespace meldvm::threads {
 
@@ -68,10 +69,10 @@ class Worker final : public ShardLink {
   bool requestRebalance();
   void offerWork();
   void rebalance();
+  void publishIdleShare(std::chrono::steady_clock::time_point arrived, std::chrono::steady_clock::time_point allThere);
   void giveNodes(ThreadId to, std::size_t count);
   void giveNode(ThreadId to, NodeId n, bool moved);  // moved: by set-cpu (pin it, just-moved)
-  // A thread with this many nodes waiting has one to spare for an idle thread.
-  static constexpr std::uint32_t kStealableQueue = 2;
+  static constexpr std::uint32_t kStealableQueue = support::StealPolicy::kStealableQueue;
 
   const Program& program_;
   const ThreadId self_;
@@ -87,6 +88,9 @@ class Worker final : public ShardLink {
   const bool stealing_;  // not with `priority @static`
   ShardMail mail_;
   ThreadStats stats_;
+  // Since the last rebalance (or the start): the idle share a rebalance weighs.
+  std::chrono::steady_clock::time_point windowStart_;
+  double idleAtWindowStart_ = 0;
   std::unique_ptr<ProfileRecorder> profile_;
   std::thread thread_;
 };
