@@ -19,13 +19,15 @@ class MeldChip::CoreShard final : public meldvm::ShardLink {
     const meldvm::threads::NodeDirectory& d = *chip.directory_;
     options.placement = {self, d.threads(), d.firstOwned(self), d.endOwned(self)};
     machine = std::make_unique<meldvm::Machine>(chip.program_, std::move(options));
+    sharing_.reserve(d.threads());
+    for (ThreadId t = 0; t < d.threads(); ++t) sharing_.emplace_back(machine->heap());
   }
 
   ThreadId ownerOf(NodeId n) const override { return chip_.directory_->ownerOf(n); }
   void sendRemote(ThreadId to, NodeId dest, meldvm::PredId p, const meldvm::Value* args,
                   bool negative) override {
     const std::size_t before = outgoing_[to].size();
-    chip_.mail_.putFact(outgoing_[to], dest, p, args, negative);
+    chip_.mail_.putFact(outgoing_[to], sharing_[to], dest, p, args, negative);
     bytes_ += outgoing_[to].size() - before;
     ++facts_[to];
   }
@@ -59,6 +61,7 @@ class MeldChip::CoreShard final : public meldvm::ShardLink {
   void drain(Take&& take) {
     for (ThreadId to = 0; to < outgoing_.size(); ++to) {
       if (outgoing_[to].empty()) continue;
+      chip_.mail_.endBatch(outgoing_[to], sharing_[to]);
       take(to, facts_[to], outgoing_[to]);
       outgoing_[to].clear();
       facts_[to] = 0;
@@ -73,6 +76,9 @@ class MeldChip::CoreShard final : public meldvm::ShardLink {
   MeldChip& chip_;
   std::vector<meldvm::MailBytes> outgoing_;
   std::vector<std::uint64_t> facts_;
+  // Per destination: the lists its batch has sent (declared after `machine`, whose heap holds
+  // their references: destroyed before it).
+  std::vector<meldvm::ListEncoderShare> sharing_;
   std::size_t bytes_ = 0;
   unsigned runsSinceFlush_ = 0;
 };
@@ -139,7 +145,9 @@ void MeldChip::deliver(unsigned core, std::uint64_t handle) {
 
 std::uint64_t MeldChip::moveNode(unsigned from, unsigned to, NodeId n, bool moved) {
   moving_.clear();
-  mail_.putNode(moving_, *cores_[from]->machine, n, moved);
+  meldvm::ListEncoderShare share(cores_[from]->machine->heap());
+  mail_.putNode(moving_, share, *cores_[from]->machine, n, moved);
+  mail_.endBatch(moving_, share);
   directory_->moveNode(n, to);
   meldvm::ShardMail::Taken taken;
   mail_.apply(*cores_[to]->machine, moving_, taken);

@@ -261,3 +261,37 @@ BOOST_AUTO_TEST_CASE(set_cpu_moves_nodes_to_another_thread_where_they_get_just_m
     BOOST_TEST(m.threadStats()[0].nodesTaken >= 8u - 8u / threads, "threads " << threads);
   }
 }
+
+// Node @0 conses 40 heads onto one 600-element list and sends each to another node, 20 of them
+// in the other thread's range: the facts of one batch share the tail on the receiving thread as
+// they did on the sender (fact_codec.hpp, ListEncoderShare), instead of 20 copies of 600 cells.
+BOOST_AUTO_TEST_CASE(lists_consed_on_one_tail_cross_threads_still_sharing_it) {
+  std::string s =
+      "type route edge(node, node, int).\n"
+      "type linear base(node, list int).\n"
+      "type linear got(node, list int).\n"
+      "type linear fan(node).\n"
+      "fan(@0).\n"
+      "base(@0, [";
+  for (int i = 0; i < 600; ++i) {
+    if (i) s += ',';
+    s += std::to_string(i);
+  }
+  s += "]).\n";
+  for (int k = 1; k <= 40; ++k) s += "!edge(@0, @" + std::to_string(40 + k) + ", " + std::to_string(k) + ").\n";
+  s += "fan(A), base(A, L) -o {B, K | !edge(A, B, K) | got(B, [K | L])}.\n";
+  const auto p = compile(s);
+  const std::string serial = serialDump(*p);
+  BOOST_TEST(serial.find("got([40,0,1,2,") != std::string::npos);
+  meldvm::MachineOptions o;
+  std::ostringstream out;
+  o.output = &out;
+  meldvm::ThreadedMachine m(*p, o, 2);
+  m.run();
+  BOOST_TEST(m.dump() == serial);
+  // Copies would take 20 x 601 cells of 24 bytes (288 KB) in the receiving heap; shared, the
+  // tail and the 20 heads fit in its first 64 KiB slab, as the serial heap's 640 cells do.
+  meldvm::Machine serialMachine(*p);
+  serialMachine.run();
+  BOOST_TEST(m.memoryUse().heaps <= 2 * serialMachine.memoryUse().heaps);
+}

@@ -6,6 +6,32 @@ namespace meldvm {
 
 namespace {
 
+void encodeValue(std::vector<std::uint8_t>& out, const TypeTable& types, TypeId t, Value v,
+                 ListEncoderShare* share);
+
+}  // namespace
+
+// The list format of a sharing batch (fact_codec.hpp): u32 count of cells not yet sent, their
+// items, u32 0 for the end of the list or 1 + the number of the cell the rest starts with.
+class ListSharingAccess {
+ public:
+  static void encodeList(std::vector<std::uint8_t>& out, const TypeTable& types, TypeId t, Value v,
+                         ListEncoderShare& share);
+  static Value tail(ListDecoderShare& share, std::uint32_t ref) {
+    if (ref == 0) return Value::nil();
+    if (ref > share.cells_.size()) throw FactCodecError("bad list reference in fact message");
+    return share.cells_[ref - 1].second;
+  }
+  static void remember(ListDecoderShare& share, TypeId t, Value list, std::uint32_t cells) {
+    for (std::uint32_t i = 0; i < cells; ++i, list = listTail(list)) {
+      share.heap_.retain(t, list);
+      share.cells_.emplace_back(t, list);
+    }
+  }
+};
+
+namespace {
+
 template <class T>
 void put(std::vector<std::uint8_t>& out, T v) {
   std::uint8_t b[sizeof(T)];
@@ -13,7 +39,8 @@ void put(std::vector<std::uint8_t>& out, T v) {
   out.insert(out.end(), b, b + sizeof(T));
 }
 
-void encodeValue(std::vector<std::uint8_t>& out, const TypeTable& types, TypeId t, Value v) {
+void encodeValue(std::vector<std::uint8_t>& out, const TypeTable& types, TypeId t, Value v,
+                 ListEncoderShare* share) {
   switch (types.kind(t)) {
     case TypeKind::Int:
       put<std::int32_t>(out, v.asInt());
@@ -35,23 +62,27 @@ void encodeValue(std::vector<std::uint8_t>& out, const TypeTable& types, TypeId 
       break;
     }
     case TypeKind::List: {
+      if (share) {
+        ListSharingAccess::encodeList(out, types, t, v, *share);
+        break;
+      }
       std::uint32_t n = 0;
       for (Value l = v; !l.isNil(); l = listTail(l)) ++n;
       put<std::uint32_t>(out, n);
-      for (Value l = v; !l.isNil(); l = listTail(l)) encodeValue(out, types, types.element(t), listHead(l));
+      for (Value l = v; !l.isNil(); l = listTail(l)) encodeValue(out, types, types.element(t), listHead(l), share);
       break;
     }
     case TypeKind::Struct: {
       const auto items = tupleItems(v);
       const auto fields = types.fields(t);
-      for (std::size_t i = 0; i < items.size(); ++i) encodeValue(out, types, fields[i], items[i]);
+      for (std::size_t i = 0; i < items.size(); ++i) encodeValue(out, types, fields[i], items[i], share);
       break;
     }
     case TypeKind::Array:
     case TypeKind::Set: {
       const auto items = tupleItems(v);
       put<std::uint32_t>(out, std::uint32_t(items.size()));
-      for (Value x : items) encodeValue(out, types, types.element(t), x);
+      for (Value x : items) encodeValue(out, types, types.element(t), x, share);
       break;
     }
   }
@@ -61,8 +92,9 @@ void encodeValue(std::vector<std::uint8_t>& out, const TypeTable& types, TypeId 
 // vector), so decoding allocates nothing but the values themselves once the stack has grown.
 class Reader {
  public:
-  Reader(const std::uint8_t* d, std::size_t n, const TypeTable& types, Heap& heap, std::vector<Value>& stack)
-      : d_(d), n_(n), types_(types), heap_(heap), stack_(stack) {}
+  Reader(const std::uint8_t* d, std::size_t n, const TypeTable& types, Heap& heap, std::vector<Value>& stack,
+         ListDecoderShare* share)
+      : d_(d), n_(n), types_(types), heap_(heap), stack_(stack), share_(share) {}
   template <class T>
   T get() {
     if (n_ - at_ < sizeof(T)) throw FactCodecError("truncated fact message");
@@ -92,9 +124,18 @@ class Reader {
       stack_.resize(base);
       throw;
     }
-    const Value v = make(std::span<const Value>(stack_.data() + base, count));
-    for (std::uint32_t i = 0; i < count; ++i) heap_.release(itemType(i), stack_[base + i]);
-    stack_.resize(base);
+    auto releaseItems = [&] {
+      for (std::uint32_t i = 0; i < count; ++i) heap_.release(itemType(i), stack_[base + i]);
+      stack_.resize(base);
+    };
+    Value v;
+    try {
+      v = make(std::span<const Value>(stack_.data() + base, count));
+    } catch (...) {
+      releaseItems();
+      throw;
+    }
+    releaseItems();
     return v;
   }
 
@@ -103,6 +144,7 @@ class Reader {
   const TypeTable& types_;
   Heap& heap_;
   std::vector<Value>& stack_;
+  ListDecoderShare* share_;
 };
 
 Value Reader::value(TypeId t) {
@@ -125,6 +167,16 @@ Value Reader::value(TypeId t) {
     }
     case TypeKind::List: {
       const TypeId e = types_.element(t);
+      if (share_) {
+        const std::uint32_t cells = count();
+        return items(
+            cells, [e](std::uint32_t) { return e; },
+            [&](std::span<const Value> v) {
+              const Value list = heap_.makeList(t, v, ListSharingAccess::tail(*share_, get<std::uint32_t>()));
+              ListSharingAccess::remember(*share_, t, list, cells);
+              return list;
+            });
+      }
       return items(
           count(), [e](std::uint32_t) { return e; },
           [&](std::span<const Value> v) { return heap_.makeList(t, v); });
@@ -148,17 +200,84 @@ Value Reader::value(TypeId t) {
 
 }  // namespace
 
+void ListSharingAccess::encodeList(std::vector<std::uint8_t>& out, const TypeTable& types, TypeId t, Value v,
+                                   ListEncoderShare& share) {
+  std::uint32_t cells = 0, rest = 0;
+  for (Value l = v; !l.isNil(); l = listTail(l), ++cells)
+    if (const std::uint32_t number = share.ids_.find(l.asObject()); number != ListEncoderShare::CellNumbers::kAbsent) {
+      rest = number + 1;
+      break;
+    }
+  put<std::uint32_t>(out, cells);
+  Value l = v;
+  for (std::uint32_t i = 0; i < cells; ++i, l = listTail(l))
+    encodeValue(out, types, types.element(t), listHead(l), &share);
+  put<std::uint32_t>(out, rest);
+  l = v;
+  for (std::uint32_t i = 0; i < cells; ++i, l = listTail(l)) {
+    share.ids_.insert(l.asObject(), std::uint32_t(share.held_.size()));
+    share.heap_->retain(t, l);
+    share.held_.emplace_back(t, l);
+  }
+}
+
+std::size_t ListEncoderShare::CellNumbers::slotOf(const void* cell) const {
+  const auto h = std::uint64_t(reinterpret_cast<std::uintptr_t>(cell)) * 0x9E3779B97F4A7C15ull;
+  return std::size_t(h >> 32) & (entries_.size() - 1);
+}
+
+std::uint32_t ListEncoderShare::CellNumbers::find(const void* cell) const {
+  if (size_ == 0) return kAbsent;
+  for (std::size_t i = slotOf(cell);; i = (i + 1) & (entries_.size() - 1)) {
+    const Entry& e = entries_[i];
+    if (e.generation != generation_) return kAbsent;
+    if (e.cell == cell) return e.number;
+  }
+}
+
+void ListEncoderShare::CellNumbers::insert(const void* cell, std::uint32_t number) {
+  if (2 * (std::size_t(size_) + 1) > entries_.size()) {  // at most half full: short probes
+    std::vector<Entry> old(std::max<std::size_t>(64, 2 * entries_.size()));
+    old.swap(entries_);
+    const std::uint32_t live = generation_;
+    size_ = 0;
+    for (const Entry& e : old)
+      if (e.generation == live) insert(e.cell, e.number);
+  }
+  std::size_t i = slotOf(cell);
+  while (entries_[i].generation == generation_) i = (i + 1) & (entries_.size() - 1);
+  entries_[i] = {cell, number, generation_};
+  ++size_;
+}
+
+ListEncoderShare::ListEncoderShare(ListEncoderShare&& o) noexcept
+    : heap_(o.heap_), ids_(std::move(o.ids_)), held_(std::move(o.held_)) {
+  o.ids_.clear();
+  o.held_.clear();
+}
+
+void ListEncoderShare::reset() {
+  for (const auto& [t, v] : held_) heap_->release(t, v);
+  held_.clear();
+  ids_.clear();
+}
+
+void ListDecoderShare::reset() {
+  for (const auto& [t, v] : cells_) heap_.release(t, v);
+  cells_.clear();
+}
+
 void encodeFact(std::vector<std::uint8_t>& out, const PredicateTable& preds, PredId p, const Value* args,
-                bool negative) {
+                bool negative, ListEncoderShare* share) {
   put<std::uint16_t>(out, std::uint16_t(p));
   put<std::uint8_t>(out, negative ? 1 : 0);
   const PredicateDesc& d = preds[p];
-  for (std::uint32_t i = 0; i < d.arity(); ++i) encodeValue(out, preds.types(), d.fields[i], args[i]);
+  for (std::uint32_t i = 0; i < d.arity(); ++i) encodeValue(out, preds.types(), d.fields[i], args[i], share);
 }
 
 void decodeFact(const std::uint8_t* data, std::size_t size, const PredicateTable& preds, Heap& heap,
-                DecodedFact& fact) {
-  Reader r(data, size, preds.types(), heap, fact.stack);
+                DecodedFact& fact, ListDecoderShare* share) {
+  Reader r(data, size, preds.types(), heap, fact.stack, share);
   fact.pred = r.get<std::uint16_t>();
   if (fact.pred >= preds.size()) throw FactCodecError("unknown predicate in fact message");
   const std::uint8_t flags = r.get<std::uint8_t>();

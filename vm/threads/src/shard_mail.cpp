@@ -15,7 +15,11 @@ namespace {
 // A moving node: kMigrate, the node, its scheduling state (f64 priority, f64 default priority, u8
 // static), u8 1 if set-cpu moved it (0: stolen), then its stored facts (u32 count; each u32
 // copies, u32 length, the fact) and its waiting messages (u32 count; each u32 length, the fact).
-enum RecordKind : std::uint8_t { kFact = 0, kCoordination = 1, kMigrate = 2, kScalarFact = 3 };
+// Facts are in the sharing format of fact_codec.hpp: their lists may refer to cells of lists sent
+// earlier in the same batch, up to a kEndOfBatch record.
+// The end of a batch whose facts shared lists (kEndOfBatch, node 0): what follows refers to
+// none of its cells.
+enum RecordKind : std::uint8_t { kFact = 0, kCoordination = 1, kMigrate = 2, kScalarFact = 3, kEndOfBatch = 4 };
 constexpr std::uint32_t kNegativeBit = 0x80000000u;
 constexpr std::size_t kStateBytes = 17;  // priority, default priority (f64), static (u8)
 
@@ -42,22 +46,31 @@ ShardMail::ShardMail(const Program& program) : program_(program), scalar_(progra
       if (preds.types().boxed(t)) scalar_[p] = 0;
 }
 
-void ShardMail::putLengthAndFact(MailBytes& out, PredId p, const Value* args, bool negative) {
+void ShardMail::putLengthAndFact(MailBytes& out, ListEncoderShare& share, PredId p, const Value* args,
+                                 bool negative) {
   put<std::uint32_t>(out, 0);  // the length, once known
   const std::size_t start = out.size();
-  encodeFact(out, program_.predicates, p, args, negative);
+  encodeFact(out, program_.predicates, p, args, negative, &share);
   const auto length = std::uint32_t(out.size() - start);
   std::memcpy(out.data() + start - sizeof length, &length, sizeof length);
 }
 
-void ShardMail::putFact(MailBytes& out, NodeId dest, PredId p, const Value* args, bool negative) {
+void ShardMail::putFact(MailBytes& out, ListEncoderShare& share, NodeId dest, PredId p, const Value* args,
+                        bool negative) {
   if (scalar_[p]) {
     putScalarFact(out, dest, p, args, negative);
     return;
   }
   put<std::uint8_t>(out, kFact);
   put<std::uint32_t>(out, dest);
-  putLengthAndFact(out, p, args, negative);
+  putLengthAndFact(out, share, p, args, negative);
+}
+
+void ShardMail::endBatch(MailBytes& out, ListEncoderShare& share) {
+  if (share.empty()) return;
+  put<std::uint8_t>(out, kEndOfBatch);
+  put<std::uint32_t>(out, 0);
+  share.reset();
 }
 
 void ShardMail::putScalarFact(MailBytes& out, NodeId dest, PredId p, const Value* args, bool negative) {
@@ -91,7 +104,7 @@ void ShardMail::putCoordination(MailBytes& out, NodeId n, Opcode op, double valu
   put<double>(out, value);
 }
 
-void ShardMail::putNode(MailBytes& out, Machine& from, NodeId n, bool moved) {
+void ShardMail::putNode(MailBytes& out, ListEncoderShare& share, Machine& from, NodeId n, bool moved) {
   put<std::uint8_t>(out, kMigrate);
   put<std::uint32_t>(out, n);
   const std::size_t stateAt = out.size();  // written once the node is given (giveNode returns it)
@@ -105,11 +118,11 @@ void ShardMail::putNode(MailBytes& out, Machine& from, NodeId n, bool moved) {
       n,
       [&](PredId p, const Value* args, std::uint32_t copies) {
         put<std::uint32_t>(out, copies);
-        putLengthAndFact(out, p, args, false);
+        putLengthAndFact(out, share, p, args, false);
         ++stored;
       },
       [&](PredId p, const Value* args, bool negative) {
-        putLengthAndFact(pendingScratch_, p, args, negative);
+        putLengthAndFact(pendingScratch_, share, p, args, negative);  // numbered after the stored facts' lists
         ++pending;
       });
   std::memcpy(out.data() + storedAt, &stored, sizeof stored);
@@ -122,10 +135,10 @@ void ShardMail::putNode(MailBytes& out, Machine& from, NodeId n, bool moved) {
 
 // Decodes the fact at `pos` into fact_, runs use(), releases what decoding built.
 template <class Use>
-void ShardMail::readFact(Machine& to, const MailBytes& in, std::size_t& pos, Use&& use) {
+void ShardMail::readFact(Machine& to, ListDecoderShare& share, const MailBytes& in, std::size_t& pos, Use&& use) {
   Heap& heap = to.heap();
   const auto length = get<std::uint32_t>(in, pos);
-  decodeFact(in.data() + pos, length, program_.predicates, heap, fact_);
+  decodeFact(in.data() + pos, length, program_.predicates, heap, fact_, &share);
   pos += length;
   const PredicateDesc& d = program_.predicates[fact_.pred];
   auto release = [&] {
@@ -141,14 +154,17 @@ void ShardMail::readFact(Machine& to, const MailBytes& in, std::size_t& pos, Use
 }
 
 void ShardMail::apply(Machine& to, const MailBytes& in, Taken& taken) {
+  ListDecoderShare share(to.heap());  // several batches may come one after another
   for (std::size_t pos = 0; pos < in.size();) {
     const auto kind = get<std::uint8_t>(in, pos);
     const NodeId node = get<std::uint32_t>(in, pos);
     if (kind == kScalarFact) {
       ++taken.facts;
       readScalarFact(to, node, in, pos);
+    } else if (kind == kEndOfBatch) {
+      share.reset();
     } else if (kind == kMigrate) {
-      takeNode(to, node, in, pos);
+      takeNode(to, share, node, in, pos);
       ++taken.nodes;
     } else if (kind == kCoordination) {
       const auto op = Opcode(get<std::uint32_t>(in, pos));
@@ -158,12 +174,12 @@ void ShardMail::apply(Machine& to, const MailBytes& in, Taken& taken) {
       to.coordinateOwned(op, node, value);
     } else {
       ++taken.facts;
-      readFact(to, in, pos, [&] { to.receive(node, fact_.pred, fact_.args.data(), fact_.negative); });
+      readFact(to, share, in, pos, [&] { to.receive(node, fact_.pred, fact_.args.data(), fact_.negative); });
     }
   }
 }
 
-void ShardMail::takeNode(Machine& to, NodeId n, const MailBytes& in, std::size_t& pos) {
+void ShardMail::takeNode(Machine& to, ListDecoderShare& share, NodeId n, const MailBytes& in, std::size_t& pos) {
   SerialScheduler::Carried state{};
   state.prio = get<double>(in, pos);
   state.defaultPrio = get<double>(in, pos);
@@ -172,10 +188,10 @@ void ShardMail::takeNode(Machine& to, NodeId n, const MailBytes& in, std::size_t
   to.takeNode(n, state);
   for (std::uint32_t i = 0, count = get<std::uint32_t>(in, pos); i < count; ++i) {
     const auto copies = get<std::uint32_t>(in, pos);
-    readFact(to, in, pos, [&] { to.takeStoredFact(n, fact_.pred, fact_.args.data(), copies); });
+    readFact(to, share, in, pos, [&] { to.takeStoredFact(n, fact_.pred, fact_.args.data(), copies); });
   }
   for (std::uint32_t i = 0, count = get<std::uint32_t>(in, pos); i < count; ++i)
-    readFact(to, in, pos, [&] { to.takePendingFact(n, fact_.pred, fact_.args.data(), fact_.negative); });
+    readFact(to, share, in, pos, [&] { to.takePendingFact(n, fact_.pred, fact_.args.data(), fact_.negative); });
   if (moved) to.settleMovedNode(n);
   to.takeNodeDone(n);
 }

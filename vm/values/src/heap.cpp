@@ -99,9 +99,10 @@ Value Heap::cons(TypeId listType, Value head, Value tail) {
   return Value::fromObject(c);
 }
 
-Value Heap::makeList(TypeId listType, std::span<const Value> items) {
+Value Heap::makeList(TypeId listType, std::span<const Value> items, Value tail) {
   const TypeId elem = types_.element(listType);
-  ConsCell* list = nullptr;  // built from the back; each new cell takes over the reference to the rest
+  retain(listType, tail);
+  auto* list = static_cast<ConsCell*>(tail.asObject());  // built from the back; each new cell takes over the reference to the rest
   for (std::size_t i = items.size(); i-- > 0;) {
     retain(elem, items[i]);
     auto* c = newCell(listType);

@@ -27,12 +27,16 @@ class ShardMail {
  public:
   explicit ShardMail(const Program& program);
 
-  void putFact(MailBytes& out, NodeId dest, PredId p, const Value* args, bool negative);
+  // Facts (and moving nodes) with lists go in a batch's sharing format (fact_codec.hpp): `share`
+  // belongs to the batch `out` (one per destination, on the sender's heap); endBatch closes it
+  // before the batch leaves.
+  void putFact(MailBytes& out, ListEncoderShare& share, NodeId dest, PredId p, const Value* args, bool negative);
   void putCoordination(MailBytes& out, NodeId n, Opcode op, double value);
   // Node n leaves `from` with its stored facts, waiting messages and scheduling state (it must be
   // out of from's queue: Machine::unqueueToGive or pickNodesToGive). moved: by set-cpu (the taker
   // pins it and gives it just-moved).
-  void putNode(MailBytes& out, Machine& from, NodeId n, bool moved);
+  void putNode(MailBytes& out, ListEncoderShare& share, Machine& from, NodeId n, bool moved);
+  void endBatch(MailBytes& out, ListEncoderShare& share);
 
   struct Taken {
     std::uint64_t facts = 0, nodes = 0;
@@ -42,10 +46,10 @@ class ShardMail {
   void apply(Machine& to, const MailBytes& in, Taken& taken);
 
  private:
-  void putLengthAndFact(MailBytes& out, PredId p, const Value* args, bool negative);
+  void putLengthAndFact(MailBytes& out, ListEncoderShare& share, PredId p, const Value* args, bool negative);
   template <class Use>
-  void readFact(Machine& to, const MailBytes& in, std::size_t& pos, Use&& use);
-  void takeNode(Machine& to, NodeId n, const MailBytes& in, std::size_t& pos);
+  void readFact(Machine& to, ListDecoderShare& share, const MailBytes& in, std::size_t& pos, Use&& use);
+  void takeNode(Machine& to, ListDecoderShare& share, NodeId n, const MailBytes& in, std::size_t& pos);
 
   void putScalarFact(MailBytes& out, NodeId dest, PredId p, const Value* args, bool negative);
   void readScalarFact(Machine& to, NodeId node, const MailBytes& in, std::size_t& pos);

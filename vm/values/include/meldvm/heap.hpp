@@ -72,7 +72,7 @@ class Heap {
   // result is a new reference that the caller owns and must release.
   Value makeString(std::string_view s);
   Value cons(TypeId listType, Value head, Value tail);
-  Value makeList(TypeId listType, std::span<const Value> items);
+  Value makeList(TypeId listType, std::span<const Value> items, Value tail = Value::nil());  // items ++ tail
   // Struct, array or set (`type` says which); a set keeps the first copy of equal items.
   Value makeTuple(TypeId type, std::span<const Value> items);
 
