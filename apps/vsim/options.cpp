@@ -79,7 +79,8 @@ one line per count (output, dump and profile are those of the last count).
   --costs NAME=NS,...   core time of: node (a node run), rule (a rule firing), fact (a fact
                         derived), tried (a fact a rule looked at, matching or not), send /
                         receive (a fact to / from another core), byte (a byte of such a fact,
-                        at each end), rebalance (a work-stealing round), move (a node moved);
+                        at each end), rebalance (a work-stealing round), move (a node moved),
+                        movebyte (a byte of a moving node's facts and messages, at each end);
                         and contention=F: a run is (1 + F) times slower while every other core
                         is busy too (shared caches, memory). Defaults: fitted on the project's
                         2-core machine (bench/multicore/README.md); vsim prints those it used

@@ -14,9 +14,12 @@ usage: fit_costs.py LOGDIR   (calibrate.sh writes LOGDIR/PROGRAM.j1.log and PROG
    fact that carries a list costs more to encode and rebuild): one cost per fact and one per
    byte, the same at the sending and the receiving end (out and in are nearly equal on two
    threads, so the two ends cannot be told apart).
-3. Rebalancing: each thread's time in rebalances = rounds x rebalance + nodes moved x move, over
-   the programs whose node runs are short (mean under 50 us): where they are long, that time is
-   mostly waiting for the other thread to end its run, which the chip simulates by itself.
+3. Rebalancing: each thread's time in rebalances after both threads arrived ("move ms": moving
+   nodes, not waiting for the other thread to end its node run, which the chip simulates by
+   itself) = rounds x rebalance + nodes moved x move + bytes moved x 2 movebyte (the moving
+   nodes' records, encoded by the giver and rebuilt by the taker one after the other). Bytes of
+   moving nodes get their own cost: a node that carries thousands of placements with their lists
+   (n-queens) costs per byte what scalar facts crossing threads (pagerank) cannot tell.
 Prints the --costs string and the fit, per program.
 """
 import os
@@ -33,7 +36,7 @@ def parse(path):
                 totals[m.group(1)] = float(m.group(2))
                 continue
             cols = line.split()
-            if len(cols) >= 15 and cols[0].isdigit():
+            if len(cols) >= 17 and cols[0].isdigit():
                 threads.append([float(c) for c in cols])
     return totals, threads
 
@@ -87,32 +90,33 @@ def main():
             continue
         totals, threads = parse(path)
         wall = totals["wall s"]
-        short_runs = serial[p]["wall s"] / max(serial[p]["node runs"], 1) < 50e-6
         all_bytes = sum(t[13] for t in threads)
+        all_moved = sum(t[15] for t in threads)
         for t in threads:
             busy_pct, runs, rules, facts, out, inn = t[1], t[2], t[3], t[4], t[5], t[6]
-            taken, given, steal_pct, rounds, bytes_out, looked = t[9], t[10], t[11], t[12], t[13], t[14]
+            taken, given, rounds, bytes_out, looked = t[9], t[10], t[12], t[13], t[14]
             bytes_in = all_bytes - bytes_out  # two threads: what the other one sent
             cross_rows.append([model(runs, rules, facts, looked), out + inn, bytes_out + bytes_in])
             cross_targets.append(wall * busy_pct / 100 / scale[p])
-            if short_runs:
-                steal_rows.append([rounds, taken + given])
-                steal_targets.append(wall * steal_pct / 100)
+            moved_bytes, move_ms = t[15], t[16]
+            steal_rows.append([rounds, taken + given, moved_bytes + (all_moved - moved_bytes)])
+            steal_targets.append(move_ms / 1e3)
     slowdown, crossing, byte = lstsq(cross_rows, cross_targets) if cross_rows else (1.0, 0.0, 0.0)
     contention = max(slowdown - 1, 0.0)
-    rebalance, move = lstsq(steal_rows, steal_targets) if steal_rows else (0.0, 0.0)
+    rebalance, move, moved_byte_both_ends = lstsq(steal_rows, steal_targets) if steal_rows else (0.0, 0.0, 0.0)
+    movebyte = moved_byte_both_ends / 2
     ns = lambda v: v * 1e9 + 0.0  # + 0.0: no "-0.00"
     print("fit (ns): node %.1f, rule %.1f, fact %.1f, fact tried %.2f; a fact crossing cores %.1f at each end,"
-          " a byte %.2f at each end; rebalance %.0f, node moved %.0f; contention %.2f" % (
-              ns(node), ns(rule), ns(fact), ns(tried), ns(crossing), ns(byte), ns(rebalance), ns(move),
-              contention))
+          " a byte %.2f at each end; rebalance %.0f, node moved %.0f, a byte moved %.2f at each end;"
+          " contention %.2f" % (ns(node), ns(rule), ns(fact), ns(tried), ns(crossing), ns(byte), ns(rebalance),
+                                ns(move), ns(movebyte), contention))
     print("serial fit per program (measured s, model s, scale):")
     for p, s in serial.items():
         m = model(*counts(s))
         print("  %-60s %8.3f %8.3f %6.2f" % (p, s["wall s"], m, scale[p]))
     print("--costs node=%.0f,rule=%.0f,fact=%.0f,tried=%.2f,send=%.0f,receive=%.0f,byte=%.2f,rebalance=%.0f,move=%.0f,"
-          "contention=%.2f" % (ns(node), ns(rule), ns(fact), ns(tried), ns(crossing), ns(crossing), ns(byte),
-                               ns(rebalance), ns(move), contention))
+          "movebyte=%.2f,contention=%.2f" % (ns(node), ns(rule), ns(fact), ns(tried), ns(crossing), ns(crossing),
+                                             ns(byte), ns(rebalance), ns(move), ns(movebyte), contention))
 
 
 main()

@@ -202,7 +202,7 @@ void ChipSimulator::completeBarrier(simcore::SimTime now) {
   std::size_t moved = work_.applyRequestedMoves(bytes);
   if (chip_.stealing) moved += stealPlan(now, bytes);
   const double cost =
-      chip_.costs.rebalance + double(moved) * chip_.costs.nodeMoved + 2 * double(bytes) * chip_.costs.byte;
+      chip_.costs.rebalance + double(moved) * chip_.costs.nodeMoved + 2 * double(bytes) * chip_.costs.movedByte;
   const simcore::SimTime resume = drained + ns(cost);
   ++rebalances_;
   for (unsigned c = 0; c < chip_.cores; ++c) {

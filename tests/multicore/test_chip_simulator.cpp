@@ -73,6 +73,7 @@ ChipSpec chipOf(unsigned cores, bool stealing = false) {
   c.costs.byte = 0;
   c.costs.rebalance = 5000;
   c.costs.nodeMoved = 50;
+  c.costs.movedByte = 0;
   c.costs.contention = 0;
   return c;
 }
@@ -151,6 +152,18 @@ BOOST_AUTO_TEST_CASE(idle_cores_steal_and_finish_sooner) {
   // Core 1 finds nothing at time 0 and asks; core 0 joins when its first unit ends (320 ns); one
   // rebalance moves 199 of its 399 queued units (5000 + 199 x 50 ns); then 200 units each.
   BOOST_TEST(stealingEnd == 320 + 5000 + 199 * 50 + 200 * 320);
+}
+
+BOOST_AUTO_TEST_CASE(a_moving_node_pays_for_its_bytes_at_both_ends) {
+  FakeWorkload w(2);
+  for (int i = 0; i < 400; ++i) w.queue[0].push_back({20, 20, 0, 0});
+  ChipSpec chip = chipOf(2, true);
+  chip.costs.movedByte = 0.5;
+  chip.costs.byte = 1000;  // the crossing facts' rate: not the moves'
+  ChipSimulator sim(chip, w);
+  sim.run();
+  // As above, and the rebalance carries 199 units of 100 bytes, 0.5 ns a byte at each end.
+  BOOST_TEST(sim.endTime() == 320 + 5000 + 199 * 50 + 199 * 100 * 2 / 2 + 200 * 320);
 }
 
 BOOST_AUTO_TEST_CASE(runs_are_deterministic_and_profiles_have_one_lane_per_core) {

@@ -267,6 +267,7 @@ void Worker::rebalance() {
   shared_.arriveAndWait();                // 4
   const double seconds = secondsSince(start);
   stats_.rebalanceSeconds += seconds;
+  stats_.rebalanceWorkSeconds += secondsSince(allThere);
   windowStart_ = Clock::now();
   idleAtWindowStart_ = stats_.idleSeconds;
   if (self_ == 0) {
@@ -303,6 +304,7 @@ void Worker::giveNode(ThreadId to, NodeId n, bool moved) {
   mail_.putNode(out, sharing_[to], *machine_, n, moved);
   directory_.moveNode(n, to);
   ++stats_.nodesGiven;
+  stats_.bytesMoved += out.size() - before;
   outgoingBytes_ += out.size() - before;
 }
 

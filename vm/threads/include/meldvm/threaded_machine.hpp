@@ -36,7 +36,11 @@ struct ThreadStats {
   std::uint64_t waits = 0;                  // times the thread ran out of work
   std::uint64_t rebalances = 0;             // work-stealing rounds it took part in
   std::uint64_t nodesTaken = 0, nodesGiven = 0;
+  std::uint64_t bytesMoved = 0;  // the records of the nodes it gave (their facts and messages)
   double busySeconds = 0, idleSeconds = 0, rebalanceSeconds = 0;
+  // Of rebalanceSeconds, the time after every thread had arrived: moving nodes, not waiting for
+  // the others to end their node runs.
+  double rebalanceWorkSeconds = 0;
 };
 
 class ThreadedMachine {
