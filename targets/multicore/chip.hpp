@@ -42,13 +42,17 @@ struct CostName {
   const char* name;
   double CoreCosts::*cost;
 };
-inline constexpr CostName kCostNames[] = {
-    {"node", &CoreCosts::nodeRun},   {"rule", &CoreCosts::rule},
-    {"fact", &CoreCosts::fact},      {"tried", &CoreCosts::tried},
-    {"send", &CoreCosts::send},      {"receive", &CoreCosts::receive},
-    {"byte", &CoreCosts::byte},      {"rebalance", &CoreCosts::rebalance},
-    {"move", &CoreCosts::nodeMoved}, {"movebyte", &CoreCosts::movedByte},
-    {"contention", &CoreCosts::contention}};
+inline constexpr CostName kCostNames[] = {{"node", &CoreCosts::nodeRun},
+                                          {"rule", &CoreCosts::rule},
+                                          {"fact", &CoreCosts::fact},
+                                          {"tried", &CoreCosts::tried},
+                                          {"send", &CoreCosts::send},
+                                          {"receive", &CoreCosts::receive},
+                                          {"byte", &CoreCosts::byte},
+                                          {"rebalance", &CoreCosts::rebalance},
+                                          {"move", &CoreCosts::nodeMoved},
+                                          {"movebyte", &CoreCosts::movedByte},
+                                          {"contention", &CoreCosts::contention}};
 
 struct ChipSpec {
   unsigned cores = 1;

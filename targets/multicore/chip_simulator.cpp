@@ -201,8 +201,8 @@ void ChipSimulator::completeBarrier(simcore::SimTime now) {
   std::uint64_t bytes = 0;  // a moving node's facts are encoded and rebuilt, as a crossing fact's are
   std::size_t moved = work_.applyRequestedMoves(bytes);
   if (chip_.stealing) moved += stealPlan(now, bytes);
-  const double cost =
-      chip_.costs.rebalance + double(moved) * chip_.costs.nodeMoved + 2 * double(bytes) * chip_.costs.movedByte;
+  const double cost = chip_.costs.rebalance + double(moved) * chip_.costs.nodeMoved +
+                      2 * double(bytes) * chip_.costs.movedByte;
   const simcore::SimTime resume = drained + ns(cost);
   ++rebalances_;
   for (unsigned c = 0; c < chip_.cores; ++c) {

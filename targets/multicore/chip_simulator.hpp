@@ -122,7 +122,7 @@ class ChipSimulator {
   unsigned idleCores_ = 0, inBarrier_ = 0;
   bool barrier_ = false;
   simcore::SimTime nextRebalance_ = 0, end_ = 0;
-  simcore::SimTime windowStart_ = 0;       // the last rebalance's end: the idle shares are since then
+  simcore::SimTime windowStart_ = 0;        // the last rebalance's end: the idle shares are since then
   std::vector<std::int64_t> idleAtWindow_;  // per core
   std::uint64_t rebalances_ = 0;
 };

@@ -278,7 +278,8 @@ BOOST_AUTO_TEST_CASE(lists_consed_on_one_tail_cross_threads_still_sharing_it) {
     s += std::to_string(i);
   }
   s += "]).\n";
-  for (int k = 1; k <= 40; ++k) s += "!edge(@0, @" + std::to_string(40 + k) + ", " + std::to_string(k) + ").\n";
+  for (int k = 1; k <= 40; ++k)
+    s += "!edge(@0, @" + std::to_string(40 + k) + ", " + std::to_string(k) + ").\n";
   s += "fan(A), base(A, L) -o {B, K | !edge(A, B, K) | got(B, [K | L])}.\n";
   const auto p = compile(s);
   const std::string serial = serialDump(*p);

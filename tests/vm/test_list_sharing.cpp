@@ -89,7 +89,7 @@ BOOST_AUTO_TEST_CASE(the_encoder_holds_what_it_sent_so_an_address_is_never_reuse
   std::vector<std::vector<std::uint8_t>> facts(2);
   encodeFact(facts[0], t.s.preds, t.p, &a, false, &out);
   const void* sent = cell(a);
-  t.s.heap.release(t.li, a);  // the fact is consumed on the sender
+  t.s.heap.release(t.li, a);                 // the fact is consumed on the sender
   BOOST_TEST(t.s.heap.liveObjects() == 2u);  // still held by the batch
   const Value b = t.list({3, 4});
   BOOST_TEST(cell(b) != sent);

@@ -6,38 +6,16 @@ namespace meldvm {
 
 namespace {
 
-void encodeValue(std::vector<std::uint8_t>& out, const TypeTable& types, TypeId t, Value v,
-                 ListEncoderShare* share);
-
-}  // namespace
-
-// The list format of a sharing batch (fact_codec.hpp): u32 count of cells not yet sent, their
-// items, u32 0 for the end of the list or 1 + the number of the cell the rest starts with.
-class ListSharingAccess {
- public:
-  static void encodeList(std::vector<std::uint8_t>& out, const TypeTable& types, TypeId t, Value v,
-                         ListEncoderShare& share);
-  static Value tail(ListDecoderShare& share, std::uint32_t ref) {
-    if (ref == 0) return Value::nil();
-    if (ref > share.cells_.size()) throw FactCodecError("bad list reference in fact message");
-    return share.cells_[ref - 1].second;
-  }
-  static void remember(ListDecoderShare& share, TypeId t, Value list, std::uint32_t cells) {
-    for (std::uint32_t i = 0; i < cells; ++i, list = listTail(list)) {
-      share.heap_.retain(t, list);
-      share.cells_.emplace_back(t, list);
-    }
-  }
-};
-
-namespace {
-
 template <class T>
 void put(std::vector<std::uint8_t>& out, T v) {
   std::uint8_t b[sizeof(T)];
   std::memcpy(b, &v, sizeof(T));  // the simulator and its blocks share one byte order
   out.insert(out.end(), b, b + sizeof(T));
 }
+
+// A list in a sharing batch (the format in fact_codec.hpp at encodeFact).
+void encodeSharedList(std::vector<std::uint8_t>& out, const TypeTable& types, TypeId t, Value v,
+                      ListEncoderShare& share);
 
 void encodeValue(std::vector<std::uint8_t>& out, const TypeTable& types, TypeId t, Value v,
                  ListEncoderShare* share) {
@@ -63,13 +41,14 @@ void encodeValue(std::vector<std::uint8_t>& out, const TypeTable& types, TypeId 
     }
     case TypeKind::List: {
       if (share) {
-        ListSharingAccess::encodeList(out, types, t, v, *share);
+        encodeSharedList(out, types, t, v, *share);
         break;
       }
       std::uint32_t n = 0;
       for (Value l = v; !l.isNil(); l = listTail(l)) ++n;
       put<std::uint32_t>(out, n);
-      for (Value l = v; !l.isNil(); l = listTail(l)) encodeValue(out, types, types.element(t), listHead(l), share);
+      for (Value l = v; !l.isNil(); l = listTail(l))
+        encodeValue(out, types, types.element(t), listHead(l), share);
       break;
     }
     case TypeKind::Struct: {
@@ -86,6 +65,23 @@ void encodeValue(std::vector<std::uint8_t>& out, const TypeTable& types, TypeId 
       break;
     }
   }
+}
+
+void encodeSharedList(std::vector<std::uint8_t>& out, const TypeTable& types, TypeId t, Value v,
+                      ListEncoderShare& share) {
+  std::uint32_t cells = 0, rest = 0;
+  for (Value l = v; !l.isNil(); l = listTail(l), ++cells)
+    if (const std::uint32_t number = share.numberOf(l.asObject()); number != ListEncoderShare::kNotSent) {
+      rest = number + 1;
+      break;
+    }
+  put<std::uint32_t>(out, cells);
+  Value l = v;
+  for (std::uint32_t i = 0; i < cells; ++i, l = listTail(l))
+    encodeValue(out, types, types.element(t), listHead(l), &share);
+  put<std::uint32_t>(out, rest);
+  l = v;
+  for (std::uint32_t i = 0; i < cells; ++i, l = listTail(l)) share.sent(t, l);
 }
 
 // Decoded items of lists, structs, arrays and sets wait on one stack (the caller's reusable
@@ -110,6 +106,12 @@ class Reader {
   }
   Value value(TypeId t);  // an owned reference
   bool done() const { return at_ == n_; }
+  // The rest of a list in a sharing batch: 0 the end, else 1 + the number of a cell built before.
+  Value sharedTail(std::uint32_t ref) const {
+    if (ref == 0) return Value::nil();
+    if (ref > share_->cells()) throw FactCodecError("bad list reference in fact message");
+    return share_->cell(ref - 1);
+  }
 
  private:
   // Decodes `count` items onto the stack, builds the object with `make`, releases the items.
@@ -172,8 +174,8 @@ Value Reader::value(TypeId t) {
         return items(
             cells, [e](std::uint32_t) { return e; },
             [&](std::span<const Value> v) {
-              const Value list = heap_.makeList(t, v, ListSharingAccess::tail(*share_, get<std::uint32_t>()));
-              ListSharingAccess::remember(*share_, t, list, cells);
+              const Value list = heap_.makeList(t, v, sharedTail(get<std::uint32_t>()));
+              share_->built(t, list, cells);
               return list;
             });
       }
@@ -199,73 +201,6 @@ Value Reader::value(TypeId t) {
 }
 
 }  // namespace
-
-void ListSharingAccess::encodeList(std::vector<std::uint8_t>& out, const TypeTable& types, TypeId t, Value v,
-                                   ListEncoderShare& share) {
-  std::uint32_t cells = 0, rest = 0;
-  for (Value l = v; !l.isNil(); l = listTail(l), ++cells)
-    if (const std::uint32_t number = share.ids_.find(l.asObject()); number != ListEncoderShare::CellNumbers::kAbsent) {
-      rest = number + 1;
-      break;
-    }
-  put<std::uint32_t>(out, cells);
-  Value l = v;
-  for (std::uint32_t i = 0; i < cells; ++i, l = listTail(l))
-    encodeValue(out, types, types.element(t), listHead(l), &share);
-  put<std::uint32_t>(out, rest);
-  l = v;
-  for (std::uint32_t i = 0; i < cells; ++i, l = listTail(l)) {
-    share.ids_.insert(l.asObject(), std::uint32_t(share.held_.size()));
-    share.heap_->retain(t, l);
-    share.held_.emplace_back(t, l);
-  }
-}
-
-std::size_t ListEncoderShare::CellNumbers::slotOf(const void* cell) const {
-  const auto h = std::uint64_t(reinterpret_cast<std::uintptr_t>(cell)) * 0x9E3779B97F4A7C15ull;
-  return std::size_t(h >> 32) & (entries_.size() - 1);
-}
-
-std::uint32_t ListEncoderShare::CellNumbers::find(const void* cell) const {
-  if (size_ == 0) return kAbsent;
-  for (std::size_t i = slotOf(cell);; i = (i + 1) & (entries_.size() - 1)) {
-    const Entry& e = entries_[i];
-    if (e.generation != generation_) return kAbsent;
-    if (e.cell == cell) return e.number;
-  }
-}
-
-void ListEncoderShare::CellNumbers::insert(const void* cell, std::uint32_t number) {
-  if (2 * (std::size_t(size_) + 1) > entries_.size()) {  // at most half full: short probes
-    std::vector<Entry> old(std::max<std::size_t>(64, 2 * entries_.size()));
-    old.swap(entries_);
-    const std::uint32_t live = generation_;
-    size_ = 0;
-    for (const Entry& e : old)
-      if (e.generation == live) insert(e.cell, e.number);
-  }
-  std::size_t i = slotOf(cell);
-  while (entries_[i].generation == generation_) i = (i + 1) & (entries_.size() - 1);
-  entries_[i] = {cell, number, generation_};
-  ++size_;
-}
-
-ListEncoderShare::ListEncoderShare(ListEncoderShare&& o) noexcept
-    : heap_(o.heap_), ids_(std::move(o.ids_)), held_(std::move(o.held_)) {
-  o.ids_.clear();
-  o.held_.clear();
-}
-
-void ListEncoderShare::reset() {
-  for (const auto& [t, v] : held_) heap_->release(t, v);
-  held_.clear();
-  ids_.clear();
-}
-
-void ListDecoderShare::reset() {
-  for (const auto& [t, v] : cells_) heap_.release(t, v);
-  cells_.clear();
-}
 
 void encodeFact(std::vector<std::uint8_t>& out, const PredicateTable& preds, PredId p, const Value* args,
                 bool negative, ListEncoderShare* share) {

@@ -19,7 +19,13 @@ namespace {
 // earlier in the same batch, up to a kEndOfBatch record.
 // The end of a batch whose facts shared lists (kEndOfBatch, node 0): what follows refers to
 // none of its cells.
-enum RecordKind : std::uint8_t { kFact = 0, kCoordination = 1, kMigrate = 2, kScalarFact = 3, kEndOfBatch = 4 };
+enum RecordKind : std::uint8_t {
+  kFact = 0,
+  kCoordination = 1,
+  kMigrate = 2,
+  kScalarFact = 3,
+  kEndOfBatch = 4
+};
 constexpr std::uint32_t kNegativeBit = 0x80000000u;
 constexpr std::size_t kStateBytes = 17;  // priority, default priority (f64), static (u8)
 
@@ -122,7 +128,8 @@ void ShardMail::putNode(MailBytes& out, ListEncoderShare& share, Machine& from, 
         ++stored;
       },
       [&](PredId p, const Value* args, bool negative) {
-        putLengthAndFact(pendingScratch_, share, p, args, negative);  // numbered after the stored facts' lists
+        putLengthAndFact(pendingScratch_, share, p, args,
+                         negative);  // numbered after the stored facts' lists
         ++pending;
       });
   std::memcpy(out.data() + storedAt, &stored, sizeof stored);
@@ -135,7 +142,8 @@ void ShardMail::putNode(MailBytes& out, ListEncoderShare& share, Machine& from, 
 
 // Decodes the fact at `pos` into fact_, runs use(), releases what decoding built.
 template <class Use>
-void ShardMail::readFact(Machine& to, ListDecoderShare& share, const MailBytes& in, std::size_t& pos, Use&& use) {
+void ShardMail::readFact(Machine& to, ListDecoderShare& share, const MailBytes& in, std::size_t& pos,
+                         Use&& use) {
   Heap& heap = to.heap();
   const auto length = get<std::uint32_t>(in, pos);
   decodeFact(in.data() + pos, length, program_.predicates, heap, fact_, &share);
@@ -179,7 +187,8 @@ void ShardMail::apply(Machine& to, const MailBytes& in, Taken& taken) {
   }
 }
 
-void ShardMail::takeNode(Machine& to, ListDecoderShare& share, NodeId n, const MailBytes& in, std::size_t& pos) {
+void ShardMail::takeNode(Machine& to, ListDecoderShare& share, NodeId n, const MailBytes& in,
+                         std::size_t& pos) {
   SerialScheduler::Carried state{};
   state.prio = get<double>(in, pos);
   state.defaultPrio = get<double>(in, pos);
@@ -191,7 +200,8 @@ void ShardMail::takeNode(Machine& to, ListDecoderShare& share, NodeId n, const M
     readFact(to, share, in, pos, [&] { to.takeStoredFact(n, fact_.pred, fact_.args.data(), copies); });
   }
   for (std::uint32_t i = 0, count = get<std::uint32_t>(in, pos); i < count; ++i)
-    readFact(to, share, in, pos, [&] { to.takePendingFact(n, fact_.pred, fact_.args.data(), fact_.negative); });
+    readFact(to, share, in, pos,
+             [&] { to.takePendingFact(n, fact_.pred, fact_.args.data(), fact_.negative); });
   if (moved) to.settleMovedNode(n);
   to.takeNodeDone(n);
 }

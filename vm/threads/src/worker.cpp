@@ -272,8 +272,8 @@ void Worker::rebalance() {
   idleAtWindowStart_ = stats_.idleSeconds;
   if (self_ == 0) {
     const auto cost = std::int64_t(secondsSince(allThere) * 1e9);
-    shared_.nextRebalanceNs.store(
-        nowNanos() + std::max(support::StealPolicy::kRebalanceNanos, cost * support::StealPolicy::kRebalanceGap));
+    shared_.nextRebalanceNs.store(nowNanos() + std::max(support::StealPolicy::kRebalanceNanos,
+                                                        cost * support::StealPolicy::kRebalanceGap));
   }
 }
 
@@ -282,7 +282,8 @@ void Worker::rebalance() {
 // idle since, waiting for the busy ones to finish their node runs).
 void Worker::publishIdleShare(Clock::time_point arrived, Clock::time_point allThere) {
   const double window = std::chrono::duration<double>(allThere - windowStart_).count();
-  const double idle = stats_.idleSeconds - idleAtWindowStart_ + std::chrono::duration<double>(allThere - arrived).count();
+  const double idle =
+      stats_.idleSeconds - idleAtWindowStart_ + std::chrono::duration<double>(allThere - arrived).count();
   shared_.perThread[self_].idleShare.store(window > 0 ? float(std::clamp(idle / window, 0.0, 1.0)) : 0.0f);
 }
 

@@ -69,7 +69,8 @@ class Worker final : public ShardLink {
   bool requestRebalance();
   void offerWork();
   void rebalance();
-  void publishIdleShare(std::chrono::steady_clock::time_point arrived, std::chrono::steady_clock::time_point allThere);
+  void publishIdleShare(std::chrono::steady_clock::time_point arrived,
+                        std::chrono::steady_clock::time_point allThere);
   void giveNodes(ThreadId to, std::size_t count);
   void giveNode(ThreadId to, NodeId n, bool moved);  // moved: by set-cpu (pin it, just-moved)
   static constexpr std::uint32_t kStealableQueue = support::StealPolicy::kStealableQueue;

@@ -102,7 +102,8 @@ Value Heap::cons(TypeId listType, Value head, Value tail) {
 Value Heap::makeList(TypeId listType, std::span<const Value> items, Value tail) {
   const TypeId elem = types_.element(listType);
   retain(listType, tail);
-  auto* list = static_cast<ConsCell*>(tail.asObject());  // built from the back; each new cell takes over the reference to the rest
+  auto* list = static_cast<ConsCell*>(
+      tail.asObject());  // built from the back; each new cell takes over the reference to the rest
   for (std::size_t i = items.size(); i-- > 0;) {
     retain(elem, items[i]);
     auto* c = newCell(listType);

@@ -30,7 +30,8 @@ class ShardMail {
   // Facts (and moving nodes) with lists go in a batch's sharing format (fact_codec.hpp): `share`
   // belongs to the batch `out` (one per destination, on the sender's heap); endBatch closes it
   // before the batch leaves.
-  void putFact(MailBytes& out, ListEncoderShare& share, NodeId dest, PredId p, const Value* args, bool negative);
+  void putFact(MailBytes& out, ListEncoderShare& share, NodeId dest, PredId p, const Value* args,
+               bool negative);
   void putCoordination(MailBytes& out, NodeId n, Opcode op, double value);
   // Node n leaves `from` with its stored facts, waiting messages and scheduling state (it must be
   // out of from's queue: Machine::unqueueToGive or pickNodesToGive). moved: by set-cpu (the taker
