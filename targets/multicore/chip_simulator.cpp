@@ -215,8 +215,7 @@ void ChipSimulator::completeBarrier(simcore::SimTime now) {
     wake(c, resume);  // a core with nothing to do goes idle again at once
   }
   barrier_ = false;
-  nextRebalance_ = resume + std::max<simcore::SimTime>(StealPolicy::kRebalanceNanos,
-                                                       ns(cost * double(StealPolicy::kRebalanceGap)));
+  nextRebalance_ = resume + StealPolicy::nextRebalanceAfter(cost);
   windowStart_ = resume;
   for (unsigned c = 0; c < chip_.cores; ++c) idleAtWindow_[c] = stats_[c].idleNs;
 }
@@ -230,10 +229,8 @@ std::size_t ChipSimulator::stealPlan(simcore::SimTime now, std::uint64_t& bytes)
   const double window = double(now - windowStart_);
   for (unsigned c = 0; c < chip_.cores; ++c) {
     load[c] = work_.queued(c);
-    // Waiting in the barrier for the busy cores counts: a core that ran out and asked at once
-    // has been idle since, though not in goIdle's sense.
-    const double waited = double(stats_[c].idleNs - idleAtWindow_[c] + (now - core_[c].barrierSince));
-    idle[c] = window > 0 ? std::clamp(waited / window, 0.0, 1.0) : 0.0;
+    idle[c] = StealPolicy::idleShare(
+        double(stats_[c].idleNs - idleAtWindow_[c] + (now - core_[c].barrierSince)), window);
   }
   std::stable_sort(order.begin(), order.end(), [&](unsigned a, unsigned b) { return load[a] > load[b]; });
   std::size_t moved = 0;

@@ -17,6 +17,16 @@ struct StealPolicy {
   // they take a small share of the run even when the nodes that move carry many facts.
   static constexpr std::int64_t kRebalanceNanos = 500'000;
   static constexpr std::int64_t kRebalanceGap = 20;
+  // How long after a rebalance that took `cost` ns the next one may start.
+  static std::int64_t nextRebalanceAfter(double cost) {
+    return std::max(kRebalanceNanos, std::int64_t(cost * double(kRebalanceGap) + 0.5));
+  }
+
+  // A worker's idle share of a window: its idle time there (its wait in the rebalance's first
+  // barrier included: a worker that ran out and asked at once has been idle since) over the window.
+  static double idleShare(double idle, double window) {
+    return window > 0 ? std::clamp(idle / window, 0.0, 1.0) : 0.0;
+  }
 
   // How many of its queued nodes `giver` hands to `taker`, from their queue lengths and the share
   // of the time since the last rebalance that each spent idle (0..1).

@@ -16,9 +16,8 @@ namespace {
 // static), u8 1 if set-cpu moved it (0: stolen), then its stored facts (u32 count; each u32
 // copies, u32 length, the fact) and its waiting messages (u32 count; each u32 length, the fact).
 // Facts are in the sharing format of fact_codec.hpp: their lists may refer to cells of lists sent
-// earlier in the same batch, up to a kEndOfBatch record.
-// The end of a batch whose facts shared lists (kEndOfBatch, node 0): what follows refers to
-// none of its cells.
+// earlier in the same batch. kEndOfBatch (the node 0) ends a batch whose facts shared lists: what
+// follows refers to none of its cells.
 enum RecordKind : std::uint8_t {
   kFact = 0,
   kCoordination = 1,
@@ -128,8 +127,8 @@ void ShardMail::putNode(MailBytes& out, ListEncoderShare& share, Machine& from, 
         ++stored;
       },
       [&](PredId p, const Value* args, bool negative) {
-        putLengthAndFact(pendingScratch_, share, p, args,
-                         negative);  // numbered after the stored facts' lists
+        // Into the scratch bytes, but numbered after the stored facts' lists, as they will be read.
+        putLengthAndFact(pendingScratch_, share, p, args, negative);
         ++pending;
       });
   std::memcpy(out.data() + storedAt, &stored, sizeof stored);

@@ -271,20 +271,18 @@ void Worker::rebalance() {
   windowStart_ = Clock::now();
   idleAtWindowStart_ = stats_.idleSeconds;
   if (self_ == 0) {
-    const auto cost = std::int64_t(secondsSince(allThere) * 1e9);
-    shared_.nextRebalanceNs.store(nowNanos() + std::max(support::StealPolicy::kRebalanceNanos,
-                                                        cost * support::StealPolicy::kRebalanceGap));
+    const double cost = secondsSince(allThere) * 1e9;
+    shared_.nextRebalanceNs.store(nowNanos() + support::StealPolicy::nextRebalanceAfter(cost));
   }
 }
 
 // The share of the time since the last rebalance this thread had nothing to run: its idle spans
-// and its wait in this rebalance's first barrier (a thread that ran out and asked at once has been
-// idle since, waiting for the busy ones to finish their node runs).
+// and its wait in this rebalance's first barrier.
 void Worker::publishIdleShare(Clock::time_point arrived, Clock::time_point allThere) {
   const double window = std::chrono::duration<double>(allThere - windowStart_).count();
   const double idle =
       stats_.idleSeconds - idleAtWindowStart_ + std::chrono::duration<double>(allThere - arrived).count();
-  shared_.perThread[self_].idleShare.store(window > 0 ? float(std::clamp(idle / window, 0.0, 1.0)) : 0.0f);
+  shared_.perThread[self_].idleShare.store(float(support::StealPolicy::idleShare(idle, window)));
 }
 
 void Worker::giveNodes(ThreadId to, std::size_t count) {

@@ -13,13 +13,14 @@
 #include <vector>
 
 #include "meldvm/heap.hpp"
+#include "meldvm/slot_hash.hpp"
 
 namespace meldvm {
 
 // The sender's side: one per batch being filled (per destination), on the sender's heap.
 class ListEncoderShare {
  public:
-  static constexpr std::uint32_t kNotSent = 0xFFFFFFFFu;
+  static constexpr std::uint32_t kNotSent = SlotHash::kNone;
 
   explicit ListEncoderShare(Heap& heap) : heap_(&heap) {}
   ~ListEncoderShare() { reset(); }
@@ -28,33 +29,21 @@ class ListEncoderShare {
   ListEncoderShare(const ListEncoderShare&) = delete;
 
   // The number of list cell `cell` in this batch, or kNotSent.
-  std::uint32_t numberOf(const void* cell) const { return numbers_.find(cell); }
+  std::uint32_t numberOf(const void* cell) const {
+    return numbers_.find(hashOf(cell), [&](std::uint32_t n) { return held_[n].second.asObject() == cell; });
+  }
   // `cell` (a list of type listType) went out: it gets the next number and is held until reset().
   void sent(TypeId listType, Value cell);
   bool empty() const { return held_.empty(); }
   void reset();  // the batch is out: what follows shares nothing with it
 
  private:
-  // Cell -> number: open addressing, emptied in O(1) by a new generation, so that a batch after
-  // the first few allocates nothing.
-  class CellNumbers {
-   public:
-    std::uint32_t find(const void* cell) const;
-    void insert(const void* cell, std::uint32_t number);  // not present
-    void clear();
-
-   private:
-    struct Entry {
-      const void* cell = nullptr;
-      std::uint32_t number = 0, generation = 0;
-    };
-    std::size_t slotOf(const void* cell) const;
-    std::vector<Entry> entries_;
-    std::uint32_t generation_ = 1, size_ = 0;
-  };
+  static std::uint64_t hashOf(const void* cell) {
+    return std::uint64_t(reinterpret_cast<std::uintptr_t>(cell)) * 0x9E3779B97F4A7C15ull;
+  }
 
   Heap* heap_;
-  CellNumbers numbers_;
+  SlotHash numbers_;                            // a cell's address -> its number (its index in held_)
   std::vector<std::pair<TypeId, Value>> held_;  // in number order
 };
 
