@@ -1,109 +1,54 @@
 #include "meldc/builtins.hpp"
 
+#include "meldvm/builtin_signatures.hpp"
+
 namespace meldc {
 
 const std::vector<BuiltinPredicate>& builtinPredicates() {
   using K = BuiltinPredKind;
   static const std::vector<BuiltinPredicate> table = {
-      {"_init", 1, K::Linear, false, false},
-      {"_init_thread", 1, K::Linear, false, true},
-      {"setcolor", 4, K::Linear, true, false},
-      {"setedgelabel", 3, K::Linear, true, false},
-      {"write-string", 2, K::Linear, true, false},
-      {"setcolor2", 2, K::Persistent, true, false},
-      {"stop-program", 1, K::Instruction, false, false},
-      {"set-priority", 2, K::Instruction, false, false},
-      {"add-priority", 2, K::Instruction, false, false},
-      {"remove-priority", 1, K::Instruction, false, false},
-      {"schedule-next", 1, K::Instruction, false, false},
-      {"set-default-priority", 2, K::Instruction, false, false},
-      {"set-static", 1, K::Instruction, false, false},
-      {"set-moving", 1, K::Instruction, false, false},
-      {"set-affinity", 2, K::Instruction, false, false},
-      {"set-cpu", 2, K::Instruction, false, false},
-      {"just-moved", 1, K::Linear, false, false},
-      {"thread-list", 2, K::Persistent, false, true},
-      {"other-thread", 3, K::Persistent, false, true},
-      {"leader-thread", 2, K::Persistent, false, true},
+      {"_init", K::Linear, false, false, "n"},
+      {"_init_thread", K::Linear, false, true, "t"},
+      {"setcolor", K::Linear, true, false, "n,i,i,i"},
+      {"setedgelabel", K::Linear, true, false, "n,n,s"},
+      {"write-string", K::Linear, true, false, "n,s"},
+      {"setcolor2", K::Persistent, true, false, "n,i"},
+      {"stop-program", K::Instruction, false, false, "n"},
+      {"set-priority", K::Instruction, false, false, "n,f"},
+      {"add-priority", K::Instruction, false, false, "n,f"},
+      {"remove-priority", K::Instruction, false, false, "n"},
+      {"schedule-next", K::Instruction, false, false, "n"},
+      {"set-default-priority", K::Instruction, false, false, "n,f"},
+      {"set-static", K::Instruction, false, false, "n"},
+      {"set-moving", K::Instruction, false, false, "n"},
+      {"set-affinity", K::Instruction, false, false, "n,n"},
+      {"set-cpu", K::Instruction, false, false, "n,t"},
+      {"just-moved", K::Linear, false, false, "n"},
+      {"thread-list", K::Persistent, false, true, "t,Lt"},
+      {"other-thread", K::Persistent, false, true, "t,t,i"},
+      {"leader-thread", K::Persistent, false, true, "t,t"},
   };
   return table;
 }
 
 const std::vector<BuiltinFunction>& builtinFunctions() {
-  static const std::vector<BuiltinFunction> table = {
-      {"sigmoid", 1},
-      {"randint", 1},
-      {"normalize", 1},
-      {"damp", 3},
-      {"divide", 2},
-      {"convolve", 2},
-      {"addfloatlists", 2},
-      {"intlistdiff", 2},
-      {"lnth", 2},
-      {"concatenate", 2},
-      {"str2float", 1},
-      {"str2int", 1},
-      {"lremove", 2},
-      {"wastetime", 1},
-      {"truncate", 2},
-      {"float2int", 1},
-      {"int2str", 1},
-      {"float2str", 1},
-      {"intlistsub", 3},
-      {"str2intlist", 1},
-      {"filecountwords", 2},
-      {"residual", 2},
-      {"llength", 1},
-      {"lappend", 2},
-      {"priority", 1},
-      {"lreverse", 1},
-      {"llast", 1},
-      {"cpu-id", 1},
-      {"node2int", 1},
-      {"intpower", 2},
-      {"lsort", 1},
-      {"lremoveduplicates", 1},
-      {"degeneratevector", 2},
-      {"demergemessages", 2},
-      {"intlistequal", 2},
-      {"addfloatstructs", 2},
-      {"normalizestruct", 1},
-      {"dampstruct", 3},
-      {"residualstruct", 2},
-      {"dividestruct", 2},
-      {"convolvestruct", 2},
-      {"cpu-static", 1},
-      {"is-moving", 1},
-      {"is-static", 1},
-      {"partition_vertical", 4},
-      {"partition_horizontal", 4},
-      {"partition_grid", 4},
-      {"queue-size", 1},
-      {"facts-proved", 1},
-      {"facts-consumed", 1},
-      {"lcount", 2},
-      {"lexists", 2},
-      {"lexistss", 2},
-      {"queens_violation", 2},
-      {"minimax_score", 3},
-      {"minimax_points", 2},
-      {"array_init", 2},
-      {"array_get", 2},
-      {"array_set", 3},
-      {"array_add", 2},
-      {"array_from_list", 1},
-      {"array_size", 1},
-      {"minimax_score2", 3},
-      {"minimax_points2", 2},
-      {"fabs", 1},
-      {"set_size", 1},
-      {"set_exists", 2},
-      {"set_add", 2},
-      {"set_from_list", 1},
-      {"array_exists", 2},
-      {"ltake", 2},
-  };
+  static const std::vector<BuiltinFunction> table = [] {
+    std::vector<BuiltinFunction> t;
+    for (const meldvm::BuiltinInfo& b : meldvm::builtinTable()) t.push_back({b.name, b.arity, b.signature});
+    return t;
+  }();
   return table;
+}
+
+const BuiltinPredicate* findBuiltinPredicate(std::string_view name) {
+  for (const BuiltinPredicate& b : builtinPredicates())
+    if (b.name == name) return &b;
+  return nullptr;
+}
+
+const BuiltinFunction* findBuiltinFunction(std::string_view name) {
+  const meldvm::BuiltinInfo* b = meldvm::findBuiltin(name);
+  return b ? &builtinFunctions()[b->id] : nullptr;
 }
 
 }  // namespace meldc

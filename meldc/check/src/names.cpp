@@ -126,7 +126,7 @@ class Resolver {
     for (const BuiltinPredicate& b : builtinPredicates()) {
       PredInfo info;
       info.name = std::string(b.name);
-      info.arity = static_cast<size_t>(b.arity);
+      info.arity = static_cast<size_t>(b.arity());
       info.linear = b.kind == BuiltinPredKind::Linear;
       info.instruction = b.kind == BuiltinPredKind::Instruction;
       info.action = b.action;

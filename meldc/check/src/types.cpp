@@ -1,7 +1,6 @@
 #include "meldc/types.hpp"
 
 #include <cctype>
-#include <map>
 #include <string>
 #include <string_view>
 #include <unordered_map>
@@ -24,111 +23,6 @@ struct TypeNode {
   int parent = -1;
   std::vector<int> args;
 };
-
-// Signatures of §5.6 / §4.1.3 in a small notation: i f b s n t, T (the polymorphic element),
-// R (any struct), L/A/S + element (list/array/set); parameters separated by ',', '>' the result.
-const std::map<std::string_view, std::string_view>& builtinFunctionSignatures() {
-  static const std::map<std::string_view, std::string_view> table = {
-      {"sigmoid", "f>f"},
-      {"randint", "i>i"},
-      {"normalize", "Lf>Lf"},
-      {"damp", "Lf,Lf,f>Lf"},
-      {"divide", "Lf,Lf>Lf"},
-      {"convolve", "Lf,Lf>Lf"},
-      {"addfloatlists", "Lf,Lf>Lf"},
-      {"intlistdiff", "Li,Li>Li"},
-      {"lnth", "LT,i>T"},
-      {"concatenate", "s,s>s"},
-      {"str2float", "s>f"},
-      {"str2int", "s>i"},
-      {"lremove", "LT,T>LT"},
-      {"wastetime", "i>i"},
-      {"truncate", "f,i>f"},
-      {"float2int", "f>i"},
-      {"int2str", "i>s"},
-      {"float2str", "f>s"},
-      {"intlistsub", "Li,i,i>Li"},
-      {"str2intlist", "s>Li"},
-      {"filecountwords", "s,i>i"},
-      {"residual", "Lf,Lf>f"},
-      {"llength", "LT>i"},
-      {"lappend", "LT,LT>LT"},
-      {"priority", "n>f"},
-      {"lreverse", "LT>LT"},
-      {"llast", "LT>T"},
-      {"cpu-id", "n>t"},
-      {"node2int", "n>i"},
-      {"intpower", "i,i>i"},
-      {"lsort", "LT>LT"},
-      {"lremoveduplicates", "LT>LT"},
-      {"degeneratevector", "i,i>Li"},
-      {"demergemessages", "Li,Li>Li"},
-      {"intlistequal", "Li,Li>i"},
-      {"addfloatstructs", "R,R>R"},
-      {"normalizestruct", "R>R"},
-      {"dampstruct", "R,R,f>R"},
-      {"residualstruct", "R,R>f"},
-      {"dividestruct", "R,R>R"},
-      {"convolvestruct", "R,R>R"},
-      {"cpu-static", "n>i"},
-      {"is-moving", "n>b"},
-      {"is-static", "n>b"},
-      {"partition_vertical", "i,i,i,i>t"},
-      {"partition_horizontal", "i,i,i,i>t"},
-      {"partition_grid", "i,i,i,i>t"},
-      {"queue-size", "n>i"},
-      {"facts-proved", "n>i"},
-      {"facts-consumed", "n>i"},
-      {"lcount", "LT,T>i"},
-      {"lexists", "LT,T>b"},
-      {"lexistss", "LT,LT>b"},
-      {"queens_violation", "i,Li>b"},
-      {"minimax_score", "Li,i,i>i"},
-      {"minimax_points", "Li,i>i"},
-      {"array_init", "i,T>AT"},
-      {"array_get", "AT,i>T"},
-      {"array_set", "AT,i,T>AT"},
-      {"array_add", "AT,T>AT"},
-      {"array_from_list", "LT>AT"},
-      {"array_size", "AT>i"},
-      {"minimax_score2", "Ai,i,i>i"},
-      {"minimax_points2", "Ai,i>i"},
-      {"fabs", "f>f"},
-      {"set_size", "ST>i"},
-      {"set_exists", "ST,T>b"},
-      {"set_add", "ST,T>ST"},
-      {"set_from_list", "LT>ST"},
-      {"array_exists", "AT,T>b"},
-      {"ltake", "LT,i>LT"},
-  };
-  return table;
-}
-
-const std::map<std::string_view, std::string_view>& builtinPredicateSignatures() {
-  static const std::map<std::string_view, std::string_view> table = {
-      {"_init", "n"},
-      {"_init_thread", "t"},
-      {"setcolor", "n,i,i,i"},
-      {"setedgelabel", "n,n,s"},
-      {"write-string", "n,s"},
-      {"setcolor2", "n,i"},
-      {"stop-program", "n"},
-      {"set-priority", "n,f"},
-      {"add-priority", "n,f"},
-      {"remove-priority", "n"},
-      {"schedule-next", "n"},
-      {"set-default-priority", "n,f"},
-      {"set-static", "n"},
-      {"set-moving", "n"},
-      {"set-affinity", "n,n"},
-      {"set-cpu", "n,t"},
-      {"just-moved", "n"},
-      {"thread-list", "t,Lt"},
-      {"other-thread", "t,t,i"},
-      {"leader-thread", "t,t"},
-  };
-  return table;
-}
 
 struct Signature {
   std::vector<int> params;
@@ -312,7 +206,8 @@ class Checker {
         return make(K::Thread);
       case 'T':
         return elem;
-      case 'R':
+      case 'R':  // a struct of floats (builtins.def)
+      case 'Q':
         return make(K::AnyStruct);
       case 'L':
         return make(K::List, {parseSig(s, elem)});
@@ -351,9 +246,7 @@ class Checker {
       sig.result = fromDecl(it->second->result);
       return sig;
     }
-    if (auto it = builtinFunctionSignatures().find(p_.symbols.text(name));
-        it != builtinFunctionSignatures().end())
-      return signature(it->second);
+    if (const BuiltinFunction* b = findBuiltinFunction(p_.symbols.text(name))) return signature(b->signature);
     if (auto it = externs_.find(name); it != externs_.end()) {
       Signature sig;
       for (const FieldDecl& f : it->second->params) sig.params.push_back(fromDecl(f.type));
@@ -370,9 +263,8 @@ class Checker {
       for (const FieldDecl& f : it->second->fields) fields.push_back(fromDecl(f.type));
       return fields;
     }
-    if (auto it = builtinPredicateSignatures().find(p_.symbols.text(name));
-        it != builtinPredicateSignatures().end())
-      return signature(it->second).params;
+    if (const BuiltinPredicate* b = findBuiltinPredicate(p_.symbols.text(name)))
+      return signature(b->fields).params;
     return std::nullopt;
   }
 

@@ -12,8 +12,8 @@
 #include "meldc/includes.hpp"
 #include "meldc/lower.hpp"
 #include "meldc/options.hpp"
-#include "meldvm/block_runtime.hpp"
 #include "meldvm/bytecode.hpp"
+#include "meldvm/robot_program.hpp"
 
 #ifndef MELDC_VERSION
 #define MELDC_VERSION "unknown"

@@ -1,7 +1,7 @@
 #include "lower_expr.hpp"
 
 #include "meldc/builtins.hpp"
-#include "meldvm/builtins.hpp"
+#include "meldvm/builtin_signatures.hpp"
 
 namespace meldc {
 

@@ -4,7 +4,7 @@
 #include <cstdio>
 #include <ostream>
 
-#include "meldvm/builtins.hpp"
+#include "meldvm/builtin_signatures.hpp"
 #include "meldvm/bytecode.hpp"
 #include "meldvm/bytecode_internal.hpp"
 

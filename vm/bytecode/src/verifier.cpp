@@ -3,7 +3,7 @@
 // instructions expect, jump only to instruction boundaries of its own loop, and nest its loops.
 #include <optional>
 
-#include "meldvm/builtins.hpp"
+#include "meldvm/builtin_signatures.hpp"
 #include "meldvm/bytecode.hpp"
 #include "meldvm/bytecode_internal.hpp"
 

@@ -32,8 +32,6 @@ Interpreter::Interpreter(Machine& machine, const Program& program, Database& db,
   regChunks_.push_back(std::make_unique<Value[]>(kRegChunk));
   slotChunks_.push_back(std::make_unique<Slot[]>(kSlotChunk));
   args_.resize(64);
-  builtins_.assign(kBuiltinIdCount, nullptr);
-  for (const BuiltinInfo& b : builtinTable()) builtins_[b.id] = &b;
 }
 
 Interpreter::~Interpreter() = default;
@@ -485,9 +483,8 @@ Interpreter::Status Interpreter::exec(Frame& f, std::uint32_t pc) {
         break;
       }
       case Opcode::CALL: {
-        const BuiltinInfo* b = c[2] < builtins_.size() ? builtins_[c[2]] : nullptr;
-        if (!b) throw RuntimeError("built-in function " + std::to_string(c[2]) + " is not available");
-        setReg(f, c[1], b->fn(ctx_, gatherArgs(f, c + 5, c[4]), c[3]));
+        const BuiltinFn fn = builtinFunction(std::uint16_t(c[2]));  // the verifier checked the id
+        setReg(f, c[1], fn(ctx_, gatherArgs(f, c + 5, c[4]), c[3]));
         pc += 5 + c[4];
         break;
       }

@@ -115,9 +115,8 @@ class Interpreter {
   std::vector<std::uint8_t> axiomBoxed_;  // boxedOf an axiom block (not cached)
   const CodeBlock* lastBlock_ = nullptr;  // the processes of a program run the same few blocks
   const std::vector<std::uint8_t>* lastBoxed_ = nullptr;
-  std::vector<Value> args_;  // arguments gathered for DERIVE/SEND/CALL (grows, never shrinks)
-  std::vector<const BuiltinInfo*> builtins_;  // by id (nullptr: not implemented)
-  std::vector<FactRef> sorted_;               // ITER_SORTED candidates (a stack of runs)
+  std::vector<Value> args_;      // arguments gathered for DERIVE/SEND/CALL (grows, never shrinks)
+  std::vector<FactRef> sorted_;  // ITER_SORTED candidates (a stack of runs)
 };
 
 }  // namespace meldvm

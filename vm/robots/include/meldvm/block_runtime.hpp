@@ -17,10 +17,11 @@
 #include <string>
 #include <vector>
 
-#include "meldvm/fact_codec.hpp"
 #include "meldvm/derivation_log.hpp"
+#include "meldvm/fact_codec.hpp"
 #include "meldvm/machine.hpp"
 #include "meldvm/program.hpp"
+#include "meldvm/robot_program.hpp"
 #include "simcore/blockcode.h"
 
 namespace meldvm {
@@ -41,25 +42,6 @@ struct BlockRuntimeOptions {
   // their tables are allocated once at the right size; 0 = unknown.
   std::size_t neighborFacts = 0, vacantFacts = 0;
 };
-
-// A run-time error of the program on a block (a fact for a block that is not a neighbour, ...):
-// reported by the simulator as the run's error.
-class BlockProgramError : public std::runtime_error {
- public:
-  using std::runtime_error::runtime_error;
-};
-
-// The §7 predicates a program declares, resolved by name (kNoPred when it does not mention one).
-struct RobotPredicates {
-  PredId neighbor, vacant, neighborCount, tap, accel, shake, at;
-  PredId setcolor, setcolor2, moveto, terminate, writeString;
-};
-
-// The one check of a program meant for robots, made by `meldc --robots` and by the runtime alike:
-// the sensing/action predicates it declares have the shapes of §7 (the sensed events tap, accel
-// and shake may be linear, as in the reference, or persistent, as some VisibleSim programs declare
-// them), it has no thread predicates, and its nodes kept their source ids. Throws BlockProgramError.
-RobotPredicates checkRobotProgram(const Program& program);
 
 class BlockRuntime : private MachineHost {
  public:
