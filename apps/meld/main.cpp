@@ -8,11 +8,13 @@
 
 #include "meldc/compile.hpp"
 #include "meldc/diagnostics.hpp"
+#include "meldc/native.hpp"
 #include "meldc/source.hpp"
 #include "meldvm/arith.hpp"
 #include "meldvm/bytecode.hpp"
 #include "meldvm/derivation_log.hpp"
 #include "meldvm/machine.hpp"
+#include "meldvm/native_code.hpp"
 #include "meldvm/threaded_machine.hpp"
 #include "options.hpp"
 
@@ -216,6 +218,19 @@ int main(int argc, char** argv) {
   if (!program) return status;
 
   meldvm::MachineOptions mo;
+  std::unique_ptr<meldc::native::Jit> jit;  // the native code outlives the machines
+  std::unique_ptr<meldvm::NativeCode> native;
+  if (options->jit) {
+    try {
+      jit = meldc::native::Jit::compile(*program);
+    } catch (const meldc::native::NativeError& e) {
+      std::cerr << "meld: error: " << options->program << ": native code: " << e.what() << '\n';
+      return kExitRuntimeError;
+    }
+    native = std::make_unique<meldvm::NativeCode>(*program);
+    for (std::size_t k = 0; k < jit->entries().size(); ++k) native->set(k, jit->entries()[k]);
+    mo.native = native.get();
+  }
   mo.args = options->programArgs;
   mo.output = &std::cout;
   mo.seed = options->seed;

@@ -21,6 +21,9 @@ const char* usageText() {
          "                  write each thread's timeline as a Chrome trace-event file (open it\n"
          "                  in Perfetto or chrome://tracing): node runs, idle time, facts\n"
          "                  derived, queued nodes; runs the threaded VM, also with -j 1\n"
+         "  --jit           compile the program's rules, persistent rules and functions to\n"
+         "                  native code in memory (LLVM, O2) and run that: the same results as\n"
+         "                  the bytecode; the compile time counts in --stats' load time\n"
          "  --stats         print facts derived/consumed/sent, rules fired, facts tried (looked\n"
          "                  at by rules, matching or not), wall time, peak memory and the\n"
          "                  VM's memory by part on standard error; with -j, a table per\n"
@@ -64,6 +67,8 @@ std::optional<Options> parseOptions(const std::vector<std::string>& args, std::s
       o.dump = true;
     } else if (a == "--stats") {
       o.stats = true;
+    } else if (a == "--jit") {
+      o.jit = true;
     } else if (a == "--why") {
       auto v = value("a fact like 'reach(@3, 3)'");
       if (!v) return std::nullopt;

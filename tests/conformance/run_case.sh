@@ -8,6 +8,9 @@
 # standard output byte for byte with NAME.expected. Exit 0 on a match; otherwise a unified diff
 # (expected -> actual) is printed and the exit status is non-zero.
 #
+# MELD_FLAGS (environment) adds options to the meld command line: `--jit` runs the case as native
+# code, against the same golden.
+#
 # With VSIM_BINARY, the case runs on a simulated chip of THREADS cores instead (the multicore
 # target: `VSIM_BINARY --target multicore --cores THREADS --program NAME.meld --dump --quiet`).
 #
@@ -105,8 +108,9 @@ actual=$(mktemp "${TMPDIR:-/tmp}/meld-conf.$name.XXXXXX") || exit 2
 errors=$(mktemp "${TMPDIR:-/tmp}/meld-conf.$name.err.XXXXXX") || { rm -f "$actual"; exit 2; }
 trap 'rm -f "$actual" "$errors"' EXIT
 
-run=("$meld" "$name.meld" --dump "${jobs[@]}")
-mode="-j $threads"
+read -r -a flags <<< "${MELD_FLAGS:-}"
+run=("$meld" "$name.meld" --dump "${jobs[@]}" "${flags[@]}")
+mode="-j $threads ${MELD_FLAGS:-}"
 if [ -n "$vsim" ]; then
   run=("$vsim" --target multicore --cores "$threads" --program "$name.meld" --dump --quiet)
   mode="a $threads-core chip"

@@ -132,4 +132,19 @@ case_profile() {
   has "$ERR" "--profile: cannot write"
 }
 
+case_jit() {
+  # Native code gives the bytecode's dump, its run-time errors unwind through it with the same
+  # message and exit status, and --help says so.
+  run 0 "$WORK/reach.meld" --dump
+  cp "$OUT" "$WORK/bytecode"
+  run 0 "$WORK/reach.meld" --dump --jit
+  cmp -s "$OUT" "$WORK/bytecode" || fail "--jit gave another dump"
+  has "$OUT" "!reach(2)"
+  printf 'type linear go(node, int).\ntype linear r(node, int).\ngo(@0, 0).\ngo(A, N) -o r(A, 10 / N).\n' >"$WORK/div.meld"
+  run 4 "$WORK/div.meld" --jit
+  has "$ERR" "integer division by zero"
+  run 0 --help
+  has "$OUT" "--jit"
+}
+
 "case_$CASE"

@@ -81,6 +81,13 @@ case_emit_asm() {
   has "$OUT" "rule 0"
   has "$OUT" "AXIOMS"
 }
+case_emit_llvm() {
+  run 0 --emit=llvm valid/gradient.meld
+  has "$OUT" "define noundef i32 @meld_block_0("
+  has "$OUT" "target triple"
+  run 0 --emit=llvm valid/gradient.meld -o "$WORK/g.ll"
+  has "$WORK/g.ll" "@meld_block_0("
+}
 case_emit_unsupported() {
   printf 'type edge(node, node).\ndata stanford-snap "g.txt".\n' >"$WORK/d.meld"
   run 1 "$WORK/d.meld"

@@ -30,6 +30,9 @@ BOOST_AUTO_TEST_CASE(default_is_bytecode) {
   auto n = parseOptions({"prog.meld", "--emit=nodes"}, error);
   BOOST_REQUIRE(n);
   BOOST_TEST((n->emit == EmitKind::Nodes));
+  auto l = parseOptions({"prog.meld", "--emit=llvm"}, error);
+  BOOST_REQUIRE(l);
+  BOOST_TEST((l->emit == EmitKind::Llvm));
 }
 
 BOOST_AUTO_TEST_CASE(usage_errors) {
@@ -37,7 +40,8 @@ BOOST_AUTO_TEST_CASE(usage_errors) {
   BOOST_TEST(!parseOptions({}, error));
   BOOST_TEST(error == "no input file");
   BOOST_TEST(!parseOptions({"a.meld", "b.meld"}, error));
-  BOOST_TEST(!parseOptions({"a.meld", "--emit=llvm"}, error));
+  BOOST_TEST(!parseOptions({"a.meld", "--emit=elf"}, error));
+  BOOST_TEST(error == "unknown --emit kind 'elf' (expected ast, nodes, bytecode, asm or llvm)");
   BOOST_TEST(!parseOptions({"a.meld", "-DX=1"}, error));
   BOOST_TEST(!parseOptions({"a.meld", "-Dx"}, error));
   BOOST_TEST(!parseOptions({"a.meld", "-o"}, error));

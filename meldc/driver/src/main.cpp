@@ -11,6 +11,7 @@
 #include "meldc/ground_facts.hpp"
 #include "meldc/includes.hpp"
 #include "meldc/lower.hpp"
+#include "meldc/native.hpp"
 #include "meldc/options.hpp"
 #include "meldvm/bytecode.hpp"
 #include "meldvm/robot_program.hpp"
@@ -102,6 +103,13 @@ int main(int argc, char** argv) {
     }
     if (options->emit == EmitKind::Asm) {
       meldvm::disassemble(*lowered, text);
+    } else if (options->emit == EmitKind::Llvm) {
+      try {
+        text << meldc::native::llvmText(*lowered);
+      } catch (const meldc::native::NativeError& e) {
+        std::cerr << "meldc: internal error: native code: " << e.what() << '\n';
+        return kExitInternal;
+      }
     } else {
       const std::vector<std::uint8_t> bytes = meldvm::writeBytecode(*lowered);
       const std::string path =

@@ -38,6 +38,8 @@ const char* usageText() {
          "                   ordered by internal id (renumbering of the language reference §6.1)\n"
          "  --emit=bytecode  write bytecode (default) to OUT, by default FILE with the extension .mbc\n"
          "  --emit=asm       print a disassembly of the bytecode\n"
+         "  --emit=llvm      print the native code of the rules, processes and functions as\n"
+         "                   optimised LLVM IR (what meld --jit runs)\n"
          "  -o OUT           write the --emit output to OUT instead of standard output (bytecode:\n"
          "                   instead of FILE.mbc); '-o -' is standard output, for bytecode too\n"
          "  -I DIR           search DIR for included files, after the including file's folder\n"
@@ -89,8 +91,10 @@ std::optional<Options> parseOptions(const std::vector<std::string>& args, std::s
         o.emit = EmitKind::Bytecode;
       else if (kind == "asm")
         o.emit = EmitKind::Asm;
+      else if (kind == "llvm")
+        o.emit = EmitKind::Llvm;
       else {
-        error = "unknown --emit kind '" + kind + "' (expected ast, nodes, bytecode or asm)";
+        error = "unknown --emit kind '" + kind + "' (expected ast, nodes, bytecode, asm or llvm)";
         return std::nullopt;
       }
     } else if (a == "-o") {

@@ -8,6 +8,7 @@
 #include "meldvm/derivation_log.hpp"
 #include "meldvm/dump.hpp"
 #include "meldvm/machine.hpp"
+#include "meldvm/native_code.hpp"
 #include "meldvm/value_ops.hpp"
 
 namespace meldvm {
@@ -27,8 +28,9 @@ double immDouble(const std::uint32_t* c) {
 }
 }  // namespace
 
-Interpreter::Interpreter(Machine& machine, const Program& program, Database& db, BuiltinContext& ctx)
-    : machine_(machine), program_(program), db_(db), heap_(db.heap()), ctx_(ctx) {
+Interpreter::Interpreter(Machine& machine, const Program& program, Database& db, BuiltinContext& ctx,
+                         const NativeCode* native)
+    : machine_(machine), program_(program), db_(db), heap_(db.heap()), ctx_(ctx), native_(native) {
   regChunks_.push_back(std::make_unique<Value[]>(kRegChunk));
   slotChunks_.push_back(std::make_unique<Slot[]>(kSlotChunk));
   args_.resize(64);
@@ -51,23 +53,25 @@ void Interpreter::blockFlags(const CodeBlock& b, std::vector<std::uint8_t>& v, b
     });
 }
 
-const std::vector<std::uint8_t>& Interpreter::boxedOf(const CodeBlock& b) {
-  if (&b == lastBlock_) return *lastBoxed_;
+const Interpreter::BlockInfo& Interpreter::infoOf(const CodeBlock& b) {
+  if (&b == lastBlock_) return *lastInfo_;
   const auto& axioms = program_.axiomBlocks;
   if (!axioms.empty() && &b >= axioms.data() && &b < axioms.data() + axioms.size()) {
-    // An axiom block runs once: no cache entry (a big program has millions of them). Axiom
-    // blocks are straight-line code (no loops) and never nest, so one scratch serves them all.
-    blockFlags(b, axiomBoxed_, false);
-    return axiomBoxed_;
+    // An axiom block runs once: no cache entry (a big program has millions of them), and no
+    // native code. Axiom blocks are straight-line code (no loops) and never nest, so one scratch
+    // serves them all.
+    blockFlags(b, axiomInfo_.boxed, false);
+    return axiomInfo_;
   }
-  auto it = boxed_.find(&b);
-  if (it == boxed_.end()) {
-    std::vector<std::uint8_t> v;
-    blockFlags(b, v, true);
-    it = boxed_.emplace(&b, std::move(v)).first;
+  auto it = blocks_.find(&b);
+  if (it == blocks_.end()) {
+    BlockInfo info;
+    blockFlags(b, info.boxed, true);
+    if (native_) info.native = native_->find(b);
+    it = blocks_.emplace(&b, std::move(info)).first;
   }
   lastBlock_ = &b;
-  lastBoxed_ = &it->second;
+  lastInfo_ = &it->second;
   return it->second;
 }
 
@@ -106,10 +110,11 @@ void Interpreter::leave(const Frame& f, const Alloc& a) {
 void Interpreter::run(const CodeBlock& block, NodeId host, bool negative, PredId triggerPred,
                       const Value* trigger) {
   const Alloc a = enter(block);
-  Frame f{&block, block.code.data(), a.regs, a.slots, boxedOf(block).data(), host, negative};
+  const BlockInfo& info = infoOf(block);
+  Frame f{&block, block.code.data(), a.regs, a.slots, info.boxed.data(), host, negative};
   if (trigger) f.slots[0] = Slot{triggerPred, host, kNoFact, 0, trigger};
   try {
-    exec(f, 0);
+    start(f, info.native);
   } catch (...) {
     leave(f, a);
     throw;
@@ -156,7 +161,8 @@ bool Interpreter::skipFact(const Frame& f, std::uint32_t slot, PredId p, FactRef
   return false;
 }
 
-bool Interpreter::loop(Frame& f, std::uint32_t pc) {
+template <class RunBody>
+bool Interpreter::loop(Frame& f, std::uint32_t pc, RunBody&& runBody) {
   const std::uint32_t* c = f.code + pc;
   const auto op = Opcode(c[0]);
   const PredId p = c[1];
@@ -191,7 +197,7 @@ bool Interpreter::loop(Frame& f, std::uint32_t pc) {
     ++tried;
     if (linear && skipFact(f, s, p, fact)) return true;
     slot.fact = fact;
-    if (exec(f, body) == Status::Fired) {
+    if (runBody(body) == Status::Fired) {
       fired = true;
       if (returnOnFire) return false;
     }
@@ -244,7 +250,7 @@ Interpreter::Status Interpreter::exec(Frame& f, std::uint32_t pc) {
       case Opcode::ITER:
       case Opcode::ITER_KEY:
       case Opcode::ITER_SORTED: {
-        lastFired = loop(f, pc);
+        lastFired = loop(f, pc, [&](std::uint32_t body) { return exec(f, body); });
         pc = Opcode(c[0]) == Opcode::ITER ? c[4] : Opcode(c[0]) == Opcode::ITER_KEY ? c[6] : c[5];
         if (machine_.stopRequested()) return Status::Return;
         break;
@@ -264,23 +270,9 @@ Interpreter::Status Interpreter::exec(Frame& f, std::uint32_t pc) {
         if (f.updated) return Status::Return;
         pc += 1;
         break;
-      case Opcode::LOAD: {
-        const Value v = slotArgs(f, c[1])[c[2]];
-        if (f.boxed[c[3]]) {
-          heap_.retain(f.block->registerTypes[c[3]], v);
-          setReg(f, c[3], v);
-        } else {
-          R[c[3]] = v;
-        }
-        pc += 4;
+      case Opcode::TEST:
+        pc = testField(f, c) ? pc + 5 : c[4];
         break;
-      }
-      case Opcode::TEST: {
-        const Slot& sl = f.slots[c[1]];
-        const TypeId t = program_.predicates[sl.pred].fields[c[2]];
-        pc = valuesEqualFast(program_.types, t, slotArgs(f, c[1])[c[2]], R[c[3]]) ? pc + 5 : c[4];
-        break;
-      }
       case Opcode::JF:
         pc = R[c[1]].asBool() ? pc + 3 : c[2];
         break;
@@ -296,291 +288,60 @@ Interpreter::Status Interpreter::exec(Frame& f, std::uint32_t pc) {
       case Opcode::JNOTNIL:
         pc = R[c[1]].isNil() ? pc + 3 : c[2];
         break;
-      case Opcode::MOV:
-        setReg(f, c[1], retained(f, c[2]));
-        pc += 3;
-        break;
-      case Opcode::MOVI:
-        R[c[1]] = Value::fromInt(std::int32_t(c[2]));
-        pc += 3;
-        break;
-      case Opcode::MOVF:
-        R[c[1]] = Value::fromFloat(immDouble(c + 2));
-        pc += 4;
-        break;
-      case Opcode::MOVB:
-        R[c[1]] = Value::fromBool(c[2] != 0);
-        pc += 3;
-        break;
-      case Opcode::MOVN:
-        R[c[1]] = Value::fromNode(c[2]);
-        pc += 3;
-        break;
-      case Opcode::MOVS: {
-        const Value v = machine_.strings_[c[2]];
-        heap_.retain(TypeTable::kString, v);
-        setReg(f, c[1], v);
-        pc += 3;
-        break;
-      }
-      case Opcode::NIL:
-        setReg(f, c[1], Value::nil());
-        pc += 2;
-        break;
-      case Opcode::GLOBAL: {
-        const Value v = machine_.globals_[c[2]];
-        heap_.retain(f.block->registerTypes[c[1]], v);
-        setReg(f, c[1], v);
-        pc += 3;
-        break;
-      }
-      case Opcode::SETGLOBAL: {
-        Value& g = machine_.globals_[c[1]];
-        const TypeId t = program_.globals[c[1]].type;
-        heap_.release(t, g);
-        g = retained(f, c[2]);
-        pc += 3;
-        break;
-      }
-      case Opcode::HOST:
-        R[c[1]] = Value::fromNode(f.host);
-        pc += 2;
-        break;
-      case Opcode::WORLD:
-        R[c[1]] = Value::fromInt(std::int32_t(db_.nodeCount()));
-        pc += 2;
-        break;
-      case Opcode::CPUS:
-        R[c[1]] = Value::fromInt(std::int32_t(machine_.placement_.threads));
-        pc += 2;
-        break;
-      case Opcode::THREAD:
-        R[c[1]] = Value::fromThread(machine_.placement_.self);
-        pc += 2;
-        break;
-      case Opcode::ARG:
-        setReg(f, c[1], machine_.programArg(c[2]));
-        pc += 3;
-        break;
-      case Opcode::ADDI:
-        R[c[1]] = Value::fromInt(intAdd(R[c[2]].asInt(), R[c[3]].asInt()));
-        pc += 4;
-        break;
-      case Opcode::SUBI:
-        R[c[1]] = Value::fromInt(intSub(R[c[2]].asInt(), R[c[3]].asInt()));
-        pc += 4;
-        break;
-      case Opcode::MULI:
-        R[c[1]] = Value::fromInt(intMul(R[c[2]].asInt(), R[c[3]].asInt()));
-        pc += 4;
-        break;
-      case Opcode::DIVI:
-        R[c[1]] = Value::fromInt(intDiv(R[c[2]].asInt(), R[c[3]].asInt()));
-        pc += 4;
-        break;
-      case Opcode::MODI:
-        R[c[1]] = Value::fromInt(intMod(R[c[2]].asInt(), R[c[3]].asInt()));
-        pc += 4;
-        break;
-      case Opcode::ADDF:
-        R[c[1]] = Value::fromFloat(R[c[2]].asFloat() + R[c[3]].asFloat());
-        pc += 4;
-        break;
-      case Opcode::SUBF:
-        R[c[1]] = Value::fromFloat(R[c[2]].asFloat() - R[c[3]].asFloat());
-        pc += 4;
-        break;
-      case Opcode::MULF:
-        R[c[1]] = Value::fromFloat(R[c[2]].asFloat() * R[c[3]].asFloat());
-        pc += 4;
-        break;
-      case Opcode::DIVF:
-        R[c[1]] = Value::fromFloat(R[c[2]].asFloat() / R[c[3]].asFloat());
-        pc += 4;
-        break;
-      case Opcode::MINI:
-        R[c[1]] = Value::fromInt(std::min(R[c[2]].asInt(), R[c[3]].asInt()));
-        pc += 4;
-        break;
-      case Opcode::I2F:
-        R[c[1]] = Value::fromFloat(intToFloat(R[c[2]].asInt()));
-        pc += 3;
-        break;
-      case Opcode::EQ:
-        R[c[1]] = Value::fromBool(valuesEqualFast(program_.types, c[4], R[c[2]], R[c[3]]));
-        pc += 5;
-        break;
-      case Opcode::NE:
-        R[c[1]] = Value::fromBool(!valuesEqualFast(program_.types, c[4], R[c[2]], R[c[3]]));
-        pc += 5;
-        break;
-      case Opcode::LTI:
-        R[c[1]] = Value::fromBool(R[c[2]].asInt() < R[c[3]].asInt());
-        pc += 4;
-        break;
-      case Opcode::LEI:
-        R[c[1]] = Value::fromBool(R[c[2]].asInt() <= R[c[3]].asInt());
-        pc += 4;
-        break;
-      case Opcode::GTI:
-        R[c[1]] = Value::fromBool(R[c[2]].asInt() > R[c[3]].asInt());
-        pc += 4;
-        break;
-      case Opcode::GEI:
-        R[c[1]] = Value::fromBool(R[c[2]].asInt() >= R[c[3]].asInt());
-        pc += 4;
-        break;
-      case Opcode::LTF:
-        R[c[1]] = Value::fromBool(R[c[2]].asFloat() < R[c[3]].asFloat());
-        pc += 4;
-        break;
-      case Opcode::LEF:
-        R[c[1]] = Value::fromBool(R[c[2]].asFloat() <= R[c[3]].asFloat());
-        pc += 4;
-        break;
-      case Opcode::GTF:
-        R[c[1]] = Value::fromBool(R[c[2]].asFloat() > R[c[3]].asFloat());
-        pc += 4;
-        break;
-      case Opcode::GEF:
-        R[c[1]] = Value::fromBool(R[c[2]].asFloat() >= R[c[3]].asFloat());
-        pc += 4;
-        break;
-      case Opcode::NOT:
-        R[c[1]] = Value::fromBool(!R[c[2]].asBool());
-        pc += 3;
-        break;
-      case Opcode::CONS:
-        setReg(f, c[1], heap_.cons(c[4], R[c[2]], R[c[3]]));
-        pc += 5;
-        break;
-      case Opcode::HEAD: {
-        if (R[c[2]].isNil()) throw RuntimeError("head of an empty list");
-        const Value v = listHead(R[c[2]]);
-        heap_.retain(f.block->registerTypes[c[1]], v);
-        setReg(f, c[1], v);
-        pc += 3;
-        break;
-      }
-      case Opcode::TAIL: {
-        if (R[c[2]].isNil()) throw RuntimeError("tail of an empty list");
-        const Value v = listTail(R[c[2]]);
-        heap_.retain(f.block->registerTypes[c[1]], v);
-        setReg(f, c[1], v);
-        pc += 3;
-        break;
-      }
-      case Opcode::STRUCT: {
-        setReg(f, c[1], heap_.makeTuple(c[2], gatherArgs(f, c + 4, c[3])));
-        pc += 4 + c[3];
-        break;
-      }
-      case Opcode::FIELD: {
-        const Value v = tupleItems(R[c[2]])[c[3]];
-        heap_.retain(f.block->registerTypes[c[1]], v);
-        setReg(f, c[1], v);
-        pc += 4;
-        break;
-      }
-      case Opcode::CALL: {
-        const BuiltinFn fn = builtinFunction(std::uint16_t(c[2]));  // the verifier checked the id
-        setReg(f, c[1], fn(ctx_, gatherArgs(f, c + 5, c[4]), c[3]));
-        pc += 5 + c[4];
-        break;
-      }
-      case Opcode::CALLF: {
-        gatherArgs(f, c + 4, c[3]);
-        setReg(f, c[1], callFunction(c[2], args_.data(), f.host));
-        pc += 4 + c[3];
-        break;
-      }
-      case Opcode::CALLX:
-        throw RuntimeError("extern function '" + program_.externs[c[2]].name +
-                           "' is not available: this VM links no external code");
-      case Opcode::DERIVE:
-        gatherArgs(f, c + 3, c[2]);
-        if (machine_.derivations_ && !f.negative) [[unlikely]]
-          noteDerivation(f, pc, f.host, c[1], args_.data());
-        machine_.derive(f.host, c[1], args_.data(), f.negative);
-        pc += 3 + c[2];
-        break;
-      case Opcode::SEND:
-        gatherArgs(f, c + 4, c[3]);
-        if (machine_.derivations_ && !f.negative) [[unlikely]]
-          noteDerivation(f, pc, R[c[2]].asNode(), c[1], args_.data());
-        machine_.send(f.host, R[c[2]].asNode(), c[1], args_.data(), f.negative);
-        pc += 4 + c[3];
-        break;
-      case Opcode::SEND_THREAD:
-        gatherArgs(f, c + 4, c[3]);
-        machine_.sendThread(f.host, R[c[2]].asThread(), c[1], args_.data(), f.negative);
-        pc += 4 + c[3];
-        break;
-      case Opcode::SEND_DELAY:
-        gatherArgs(f, c + 5, c[4]);
-        if (machine_.derivations_ && !f.negative) [[unlikely]]
-          noteDerivation(f, pc, R[c[2]].asNode(), c[1], args_.data());
-        machine_.send(f.host, R[c[2]].asNode(), c[1], args_.data(), f.negative, c[3]);
-        pc += 5 + c[4];
-        break;
-      case Opcode::UPDATE: {
-        gatherArgs(f, c + 4, c[3]);
-        const Slot& sl = f.slots[c[1]];
-        if (machine_.derivations_ && !f.negative) [[unlikely]]
-          noteDerivation(f, pc, sl.node, sl.pred, args_.data());
-        if (!f.negative) machine_.updated(sl.node, sl.pred, sl.fact, args_.data(), c[2] & kUpdateMoveToBack);
-        f.updated = true;
-        pc += 4 + c[3];
-        break;
-      }
-      case Opcode::ACTION:
-        gatherArgs(f, c + 4, c[3]);
-        if (!f.negative) machine_.action(f.host, R[c[2]].asNode(), c[1], args_.data());
-        pc += 4 + c[3];
-        break;
-      case Opcode::AXIOMS: {
-        const std::uint32_t idx =
-            f.host < program_.nodeAxioms.size() ? program_.nodeAxioms[f.host] : Program::kNoAxioms;
-        if (idx != Program::kNoAxioms) {
-          run(program_.axiomBlocks[idx], f.host);
-        }
-        pc += 1;
-        break;
-      }
-      case Opcode::NEWNODE:
-        R[c[1]] = Value::fromNode(machine_.newNode());
-        pc += 2;
-        break;
-      case Opcode::SET_PRIORITY:
-        if (!f.negative) machine_.priorityRequest(R[c[1]].asNode(), R[c[2]].asFloat());
-        pc += 3;
-        break;
-      case Opcode::ADD_PRIORITY:
-      case Opcode::SET_DEFAULT_PRIORITY:
-        if (!f.negative) machine_.coordination(Opcode(c[0]), R[c[1]].asNode(), R[c[2]]);
-        pc += 3;
-        break;
-      case Opcode::SET_CPU:
-      case Opcode::SET_AFFINITY:
-        if (!f.negative) machine_.coordination(Opcode(c[0]), R[c[1]].asNode(), R[c[2]]);
-        pc += 3;
-        break;
-      case Opcode::REMOVE_PRIORITY:
-      case Opcode::SCHEDULE_NEXT:
-      case Opcode::SET_STATIC:
-      case Opcode::SET_MOVING:
-        if (!f.negative) machine_.coordination(Opcode(c[0]), R[c[1]].asNode(), Value());
-        pc += 2;
-        break;
-      case Opcode::STOP_PROGRAM:
-        if (!f.negative) machine_.stopProgram();
-        pc += 2;
-        break;
+#include "straight_ops.inc"
       default:
         throw RuntimeError("bad opcode " + std::to_string(c[0]));
     }
   }
 }
+
+std::uint32_t Interpreter::step(Frame& f, std::uint32_t pc) {
+  const std::uint32_t* c = f.code + pc;
+  Value* R = f.regs;
+  switch (Opcode(c[0])) {
+#include "straight_ops.inc"
+    default:
+      throw RuntimeError("bad opcode " + std::to_string(c[0]) + " for a native step");
+  }
+  return pc;
+}
+
+// ---- the helpers of native code (native_abi.h): the interpreter's code for each instruction ----
+
+const meld_native_helpers Interpreter::kNativeHelpers = {
+    MELD_NATIVE_ABI_VERSION,  &Interpreter::nativeLoop, &Interpreter::nativeStep,
+    &Interpreter::nativeTest, &Interpreter::nativeFire, &Interpreter::nativeUpdated,
+};
+
+int32_t Interpreter::nativeLoop(const meld_native_helpers* h, meld_native_vm* vm, meld_native_frame* frame,
+                                std::uint32_t pc, meld_native_block body) {
+  Interpreter& in = *reinterpret_cast<Interpreter*>(vm);
+  Frame& f = *reinterpret_cast<Frame*>(frame);
+  const bool fired = in.loop(f, pc, [&](std::uint32_t) {
+    return Status(body(h, vm, frame, reinterpret_cast<std::uint64_t*>(f.regs)));
+  });
+  if (in.machine_.stopRequested()) return int32_t(Status::Return);
+  return int32_t(fired ? Status::Fired : Status::NotFired);
+}
+
+void Interpreter::nativeStep(meld_native_vm* vm, meld_native_frame* f, std::uint32_t pc) {
+  reinterpret_cast<Interpreter*>(vm)->step(*reinterpret_cast<Frame*>(f), pc);
+}
+
+int32_t Interpreter::nativeTest(meld_native_vm* vm, meld_native_frame* frame, std::uint32_t pc) {
+  const Frame& f = *reinterpret_cast<Frame*>(frame);
+  return reinterpret_cast<Interpreter*>(vm)->testField(f, f.code + pc);
+}
+
+void Interpreter::nativeFire(meld_native_vm* vm, meld_native_frame* frame, std::uint32_t pc,
+                             int32_t countRule) {
+  Interpreter& in = *reinterpret_cast<Interpreter*>(vm);
+  Frame& f = *reinterpret_cast<Frame*>(frame);
+  in.fire(f, f.code[pc + 1]);
+  if (countRule) in.machine_.stats_.rulesFired++;
+}
+
+int32_t Interpreter::nativeUpdated(meld_native_frame* f) { return reinterpret_cast<Frame*>(f)->updated; }
 
 Value Interpreter::callFunction(std::uint32_t fn, const Value* args, NodeId host) {
   const Function& func = program_.functions[fn];
@@ -593,14 +354,15 @@ Value Interpreter::callFunction(std::uint32_t fn, const Value* args, NodeId host
                        " calls deep: more stack than 6 MiB (runaway recursion?)");
   ++depth_;
   const Alloc a = enter(func.block);
-  Frame f{&func.block, func.block.code.data(), a.regs, a.slots, boxedOf(func.block).data(), host, false};
+  const BlockInfo& info = infoOf(func.block);
+  Frame f{&func.block, func.block.code.data(), a.regs, a.slots, info.boxed.data(), host, false};
   const std::size_t n = func.params.size();
   for (std::size_t i = 0; i < n; ++i) {
     heap_.retain(func.params[i], args[i]);
     f.regs[i] = args[i];
   }
   try {
-    exec(f, 0);
+    start(f, info.native);
   } catch (...) {
     leave(f, a);
     --depth_;

@@ -16,15 +16,20 @@
 
 #include "meldvm/builtins.hpp"
 #include "meldvm/database.hpp"
+#include "meldvm/native_abi.h"
 #include "meldvm/program.hpp"
+#include "meldvm/value_ops.hpp"
 
 namespace meldvm {
 
 class Machine;
+class NativeCode;
 
 class Interpreter {
  public:
-  Interpreter(Machine& machine, const Program& program, Database& db, BuiltinContext& ctx);
+  // native: entry points of native code for some blocks (they run natively), or nullptr.
+  Interpreter(Machine& machine, const Program& program, Database& db, BuiltinContext& ctx,
+              const NativeCode* native = nullptr);
   ~Interpreter();
 
   // Runs a block at node `host`. `trigger` (process blocks): the arguments slot 0 is bound to.
@@ -53,7 +58,24 @@ class Interpreter {
   enum class Status : std::uint8_t { NotFired, Fired, Return };
 
   Status exec(Frame& f, std::uint32_t pc);
-  bool loop(Frame& f, std::uint32_t pc);
+  // The loop instruction at pc; runBody(bodyPc) runs its body once the slot is bound.
+  template <class RunBody>
+  [[gnu::noinline]] bool loop(Frame& f, std::uint32_t pc, RunBody&& runBody);  // kept out of exec
+  std::uint32_t step(Frame& f, std::uint32_t pc);  // one straight-on instruction, for native code
+  // The block's entry: native code when there is, else the interpreter from pc 0.
+  Status start(Frame& f, meld_native_block native) {
+    return native ? Status(native(&kNativeHelpers, reinterpret_cast<meld_native_vm*>(this),
+                                  reinterpret_cast<meld_native_frame*>(&f),
+                                  reinterpret_cast<std::uint64_t*>(f.regs)))
+                  : exec(f, 0);
+  }
+  static const meld_native_helpers kNativeHelpers;  // native_abi.h, run with the code below
+  static int32_t nativeLoop(const meld_native_helpers* h, meld_native_vm* vm, meld_native_frame* f,
+                            std::uint32_t pc, meld_native_block body);
+  static void nativeStep(meld_native_vm* vm, meld_native_frame* f, std::uint32_t pc);
+  static int32_t nativeTest(meld_native_vm* vm, meld_native_frame* f, std::uint32_t pc);
+  static void nativeFire(meld_native_vm* vm, meld_native_frame* f, std::uint32_t pc, int32_t countRule);
+  static int32_t nativeUpdated(meld_native_frame* f);
   bool skipFact(const Frame& f, std::uint32_t slot, PredId p, FactRef fact) const;
   // The rule fired: consume the linear facts bound from firstSlot on (inline: a persistent rule's
   // firing consumes nothing and should cost next to nothing).
@@ -78,6 +100,11 @@ class Interpreter {
     f.regs[r] = v;
   }
   Value retained(const Frame& f, std::uint32_t r) const;
+  // TEST: whether field c[2] of the fact in slot c[1] equals register c[3].
+  [[gnu::always_inline]] bool testField(const Frame& f, const std::uint32_t* c) const {
+    const TypeId t = program_.predicates[f.slots[c[1]].pred].fields[c[2]];
+    return valuesEqualFast(program_.types, t, slotArgs(f, c[1])[c[2]], f.regs[c[3]]);
+  }
   Value callFunction(std::uint32_t fn, const Value* args, NodeId host);
   // The registers' values in args_ (no references taken); valid until the next gatherArgs.
   [[gnu::always_inline]] std::span<const Value> gatherArgs(const Frame& f, const std::uint32_t* regs,
@@ -97,7 +124,11 @@ class Interpreter {
   };
   Alloc enter(const CodeBlock& b);
   void leave(const Frame& f, const Alloc& a);
-  const std::vector<std::uint8_t>& boxedOf(const CodeBlock& b);
+  struct BlockInfo {
+    std::vector<std::uint8_t> boxed;  // blockFlags
+    meld_native_block native = nullptr;
+  };
+  const BlockInfo& infoOf(const CodeBlock& b);
   void blockFlags(const CodeBlock& b, std::vector<std::uint8_t>& v, bool scanLoops) const;
 
   Machine& machine_;
@@ -111,10 +142,11 @@ class Interpreter {
   std::vector<std::unique_ptr<Value[]>> regChunks_;
   std::vector<std::unique_ptr<Slot[]>> slotChunks_;
   std::size_t regChunk_ = 0, regUsed_ = 0, slotChunk_ = 0, slotUsed_ = 0;
-  std::unordered_map<const CodeBlock*, std::vector<std::uint8_t>> boxed_;
-  std::vector<std::uint8_t> axiomBoxed_;  // boxedOf an axiom block (not cached)
+  const NativeCode* native_;
+  std::unordered_map<const CodeBlock*, BlockInfo> blocks_;
+  BlockInfo axiomInfo_;                   // infoOf an axiom block (not cached)
   const CodeBlock* lastBlock_ = nullptr;  // the processes of a program run the same few blocks
-  const std::vector<std::uint8_t>* lastBoxed_ = nullptr;
+  const BlockInfo* lastInfo_ = nullptr;
   std::vector<Value> args_;      // arguments gathered for DERIVE/SEND/CALL (grows, never shrinks)
   std::vector<FactRef> sorted_;  // ITER_SORTED candidates (a stack of runs)
 };

@@ -42,7 +42,7 @@ Machine::Machine(const Program& program, MachineOptions options)
   for (const std::string& s : program.strings) strings_.push_back(heap_.makeString(s));
   for (const std::string& a : options_.args) args_.push_back(heap_.makeString(a));
   globals_.assign(program.globals.size(), Value());
-  interp_ = std::make_unique<Interpreter>(*this, program_, *db_, builtinCtx_);
+  interp_ = std::make_unique<Interpreter>(*this, program_, *db_, builtinCtx_, options.native);
   std::vector<std::vector<ArgWidth>> shapes(preds);
   for (PredId p = 0; p < preds; ++p)
     for (TypeId t : program.predicates[p].fields) shapes[p].push_back(argWidth(program.types.kind(t)));

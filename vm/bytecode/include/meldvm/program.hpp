@@ -160,4 +160,9 @@ struct Program {
   std::uint32_t highestArg = 0;  // largest K of @argK used
 };
 
+// The code blocks that native code covers, in the order that numbers them (native block k is the
+// k-th): the rules, the persistent processes, the functions, then the globals initialiser. Axiom
+// blocks are not among them: each runs once, in the interpreter.
+std::vector<const CodeBlock*> nativeCodeBlocks(const Program& program);
+
 }  // namespace meldvm

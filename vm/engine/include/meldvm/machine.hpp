@@ -45,6 +45,8 @@ class MachineHost {
   virtual bool reachable(NodeId from, NodeId to) = 0;
 };
 
+class NativeCode;
+
 struct MachineOptions {
   std::vector<std::string> args;   // @arg1.. (program arguments after `--`)
   std::ostream* output = nullptr;  // write-string output (nullptr: discarded)
@@ -63,6 +65,9 @@ struct MachineOptions {
   // Set by another thread to end the run (stop-program elsewhere, an error): read between rule
   // runs, so that a node run that would never end on its own still stops.
   const std::atomic<bool>* stopFlag = nullptr;
+  // Native entry points of the program's blocks (meld --jit, a native .so); they must outlive the
+  // machine. nullptr: everything runs in the interpreter.
+  const NativeCode* native = nullptr;
 };
 
 // Memory a machine holds for its nodes, by part (capacities, not what is in use).

@@ -1,0 +1,40 @@
+// Native code for Meld programs (the LLVM backend). The verified bytecode of every native block
+// (meldvm::nativeCodeBlocks) is lowered to LLVM IR that calls the VM's helpers (native_abi.h) for
+// everything but register arithmetic and jumps, optimised at O2, then either printed
+// (`meldc --emit=llvm`) or compiled in-process (`meld --jit`).
+#pragma once
+
+#include <memory>
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+#include "meldvm/native_abi.h"
+#include "meldvm/program.hpp"
+
+namespace meldc::native {
+
+class NativeError : public std::runtime_error {
+ public:
+  using std::runtime_error::runtime_error;
+};
+
+// The program's native blocks as optimised LLVM IR text.
+std::string llvmText(const meldvm::Program& program);
+
+// The program compiled in this process. The entry of native block k is entries()[k]; the code lives
+// as long as the Jit.
+class Jit {
+ public:
+  static std::unique_ptr<Jit> compile(const meldvm::Program& program);  // throws NativeError
+  ~Jit();
+  const std::vector<meld_native_block>& entries() const { return entries_; }
+
+ private:
+  struct Engine;
+  Jit();
+  std::unique_ptr<Engine> engine_;
+  std::vector<meld_native_block> entries_;
+};
+
+}  // namespace meldc::native

@@ -1,0 +1,331 @@
+// Bytecode to LLVM IR, one lowering per opcode (the switch in lowerInstruction lists every opcode of
+// opcodes.def: -Wswitch says when one is missing).
+//
+// A code block becomes one function per place the interpreter's exec() is entered: the block's
+// start, and the body of each of its loops (the loop helper calls it once per fact it binds). Each
+// function returns what exec() returns there (native_abi.h). Inside a function every instruction
+// is a basic block; jumps are branches, arithmetic on unboxed registers is inlined, and the other
+// instructions call the VM's helper that runs the interpreter's own code for them.
+#include "lower_block.hpp"
+
+#include <llvm/IR/IRBuilder.h>
+#include <llvm/IR/Module.h>
+
+#include <map>
+#include <string>
+
+#include "meldvm/bytecode_internal.hpp"
+
+namespace meldc::native {
+
+using meldvm::Opcode;
+
+namespace {
+
+// Fields of meld_native_helpers (native_abi.h), in order.
+enum Helper : unsigned { kAbiVersion, kLoop, kStep, kTest, kFire, kUpdated };
+enum Status : std::int32_t { kNotFired = 0, kFired = 1, kReturn = 2 };
+
+class RegionLowering {
+ public:
+  RegionLowering(NativeTypes& t, const meldvm::CodeBlock& block, std::string prefix,
+                 std::map<std::uint32_t, llvm::Function*>& regions)
+      : t_(t), block_(block), code_(block.code), prefix_(std::move(prefix)), regions_(regions) {}
+
+  // The function for the code entered at `start` (created on first request, lowered at once).
+  llvm::Function* region(std::uint32_t start) {
+    if (auto it = regions_.find(start); it != regions_.end()) return it->second;
+    const bool entry = start == 0;
+    auto* fn = llvm::Function::Create(
+        t_.blockType, entry ? llvm::Function::ExternalLinkage : llvm::Function::InternalLinkage,
+        entry ? prefix_ : prefix_ + "_at" + std::to_string(start), t_.module);
+    fn->setUWTableKind(llvm::UWTableKind::Async);  // helpers throw RuntimeError through native frames
+    regions_[start] = fn;
+    Function f;
+    f.fn = fn;
+    lowerRegion(f, start);
+    return fn;
+  }
+
+ private:
+  struct Function {
+    llvm::Function* fn = nullptr;
+    llvm::Value* helpers = nullptr;
+    llvm::Value* vm = nullptr;
+    llvm::Value* frame = nullptr;
+    llvm::Value* regs = nullptr;
+    llvm::Value* lastFired = nullptr;  // exec()'s `lastFired`: did the latest loop fire
+    std::map<std::uint32_t, llvm::BasicBlock*> blocks;
+    std::vector<std::uint32_t> pending;
+  };
+
+  llvm::BasicBlock* at(Function& f, std::uint32_t pc) {
+    auto [it, fresh] = f.blocks.try_emplace(pc, nullptr);
+    if (fresh) {
+      it->second = llvm::BasicBlock::Create(t_.context, "pc" + std::to_string(pc), f.fn);
+      f.pending.push_back(pc);
+    }
+    return it->second;
+  }
+
+  void lowerRegion(Function& f, std::uint32_t start) {
+    llvm::IRBuilder<> b(llvm::BasicBlock::Create(t_.context, "entry", f.fn));
+    auto arg = f.fn->arg_begin();
+    f.helpers = &*arg++;
+    f.vm = &*arg++;
+    f.frame = &*arg++;
+    f.regs = &*arg;
+    f.lastFired = b.CreateAlloca(b.getInt1Ty(), nullptr, "lastFired");
+    b.CreateStore(b.getFalse(), f.lastFired);
+    b.CreateBr(at(f, start));
+    while (!f.pending.empty()) {
+      const std::uint32_t pc = f.pending.back();
+      f.pending.pop_back();
+      b.SetInsertPoint(f.blocks.at(pc));
+      lowerInstruction(f, b, pc);
+    }
+  }
+
+  std::uint32_t length(std::uint32_t pc) const {
+    std::string why;
+    const std::size_t len = meldvm::detail::instructionLength(code_, pc, why);
+    if (len == 0) throw NativeError("block '" + block_.label + "': " + why);  // verified: cannot happen
+    return std::uint32_t(len);
+  }
+
+  // ---- helpers and registers ----
+  llvm::Value* helper(Function& f, llvm::IRBuilder<>& b, Helper h) {
+    llvm::Value* slot = b.CreateStructGEP(t_.helpersType, f.helpers, h);
+    return b.CreateLoad(b.getPtrTy(), slot);
+  }
+  llvm::Value* reg(Function& f, llvm::IRBuilder<>& b, std::uint32_t r) {
+    return b.CreateConstInBoundsGEP1_64(b.getInt64Ty(), f.regs, r);
+  }
+  llvm::Value* loadReg(Function& f, llvm::IRBuilder<>& b, std::uint32_t r) {
+    return b.CreateLoad(b.getInt64Ty(), reg(f, b, r));
+  }
+  llvm::Value* loadInt(Function& f, llvm::IRBuilder<>& b, std::uint32_t r) {  // Value::asInt
+    return b.CreateTrunc(loadReg(f, b, r), b.getInt32Ty());
+  }
+  llvm::Value* loadFloat(Function& f, llvm::IRBuilder<>& b, std::uint32_t r) {  // Value::asFloat
+    return b.CreateBitCast(loadReg(f, b, r), b.getDoubleTy());
+  }
+  void storeInt(Function& f, llvm::IRBuilder<>& b, std::uint32_t r, llvm::Value* i32) {  // fromInt
+    b.CreateStore(b.CreateSExt(i32, b.getInt64Ty()), reg(f, b, r));
+  }
+  void storeFloat(Function& f, llvm::IRBuilder<>& b, std::uint32_t r, llvm::Value* d) {
+    b.CreateStore(b.CreateBitCast(d, b.getInt64Ty()), reg(f, b, r));
+  }
+  void storeBool(Function& f, llvm::IRBuilder<>& b, std::uint32_t r, llvm::Value* i1) {
+    b.CreateStore(b.CreateZExt(i1, b.getInt64Ty()), reg(f, b, r));
+  }
+  void step(Function& f, llvm::IRBuilder<>& b, std::uint32_t pc) {
+    b.CreateCall(t_.stepType, helper(f, b, kStep), {f.vm, f.frame, b.getInt32(pc)});
+    b.CreateBr(at(f, pc + length(pc)));
+  }
+  void branch(Function& f, llvm::IRBuilder<>& b, llvm::Value* cond, std::uint32_t yes, std::uint32_t no) {
+    b.CreateCondBr(cond, at(f, yes), at(f, no));
+  }
+  void ret(llvm::IRBuilder<>& b, Status s) { b.CreateRet(b.getInt32(s)); }
+
+  void lowerLoop(Function& f, llvm::IRBuilder<>& b, std::uint32_t pc) {
+    const std::uint32_t len = length(pc);
+    llvm::Function* body = region(pc + len);  // lowers the body (a separate function) first
+    llvm::Value* r =
+        b.CreateCall(t_.loopType, helper(f, b, kLoop), {f.helpers, f.vm, f.frame, b.getInt32(pc), body});
+    b.CreateStore(b.CreateICmpEQ(r, b.getInt32(kFired)), f.lastFired);
+    llvm::BasicBlock* stop = llvm::BasicBlock::Create(t_.context, "stop", f.fn);
+    b.CreateCondBr(b.CreateICmpEQ(r, b.getInt32(kReturn)), stop, at(f, code_[pc + len - 1]));
+    b.SetInsertPoint(stop);
+    ret(b, kReturn);
+  }
+
+  void lowerInstruction(Function& f, llvm::IRBuilder<>& b, std::uint32_t pc) {
+    const std::uint32_t* c = code_.data() + pc;
+    const std::uint32_t next = pc + length(pc);
+    auto intOp = [&](auto&& op) {
+      storeInt(f, b, c[1], op(loadInt(f, b, c[2]), loadInt(f, b, c[3])));
+      b.CreateBr(at(f, next));
+    };
+    auto floatOp = [&](auto&& op) {
+      storeFloat(f, b, c[1], op(loadFloat(f, b, c[2]), loadFloat(f, b, c[3])));
+      b.CreateBr(at(f, next));
+    };
+    auto intCompare = [&](llvm::CmpInst::Predicate p) {
+      storeBool(f, b, c[1], b.CreateICmp(p, loadInt(f, b, c[2]), loadInt(f, b, c[3])));
+      b.CreateBr(at(f, next));
+    };
+    auto floatCompare = [&](llvm::CmpInst::Predicate p) {
+      storeBool(f, b, c[1], b.CreateFCmp(p, loadFloat(f, b, c[2]), loadFloat(f, b, c[3])));
+      b.CreateBr(at(f, next));
+    };
+    auto isZero = [&](std::uint32_t r) { return b.CreateICmpEQ(loadReg(f, b, r), b.getInt64(0)); };
+    switch (Opcode(c[0])) {
+      // ---- control ----
+      case Opcode::ITER:
+      case Opcode::ITER_KEY:
+      case Opcode::ITER_SORTED:
+        return lowerLoop(f, b, pc);
+      case Opcode::NEXT:
+        return (void)b.CreateRet(b.CreateZExt(b.CreateLoad(b.getInt1Ty(), f.lastFired), b.getInt32Ty()));
+      case Opcode::FIRE:
+      case Opcode::CFIRE: {
+        const bool rule = Opcode(c[0]) == Opcode::FIRE;
+        b.CreateCall(t_.fireType, helper(f, b, kFire), {f.vm, f.frame, b.getInt32(pc), b.getInt32(rule)});
+        return ret(b, rule ? kFired : kNotFired);
+      }
+      case Opcode::RET:
+        return ret(b, kReturn);
+      case Opcode::RET_IF_UPDATED: {
+        llvm::Value* updated = b.CreateCall(t_.updatedType, helper(f, b, kUpdated), {f.frame});
+        llvm::BasicBlock* stop = llvm::BasicBlock::Create(t_.context, "updated", f.fn);
+        b.CreateCondBr(b.CreateICmpNE(updated, b.getInt32(0)), stop, at(f, next));
+        b.SetInsertPoint(stop);
+        return ret(b, kReturn);
+      }
+      case Opcode::TEST: {
+        llvm::Value* equal = b.CreateCall(t_.testType, helper(f, b, kTest), {f.vm, f.frame, b.getInt32(pc)});
+        return branch(f, b, b.CreateICmpNE(equal, b.getInt32(0)), next, c[4]);
+      }
+      case Opcode::JF:
+        return branch(f, b, isZero(c[1]), c[2], next);
+      case Opcode::JT:
+        return branch(f, b, isZero(c[1]), next, c[2]);
+      case Opcode::JMP:
+        return (void)b.CreateBr(at(f, c[1]));
+      case Opcode::JNIL:
+        return branch(f, b, isZero(c[1]), c[2], next);
+      case Opcode::JNOTNIL:
+        return branch(f, b, isZero(c[1]), next, c[2]);
+      // ---- unboxed registers, inline (the same results as the interpreter's cases) ----
+      case Opcode::MOVI:
+        storeInt(f, b, c[1], b.getInt32(c[2]));
+        return (void)b.CreateBr(at(f, next));
+      case Opcode::MOVF:
+        b.CreateStore(b.getInt64(std::uint64_t(c[2]) | (std::uint64_t(c[3]) << 32)), reg(f, b, c[1]));
+        return (void)b.CreateBr(at(f, next));
+      case Opcode::MOVB:
+        b.CreateStore(b.getInt64(c[2] != 0), reg(f, b, c[1]));
+        return (void)b.CreateBr(at(f, next));
+      case Opcode::MOVN:
+        b.CreateStore(b.getInt64(c[2]), reg(f, b, c[1]));
+        return (void)b.CreateBr(at(f, next));
+      case Opcode::ADDI:  // wrapping 32-bit arithmetic (arith.hpp)
+        return intOp([&](llvm::Value* x, llvm::Value* y) { return b.CreateAdd(x, y); });
+      case Opcode::SUBI:
+        return intOp([&](llvm::Value* x, llvm::Value* y) { return b.CreateSub(x, y); });
+      case Opcode::MULI:
+        return intOp([&](llvm::Value* x, llvm::Value* y) { return b.CreateMul(x, y); });
+      case Opcode::MINI:
+        return intOp([&](llvm::Value* x, llvm::Value* y) {
+          return b.CreateBinaryIntrinsic(llvm::Intrinsic::smin, x, y);
+        });
+      case Opcode::ADDF:
+        return floatOp([&](llvm::Value* x, llvm::Value* y) { return b.CreateFAdd(x, y); });
+      case Opcode::SUBF:
+        return floatOp([&](llvm::Value* x, llvm::Value* y) { return b.CreateFSub(x, y); });
+      case Opcode::MULF:
+        return floatOp([&](llvm::Value* x, llvm::Value* y) { return b.CreateFMul(x, y); });
+      case Opcode::DIVF:
+        return floatOp([&](llvm::Value* x, llvm::Value* y) { return b.CreateFDiv(x, y); });
+      case Opcode::I2F:
+        storeFloat(f, b, c[1], b.CreateSIToFP(loadInt(f, b, c[2]), b.getDoubleTy()));
+        return (void)b.CreateBr(at(f, next));
+      case Opcode::LTI:
+        return intCompare(llvm::CmpInst::ICMP_SLT);
+      case Opcode::LEI:
+        return intCompare(llvm::CmpInst::ICMP_SLE);
+      case Opcode::GTI:
+        return intCompare(llvm::CmpInst::ICMP_SGT);
+      case Opcode::GEI:
+        return intCompare(llvm::CmpInst::ICMP_SGE);
+      case Opcode::LTF:  // ordered: false with a NaN, as C++'s <
+        return floatCompare(llvm::CmpInst::FCMP_OLT);
+      case Opcode::LEF:
+        return floatCompare(llvm::CmpInst::FCMP_OLE);
+      case Opcode::GTF:
+        return floatCompare(llvm::CmpInst::FCMP_OGT);
+      case Opcode::GEF:
+        return floatCompare(llvm::CmpInst::FCMP_OGE);
+      case Opcode::NOT:
+        storeBool(f, b, c[1], isZero(c[2]));
+        return (void)b.CreateBr(at(f, next));
+      // ---- the interpreter's code, through the step helper: the fact store, the heap (boxed
+      // registers own references), messages, the scheduler, errors ----
+      case Opcode::LOAD:
+      case Opcode::MOV:
+      case Opcode::MOVS:
+      case Opcode::NIL:
+      case Opcode::GLOBAL:
+      case Opcode::SETGLOBAL:
+      case Opcode::HOST:
+      case Opcode::WORLD:
+      case Opcode::CPUS:
+      case Opcode::THREAD:
+      case Opcode::ARG:
+      case Opcode::DIVI:  // throws on a zero divisor
+      case Opcode::MODI:
+      case Opcode::EQ:  // equality by type (strings, lists, structs: by content)
+      case Opcode::NE:
+      case Opcode::CONS:
+      case Opcode::HEAD:
+      case Opcode::TAIL:
+      case Opcode::STRUCT:
+      case Opcode::FIELD:
+      case Opcode::CALL:
+      case Opcode::CALLF:
+      case Opcode::CALLX:
+      case Opcode::DERIVE:
+      case Opcode::SEND:
+      case Opcode::SEND_DELAY:
+      case Opcode::UPDATE:
+      case Opcode::ACTION:
+      case Opcode::AXIOMS:
+      case Opcode::NEWNODE:
+      case Opcode::SET_PRIORITY:
+      case Opcode::ADD_PRIORITY:
+      case Opcode::REMOVE_PRIORITY:
+      case Opcode::SET_DEFAULT_PRIORITY:
+      case Opcode::SCHEDULE_NEXT:
+      case Opcode::SET_STATIC:
+      case Opcode::SET_MOVING:
+      case Opcode::SET_AFFINITY:
+      case Opcode::SET_CPU:
+      case Opcode::STOP_PROGRAM:
+      case Opcode::SEND_THREAD:
+        return step(f, b, pc);
+      case Opcode::Count:
+        break;
+    }
+    throw NativeError("block '" + block_.label + "': no lowering for opcode " + std::to_string(c[0]));
+  }
+
+  NativeTypes& t_;
+  const meldvm::CodeBlock& block_;
+  std::span<const std::uint32_t> code_;
+  std::string prefix_;
+  std::map<std::uint32_t, llvm::Function*>& regions_;
+};
+
+}  // namespace
+
+NativeTypes::NativeTypes(llvm::Module& m) : module(m), context(m.getContext()) {
+  llvm::Type* ptr = llvm::PointerType::getUnqual(context);
+  llvm::Type* i32 = llvm::Type::getInt32Ty(context);
+  llvm::Type* voidTy = llvm::Type::getVoidTy(context);
+  helpersType = llvm::StructType::create(context, {i32, ptr, ptr, ptr, ptr, ptr}, "meld_native_helpers");
+  blockType = llvm::FunctionType::get(i32, {ptr, ptr, ptr, ptr}, false);
+  loopType = llvm::FunctionType::get(i32, {ptr, ptr, ptr, i32, ptr}, false);
+  stepType = llvm::FunctionType::get(voidTy, {ptr, ptr, i32}, false);
+  testType = llvm::FunctionType::get(i32, {ptr, ptr, i32}, false);
+  fireType = llvm::FunctionType::get(voidTy, {ptr, ptr, i32, i32}, false);
+  updatedType = llvm::FunctionType::get(i32, {ptr}, false);
+}
+
+llvm::Function* lowerBlock(NativeTypes& types, const meldvm::CodeBlock& block, const std::string& name) {
+  std::map<std::uint32_t, llvm::Function*> regions;
+  RegionLowering lowering(types, block, name, regions);
+  return lowering.region(0);
+}
+
+}  // namespace meldc::native

@@ -1,0 +1,32 @@
+// Lowering one code block to LLVM functions (lower_block.cpp); used by native_module.cpp.
+#pragma once
+
+#include <string>
+
+#include "meldc/native.hpp"
+
+namespace llvm {
+class Function;
+class FunctionType;
+class LLVMContext;
+class Module;
+class StructType;
+}  // namespace llvm
+
+namespace meldc::native {
+
+// The LLVM types of native_abi.h, made once per module.
+struct NativeTypes {
+  explicit NativeTypes(llvm::Module& m);
+  llvm::Module& module;
+  llvm::LLVMContext& context;
+  llvm::StructType* helpersType;  // meld_native_helpers
+  llvm::FunctionType* blockType;  // meld_native_block
+  llvm::FunctionType *loopType, *stepType, *testType, *fireType, *updatedType;
+};
+
+// Lowers the block's code; returns its entry function, external and named `name` (the loop bodies
+// are internal functions named after it).
+llvm::Function* lowerBlock(NativeTypes& types, const meldvm::CodeBlock& block, const std::string& name);
+
+}  // namespace meldc::native

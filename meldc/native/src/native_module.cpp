@@ -1,0 +1,87 @@
+#include "native_module.hpp"
+
+#include <llvm/Analysis/CGSCCPassManager.h>
+#include <llvm/Analysis/LoopAnalysisManager.h>
+#include <llvm/IR/LLVMContext.h>
+#include <llvm/IR/Module.h>
+#include <llvm/IR/PassManager.h>
+#include <llvm/IR/Verifier.h>
+#include <llvm/MC/TargetRegistry.h>
+#include <llvm/Passes/PassBuilder.h>
+#include <llvm/Support/TargetSelect.h>
+#include <llvm/Support/raw_ostream.h>
+#include <llvm/Target/TargetMachine.h>
+#include <llvm/TargetParser/Host.h>
+
+#include <mutex>
+
+#include "lower_block.hpp"
+
+namespace meldc::native {
+
+std::string blockSymbol(std::size_t k) { return "meld_block_" + std::to_string(k); }
+
+std::unique_ptr<llvm::TargetMachine> hostTargetMachine() {
+  static std::once_flag initialised;  // LLVM's target registry is process-wide
+  std::call_once(initialised, [] {
+    llvm::InitializeNativeTarget();
+    llvm::InitializeNativeTargetAsmPrinter();
+  });
+  const std::string triple = llvm::sys::getProcessTriple();
+  std::string error;
+  const llvm::Target* target = llvm::TargetRegistry::lookupTarget(triple, error);
+  if (!target) throw NativeError("no LLVM target for " + triple + ": " + error);
+  llvm::TargetOptions options;
+  std::unique_ptr<llvm::TargetMachine> machine(
+      target->createTargetMachine(triple, llvm::sys::getHostCPUName(), "", options, llvm::Reloc::PIC_,
+                                  std::nullopt, llvm::CodeGenOptLevel::Default));
+  if (!machine) throw NativeError("cannot create an LLVM target machine for " + triple);
+  return machine;
+}
+
+namespace {
+
+void optimise(llvm::Module& module, llvm::TargetMachine& target) {
+  llvm::LoopAnalysisManager loops;
+  llvm::FunctionAnalysisManager functions;
+  llvm::CGSCCAnalysisManager sccs;
+  llvm::ModuleAnalysisManager modules;
+  llvm::PassBuilder builder(&target);
+  builder.registerModuleAnalyses(modules);
+  builder.registerCGSCCAnalyses(sccs);
+  builder.registerFunctionAnalyses(functions);
+  builder.registerLoopAnalyses(loops);
+  builder.crossRegisterProxies(loops, functions, sccs, modules);
+  llvm::ModulePassManager passes = builder.buildPerModuleDefaultPipeline(llvm::OptimizationLevel::O2);
+  passes.run(module, modules);
+}
+
+}  // namespace
+
+std::unique_ptr<llvm::Module> buildModule(const meldvm::Program& program, llvm::LLVMContext& context,
+                                          llvm::TargetMachine& target) {
+  auto module = std::make_unique<llvm::Module>("meld", context);
+  module->setTargetTriple(target.getTargetTriple().str());
+  module->setDataLayout(target.createDataLayout());
+  NativeTypes types(*module);
+  const std::vector<const meldvm::CodeBlock*> blocks = meldvm::nativeCodeBlocks(program);
+  for (std::size_t k = 0; k < blocks.size(); ++k) lowerBlock(types, *blocks[k], blockSymbol(k));
+  std::string problems;
+  llvm::raw_string_ostream out(problems);
+  if (llvm::verifyModule(*module, &out))
+    throw NativeError("the lowered module is not valid LLVM IR: " + problems);
+  optimise(*module, target);
+  return module;
+}
+
+std::string llvmText(const meldvm::Program& program) {
+  llvm::LLVMContext context;
+  std::unique_ptr<llvm::TargetMachine> target = hostTargetMachine();
+  std::unique_ptr<llvm::Module> module = buildModule(program, context, *target);
+  std::string text;
+  llvm::raw_string_ostream out(text);
+  module->print(out, nullptr);
+  return text;
+}
+
+}  // namespace meldc::native

@@ -1,0 +1,52 @@
+/* The seam between natively compiled Meld code and the VM (plain C).
+ *
+ * The LLVM backend (meldc/native) lowers the verified bytecode of a code block to functions of type
+ * meld_native_block: one for the block's start and one for the body of each of its loops. Register
+ * arithmetic, moves of unboxed values and jumps become machine code; everything that touches the
+ * fact store, the heap, messages or the scheduler is a call to one of the helpers below, which run
+ * the interpreter's own code for that instruction (the PostgreSQL JIT pattern), so that bytecode
+ * and native code agree by construction.
+ *
+ * A block function returns what the interpreter's exec() returns for the same code: 0 the body did
+ * not fire, 1 it fired, 2 return (RET, or the run is stopping). `regs` are the frame's registers,
+ * 8 bytes each (meldvm::Value). */
+#ifndef MELDVM_NATIVE_ABI_H
+#define MELDVM_NATIVE_ABI_H
+
+#include <stdint.h>
+
+#ifdef __cplusplus
+extern "C" {
+#endif
+
+/* Bumped whenever a helper, its meaning or the block signature changes. */
+#define MELD_NATIVE_ABI_VERSION 1u
+
+typedef struct meld_native_vm meld_native_vm;       /* the interpreter running the block */
+typedef struct meld_native_frame meld_native_frame; /* its frame (registers, loop slots) */
+typedef struct meld_native_helpers meld_native_helpers;
+
+typedef int32_t (*meld_native_block)(const meld_native_helpers* h, meld_native_vm* vm, meld_native_frame* f,
+                                     uint64_t* regs);
+
+struct meld_native_helpers {
+  uint32_t abi_version;
+  /* Runs the loop instruction at pc (ITER, ITER_KEY or ITER_SORTED), calling `body` for each
+   * fact it binds; returns 1 if a body fired, 2 if the run is stopping, else 0. */
+  int32_t (*loop)(const meld_native_helpers* h, meld_native_vm* vm, meld_native_frame* f, uint32_t pc,
+                  meld_native_block body);
+  /* Runs the straight-on instruction at pc (every opcode that neither jumps nor ends a block). */
+  void (*step)(meld_native_vm* vm, meld_native_frame* f, uint32_t pc);
+  /* TEST at pc: 1 if the field equals the register. */
+  int32_t (*test)(meld_native_vm* vm, meld_native_frame* f, uint32_t pc);
+  /* FIRE (count_rule = 1) or CFIRE (0) at pc: consumes the linear facts of its slots. */
+  void (*fire)(meld_native_vm* vm, meld_native_frame* f, uint32_t pc, int32_t count_rule);
+  /* RET_IF_UPDATED: 1 if an UPDATE ran in this frame. */
+  int32_t (*updated)(meld_native_frame* f);
+};
+
+#ifdef __cplusplus
+}
+#endif
+
+#endif /* MELDVM_NATIVE_ABI_H */
