@@ -6,15 +6,11 @@
 #include <fstream>
 #include <iostream>
 
-#include "meldc/compile.hpp"
-#include "meldc/diagnostics.hpp"
-#include "meldc/native.hpp"
-#include "meldc/source.hpp"
+#include "loaded_program.hpp"
 #include "meldvm/arith.hpp"
 #include "meldvm/bytecode.hpp"
 #include "meldvm/derivation_log.hpp"
 #include "meldvm/machine.hpp"
-#include "meldvm/native_code.hpp"
 #include "meldvm/threaded_machine.hpp"
 #include "options.hpp"
 
@@ -27,11 +23,6 @@ namespace {
 using namespace meldapp;
 using Clock = std::chrono::steady_clock;
 
-bool endsWith(const std::string& s, const char* suffix) {
-  const std::string x(suffix);
-  return s.size() >= x.size() && s.compare(s.size() - x.size(), x.size(), x) == 0;
-}
-
 double peakRssMb() {
   rusage u{};
   getrusage(RUSAGE_SELF, &u);
@@ -39,31 +30,6 @@ double peakRssMb() {
 }
 
 double secondsSince(Clock::time_point t) { return std::chrono::duration<double>(Clock::now() - t).count(); }
-
-// Compiles or loads the program; on failure prints why and sets the exit status.
-std::unique_ptr<meldvm::Program> loadProgram(const Options& options, int& status) {
-  if (endsWith(options.program, ".mbc")) {
-    try {
-      return meldvm::readBytecodeFile(options.program);
-    } catch (const meldvm::BytecodeError& e) {
-      std::cerr << "meld: error: " << e.what() << "\n";  // the message names the file
-      status = kExitBadBytecode;
-      return nullptr;
-    }
-  }
-  meldc::SourceManager sources;
-  meldc::Diagnostics diag(sources, std::cerr);
-  try {
-    auto program =
-        meldc::compileProgram({options.program, options.includeDirs, options.defines}, sources, diag);
-    if (!program) status = kExitCompileErrors;
-    return program;
-  } catch (const meldc::InternalCompilerError& e) {
-    std::cerr << "meld: internal compiler error: " << e.what() << "\n";
-    status = 70;
-    return nullptr;
-  }
-}
 
 void printStats(const meldvm::MachineStats& s, double loadSeconds, double wall, const meldvm::MemoryUse& vm,
                 std::size_t nodes) {
@@ -214,28 +180,17 @@ int main(int argc, char** argv) {
 
   const Clock::time_point start = Clock::now();
   int status = kExitOk;
-  const std::unique_ptr<meldvm::Program> program = loadProgram(*options, status);
-  if (!program) return status;
+  const std::unique_ptr<LoadedProgram> loaded = loadProgram(*options, status);
+  if (!loaded) return status;
+  const meldvm::Program& program = *loaded->program;
 
   meldvm::MachineOptions mo;
-  std::unique_ptr<meldc::native::Jit> jit;  // the native code outlives the machines
-  std::unique_ptr<meldvm::NativeCode> native;
-  if (options->jit) {
-    try {
-      jit = meldc::native::Jit::compile(*program);
-    } catch (const meldc::native::NativeError& e) {
-      std::cerr << "meld: error: " << options->program << ": native code: " << e.what() << '\n';
-      return kExitRuntimeError;
-    }
-    native = std::make_unique<meldvm::NativeCode>(*program);
-    for (std::size_t k = 0; k < jit->entries().size(); ++k) native->set(k, jit->entries()[k]);
-    mo.native = native.get();
-  }
+  mo.native = loaded->native;
   mo.args = options->programArgs;
   mo.output = &std::cout;
   mo.seed = options->seed;
   mo.maxSteps = options->maxSteps;
   const double loadSeconds = secondsSince(start);
-  return options->threads > 1 || !options->profile.empty() ? runThreaded(*options, *program, mo, loadSeconds)
-                                                           : runSerial(*options, *program, mo, loadSeconds);
+  return options->threads > 1 || !options->profile.empty() ? runThreaded(*options, program, mo, loadSeconds)
+                                                           : runSerial(*options, program, mo, loadSeconds);
 }

@@ -6,9 +6,10 @@
 namespace meldapp {
 
 const char* usageText() {
-  return "usage: meld FILE.meld|FILE.mbc [options] [-- ARGS...]\n"
+  return "usage: meld FILE.meld|FILE.mbc|FILE.so [options] [-- ARGS...]\n"
          "Runs a Meld program on its own graph of nodes until quiescence (or stop-program).\n"
-         "A .meld file is compiled in memory first; a .mbc file is loaded and verified.\n"
+         "A .meld file is compiled in memory first; a .mbc file is loaded and verified; a .so\n"
+         "file (meldc --emit=native) runs its native code, its bytecode verified like a .mbc.\n"
          "\n"
          "options:\n"
          "  --dump          print every node's final facts (the format of the established VM's -d)\n"

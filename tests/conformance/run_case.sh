@@ -9,7 +9,8 @@
 # (expected -> actual) is printed and the exit status is non-zero.
 #
 # MELD_FLAGS (environment) adds options to the meld command line: `--jit` runs the case as native
-# code, against the same golden.
+# code, against the same golden. MELDC_NATIVE=MELDC_BINARY (environment) compiles the case with
+# `MELDC_BINARY --emit=native` first and runs the shared object instead of NAME.meld.
 #
 # With VSIM_BINARY, the case runs on a simulated chip of THREADS cores instead (the multicore
 # target: `VSIM_BINARY --target multicore --cores THREADS --program NAME.meld --dump --quiet`).
@@ -108,9 +109,20 @@ actual=$(mktemp "${TMPDIR:-/tmp}/meld-conf.$name.XXXXXX") || exit 2
 errors=$(mktemp "${TMPDIR:-/tmp}/meld-conf.$name.err.XXXXXX") || { rm -f "$actual"; exit 2; }
 trap 'rm -f "$actual" "$errors"' EXIT
 
+program=$name.meld
+if [ -n "${MELDC_NATIVE:-}" ]; then
+  so=$(mktemp "${TMPDIR:-/tmp}/meld-conf.$name.XXXXXX.so") || exit 2
+  trap 'rm -f "$actual" "$errors" "$so"' EXIT
+  if ! "$MELDC_NATIVE" --emit=native "$name.meld" -o "$so" 2> "$errors"; then
+    echo "run_case: $name: $MELDC_NATIVE --emit=native failed" >&2
+    sed 's/^/  stderr: /' "$errors" >&2
+    exit 1
+  fi
+  program=$so
+fi
 read -r -a flags <<< "${MELD_FLAGS:-}"
-run=("$meld" "$name.meld" --dump "${jobs[@]}" "${flags[@]}")
-mode="-j $threads ${MELD_FLAGS:-}"
+run=("$meld" "$program" --dump "${jobs[@]}" "${flags[@]}")
+mode="-j $threads ${MELD_FLAGS:-}${MELDC_NATIVE:+ (native .so)}"
 if [ -n "$vsim" ]; then
   run=("$vsim" --target multicore --cores "$threads" --program "$name.meld" --dump --quiet)
   mode="a $threads-core chip"

@@ -147,4 +147,29 @@ case_jit() {
   has "$OUT" "--jit"
 }
 
+case_native() {
+  # meldc --emit=native, then meld FILE.so: the bytecode's dump. Files that are not native Meld
+  # programs, or were built for another version, are refused with exit status 3.
+  run 0 "$WORK/reach.meld" --dump
+  cp "$OUT" "$WORK/bytecode"
+  "$MELDC" --emit=native "$WORK/reach.meld" || fail "meldc --emit=native failed"
+  [ -f "$WORK/reach.so" ] || fail "no reach.so next to reach.meld"
+  run 0 "$WORK/reach.so" --dump
+  cmp -s "$OUT" "$WORK/bytecode" || fail "reach.so gave another dump"
+  run 0 "$WORK/reach.so" --dump -j 2
+  run 2 "$WORK/reach.so" --jit
+  has "$ERR" "native code already"
+  run 3 "$FAKES/fake_abi.so"
+  has "$ERR" "built for native ABI version 99, this VM runs version 1"
+  run 3 "$FAKES/fake_bytecode.so"
+  has "$ERR" "its bytecode is bad"
+  run 3 "$FAKES/fake_magic.so"
+  has "$ERR" "not a native Meld program (bad description)"
+  run 3 "$BLOCKCODE"
+  has "$ERR" "not a native Meld program (no meld_native_program"
+  printf 'not an object' >"$WORK/text.so"
+  run 3 "$WORK/text.so"
+  has "$ERR" "cannot load the shared object"
+}
+
 "case_$CASE"

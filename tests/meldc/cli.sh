@@ -88,6 +88,18 @@ case_emit_llvm() {
   run 0 --emit=llvm valid/gradient.meld -o "$WORK/g.ll"
   has "$WORK/g.ll" "@meld_block_0("
 }
+case_emit_native() {
+  cp valid/gradient.meld "$WORK/g.meld"
+  run 0 --emit=native "$WORK/g.meld"
+  [ -f "$WORK/g.so" ] || fail "no g.so next to g.meld"
+  head -c 4 "$WORK/g.so" | grep -q "ELF" || fail "g.so is not an ELF object"
+  run 2 --emit=native "$WORK/g.meld" -o -
+  has "$ERR" "a shared object cannot go to standard output"
+  MELD_LD=/no/such/linker run 1 --emit=native "$WORK/g.meld" -o "$WORK/h.so"
+  has "$ERR" "cannot run the linker '/no/such/linker'"
+  [ -e "$WORK/h.so.o.tmp" ] && fail "the object file was left behind"
+  true
+}
 case_emit_unsupported() {
   printf 'type edge(node, node).\ndata stanford-snap "g.txt".\n' >"$WORK/d.meld"
   run 1 "$WORK/d.meld"

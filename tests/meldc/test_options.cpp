@@ -41,7 +41,7 @@ BOOST_AUTO_TEST_CASE(usage_errors) {
   BOOST_TEST(error == "no input file");
   BOOST_TEST(!parseOptions({"a.meld", "b.meld"}, error));
   BOOST_TEST(!parseOptions({"a.meld", "--emit=elf"}, error));
-  BOOST_TEST(error == "unknown --emit kind 'elf' (expected ast, nodes, bytecode, asm or llvm)");
+  BOOST_TEST(error == "unknown --emit kind 'elf' (expected ast, nodes, bytecode, native, asm or llvm)");
   BOOST_TEST(!parseOptions({"a.meld", "-DX=1"}, error));
   BOOST_TEST(!parseOptions({"a.meld", "-Dx"}, error));
   BOOST_TEST(!parseOptions({"a.meld", "-o"}, error));

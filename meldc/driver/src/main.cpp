@@ -35,12 +35,13 @@ bool writeFile(const std::string& path, const std::string& bytes) {
 }
 
 // FILE.meld -> FILE.mbc (FILE -> FILE.mbc when there is no extension).
-std::string defaultBytecodePath(const std::string& input) {
+// The input's path with another extension (".mbc", ".so").
+std::string defaultOutputPath(const std::string& input, const char* extension) {
   const size_t slash = input.find_last_of('/');
   const size_t dot = input.find_last_of('.');
   if (dot != std::string::npos && (slash == std::string::npos || dot > slash))
-    return input.substr(0, dot) + ".mbc";
-  return input + ".mbc";
+    return input.substr(0, dot) + extension;
+  return input + extension;
 }
 
 }  // namespace
@@ -103,6 +104,20 @@ int main(int argc, char** argv) {
     }
     if (options->emit == EmitKind::Asm) {
       meldvm::disassemble(*lowered, text);
+    } else if (options->emit == EmitKind::Native) {
+      const std::string path =
+          options->output.empty() ? defaultOutputPath(options->input, ".so") : options->output;
+      if (path == "-") {
+        std::cerr << "meldc: error: a shared object cannot go to standard output (-o -)\n";
+        return kExitUsage;
+      }
+      try {
+        meldc::native::writeSharedObject(*lowered, path);
+      } catch (const meldc::native::NativeError& e) {
+        std::cerr << "meldc: error: " << e.what() << '\n';
+        return kExitProgramErrors;
+      }
+      return kExitOk;
     } else if (options->emit == EmitKind::Llvm) {
       try {
         text << meldc::native::llvmText(*lowered);
@@ -113,7 +128,7 @@ int main(int argc, char** argv) {
     } else {
       const std::vector<std::uint8_t> bytes = meldvm::writeBytecode(*lowered);
       const std::string path =
-          options->output.empty() ? defaultBytecodePath(options->input) : options->output;
+          options->output.empty() ? defaultOutputPath(options->input, ".mbc") : options->output;
       if (!writeFile(path, std::string(bytes.begin(), bytes.end()))) {
         std::cerr << "meldc: error: cannot write '" << path << "'\n";
         return kExitProgramErrors;

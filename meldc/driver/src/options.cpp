@@ -38,10 +38,14 @@ const char* usageText() {
          "                   ordered by internal id (renumbering of the language reference §6.1)\n"
          "  --emit=bytecode  write bytecode (default) to OUT, by default FILE with the extension .mbc\n"
          "  --emit=asm       print a disassembly of the bytecode\n"
+         "  --emit=native    write a shared object (by default FILE.so) with the program's native\n"
+         "                   code and tables, for meld FILE.so and vsim --program FILE.so (needs\n"
+         "                   the system linker: ld, or $MELD_LD)\n"
          "  --emit=llvm      print the native code of the rules, processes and functions as\n"
          "                   optimised LLVM IR (what meld --jit runs)\n"
          "  -o OUT           write the --emit output to OUT instead of standard output (bytecode:\n"
-         "                   instead of FILE.mbc); '-o -' is standard output, for bytecode too\n"
+         "                   instead of FILE.mbc, native: of FILE.so); '-o -' is standard output,\n"
+         "                   for bytecode too\n"
          "  -I DIR           search DIR for included files, after the including file's folder\n"
          "  --robots         node ids are block ids (for vsim --program): node literals keep their\n"
          "                   numbers and every id up to the largest exists (no renumbering, §6.1)\n"
@@ -91,10 +95,12 @@ std::optional<Options> parseOptions(const std::vector<std::string>& args, std::s
         o.emit = EmitKind::Bytecode;
       else if (kind == "asm")
         o.emit = EmitKind::Asm;
+      else if (kind == "native")
+        o.emit = EmitKind::Native;
       else if (kind == "llvm")
         o.emit = EmitKind::Llvm;
       else {
-        error = "unknown --emit kind '" + kind + "' (expected ast, nodes, bytecode, asm or llvm)";
+        error = "unknown --emit kind '" + kind + "' (expected ast, nodes, bytecode, native, asm or llvm)";
         return std::nullopt;
       }
     } else if (a == "-o") {

@@ -8,7 +8,7 @@
 
 namespace meldc {
 
-enum class EmitKind { Bytecode, Asm, Llvm, Ast, Nodes, Check };
+enum class EmitKind { Bytecode, Native, Asm, Llvm, Ast, Nodes, Check };
 
 // Exit codes of meldc.
 inline constexpr int kExitOk = 0;

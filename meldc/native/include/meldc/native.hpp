@@ -1,7 +1,8 @@
 // Native code for Meld programs (the LLVM backend). The verified bytecode of every native block
 // (meldvm::nativeCodeBlocks) is lowered to LLVM IR that calls the VM's helpers (native_abi.h) for
 // everything but register arithmetic and jumps, optimised at O2, then either printed
-// (`meldc --emit=llvm`) or compiled in-process (`meld --jit`).
+// (`meldc --emit=llvm`), written as a shared object (`meldc --emit=native`) or compiled in-process
+// (`meld --jit`).
 #pragma once
 
 #include <memory>
@@ -21,6 +22,10 @@ class NativeError : public std::runtime_error {
 
 // The program's native blocks as optimised LLVM IR text.
 std::string llvmText(const meldvm::Program& program);
+
+// The program as a shared object (`meldc --emit=native`): its native code, and its bytecode for
+// the tables (native_abi.h). Needs the system linker (`ld`, or $MELD_LD); throws NativeError.
+void writeSharedObject(const meldvm::Program& program, const std::string& path);
 
 // The program compiled in this process. The entry of native block k is entries()[k]; the code lives
 // as long as the Jit.

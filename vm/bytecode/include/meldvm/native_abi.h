@@ -45,6 +45,23 @@ struct meld_native_helpers {
   int32_t (*updated)(meld_native_frame* f);
 };
 
+/* What a native shared object (`meldc --emit=native`) exports: meld_native_program() returns its
+ * description. The program's tables travel as its bytecode (verified again when loaded); block k
+ * of meldvm::nativeCodeBlocks runs blocks[k]. */
+#define MELD_NATIVE_MAGIC 0x4e444c4du /* "MLDN" */
+typedef struct meld_native_program_desc {
+  uint32_t magic;
+  uint32_t abi_version;      /* MELD_NATIVE_ABI_VERSION it was built for */
+  uint32_t bytecode_version; /* meldvm::kBytecodeVersion of the bytecode below */
+  uint32_t block_count;
+  const uint8_t* bytecode;
+  uint64_t bytecode_size;
+  const meld_native_block* blocks;
+} meld_native_program_desc;
+
+#define MELD_NATIVE_ENTRY "meld_native_program"
+typedef const meld_native_program_desc* (*meld_native_entry)(void);
+
 #ifdef __cplusplus
 }
 #endif

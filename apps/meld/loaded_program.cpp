@@ -1,0 +1,76 @@
+#include "loaded_program.hpp"
+
+#include <iostream>
+
+#include "meldc/compile.hpp"
+#include "meldc/diagnostics.hpp"
+#include "meldc/source.hpp"
+#include "meldvm/bytecode.hpp"
+
+namespace meldapp {
+
+namespace {
+
+bool endsWith(const std::string& s, const char* suffix) {
+  const std::string x(suffix);
+  return s.size() >= x.size() && s.compare(s.size() - x.size(), x.size(), x) == 0;
+}
+
+std::unique_ptr<meldvm::Program> compileSource(const Options& options, int& status) {
+  meldc::SourceManager sources;
+  meldc::Diagnostics diag(sources, std::cerr);
+  try {
+    auto program =
+        meldc::compileProgram({options.program, options.includeDirs, options.defines}, sources, diag);
+    if (!program) status = kExitCompileErrors;
+    return program;
+  } catch (const meldc::InternalCompilerError& e) {
+    std::cerr << "meld: internal compiler error: " << e.what() << "\n";
+    status = 70;
+    return nullptr;
+  }
+}
+
+}  // namespace
+
+std::unique_ptr<LoadedProgram> loadProgram(const Options& options, int& status) {
+  auto loaded = std::make_unique<LoadedProgram>();
+  try {
+    if (endsWith(options.program, ".so") || meldvm::looksLikeSharedObject(options.program)) {
+      if (options.jit) {
+        std::cerr << "meld: error: " << options.program
+                  << " is native code already: --jit is for .meld and .mbc\n";
+        status = kExitUsage;
+        return nullptr;
+      }
+      loaded->library = meldvm::NativeLibrary::open(options.program);
+      loaded->program = &loaded->library->program();
+      loaded->native = &loaded->library->code();
+      return loaded;
+    }
+    if (endsWith(options.program, ".mbc"))
+      loaded->source = meldvm::readBytecodeFile(options.program);
+    else if (!(loaded->source = compileSource(options, status)))
+      return nullptr;
+  } catch (const meldvm::BytecodeError& e) {
+    std::cerr << "meld: error: " << e.what() << "\n";  // the message names the file
+    status = kExitBadBytecode;
+    return nullptr;
+  }
+  loaded->program = loaded->source.get();
+  if (!options.jit) return loaded;
+  try {
+    loaded->jit = meldc::native::Jit::compile(*loaded->program);
+  } catch (const meldc::native::NativeError& e) {
+    std::cerr << "meld: error: " << options.program << ": native code: " << e.what() << '\n';
+    status = kExitRuntimeError;
+    return nullptr;
+  }
+  loaded->jitCode = std::make_unique<meldvm::NativeCode>(*loaded->program);
+  for (std::size_t k = 0; k < loaded->jit->entries().size(); ++k)
+    loaded->jitCode->set(k, loaded->jit->entries()[k]);
+  loaded->native = loaded->jitCode.get();
+  return loaded;
+}
+
+}  // namespace meldapp
