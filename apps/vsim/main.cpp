@@ -8,6 +8,7 @@
 #include <memory>
 #include <optional>
 
+#include "jit_compiler.hpp"
 #include "meldvm/derivation_log.hpp"
 #include "multicore_run.hpp"
 #include "options.hpp"
@@ -86,7 +87,7 @@ RunEnd runSimulation(simcore::Simulation& sim, const Options& o, ProgressLine& p
   return end;
 }
 
-int runVsim(const Options& o) {
+int runVsim(const Options& o, const NativeCompiler& jit) {
   // Outputs first (fail fast), then inputs, then the run.
   Output json(o.jsonFile), exported(o.exportFile);
   std::unique_ptr<std::ofstream> traceFile;
@@ -103,7 +104,7 @@ int runVsim(const Options& o) {
   streams.programOutput = &std::cout;
   streams.diagnostics = &std::cerr;
   streams.warnings = !o.quiet;
-  Session session(o, streams);
+  Session session(o, streams, &jit);
   simcore::Simulation& sim = session.simulation();
   // --why: the facts are checked before the run (a typo fails at once), derivations recorded.
   std::vector<meldvm::FactAt> why;
@@ -208,8 +209,9 @@ int main(int argc, char** argv) {
     return kExitOk;
   }
   try {
-    if (options.isMulticore()) return runMulticore(options);
-    return runVsim(options);
+    const JitCompiler jit;
+    if (options.isMulticore()) return runMulticore(options, &jit);
+    return runVsim(options, jit);
   } catch (const SessionError& e) {
     return reportFailure(Failure{e.code, e.message});
   } catch (const Failure& f) {

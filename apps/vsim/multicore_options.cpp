@@ -82,7 +82,7 @@ void checkMulticoreOptions(Options& o, bool multicoreOptionGiven) {
   if (!o.world.empty())
     throw UsageError("--target multicore runs a Meld program on its own graph: no world file (got '" +
                      o.world + "')");
-  if (o.program.empty()) throw UsageError("--target multicore needs --program PROG.meld|PROG.mbc");
+  if (o.program.empty()) throw UsageError("--target multicore needs --program PROG.meld|PROG.mbc|PROG.so");
   auto refuse = [](bool given, const char* option) {
     if (given) throw UsageError(std::string(option) + " is for worlds, not for --target multicore");
   };

@@ -31,9 +31,10 @@ class RunFailure : public std::runtime_error {
 
 // One simulated run. The last run of a command is the one the user sees: its write-string
 // output, its dump, its profile; the others (the one-core baseline, the other counts) are silent.
-ChipRun simulate(const meldvm::Program& program, const Options& o, unsigned cores, bool shown,
-                 std::ostream* profile) {
+ChipRun simulate(const MeldCode& code, const Options& o, unsigned cores, bool shown, std::ostream* profile) {
+  const meldvm::Program& program = code.program();
   meldvm::MachineOptions mo;
+  mo.native = code.native();
   mo.args = o.programArgs;
   mo.output = shown ? &std::cout : nullptr;
   mo.seed = o.seed.value_or(0);
@@ -112,7 +113,7 @@ void printHeader(std::ostream& out, const Options& o, const meldvm::Program& pro
 
 }  // namespace
 
-int runMulticore(const Options& o) {
+int runMulticore(const Options& o, const NativeCompiler* jit) {
   std::ofstream profile;
   if (!o.multicore.profile.empty()) {
     profile.open(o.multicore.profile, std::ios::binary);
@@ -121,9 +122,13 @@ int runMulticore(const Options& o) {
       return kExitRuntime;
     }
   }
-  std::unique_ptr<meldvm::Program> program;
+  if (o.jit && !jit) {
+    std::cerr << "vsim: error: --jit: native code cannot be compiled here\n";
+    return kExitUsage;
+  }
+  std::unique_ptr<MeldCode> code;
   try {
-    program = loadMeldProgram(o.program, o.includeDirs, &std::cerr, /*robots=*/false);
+    code = loadMeldCode(o.program, o.includeDirs, &std::cerr, /*robots=*/false, o.jit ? jit : nullptr);
   } catch (const ProgramLoadError& e) {
     std::cerr << "vsim: error: " << e.what() << '\n';
     return kExitInput;
@@ -134,13 +139,13 @@ int runMulticore(const Options& o) {
     std::optional<ChipRun> base;
     for (std::size_t i = 0; i < counts.size(); ++i) {
       const bool last = i + 1 == counts.size();
-      runs.push_back(simulate(*program, o, counts[i], last, last && profile.is_open() ? &profile : nullptr));
+      runs.push_back(simulate(*code, o, counts[i], last, last && profile.is_open() ? &profile : nullptr));
       if (counts[i] == 1 && !base) base = runs.back();
     }
-    if (!base) base = simulate(*program, o, 1, false, nullptr);  // the speedups' reference
+    if (!base) base = simulate(*code, o, 1, false, nullptr);  // the speedups' reference
     std::cout.flush();
     if (!o.quiet) {
-      printHeader(std::cout, o, *program);
+      printHeader(std::cout, o, code->program());
       printSweep(std::cout, runs, *base);
       printCores(std::cout, runs.back());
       const meldvm::MachineStats& t = runs.back().totals;

@@ -4,10 +4,12 @@
 // several core counts (--cores 1,2,4,...), one line per count. Returns vsim's exit code.
 #pragma once
 
+#include "meld_program.hpp"
 #include "options.hpp"
 
 namespace vsim {
 
-int runMulticore(const Options& options);
+// `jit`: compiles the program to native code for --jit (nullptr: --jit is refused).
+int runMulticore(const Options& options, const NativeCompiler* jit = nullptr);
 
 }  // namespace vsim

@@ -7,8 +7,8 @@
 namespace vsim {
 
 const char* usageText() {
-  return R"(usage: vsim WORLD.xml [--code LIB.so | --program PROG.meld|PROG.mbc] [options]
-       vsim --target multicore --program PROG.meld|PROG.mbc [--cores N[,N...]] [options] [-- ARGS]
+  return R"(usage: vsim WORLD.xml [--code LIB.so | --program PROG.meld|PROG.mbc|PROG.so] [options]
+       vsim --target multicore --program PROG.meld|PROG.mbc|PROG.so [--cores N[,N...]] [options] [-- ARGS]
 
 Runs the block program LIB.so, or the Meld program PROG (one Meld node per block, node id = block
 id; a .meld file is compiled first), on every block of the world WORLD.xml (headless) and prints a
@@ -23,7 +23,10 @@ early and still prints the summary).
 options:
   --code LIB.so         block program (C BlockCode .so); overrides the world's code= attribute
   --program PROG        Meld program (.meld, compiled with node ids = block ids, or .mbc from
-                        `meldc --robots`); the target's include file is found by `include`
+                        `meldc --robots`, or .so from `meldc --robots --emit=native`: native
+                        code); the target's include file is found by `include`
+  --jit                 with a .meld or .mbc program: compile its rules to native code in
+                        memory first (LLVM) and run that; the same run as the bytecode
   --dump                with a Meld program: print every block's final facts (the `meld --dump`
                         format) after the summary
   --why FACT@BLOCK      with a Meld program: after the run, print why the fact exists on that
@@ -195,6 +198,8 @@ Options parseOptions(int argc, char** argv, bool worldRequired) {
       o.program = value();
     else if (arg == "--dump")
       flag(), o.dump = true;
+    else if (arg == "--jit")
+      flag(), o.jit = true;
     else if (arg == "--why")
       o.why.emplace_back(value());
     else if (arg == "--time-per-rule")

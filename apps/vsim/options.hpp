@@ -47,6 +47,7 @@ struct Options {
   std::string code;                       // --code: overrides the world's code= attribute
   std::string program;                    // --program: a Meld program instead of a C BlockCode
   bool dump = false;                      // --dump: the final facts of every block
+  bool jit = false;                       // --jit: the Meld program as native code
   simcore::SimTime timePerRule = -1;      // --time-per-rule (negative: the VM's default)
   bool paletteLm = false;                 // --palette lm
   std::vector<std::string> includeDirs;   // -I for the Meld compiler

@@ -62,12 +62,13 @@ simcore::WorldDescription loadWorldFile(const std::string& path) {
   }
 }
 
-Session::Session(const Options& o, const SessionStreams& streams) : world_(loadWorldFile(o.world)) {
+Session::Session(const Options& o, const SessionStreams& streams, const NativeCompiler* jit)
+    : world_(loadWorldFile(o.world)) {
   if (streams.warnings && streams.diagnostics)
     for (const std::string& w : world_.warnings) *streams.diagnostics << w << '\n';
   const simcore::TargetSpec target =
       chooseTarget(o, world_, streams.warnings ? streams.diagnostics : nullptr);
-  loadBlockProgram(o, streams);
+  loadBlockProgram(o, streams, jit);
 
   simcore::SimulationConfig config;
   config.seed = o.seed ? *o.seed : world_.seed.value_or(1);
@@ -83,7 +84,7 @@ Session::Session(const Options& o, const SessionStreams& streams) : world_(loadW
     throw SessionError{kExitInput, e.what()};
   }
   scheduleTaps(o, *sim_);
-  if (program_)
+  if (meldCode_)
     startMeld(o, streams);
   else
     sim_->setBlockCode(library_->code());
@@ -91,7 +92,7 @@ Session::Session(const Options& o, const SessionStreams& streams) : world_(loadW
 
 Session::~Session() = default;
 
-void Session::loadBlockProgram(const Options& o, const SessionStreams& streams) {
+void Session::loadBlockProgram(const Options& o, const SessionStreams& streams, const NativeCompiler* jit) {
   // The command line wins; then the world's code= (a C BlockCode), then its program= (Meld).
   const std::string programPath = !o.program.empty()                      ? o.program
                                   : o.code.empty() && world_.code.empty() ? world_.program
@@ -102,13 +103,15 @@ void Session::loadBlockProgram(const Options& o, const SessionStreams& streams) 
                        "no block code: give --code LIB.so or --program PROG.meld (or code=\"LIB.so\" "
                        "or program=\"PROG.meld\" in " +
                            o.world + ")"};
-  if (programPath.empty() && (o.dump || o.timePerRule >= 0 || !o.includeDirs.empty() || !o.why.empty()))
+  if (programPath.empty() &&
+      (o.dump || o.timePerRule >= 0 || !o.includeDirs.empty() || !o.why.empty() || o.jit))
     throw SessionError{kExitUsage,
-                       "--dump, --why, --time-per-rule and -I go with a Meld program (--program, or "
-                       "program= in the world)"};
+                       "--dump, --why, --time-per-rule, --jit and -I go with a Meld program (--program, "
+                       "or program= in the world)"};
+  if (o.jit && !jit) throw SessionError{kExitUsage, "--jit: native code cannot be compiled here (run vsim)"};
   if (!programPath.empty()) {
     try {
-      program_ = loadMeldProgram(programPath, o.includeDirs, streams.diagnostics);
+      meldCode_ = loadMeldCode(programPath, o.includeDirs, streams.diagnostics, true, o.jit ? jit : nullptr);
     } catch (const ProgramLoadError& e) {
       throw SessionError{kExitInput, e.what()};
     }
@@ -125,6 +128,7 @@ void Session::startMeld(const Options& o, const SessionStreams& streams) {
   const simcore::TargetSpec& target = sim_->target();
   meldvm::BlockRuntimeOptions mo;
   mo.output = streams.programOutput;
+  mo.native = meldCode_->native();
   mo.timePerRuleNs = o.timePerRule >= 0 ? o.timePerRule : target.programStepTime;
   mo.palette = o.paletteLm ? meldvm::Palette::LinearMeld : meldvm::Palette::VisibleSim;
   const simcore::World& w = sim_->world();
@@ -133,7 +137,7 @@ void Session::startMeld(const Options& o, const SessionStreams& streams) {
     for (int f = 0; f < faces; ++f)
       (w.neighbor(b, f) != simcore::kNoBlock ? mo.neighborFacts : mo.vacantFacts)++;
   try {
-    meld_ = std::make_unique<meldvm::BlockRuntime>(*program_, std::uint32_t(w.blockCount()), mo);
+    meld_ = std::make_unique<meldvm::BlockRuntime>(meldCode_->program(), std::uint32_t(w.blockCount()), mo);
   } catch (const meldvm::BlockProgramError& e) {
     throw SessionError{kExitInput, codePath_ + ": error: " + e.what()};
   }

@@ -9,6 +9,7 @@
 #include <optional>
 #include <string>
 
+#include "meld_program.hpp"
 #include "meldvm/block_runtime.hpp"
 #include "meldvm/program.hpp"
 #include "options.hpp"
@@ -33,8 +34,9 @@ struct SessionStreams {
 
 class Session {
  public:
-  // Throws SessionError (kExitUsage, kExitInput) with a message naming the file.
-  Session(const Options& options, const SessionStreams& streams);
+  // Throws SessionError (kExitUsage, kExitInput) with a message naming the file. `jit` compiles a
+  // Meld program to native code for --jit (without one, --jit is refused).
+  Session(const Options& options, const SessionStreams& streams, const NativeCompiler* jit = nullptr);
   ~Session();
   Session(const Session&) = delete;
   Session& operator=(const Session&) = delete;
@@ -45,7 +47,7 @@ class Session {
   // The Meld block runtime, when the block program is a Meld program.
   meldvm::BlockRuntime* meld() { return meld_.get(); }
   const meldvm::BlockRuntime* meld() const { return meld_.get(); }
-  const meldvm::Program* meldProgram() const { return program_.get(); }
+  const meldvm::Program* meldProgram() const { return meldCode_ ? &meldCode_->program() : nullptr; }
   // The file that runs on the blocks (a .so, .meld or .mbc) and the block program's own name.
   const std::string& codePath() const { return codePath_; }
   std::string codeName() const;
@@ -56,14 +58,14 @@ class Session {
   std::vector<std::pair<std::string, std::uint64_t>> counters() const;
 
  private:
-  void loadBlockProgram(const Options& o, const SessionStreams& streams);
+  void loadBlockProgram(const Options& o, const SessionStreams& streams, const NativeCompiler* jit);
   void startMeld(const Options& o, const SessionStreams& streams);
 
   simcore::WorldDescription world_;
   std::string codePath_;
   // Declared before the simulation: the code table must outlive it.
   std::optional<simcore::BlockCodeLibrary> library_;
-  std::unique_ptr<meldvm::Program> program_;
+  std::unique_ptr<MeldCode> meldCode_;
   std::unique_ptr<simcore::Simulation> sim_;
   std::unique_ptr<meldvm::BlockRuntime> meld_;
 };

@@ -191,7 +191,7 @@ case_why() {
   run 2 examples/worlds/meld-gradient-tap.xml --why 'nosuch(1)@3'
   has "$ERR" "--why: the program has no predicate 'nosuch'"
   run 2 "$WORLDS/color-flood.xml" --code "$FLOOD" --why 'dist(1)@3'
-  has "$ERR" "--why, --time-per-rule and -I go with a Meld program"
+  has "$ERR" "--why, --time-per-rule, --jit and -I go with a Meld program"
 }
 
 # --- the multicore target (a Meld program on a simulated chip) -----------------------------
@@ -217,10 +217,31 @@ case_multicore() {
   has "$WORK/chip.json" '"name":"core 2"'
 }
 
+case_native() {
+  # --jit and --program FILE.so (meldc --robots --emit=native): the bytecode's run, fingerprint
+  # included; the errors of native programs.
+  W="$WORLDS/meld-token-walk.xml"
+  run 0 "$W" --no-progress
+  fingerprint "$OUT" >"$WORK/bytecode"
+  run 0 "$W" --no-progress --jit
+  fingerprint "$OUT" | cmp -s - "$WORK/bytecode" || fail "--jit changed the fingerprint"
+  "$MELDC" --robots --emit=native "$SRC/examples/meld/token-walk.meld" -o "$WORK/walk.so" || fail "meldc"
+  run 0 "$W" --program "$WORK/walk.so" --no-progress
+  fingerprint "$OUT" | cmp -s - "$WORK/bytecode" || fail "walk.so changed the fingerprint"
+  run 3 "$W" --program "$WORK/walk.so" --jit
+  has "$ERR" "native code already"
+  run 3 "$W" --program "$FLOOD"
+  has "$ERR" "not a native Meld program"
+  run 2 "$WORLDS/color-flood.xml" --code "$FLOOD" --jit
+  has "$ERR" "--jit and -I go with a Meld program"
+  run 0 --target multicore --program "$WORK/walk.so" --cores 2 --quiet
+  run 0 --target multicore --program "$SRC/tests/conformance/args.meld" --cores 2 --jit --quiet -- 7 hello
+}
+
 case_multicore_errors() {
   P="$SRC/tests/conformance/args.meld"
   run 2 --target multicore
-  has "$ERR" "--target multicore needs --program PROG.meld|PROG.mbc"
+  has "$ERR" "--target multicore needs --program PROG.meld|PROG.mbc|PROG.so"
   run 2 "$WORLDS/color-flood.xml" --target multicore --program "$P"
   has "$ERR" "no world file (got"
   run 2 --target multicore --program "$P" --cores 0

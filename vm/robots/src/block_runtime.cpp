@@ -39,6 +39,7 @@ BlockRuntime::BlockRuntime(const Program& program, std::uint32_t blockCount, Blo
   mo.output = options_.output;
   mo.host = this;
   mo.nodes = blockCount;
+  mo.native = options_.native;
   machine_ = std::make_unique<Machine>(program, mo);
   const Sensing& s = *sensing_;
   if (s.neighbor != Program::kNoPred && options_.neighborFacts)

@@ -41,6 +41,7 @@ struct BlockRuntimeOptions {
   // How many neighbor and vacant facts the world will start with (all blocks together), so that
   // their tables are allocated once at the right size; 0 = unknown.
   std::size_t neighborFacts = 0, vacantFacts = 0;
+  const NativeCode* native = nullptr;  // native code of the program's blocks (must outlive the runtime)
 };
 
 class BlockRuntime : private MachineHost {

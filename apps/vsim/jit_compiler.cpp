@@ -1,0 +1,19 @@
+#include "jit_compiler.hpp"
+
+#include "meldc/native.hpp"
+
+namespace vsim {
+
+void JitCompiler::compile(MeldCode& code) const {
+  std::shared_ptr<meldc::native::Jit> jit;
+  try {
+    jit = meldc::native::Jit::compile(code.program());
+  } catch (const meldc::native::NativeError& e) {
+    throw ProgramLoadError(std::string("native code: ") + e.what());
+  }
+  code.jitCode = std::make_unique<meldvm::NativeCode>(code.program());
+  for (std::size_t k = 0; k < jit->entries().size(); ++k) code.jitCode->set(k, jit->entries()[k]);
+  code.jit = jit;
+}
+
+}  // namespace vsim

@@ -1,0 +1,14 @@
+// vsim --jit: the LLVM backend behind vsim_session's NativeCompiler (the backend is linked into
+// the vsim executable, not into the session library the IDE shares).
+#pragma once
+
+#include "meld_program.hpp"
+
+namespace vsim {
+
+class JitCompiler final : public NativeCompiler {
+ public:
+  void compile(MeldCode& code) const override;  // throws ProgramLoadError
+};
+
+}  // namespace vsim
