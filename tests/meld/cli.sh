@@ -160,7 +160,8 @@ case_native() {
   run 2 "$WORK/reach.so" --jit
   has "$ERR" "native code already"
   run 3 "$FAKES/fake_abi.so"
-  has "$ERR" "built for native ABI version 99, this VM runs version 1"
+  has "$ERR" "built for native ABI version"
+  has "$ERR" ": compile the program again with this meldc"
   run 3 "$FAKES/fake_bytecode.so"
   has "$ERR" "its bytecode is bad"
   run 3 "$FAKES/fake_magic.so"

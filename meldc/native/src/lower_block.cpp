@@ -11,6 +11,7 @@
 #include <llvm/IR/IRBuilder.h>
 #include <llvm/IR/Module.h>
 
+#include <algorithm>
 #include <map>
 #include <string>
 
@@ -23,14 +24,32 @@ using meldvm::Opcode;
 namespace {
 
 // Fields of meld_native_helpers (native_abi.h), in order.
-enum Helper : unsigned { kAbiVersion, kLoop, kStep, kTest, kFire, kUpdated };
+enum Helper : unsigned { kAbiVersion, kLoop, kSteps, kTest, kFire, kUpdated, kSlotArgs, kRuleFired };
 enum Status : std::int32_t { kNotFired = 0, kFired = 1, kReturn = 2 };
 
 class RegionLowering {
  public:
-  RegionLowering(NativeTypes& t, const meldvm::CodeBlock& block, std::string prefix,
-                 std::map<std::uint32_t, llvm::Function*>& regions)
-      : t_(t), block_(block), code_(block.code), prefix_(std::move(prefix)), regions_(regions) {}
+  RegionLowering(NativeTypes& t, const meldvm::Program& program, const meldvm::CodeBlock& block,
+                 std::string prefix, std::map<std::uint32_t, llvm::Function*>& regions)
+      : t_(t),
+        program_(program),
+        block_(block),
+        code_(block.code),
+        prefix_(std::move(prefix)),
+        regions_(regions) {
+    // Which loop slots consume the fact they bind (FIRE has nothing to consume past the last).
+    meldvm::detail::forEachInstruction(code_, [&](std::size_t pc) {
+      if (!meldvm::detail::isLoop(code_[pc])) return;
+      const std::uint32_t pred = code_[pc + 1], slot = code_[pc + 2];
+      if (code_[pc + 3] & meldvm::kIterConsume)
+        lastConsumingSlot_ = std::max<std::int64_t>(lastConsumingSlot_, slot);
+      const auto [it, fresh] = slotPreds_.try_emplace(slot, pred);
+      if (!fresh && it->second != pred) it->second = -1;
+    });
+    // A persistent process's slot 0 holds the fact that triggered it (any predicate it names).
+    for (const meldvm::Process& process : program.processes)
+      if (&process.block == &block) slotPreds_.erase(0);
+  }
 
   // The function for the code entered at `start` (created on first request, lowered at once).
   llvm::Function* region(std::uint32_t start) {
@@ -94,9 +113,14 @@ class RegionLowering {
   }
 
   // ---- helpers and registers ----
+  // The helper table is constant while a program runs: its loads may be merged and hoisted.
+  llvm::Value* invariantLoad(llvm::IRBuilder<>& b, llvm::Value* address) {
+    llvm::LoadInst* load = b.CreateLoad(b.getPtrTy(), address);
+    load->setMetadata(llvm::LLVMContext::MD_invariant_load, llvm::MDNode::get(t_.context, {}));
+    return load;
+  }
   llvm::Value* helper(Function& f, llvm::IRBuilder<>& b, Helper h) {
-    llvm::Value* slot = b.CreateStructGEP(t_.helpersType, f.helpers, h);
-    return b.CreateLoad(b.getPtrTy(), slot);
+    return invariantLoad(b, b.CreateStructGEP(t_.helpersType, f.helpers, h));
   }
   llvm::Value* reg(Function& f, llvm::IRBuilder<>& b, std::uint32_t r) {
     return b.CreateConstInBoundsGEP1_64(b.getInt64Ty(), f.regs, r);
@@ -119,8 +143,9 @@ class RegionLowering {
   void storeBool(Function& f, llvm::IRBuilder<>& b, std::uint32_t r, llvm::Value* i1) {
     b.CreateStore(b.CreateZExt(i1, b.getInt64Ty()), reg(f, b, r));
   }
-  void step(Function& f, llvm::IRBuilder<>& b, std::uint32_t pc) {
-    b.CreateCall(t_.stepType, helper(f, b, kStep), {f.vm, f.frame, b.getInt32(pc)});
+  void step(Function& f, llvm::IRBuilder<>& b, std::uint32_t pc) {  // steps[opcode](vm, frame, pc)
+    llvm::Value* entry = b.CreateConstInBoundsGEP1_64(b.getPtrTy(), helper(f, b, kSteps), code_[pc]);
+    b.CreateCall(t_.stepType, invariantLoad(b, entry), {f.vm, f.frame, b.getInt32(pc)});
     b.CreateBr(at(f, pc + length(pc)));
   }
   void branch(Function& f, llvm::IRBuilder<>& b, llvm::Value* cond, std::uint32_t yes, std::uint32_t no) {
@@ -169,11 +194,8 @@ class RegionLowering {
       case Opcode::NEXT:
         return (void)b.CreateRet(b.CreateZExt(b.CreateLoad(b.getInt1Ty(), f.lastFired), b.getInt32Ty()));
       case Opcode::FIRE:
-      case Opcode::CFIRE: {
-        const bool rule = Opcode(c[0]) == Opcode::FIRE;
-        b.CreateCall(t_.fireType, helper(f, b, kFire), {f.vm, f.frame, b.getInt32(pc), b.getInt32(rule)});
-        return ret(b, rule ? kFired : kNotFired);
-      }
+      case Opcode::CFIRE:
+        return lowerFire(f, b, pc, Opcode(c[0]) == Opcode::FIRE);
       case Opcode::RET:
         return ret(b, kReturn);
       case Opcode::RET_IF_UPDATED: {
@@ -184,6 +206,7 @@ class RegionLowering {
         return ret(b, kReturn);
       }
       case Opcode::TEST: {
+        if (inSlotRun(pc, c[1])) return lowerSlotRun(f, b, pc);
         llvm::Value* equal = b.CreateCall(t_.testType, helper(f, b, kTest), {f.vm, f.frame, b.getInt32(pc)});
         return branch(f, b, b.CreateICmpNE(equal, b.getInt32(0)), next, c[4]);
       }
@@ -250,9 +273,11 @@ class RegionLowering {
       case Opcode::NOT:
         storeBool(f, b, c[1], isZero(c[2]));
         return (void)b.CreateBr(at(f, next));
+      case Opcode::LOAD:
+        if (inSlotRun(pc, c[1])) return lowerSlotRun(f, b, pc);
+        return step(f, b, pc);  // a boxed register takes a reference
       // ---- the interpreter's code, through the step helper: the fact store, the heap (boxed
       // registers own references), messages, the scheduler, errors ----
-      case Opcode::LOAD:
       case Opcode::MOV:
       case Opcode::MOVS:
       case Opcode::NIL:
@@ -300,7 +325,60 @@ class RegionLowering {
     throw NativeError("block '" + block_.label + "': no lowering for opcode " + std::to_string(c[0]));
   }
 
+  bool boxed(std::uint32_t r) const { return program_.types.boxed(block_.registerTypes[r]); }
+
+  // The predicate a loop slot holds facts of, when every loop that binds it has the same one
+  // (otherwise, or for a process's trigger slot, unknown: -1).
+  std::int64_t slotPredicate(std::uint32_t slot) const {
+    auto it = slotPreds_.find(slot);
+    return it == slotPreds_.end() ? -1 : it->second;
+  }
+  // Whether TEST at pc compares an int, bool, node or thread field: then equality is of the bits.
+  bool integerTest(std::uint32_t pc) const {
+    const std::int64_t p = slotPredicate(code_[pc + 1]);
+    if (p < 0) return false;
+    const meldvm::TypeKind k = program_.types.kind(program_.predicates[std::size_t(p)].fields[code_[pc + 2]]);
+    return k == meldvm::TypeKind::Int || k == meldvm::TypeKind::Bool || k == meldvm::TypeKind::Node ||
+           k == meldvm::TypeKind::Thread;
+  }
+  bool inSlotRun(std::uint32_t pc, std::uint32_t slot) const {
+    if (pc >= code_.size() || code_[pc + 1] != slot) return false;
+    const Opcode op = Opcode(code_[pc]);
+    return (op == Opcode::LOAD && !boxed(code_[pc + 3])) || (op == Opcode::TEST && integerTest(pc));
+  }
+
+  // LOADs into unboxed registers and TESTs of integer-like fields, one after the other on the same
+  // slot: its arguments are looked up once and read in place (nothing stores a fact in between).
+  void lowerSlotRun(Function& f, llvm::IRBuilder<>& b, std::uint32_t pc) {
+    const std::uint32_t slot = code_[pc + 1];
+    llvm::Value* args =
+        b.CreateCall(t_.slotArgsType, helper(f, b, kSlotArgs), {f.vm, f.frame, b.getInt32(slot)});
+    for (; inSlotRun(pc, slot); pc += length(pc)) {
+      llvm::Value* field =
+          b.CreateLoad(b.getInt64Ty(), b.CreateConstInBoundsGEP1_64(b.getInt64Ty(), args, code_[pc + 2]));
+      if (Opcode(code_[pc]) == Opcode::LOAD) {
+        b.CreateStore(field, reg(f, b, code_[pc + 3]));
+        continue;
+      }
+      llvm::BasicBlock* equal = llvm::BasicBlock::Create(t_.context, "equal" + std::to_string(pc), f.fn);
+      b.CreateCondBr(b.CreateICmpEQ(field, loadReg(f, b, code_[pc + 3])), equal, at(f, code_[pc + 4]));
+      b.SetInsertPoint(equal);
+    }
+    b.CreateBr(at(f, pc));
+  }
+
+  void lowerFire(Function& f, llvm::IRBuilder<>& b, std::uint32_t pc, bool rule) {
+    if (std::int64_t(code_[pc + 1]) <= lastConsumingSlot_)
+      b.CreateCall(t_.fireType, helper(f, b, kFire), {f.vm, f.frame, b.getInt32(pc), b.getInt32(rule)});
+    else if (rule)
+      b.CreateCall(t_.ruleFiredType, helper(f, b, kRuleFired), {f.vm});
+    ret(b, rule ? kFired : kNotFired);
+  }
+
   NativeTypes& t_;
+  const meldvm::Program& program_;
+  std::int64_t lastConsumingSlot_ = -1;
+  std::map<std::uint32_t, std::int64_t> slotPreds_;  // slot -> predicate of every loop binding it
   const meldvm::CodeBlock& block_;
   std::span<const std::uint32_t> code_;
   std::string prefix_;
@@ -313,18 +391,22 @@ NativeTypes::NativeTypes(llvm::Module& m) : module(m), context(m.getContext()) {
   llvm::Type* ptr = llvm::PointerType::getUnqual(context);
   llvm::Type* i32 = llvm::Type::getInt32Ty(context);
   llvm::Type* voidTy = llvm::Type::getVoidTy(context);
-  helpersType = llvm::StructType::create(context, {i32, ptr, ptr, ptr, ptr, ptr}, "meld_native_helpers");
+  helpersType =
+      llvm::StructType::create(context, {i32, ptr, ptr, ptr, ptr, ptr, ptr, ptr}, "meld_native_helpers");
   blockType = llvm::FunctionType::get(i32, {ptr, ptr, ptr, ptr}, false);
   loopType = llvm::FunctionType::get(i32, {ptr, ptr, ptr, i32, ptr}, false);
   stepType = llvm::FunctionType::get(voidTy, {ptr, ptr, i32}, false);
   testType = llvm::FunctionType::get(i32, {ptr, ptr, i32}, false);
   fireType = llvm::FunctionType::get(voidTy, {ptr, ptr, i32, i32}, false);
   updatedType = llvm::FunctionType::get(i32, {ptr}, false);
+  slotArgsType = llvm::FunctionType::get(ptr, {ptr, ptr, i32}, false);
+  ruleFiredType = llvm::FunctionType::get(voidTy, {ptr}, false);
 }
 
-llvm::Function* lowerBlock(NativeTypes& types, const meldvm::CodeBlock& block, const std::string& name) {
+llvm::Function* lowerBlock(NativeTypes& types, const meldvm::Program& program, const meldvm::CodeBlock& block,
+                           const std::string& name) {
   std::map<std::uint32_t, llvm::Function*> regions;
-  RegionLowering lowering(types, block, name, regions);
+  RegionLowering lowering(types, program, block, name, regions);
   return lowering.region(0);
 }
 

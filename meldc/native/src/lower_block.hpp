@@ -22,11 +22,12 @@ struct NativeTypes {
   llvm::LLVMContext& context;
   llvm::StructType* helpersType;  // meld_native_helpers
   llvm::FunctionType* blockType;  // meld_native_block
-  llvm::FunctionType *loopType, *stepType, *testType, *fireType, *updatedType;
+  llvm::FunctionType *loopType, *stepType, *testType, *fireType, *updatedType, *slotArgsType, *ruleFiredType;
 };
 
 // Lowers the block's code; returns its entry function, external and named `name` (the loop bodies
 // are internal functions named after it).
-llvm::Function* lowerBlock(NativeTypes& types, const meldvm::CodeBlock& block, const std::string& name);
+llvm::Function* lowerBlock(NativeTypes& types, const meldvm::Program& program, const meldvm::CodeBlock& block,
+                           const std::string& name);
 
 }  // namespace meldc::native

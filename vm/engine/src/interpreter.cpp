@@ -295,22 +295,29 @@ Interpreter::Status Interpreter::exec(Frame& f, std::uint32_t pc) {
   }
 }
 
-std::uint32_t Interpreter::step(Frame& f, std::uint32_t pc) {
-  const std::uint32_t* c = f.code + pc;
-  Value* R = f.regs;
-  switch (Opcode(c[0])) {
+template <Opcode OP>
+void Interpreter::step(Frame& f, std::uint32_t pc) {
+  [[maybe_unused]] const std::uint32_t* c = f.code + pc;
+  [[maybe_unused]] Value* R = f.regs;
+  switch (OP) {  // a constant: only OP's case is compiled in
 #include "straight_ops.inc"
     default:
-      throw RuntimeError("bad opcode " + std::to_string(c[0]) + " for a native step");
+      throw RuntimeError(std::string("opcode ") + opcodeInfo(OP).name + " has no native step");
   }
-  return pc;
 }
 
 // ---- the helpers of native code (native_abi.h): the interpreter's code for each instruction ----
 
+const meld_native_step Interpreter::kNativeSteps[] = {
+#define OP(name, operands, meaning) &Interpreter::nativeStep<Opcode::name>,
+#include "meldvm/opcodes.def"
+#undef OP
+};
+
 const meld_native_helpers Interpreter::kNativeHelpers = {
-    MELD_NATIVE_ABI_VERSION,  &Interpreter::nativeLoop, &Interpreter::nativeStep,
-    &Interpreter::nativeTest, &Interpreter::nativeFire, &Interpreter::nativeUpdated,
+    MELD_NATIVE_ABI_VERSION,      &Interpreter::nativeLoop,      kNativeSteps,
+    &Interpreter::nativeTest,     &Interpreter::nativeFire,      &Interpreter::nativeUpdated,
+    &Interpreter::nativeSlotArgs, &Interpreter::nativeRuleFired,
 };
 
 int32_t Interpreter::nativeLoop(const meld_native_helpers* h, meld_native_vm* vm, meld_native_frame* frame,
@@ -324,8 +331,9 @@ int32_t Interpreter::nativeLoop(const meld_native_helpers* h, meld_native_vm* vm
   return int32_t(fired ? Status::Fired : Status::NotFired);
 }
 
+template <Opcode OP>
 void Interpreter::nativeStep(meld_native_vm* vm, meld_native_frame* f, std::uint32_t pc) {
-  reinterpret_cast<Interpreter*>(vm)->step(*reinterpret_cast<Frame*>(f), pc);
+  reinterpret_cast<Interpreter*>(vm)->step<OP>(*reinterpret_cast<Frame*>(f), pc);
 }
 
 int32_t Interpreter::nativeTest(meld_native_vm* vm, meld_native_frame* frame, std::uint32_t pc) {
@@ -342,6 +350,17 @@ void Interpreter::nativeFire(meld_native_vm* vm, meld_native_frame* frame, std::
 }
 
 int32_t Interpreter::nativeUpdated(meld_native_frame* f) { return reinterpret_cast<Frame*>(f)->updated; }
+
+const std::uint64_t* Interpreter::nativeSlotArgs(meld_native_vm* vm, meld_native_frame* f,
+                                                 std::uint32_t slot) {
+  static_assert(sizeof(Value) == sizeof(std::uint64_t));
+  const Value* args = reinterpret_cast<Interpreter*>(vm)->slotArgs(*reinterpret_cast<Frame*>(f), slot);
+  return reinterpret_cast<const std::uint64_t*>(args);
+}
+
+void Interpreter::nativeRuleFired(meld_native_vm* vm) {
+  reinterpret_cast<Interpreter*>(vm)->machine_.stats_.rulesFired++;
+}
 
 Value Interpreter::callFunction(std::uint32_t fn, const Value* args, NodeId host) {
   const Function& func = program_.functions[fn];

@@ -20,7 +20,7 @@ extern "C" {
 #endif
 
 /* Bumped whenever a helper, its meaning or the block signature changes. */
-#define MELD_NATIVE_ABI_VERSION 1u
+#define MELD_NATIVE_ABI_VERSION 2u
 
 typedef struct meld_native_vm meld_native_vm;       /* the interpreter running the block */
 typedef struct meld_native_frame meld_native_frame; /* its frame (registers, loop slots) */
@@ -28,6 +28,7 @@ typedef struct meld_native_helpers meld_native_helpers;
 
 typedef int32_t (*meld_native_block)(const meld_native_helpers* h, meld_native_vm* vm, meld_native_frame* f,
                                      uint64_t* regs);
+typedef void (*meld_native_step)(meld_native_vm* vm, meld_native_frame* f, uint32_t pc);
 
 struct meld_native_helpers {
   uint32_t abi_version;
@@ -35,14 +36,20 @@ struct meld_native_helpers {
    * fact it binds; returns 1 if a body fired, 2 if the run is stopping, else 0. */
   int32_t (*loop)(const meld_native_helpers* h, meld_native_vm* vm, meld_native_frame* f, uint32_t pc,
                   meld_native_block body);
-  /* Runs the straight-on instruction at pc (every opcode that neither jumps nor ends a block). */
-  void (*step)(meld_native_vm* vm, meld_native_frame* f, uint32_t pc);
+  /* steps[OPCODE] runs the straight-on instruction at pc, which has that opcode (every opcode that
+   * neither jumps nor ends a block has one): no dispatch on the opcode at run time. */
+  const meld_native_step* steps;
   /* TEST at pc: 1 if the field equals the register. */
   int32_t (*test)(meld_native_vm* vm, meld_native_frame* f, uint32_t pc);
   /* FIRE (count_rule = 1) or CFIRE (0) at pc: consumes the linear facts of its slots. */
   void (*fire)(meld_native_vm* vm, meld_native_frame* f, uint32_t pc, int32_t count_rule);
   /* RET_IF_UPDATED: 1 if an UPDATE ran in this frame. */
   int32_t (*updated)(meld_native_frame* f);
+  /* The arguments of the fact bound to loop slot `slot` (8 bytes each, home excluded), valid until
+   * the next instruction that stores a fact: LOAD into an unboxed register reads them directly. */
+  const uint64_t* (*slot_args)(meld_native_vm* vm, meld_native_frame* f, uint32_t slot);
+  /* FIRE of a block whose loops consume nothing from its first slot on: counts the rule only. */
+  void (*rule_fired)(meld_native_vm* vm);
 };
 
 /* What a native shared object (`meldc --emit=native`) exports: meld_native_program() returns its
