@@ -13,12 +13,8 @@
 #include "run_bounded.hpp"
 
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
-  std::unique_ptr<meldvm::Program> program;
-  try {
-    program = meldvm::readBytecode(data, size);
-  } catch (const meldvm::BytecodeError&) {
-    return 0;
-  }
+  const std::unique_ptr<meldvm::Program> program = meldfuzz::readOrNull(data, size);
+  if (!program) return 0;
   // What loads must be what the writer writes: the format has exactly one encoding (an older
   // version's file is written back as the current version: its version word, its section count
   // and an empty sources section differ, all at fixed places).

@@ -4,11 +4,25 @@
 // `native`, the blocks that have native code run it (the same text is expected).
 #pragma once
 
+#include <cstddef>
+#include <cstdint>
+#include <memory>
 #include <ostream>
 
+#include "meldvm/bytecode.hpp"
 #include "meldvm/machine.hpp"
 
 namespace meldfuzz {
+
+// The program an input holds, or nullptr when the reader or the verifier refuses it (what they
+// are for, not a bug).
+inline std::unique_ptr<meldvm::Program> readOrNull(const std::uint8_t* data, std::size_t size) {
+  try {
+    return meldvm::readBytecode(data, size);
+  } catch (const meldvm::BytecodeError&) {
+    return nullptr;
+  }
+}
 
 inline void runBounded(const meldvm::Program& program, std::ostream& out,
                        const meldvm::NativeCode* native = nullptr) {

@@ -23,12 +23,8 @@ std::string withoutDepth(const std::string& text) {
 }  // namespace
 
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
-  std::unique_ptr<meldvm::Program> program;
-  try {
-    program = meldvm::readBytecode(data, size);
-  } catch (const meldvm::BytecodeError&) {
-    return 0;
-  }
+  const std::unique_ptr<meldvm::Program> program = meldfuzz::readOrNull(data, size);
+  if (!program) return 0;
   std::unique_ptr<meldc::native::Jit> jit;
   try {
     jit = meldc::native::Jit::compile(*program);
