@@ -12,6 +12,7 @@
 #include <llvm/IR/Module.h>
 
 #include <algorithm>
+#include <cstddef>
 #include <map>
 #include <string>
 
@@ -24,8 +25,28 @@ using meldvm::Opcode;
 namespace {
 
 // Fields of meld_native_helpers (native_abi.h), in order.
-enum Helper : unsigned { kAbiVersion, kLoop, kSteps, kTest, kFire, kUpdated, kSlotArgs, kRuleFired };
+enum Helper : unsigned {
+  kAbiVersion,
+  kLoop,
+  kSteps,
+  kTest,
+  kFire,
+  kUpdated,
+  kSlotArgs,
+  kRuleFired,
+  kReleaseLast
+};
 enum Status : std::int32_t { kNotFired = 0, kFired = 1, kReturn = 2 };
+// The LLVM struct of the helpers ({i32, ptr, ...}) puts field k at 8 * k: so must the C one.
+static_assert(offsetof(meld_native_helpers, loop) == kLoop * 8 &&
+              offsetof(meld_native_helpers, steps) == kSteps * 8 &&
+              offsetof(meld_native_helpers, test) == kTest * 8 &&
+              offsetof(meld_native_helpers, fire) == kFire * 8 &&
+              offsetof(meld_native_helpers, updated) == kUpdated * 8 &&
+              offsetof(meld_native_helpers, slot_args) == kSlotArgs * 8 &&
+              offsetof(meld_native_helpers, rule_fired) == kRuleFired * 8 &&
+              offsetof(meld_native_helpers, release_last) == kReleaseLast * 8 &&
+              sizeof(meld_native_helpers) == (kReleaseLast + 1) * 8);
 
 class RegionLowering {
  public:
@@ -274,8 +295,7 @@ class RegionLowering {
         storeBool(f, b, c[1], isZero(c[2]));
         return (void)b.CreateBr(at(f, next));
       case Opcode::LOAD:
-        if (inSlotRun(pc, c[1])) return lowerSlotRun(f, b, pc);
-        return step(f, b, pc);  // a boxed register takes a reference
+        return lowerSlotRun(f, b, pc);
       // ---- the interpreter's code, through the step helper: the fact store, the heap (boxed
       // registers own references), messages, the scheduler, errors ----
       case Opcode::MOV:
@@ -344,11 +364,43 @@ class RegionLowering {
   bool inSlotRun(std::uint32_t pc, std::uint32_t slot) const {
     if (pc >= code_.size() || code_[pc + 1] != slot) return false;
     const Opcode op = Opcode(code_[pc]);
-    return (op == Opcode::LOAD && !boxed(code_[pc + 3])) || (op == Opcode::TEST && integerTest(pc));
+    return op == Opcode::LOAD || (op == Opcode::TEST && integerTest(pc));
   }
 
-  // LOADs into unboxed registers and TESTs of integer-like fields, one after the other on the same
-  // slot: its arguments are looked up once and read in place (nothing stores a fact in between).
+  // Before a boxed register takes `value` (the interpreter's retain, then setReg's release of the
+  // old value): the counts are adjusted here, and only a count that would reach zero calls the VM.
+  void setBoxed(Function& f, llvm::IRBuilder<>& b, std::uint32_t r, llvm::Value* value) {
+    auto adjust = [&](llvm::Value* v, bool retain) {
+      llvm::BasicBlock* object = llvm::BasicBlock::Create(t_.context, retain ? "retain" : "release", f.fn);
+      llvm::BasicBlock* done = llvm::BasicBlock::Create(t_.context, retain ? "retained" : "released", f.fn);
+      b.CreateCondBr(b.CreateICmpNE(v, b.getInt64(0)), object, done);  // nil holds no count
+      b.SetInsertPoint(object);
+      llvm::Value* count = b.CreateIntToPtr(v, b.getPtrTy());
+      llvm::Value* refs = b.CreateLoad(b.getInt32Ty(), count);
+      if (retain) {
+        b.CreateStore(b.CreateAdd(refs, b.getInt32(1)), count);
+        b.CreateBr(done);
+      } else {
+        llvm::BasicBlock* last = llvm::BasicBlock::Create(t_.context, "last", f.fn);
+        llvm::BasicBlock* more = llvm::BasicBlock::Create(t_.context, "more", f.fn);
+        b.CreateCondBr(b.CreateICmpEQ(refs, b.getInt32(1)), last, more);
+        b.SetInsertPoint(last);
+        b.CreateCall(t_.releaseLastType, helper(f, b, kReleaseLast),
+                     {f.vm, b.getInt32(block_.registerTypes[r]), v});
+        b.CreateBr(done);
+        b.SetInsertPoint(more);
+        b.CreateStore(b.CreateSub(refs, b.getInt32(1)), count);
+        b.CreateBr(done);
+      }
+      b.SetInsertPoint(done);
+    };
+    adjust(value, true);
+    adjust(loadReg(f, b, r), false);
+  }
+
+  // LOADs and TESTs of integer-like fields, one after the other on the same slot: its arguments
+  // are looked up once and read in place (nothing stores a fact in between: a release that frees
+  // a value touches the heap, not the fact store).
   void lowerSlotRun(Function& f, llvm::IRBuilder<>& b, std::uint32_t pc) {
     const std::uint32_t slot = code_[pc + 1];
     llvm::Value* args =
@@ -357,6 +409,7 @@ class RegionLowering {
       llvm::Value* field =
           b.CreateLoad(b.getInt64Ty(), b.CreateConstInBoundsGEP1_64(b.getInt64Ty(), args, code_[pc + 2]));
       if (Opcode(code_[pc]) == Opcode::LOAD) {
+        if (boxed(code_[pc + 3])) setBoxed(f, b, code_[pc + 3], field);
         b.CreateStore(field, reg(f, b, code_[pc + 3]));
         continue;
       }
@@ -392,7 +445,7 @@ NativeTypes::NativeTypes(llvm::Module& m) : module(m), context(m.getContext()) {
   llvm::Type* i32 = llvm::Type::getInt32Ty(context);
   llvm::Type* voidTy = llvm::Type::getVoidTy(context);
   helpersType =
-      llvm::StructType::create(context, {i32, ptr, ptr, ptr, ptr, ptr, ptr, ptr}, "meld_native_helpers");
+      llvm::StructType::create(context, {i32, ptr, ptr, ptr, ptr, ptr, ptr, ptr, ptr}, "meld_native_helpers");
   blockType = llvm::FunctionType::get(i32, {ptr, ptr, ptr, ptr}, false);
   loopType = llvm::FunctionType::get(i32, {ptr, ptr, ptr, i32, ptr}, false);
   stepType = llvm::FunctionType::get(voidTy, {ptr, ptr, i32}, false);
@@ -400,6 +453,7 @@ NativeTypes::NativeTypes(llvm::Module& m) : module(m), context(m.getContext()) {
   fireType = llvm::FunctionType::get(voidTy, {ptr, ptr, i32, i32}, false);
   updatedType = llvm::FunctionType::get(i32, {ptr}, false);
   slotArgsType = llvm::FunctionType::get(ptr, {ptr, ptr, i32}, false);
+  releaseLastType = llvm::FunctionType::get(voidTy, {ptr, i32, llvm::Type::getInt64Ty(context)}, false);
   ruleFiredType = llvm::FunctionType::get(voidTy, {ptr}, false);
 }
 

@@ -22,7 +22,8 @@ struct NativeTypes {
   llvm::LLVMContext& context;
   llvm::StructType* helpersType;  // meld_native_helpers
   llvm::FunctionType* blockType;  // meld_native_block
-  llvm::FunctionType *loopType, *stepType, *testType, *fireType, *updatedType, *slotArgsType, *ruleFiredType;
+  llvm::FunctionType *loopType, *stepType, *testType, *fireType, *updatedType, *slotArgsType, *ruleFiredType,
+      *releaseLastType;
 };
 
 // Lowers the block's code; returns its entry function, external and named `name` (the loop bodies

@@ -317,7 +317,7 @@ const meld_native_step Interpreter::kNativeSteps[] = {
 const meld_native_helpers Interpreter::kNativeHelpers = {
     MELD_NATIVE_ABI_VERSION,      &Interpreter::nativeLoop,      kNativeSteps,
     &Interpreter::nativeTest,     &Interpreter::nativeFire,      &Interpreter::nativeUpdated,
-    &Interpreter::nativeSlotArgs, &Interpreter::nativeRuleFired,
+    &Interpreter::nativeSlotArgs, &Interpreter::nativeRuleFired, &Interpreter::nativeReleaseLast,
 };
 
 int32_t Interpreter::nativeLoop(const meld_native_helpers* h, meld_native_vm* vm, meld_native_frame* frame,
@@ -356,6 +356,10 @@ const std::uint64_t* Interpreter::nativeSlotArgs(meld_native_vm* vm, meld_native
   static_assert(sizeof(Value) == sizeof(std::uint64_t));
   const Value* args = reinterpret_cast<Interpreter*>(vm)->slotArgs(*reinterpret_cast<Frame*>(f), slot);
   return reinterpret_cast<const std::uint64_t*>(args);
+}
+
+void Interpreter::nativeReleaseLast(meld_native_vm* vm, std::uint32_t type, std::uint64_t value) {
+  reinterpret_cast<Interpreter*>(vm)->heap_.release(TypeId(type), Value::fromBits(value));
 }
 
 void Interpreter::nativeRuleFired(meld_native_vm* vm) {

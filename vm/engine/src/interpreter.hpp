@@ -82,6 +82,7 @@ class Interpreter {
   static int32_t nativeUpdated(meld_native_frame* f);
   static const std::uint64_t* nativeSlotArgs(meld_native_vm* vm, meld_native_frame* f, std::uint32_t slot);
   static void nativeRuleFired(meld_native_vm* vm);
+  static void nativeReleaseLast(meld_native_vm* vm, std::uint32_t type, std::uint64_t value);
   bool skipFact(const Frame& f, std::uint32_t slot, PredId p, FactRef fact) const;
   // The rule fired: consume the linear facts bound from firstSlot on (inline: a persistent rule's
   // firing consumes nothing and should cost next to nothing).

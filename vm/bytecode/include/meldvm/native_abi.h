@@ -20,7 +20,7 @@ extern "C" {
 #endif
 
 /* Bumped whenever a helper, its meaning or the block signature changes. */
-#define MELD_NATIVE_ABI_VERSION 2u
+#define MELD_NATIVE_ABI_VERSION 3u
 
 typedef struct meld_native_vm meld_native_vm;       /* the interpreter running the block */
 typedef struct meld_native_frame meld_native_frame; /* its frame (registers, loop slots) */
@@ -50,6 +50,9 @@ struct meld_native_helpers {
   const uint64_t* (*slot_args)(meld_native_vm* vm, meld_native_frame* f, uint32_t slot);
   /* FIRE of a block whose loops consume nothing from its first slot on: counts the rule only. */
   void (*rule_fired)(meld_native_vm* vm);
+  /* Drops the last reference to a boxed value of type `type` (native code counts references
+   * itself: a boxed value points at its 32-bit count; this is for when it would reach zero). */
+  void (*release_last)(meld_native_vm* vm, uint32_t type, uint64_t value);
 };
 
 /* What a native shared object (`meldc --emit=native`) exports: meld_native_program() returns its
