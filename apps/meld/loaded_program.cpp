@@ -36,7 +36,7 @@ std::unique_ptr<meldvm::Program> compileSource(const Options& options, int& stat
 std::unique_ptr<LoadedProgram> loadProgram(const Options& options, int& status) {
   auto loaded = std::make_unique<LoadedProgram>();
   try {
-    if (endsWith(options.program, ".so") || meldvm::looksLikeSharedObject(options.program)) {
+    if (meldvm::isNativeProgramFile(options.program)) {
       if (options.jit) {
         std::cerr << "meld: error: " << options.program
                   << " is native code already: --jit is for .meld and .mbc\n";
@@ -66,9 +66,7 @@ std::unique_ptr<LoadedProgram> loadProgram(const Options& options, int& status) 
     status = kExitRuntimeError;
     return nullptr;
   }
-  loaded->jitCode = std::make_unique<meldvm::NativeCode>(*loaded->program);
-  for (std::size_t k = 0; k < loaded->jit->entries().size(); ++k)
-    loaded->jitCode->set(k, loaded->jit->entries()[k]);
+  loaded->jitCode = std::make_unique<meldvm::NativeCode>(*loaded->program, loaded->jit->entries());
   loaded->native = loaded->jitCode.get();
   return loaded;
 }

@@ -11,8 +11,7 @@ void JitCompiler::compile(MeldCode& code) const {
   } catch (const meldc::native::NativeError& e) {
     throw ProgramLoadError(std::string("native code: ") + e.what());
   }
-  code.jitCode = std::make_unique<meldvm::NativeCode>(code.program());
-  for (std::size_t k = 0; k < jit->entries().size(); ++k) code.jitCode->set(k, jit->entries()[k]);
+  code.jitCode = std::make_unique<meldvm::NativeCode>(code.program(), jit->entries());
   code.jit = jit;
 }
 

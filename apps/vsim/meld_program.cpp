@@ -38,8 +38,7 @@ std::unique_ptr<meldvm::Program> loadMeldProgram(const std::string& path,
 std::unique_ptr<MeldCode> loadMeldCode(const std::string& path, const std::vector<std::string>& includeDirs,
                                        std::ostream* diagnostics, bool robots, const NativeCompiler* jit) {
   auto code = std::make_unique<MeldCode>();
-  const bool shared = path.size() >= 3 && path.compare(path.size() - 3, 3, ".so") == 0;
-  if (shared || meldvm::looksLikeSharedObject(path)) {
+  if (meldvm::isNativeProgramFile(path)) {
     if (jit) throw ProgramLoadError(path + ": native code already: --jit is for .meld and .mbc programs");
     try {
       code->library = meldvm::NativeLibrary::open(path);

@@ -31,8 +31,7 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
   } catch (const meldc::native::NativeError&) {
     __builtin_trap();  // verified bytecode always has native code
   }
-  meldvm::NativeCode native(*program);
-  for (std::size_t k = 0; k < jit->entries().size(); ++k) native.set(k, jit->entries()[k]);
+  const meldvm::NativeCode native(*program, jit->entries());
   std::ostringstream interpreted, compiled;
   meldfuzz::runBounded(*program, interpreted);
   meldfuzz::runBounded(*program, compiled, &native);

@@ -51,13 +51,8 @@ static_assert(offsetof(meld_native_helpers, loop) == kLoop * 8 &&
 class RegionLowering {
  public:
   RegionLowering(NativeTypes& t, const meldvm::Program& program, const meldvm::CodeBlock& block,
-                 std::string prefix, std::map<std::uint32_t, llvm::Function*>& regions)
-      : t_(t),
-        program_(program),
-        block_(block),
-        code_(block.code),
-        prefix_(std::move(prefix)),
-        regions_(regions) {
+                 std::string prefix, bool process)
+      : t_(t), program_(program), block_(block), code_(block.code), prefix_(std::move(prefix)) {
     // Which loop slots consume the fact they bind (FIRE has nothing to consume past the last).
     meldvm::detail::forEachInstruction(code_, [&](std::size_t pc) {
       if (!meldvm::detail::isLoop(code_[pc])) return;
@@ -68,8 +63,7 @@ class RegionLowering {
       if (!fresh && it->second != pred) it->second = -1;
     });
     // A persistent process's slot 0 holds the fact that triggered it (any predicate it names).
-    for (const meldvm::Process& process : program.processes)
-      if (&process.block == &block) slotPreds_.erase(0);
+    if (process) slotPreds_.erase(0);
   }
 
   // The function for the code entered at `start` (created on first request, lowered at once).
@@ -435,7 +429,7 @@ class RegionLowering {
   const meldvm::CodeBlock& block_;
   std::span<const std::uint32_t> code_;
   std::string prefix_;
-  std::map<std::uint32_t, llvm::Function*>& regions_;
+  std::map<std::uint32_t, llvm::Function*> regions_;  // by the pc each function starts at
 };
 
 }  // namespace
@@ -458,10 +452,8 @@ NativeTypes::NativeTypes(llvm::Module& m) : module(m), context(m.getContext()) {
 }
 
 llvm::Function* lowerBlock(NativeTypes& types, const meldvm::Program& program, const meldvm::CodeBlock& block,
-                           const std::string& name) {
-  std::map<std::uint32_t, llvm::Function*> regions;
-  RegionLowering lowering(types, program, block, name, regions);
-  return lowering.region(0);
+                           const std::string& name, bool process) {
+  return RegionLowering(types, program, block, name, process).region(0);
 }
 
 }  // namespace meldc::native

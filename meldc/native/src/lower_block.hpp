@@ -27,8 +27,9 @@ struct NativeTypes {
 };
 
 // Lowers the block's code; returns its entry function, external and named `name` (the loop bodies
-// are internal functions named after it).
+// are internal functions named after it). `process`: a persistent process's block (its slot 0 holds
+// the triggering fact).
 llvm::Function* lowerBlock(NativeTypes& types, const meldvm::Program& program, const meldvm::CodeBlock& block,
-                           const std::string& name);
+                           const std::string& name, bool process);
 
 }  // namespace meldc::native

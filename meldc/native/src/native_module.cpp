@@ -65,7 +65,11 @@ std::unique_ptr<llvm::Module> buildModule(const meldvm::Program& program, llvm::
   module->setDataLayout(target.createDataLayout());
   NativeTypes types(*module);
   const std::vector<const meldvm::CodeBlock*> blocks = meldvm::nativeCodeBlocks(program);
-  for (std::size_t k = 0; k < blocks.size(); ++k) lowerBlock(types, program, *blocks[k], blockSymbol(k));
+  // nativeCodeBlocks' order: rules, then processes, then functions and the globals' initialiser.
+  const std::size_t processesFrom = program.rules.size(),
+                    processesTo = processesFrom + program.processes.size();
+  for (std::size_t k = 0; k < blocks.size(); ++k)
+    lowerBlock(types, program, *blocks[k], blockSymbol(k), k >= processesFrom && k < processesTo);
   std::string problems;
   llvm::raw_string_ostream out(problems);
   if (llvm::verifyModule(*module, &out))

@@ -15,8 +15,9 @@
 #include <sys/wait.h>
 #include <unistd.h>
 
+#include <cerrno>
 #include <cstdio>
-#include <filesystem>
+#include <cstdlib>
 
 #include "meldc/native.hpp"
 #include "meldvm/bytecode.hpp"

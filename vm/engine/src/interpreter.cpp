@@ -240,6 +240,8 @@ bool Interpreter::loop(Frame& f, std::uint32_t pc, RunBody&& runBody) {
   return fired;
 }
 
+inline void Interpreter::ruleFired() { machine_.stats_.rulesFired++; }
+
 Interpreter::Status Interpreter::exec(Frame& f, std::uint32_t pc) {
   const std::uint32_t* code = f.code;
   bool lastFired = false;
@@ -259,7 +261,7 @@ Interpreter::Status Interpreter::exec(Frame& f, std::uint32_t pc) {
         return lastFired ? Status::Fired : Status::NotFired;
       case Opcode::FIRE:
         fire(f, c[1]);
-        machine_.stats_.rulesFired++;
+        ruleFired();
         return Status::Fired;
       case Opcode::CFIRE:
         fire(f, c[1]);
@@ -308,62 +310,57 @@ void Interpreter::step(Frame& f, std::uint32_t pc) {
 
 // ---- the helpers of native code (native_abi.h): the interpreter's code for each instruction ----
 
-const meld_native_step Interpreter::kNativeSteps[] = {
-#define OP(name, operands, meaning) &Interpreter::nativeStep<Opcode::name>,
+struct NativeHelpers {
+  static Interpreter& vm(meld_native_vm* v) { return *reinterpret_cast<Interpreter*>(v); }
+  static Interpreter::Frame& frame(meld_native_frame* f) { return *reinterpret_cast<Interpreter::Frame*>(f); }
+
+  static int32_t loop(const meld_native_helpers* h, meld_native_vm* v, meld_native_frame* fr,
+                      std::uint32_t pc, meld_native_block body) {
+    Interpreter& in = vm(v);
+    Interpreter::Frame& f = frame(fr);
+    const bool fired = in.loop(f, pc, [&](std::uint32_t) {
+      return Interpreter::Status(body(h, v, fr, reinterpret_cast<std::uint64_t*>(f.regs)));
+    });
+    if (in.machine_.stopRequested()) return int32_t(Interpreter::Status::Return);
+    return int32_t(fired ? Interpreter::Status::Fired : Interpreter::Status::NotFired);
+  }
+  template <Opcode OP>
+  static void step(meld_native_vm* v, meld_native_frame* f, std::uint32_t pc) {
+    vm(v).step<OP>(frame(f), pc);
+  }
+  static int32_t test(meld_native_vm* v, meld_native_frame* fr, std::uint32_t pc) {
+    const Interpreter::Frame& f = frame(fr);
+    return vm(v).testField(f, f.code + pc);
+  }
+  static void fire(meld_native_vm* v, meld_native_frame* fr, std::uint32_t pc, int32_t countRule) {
+    Interpreter::Frame& f = frame(fr);
+    vm(v).fire(f, f.code[pc + 1]);
+    if (countRule) ruleFired(v);
+  }
+  static int32_t updated(meld_native_frame* f) { return frame(f).updated; }
+  static const std::uint64_t* slotArgs(meld_native_vm* v, meld_native_frame* f, std::uint32_t slot) {
+    static_assert(sizeof(Value) == sizeof(std::uint64_t));
+    return reinterpret_cast<const std::uint64_t*>(vm(v).slotArgs(frame(f), slot));
+  }
+  static void ruleFired(meld_native_vm* v) { vm(v).ruleFired(); }
+  static void releaseLast(meld_native_vm* v, std::uint32_t type, std::uint64_t value) {
+    vm(v).heap_.release(TypeId(type), Value::fromBits(value));
+  }
+
+  static constexpr meld_native_step kSteps[] = {
+#define OP(name, operands, meaning) &step<Opcode::name>,
 #include "meldvm/opcodes.def"
 #undef OP
+  };
+  static constexpr meld_native_helpers kTable = {
+      MELD_NATIVE_ABI_VERSION, &loop, kSteps, &test, &fire, &updated, &slotArgs, &ruleFired, &releaseLast,
+  };
 };
 
-const meld_native_helpers Interpreter::kNativeHelpers = {
-    MELD_NATIVE_ABI_VERSION,      &Interpreter::nativeLoop,      kNativeSteps,
-    &Interpreter::nativeTest,     &Interpreter::nativeFire,      &Interpreter::nativeUpdated,
-    &Interpreter::nativeSlotArgs, &Interpreter::nativeRuleFired, &Interpreter::nativeReleaseLast,
-};
-
-int32_t Interpreter::nativeLoop(const meld_native_helpers* h, meld_native_vm* vm, meld_native_frame* frame,
-                                std::uint32_t pc, meld_native_block body) {
-  Interpreter& in = *reinterpret_cast<Interpreter*>(vm);
-  Frame& f = *reinterpret_cast<Frame*>(frame);
-  const bool fired = in.loop(f, pc, [&](std::uint32_t) {
-    return Status(body(h, vm, frame, reinterpret_cast<std::uint64_t*>(f.regs)));
-  });
-  if (in.machine_.stopRequested()) return int32_t(Status::Return);
-  return int32_t(fired ? Status::Fired : Status::NotFired);
-}
-
-template <Opcode OP>
-void Interpreter::nativeStep(meld_native_vm* vm, meld_native_frame* f, std::uint32_t pc) {
-  reinterpret_cast<Interpreter*>(vm)->step<OP>(*reinterpret_cast<Frame*>(f), pc);
-}
-
-int32_t Interpreter::nativeTest(meld_native_vm* vm, meld_native_frame* frame, std::uint32_t pc) {
-  const Frame& f = *reinterpret_cast<Frame*>(frame);
-  return reinterpret_cast<Interpreter*>(vm)->testField(f, f.code + pc);
-}
-
-void Interpreter::nativeFire(meld_native_vm* vm, meld_native_frame* frame, std::uint32_t pc,
-                             int32_t countRule) {
-  Interpreter& in = *reinterpret_cast<Interpreter*>(vm);
-  Frame& f = *reinterpret_cast<Frame*>(frame);
-  in.fire(f, f.code[pc + 1]);
-  if (countRule) in.machine_.stats_.rulesFired++;
-}
-
-int32_t Interpreter::nativeUpdated(meld_native_frame* f) { return reinterpret_cast<Frame*>(f)->updated; }
-
-const std::uint64_t* Interpreter::nativeSlotArgs(meld_native_vm* vm, meld_native_frame* f,
-                                                 std::uint32_t slot) {
-  static_assert(sizeof(Value) == sizeof(std::uint64_t));
-  const Value* args = reinterpret_cast<Interpreter*>(vm)->slotArgs(*reinterpret_cast<Frame*>(f), slot);
-  return reinterpret_cast<const std::uint64_t*>(args);
-}
-
-void Interpreter::nativeReleaseLast(meld_native_vm* vm, std::uint32_t type, std::uint64_t value) {
-  reinterpret_cast<Interpreter*>(vm)->heap_.release(TypeId(type), Value::fromBits(value));
-}
-
-void Interpreter::nativeRuleFired(meld_native_vm* vm) {
-  reinterpret_cast<Interpreter*>(vm)->machine_.stats_.rulesFired++;
+Interpreter::Status Interpreter::start(Frame& f, meld_native_block native) {
+  if (!native) return exec(f, 0);
+  return Status(native(&NativeHelpers::kTable, reinterpret_cast<meld_native_vm*>(this),
+                       reinterpret_cast<meld_native_frame*>(&f), reinterpret_cast<std::uint64_t*>(f.regs)));
 }
 
 Value Interpreter::callFunction(std::uint32_t fn, const Value* args, NodeId host) {

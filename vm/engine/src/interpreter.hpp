@@ -65,24 +65,9 @@ class Interpreter {
   template <Opcode OP>
   void step(Frame& f, std::uint32_t pc);
   // The block's entry: native code when there is, else the interpreter from pc 0.
-  Status start(Frame& f, meld_native_block native) {
-    return native ? Status(native(&kNativeHelpers, reinterpret_cast<meld_native_vm*>(this),
-                                  reinterpret_cast<meld_native_frame*>(&f),
-                                  reinterpret_cast<std::uint64_t*>(f.regs)))
-                  : exec(f, 0);
-  }
-  static const meld_native_helpers kNativeHelpers;  // native_abi.h, run with the code below
-  static int32_t nativeLoop(const meld_native_helpers* h, meld_native_vm* vm, meld_native_frame* f,
-                            std::uint32_t pc, meld_native_block body);
-  template <Opcode OP>
-  static void nativeStep(meld_native_vm* vm, meld_native_frame* f, std::uint32_t pc);
-  static const meld_native_step kNativeSteps[];
-  static int32_t nativeTest(meld_native_vm* vm, meld_native_frame* f, std::uint32_t pc);
-  static void nativeFire(meld_native_vm* vm, meld_native_frame* f, std::uint32_t pc, int32_t countRule);
-  static int32_t nativeUpdated(meld_native_frame* f);
-  static const std::uint64_t* nativeSlotArgs(meld_native_vm* vm, meld_native_frame* f, std::uint32_t slot);
-  static void nativeRuleFired(meld_native_vm* vm);
-  static void nativeReleaseLast(meld_native_vm* vm, std::uint32_t type, std::uint64_t value);
+  Status start(Frame& f, meld_native_block native);
+  friend struct NativeHelpers;  // native_abi.h's helpers (interpreter.cpp): this class's code
+  void ruleFired();             // a FIRE: the machine's count of rules fired
   bool skipFact(const Frame& f, std::uint32_t slot, PredId p, FactRef fact) const;
   // The rule fired: consume the linear facts bound from firstSlot on (inline: a persistent rule's
   // firing consumes nothing and should cost next to nothing).

@@ -4,6 +4,7 @@
 
 #include <cstring>
 #include <fstream>
+#include <span>
 
 #include "meldvm/bytecode.hpp"
 
@@ -43,14 +44,14 @@ std::unique_ptr<NativeLibrary> NativeLibrary::open(const std::string& path) {
   } catch (const BytecodeError& e) {
     throw bad(path, std::string("its bytecode is bad: ") + e.what());
   }
-  lib->code_ = std::make_unique<NativeCode>(*lib->program_);
-  if (d->block_count != lib->code_->blockCount() || !d->blocks)
+  const std::size_t blocks = nativeCodeBlocks(*lib->program_).size();
+  if (d->block_count != blocks || !d->blocks)
     throw bad(path, "has " + std::to_string(d->block_count) + " native blocks for a program of " +
-                        std::to_string(lib->code_->blockCount()));
-  for (std::size_t k = 0; k < d->block_count; ++k) {
-    if (!d->blocks[k]) throw bad(path, "native block " + std::to_string(k) + " is missing");
-    lib->code_->set(k, d->blocks[k]);
-  }
+                        std::to_string(blocks));
+  const std::span<const meld_native_block> entries(d->blocks, blocks);
+  for (std::size_t k = 0; k < blocks; ++k)
+    if (!entries[k]) throw bad(path, "native block " + std::to_string(k) + " is missing");
+  lib->code_ = std::make_unique<NativeCode>(*lib->program_, entries);
   return lib;
 }
 
@@ -60,13 +61,12 @@ NativeLibrary::~NativeLibrary() {
   if (handle_) dlclose(handle_);
 }
 
-bool looksLikeSharedObject(const std::string& path) {
+bool isNativeProgramFile(const std::string& path) {
+  if (path.size() >= 3 && path.compare(path.size() - 3, 3, ".so") == 0) return true;
+  static constexpr char kElf[4] = {0x7f, 'E', 'L', 'F'};
   std::ifstream in(path, std::ios::binary);
   char head[4] = {};
-  return in.read(head, 4) && std::memcmp(head,
-                                         "\x7f"
-                                         "ELF",
-                                         4) == 0;
+  return in.read(head, 4) && std::memcmp(head, kElf, 4) == 0;
 }
 
 }  // namespace meldvm

@@ -3,7 +3,8 @@
 // Shared read-only by every shard of a threaded run.
 #pragma once
 
-#include <cstddef>
+#include <span>
+#include <stdexcept>
 #include <unordered_map>
 #include <vector>
 
@@ -14,18 +15,19 @@ namespace meldvm {
 
 class NativeCode {
  public:
-  explicit NativeCode(const Program& program) : blocks_(nativeCodeBlocks(program)) {}
+  // entries[k] runs native block k (nativeCodeBlocks' numbering), one entry per block.
+  NativeCode(const Program& program, std::span<const meld_native_block> entries) {
+    const std::vector<const CodeBlock*> blocks = nativeCodeBlocks(program);
+    if (entries.size() != blocks.size()) throw std::length_error("NativeCode: one entry per native block");
+    for (std::size_t k = 0; k < blocks.size(); ++k) entries_[blocks[k]] = entries[k];
+  }
 
-  std::size_t blockCount() const { return blocks_.size(); }
-  // The entry of native block `k` (nativeCodeBlocks' numbering).
-  void set(std::size_t k, meld_native_block entry) { entries_[blocks_.at(k)] = entry; }
   meld_native_block find(const CodeBlock& block) const {
     const auto it = entries_.find(&block);
     return it == entries_.end() ? nullptr : it->second;
   }
 
  private:
-  std::vector<const CodeBlock*> blocks_;
   std::unordered_map<const CodeBlock*, meld_native_block> entries_;
 };
 

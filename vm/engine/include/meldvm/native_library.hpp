@@ -30,7 +30,8 @@ class NativeLibrary {
   std::unique_ptr<NativeCode> code_;
 };
 
-// Whether the file starts like an ELF object (a shared object to open as a NativeLibrary).
-bool looksLikeSharedObject(const std::string& path);
+// Whether the program file is a shared object to open as a NativeLibrary: a `.so` name, or a file
+// that starts like an ELF object (meld and vsim tell .meld/.mbc programs from native ones so).
+bool isNativeProgramFile(const std::string& path);
 
 }  // namespace meldvm
