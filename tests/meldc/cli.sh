@@ -98,6 +98,16 @@ case_emit_native() {
   MELD_LD=/no/such/linker run 1 --emit=native "$WORK/g.meld" -o "$WORK/h.so"
   has "$ERR" "cannot run the linker '/no/such/linker'"
   [ -e "$WORK/h.so.o.tmp" ] && fail "the object file was left behind"
+  # --cpu: generic by default (the .so runs elsewhere), native, an LLVM name; others refused.
+  run 0 --emit=native "$WORK/g.meld" --cpu=x86-64-v2 -o "$WORK/v2.so"
+  [ -f "$WORK/v2.so" ] || fail "no v2.so"
+  run 0 --emit=llvm "$WORK/g.meld" --cpu=native
+  has "$OUT" "@meld_block_0("
+  run 2 --emit=native "$WORK/g.meld" --cpu=no-such-cpu -o "$WORK/bad.so"
+  has "$ERR" "unknown processor 'no-such-cpu' for --cpu"
+  [ -e "$WORK/bad.so" ] && fail "no shared object expected for an unknown processor"
+  run 2 --emit=native "$WORK/g.meld" --cpu=
+  has "$ERR" "option '--cpu=' needs a processor name"
   true
 }
 case_emit_unsupported() {

@@ -71,6 +71,12 @@ int main(int argc, char** argv) {
                  "use --emit=asm to read it)\n";
     return kExitUsage;
   }
+  if (options->cpu.empty()) options->cpu = options->emit == EmitKind::Llvm ? "native" : "generic";
+  if ((options->emit == EmitKind::Native || options->emit == EmitKind::Llvm) && !meldc::native::knownCpu(options->cpu)) {
+    std::cerr << "meldc: error: unknown processor '" << options->cpu
+              << "' for --cpu (generic, native, or an LLVM processor name such as x86-64-v3)\n";
+    return kExitUsage;
+  }
   FrontEndInput input{options->input, options->includeDirs, options->defines};
   // After the -I folders, so that a program's own copy of a target file wins.
   if (!options->noStdlib && !defaultStdlibDir().empty()) input.includeDirs.push_back(defaultStdlibDir());
@@ -112,7 +118,7 @@ int main(int argc, char** argv) {
         return kExitUsage;
       }
       try {
-        meldc::native::writeSharedObject(*lowered, path);
+        meldc::native::writeSharedObject(*lowered, path, options->cpu);
       } catch (const meldc::native::NativeError& e) {
         std::cerr << "meldc: error: " << e.what() << '\n';
         return kExitProgramErrors;
@@ -120,7 +126,7 @@ int main(int argc, char** argv) {
       return kExitOk;
     } else if (options->emit == EmitKind::Llvm) {
       try {
-        text << meldc::native::llvmText(*lowered);
+        text << meldc::native::llvmText(*lowered, options->cpu);
       } catch (const meldc::native::NativeError& e) {
         std::cerr << "meldc: internal error: native code: " << e.what() << '\n';
         return kExitInternal;

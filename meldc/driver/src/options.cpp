@@ -25,7 +25,7 @@ bool validConstName(const std::string& name) {
 
 const char* usageText() {
   return "usage: meldc FILE.meld [-o OUT] [-I DIR]... [--no-stdlib] [--robots] [-DNAME=VALUE]...\n"
-         "             [--check | --emit=KIND]\n"
+         "             [--check | --emit=KIND] [--cpu=NAME]\n"
          "\n"
          "Compiles a Linear Meld program to bytecode for the Meld VM: parses the program, merges its\n"
          "includes, resolves names, checks it, renumbers its nodes and lowers its rules.\n"
@@ -43,6 +43,11 @@ const char* usageText() {
          "                   the system linker: ld, or $MELD_LD)\n"
          "  --emit=llvm      print the native code of the rules, processes and functions as\n"
          "                   optimised LLVM IR (what meld --jit runs)\n"
+         "  --cpu=NAME       the processor --emit=native and --emit=llvm compile for: generic (the\n"
+         "                   default of native: the shared object runs on any machine of this\n"
+         "                   architecture), native (this machine's: the default of llvm, and what\n"
+         "                   meld --jit uses; may not run elsewhere) or an LLVM processor name such\n"
+         "                   as x86-64-v3\n"
          "  -o OUT           write the --emit output to OUT instead of standard output (bytecode:\n"
          "                   instead of FILE.mbc, native: of FILE.so); '-o -' is standard output,\n"
          "                   for bytecode too\n"
@@ -101,6 +106,12 @@ std::optional<Options> parseOptions(const std::vector<std::string>& args, std::s
         o.emit = EmitKind::Llvm;
       else {
         error = "unknown --emit kind '" + kind + "' (expected ast, nodes, bytecode, native, asm or llvm)";
+        return std::nullopt;
+      }
+    } else if (a.rfind("--cpu=", 0) == 0) {
+      o.cpu = a.substr(6);
+      if (o.cpu.empty()) {
+        error = "option '--cpu=' needs a processor name (generic, native, or an LLVM name)";
         return std::nullopt;
       }
     } else if (a == "-o") {

@@ -28,7 +28,7 @@ T orThrow(llvm::Expected<T> value, const char* what) {
 }  // namespace
 
 std::unique_ptr<Jit> Jit::compile(const meldvm::Program& program) {
-  std::unique_ptr<llvm::TargetMachine> target = hostTargetMachine();
+  std::unique_ptr<llvm::TargetMachine> target = targetMachine("native");
   auto context = std::make_unique<llvm::LLVMContext>();
   std::unique_ptr<llvm::Module> module = buildModule(program, *context, *target);
   std::unique_ptr<Jit> out(new Jit());

@@ -14,8 +14,10 @@
 #include <algorithm>
 #include <cstddef>
 #include <map>
+#include <set>
 #include <string>
 
+#include "meldvm/builtin_signatures.hpp"
 #include "meldvm/bytecode_internal.hpp"
 
 namespace meldc::native {
@@ -30,23 +32,49 @@ enum Helper : unsigned {
   kLoop,
   kSteps,
   kTest,
-  kFire,
+  kConsume,
   kUpdated,
   kSlotArgs,
   kRuleFired,
-  kReleaseLast
+  kReleaseLast,
+  kLoopBegin,
+  kLoopEnd,
+  kBuiltins
 };
+// Fields of meld_native_loop and meld_native_slot, in order.
+enum LoopField : unsigned {
+  kLoopSlots,
+  kLoopWords,
+  kLoopStop,
+  kLoopSharedStop,
+  kLoopFirst,
+  kLoopStride,
+  kLoopNextWord,
+  kLoopArgOffset
+};
+enum SlotField : unsigned { kSlotPred, kSlotNode, kSlotFact, kSlotFlags, kSlotFixed };
 enum Status : std::int32_t { kNotFired = 0, kFired = 1, kReturn = 2 };
 // The LLVM struct of the helpers ({i32, ptr, ...}) puts field k at 8 * k: so must the C one.
 static_assert(offsetof(meld_native_helpers, loop) == kLoop * 8 &&
               offsetof(meld_native_helpers, steps) == kSteps * 8 &&
               offsetof(meld_native_helpers, test) == kTest * 8 &&
-              offsetof(meld_native_helpers, fire) == kFire * 8 &&
+              offsetof(meld_native_helpers, consume) == kConsume * 8 &&
               offsetof(meld_native_helpers, updated) == kUpdated * 8 &&
               offsetof(meld_native_helpers, slot_args) == kSlotArgs * 8 &&
               offsetof(meld_native_helpers, rule_fired) == kRuleFired * 8 &&
               offsetof(meld_native_helpers, release_last) == kReleaseLast * 8 &&
-              sizeof(meld_native_helpers) == (kReleaseLast + 1) * 8);
+              offsetof(meld_native_helpers, loop_begin) == kLoopBegin * 8 &&
+              offsetof(meld_native_helpers, loop_end) == kLoopEnd * 8 &&
+              offsetof(meld_native_helpers, builtins) == kBuiltins * 8 &&
+              sizeof(meld_native_helpers) == (kBuiltins + 1) * 8);
+static_assert(offsetof(meld_native_loop, words) == 8 * kLoopWords && offsetof(meld_native_loop, stop) == 8 * kLoopStop &&
+              offsetof(meld_native_loop, shared_stop) == 8 * kLoopSharedStop &&
+              offsetof(meld_native_loop, first) == 8 * kLoopFirst &&
+              offsetof(meld_native_loop, stride) == 8 * kLoopFirst + 4 &&
+              offsetof(meld_native_loop, next_word) == 8 * kLoopFirst + 8 &&
+              offsetof(meld_native_loop, arg_offset) == 8 * kLoopFirst + 12 && sizeof(meld_native_loop) == 48);
+static_assert(offsetof(meld_native_slot, fact) == 4 * kSlotFact && offsetof(meld_native_slot, fixed) == 16 &&
+              sizeof(meld_native_slot) == 24);
 
 class RegionLowering {
  public:
@@ -57,8 +85,9 @@ class RegionLowering {
     meldvm::detail::forEachInstruction(code_, [&](std::size_t pc) {
       if (!meldvm::detail::isLoop(code_[pc])) return;
       const std::uint32_t pred = code_[pc + 1], slot = code_[pc + 2];
-      if (code_[pc + 3] & meldvm::kIterConsume)
-        lastConsumingSlot_ = std::max<std::int64_t>(lastConsumingSlot_, slot);
+      if (code_[pc + 3] & meldvm::kIterConsume) {
+        consumingSlots_.insert(slot);
+      }
       const auto [it, fresh] = slotPreds_.try_emplace(slot, pred);
       if (!fresh && it->second != pred) it->second = -1;
     });
@@ -67,17 +96,22 @@ class RegionLowering {
   }
 
   // The function for the code entered at `start` (created on first request, lowered at once).
-  llvm::Function* region(std::uint32_t start) {
+  // The block's start and the bodies of ITER_SORTED loops (run by the VM's loop helper) are
+  // meld_native_block functions; a body that native code loops over also gets the loops array
+  // (what loop_begin said about each loop slot bound natively: `bound` lists them).
+  llvm::Function* region(std::uint32_t start, const std::set<std::uint32_t>& bound = {}, bool nativeBody = false) {
     if (auto it = regions_.find(start); it != regions_.end()) return it->second;
     const bool entry = start == 0;
     auto* fn = llvm::Function::Create(
-        t_.blockType, entry ? llvm::Function::ExternalLinkage : llvm::Function::InternalLinkage,
+        nativeBody ? t_.bodyType : t_.blockType,
+        entry ? llvm::Function::ExternalLinkage : llvm::Function::InternalLinkage,
         entry ? prefix_ : prefix_ + "_at" + std::to_string(start), t_.module);
     fn->setUWTableKind(llvm::UWTableKind::Async);  // helpers throw RuntimeError through native frames
     regions_[start] = fn;
     Function f;
     f.fn = fn;
-    lowerRegion(f, start);
+    f.bound = bound;
+    lowerRegion(f, start, nativeBody);
     return fn;
   }
 
@@ -89,6 +123,9 @@ class RegionLowering {
     llvm::Value* frame = nullptr;
     llvm::Value* regs = nullptr;
     llvm::Value* lastFired = nullptr;  // exec()'s `lastFired`: did the latest loop fire
+    llvm::BasicBlock* entry = nullptr;  // where the stack variables are allocated
+    llvm::Value* loops = nullptr;       // meld_native_loop* per slot (those in `bound` are set)
+    std::set<std::uint32_t> bound;      // slots bound by a native loop around this code
     std::map<std::uint32_t, llvm::BasicBlock*> blocks;
     std::vector<std::uint32_t> pending;
   };
@@ -102,13 +139,16 @@ class RegionLowering {
     return it->second;
   }
 
-  void lowerRegion(Function& f, std::uint32_t start) {
-    llvm::IRBuilder<> b(llvm::BasicBlock::Create(t_.context, "entry", f.fn));
+  void lowerRegion(Function& f, std::uint32_t start, bool nativeBody) {
+    f.entry = llvm::BasicBlock::Create(t_.context, "entry", f.fn);
+    llvm::IRBuilder<> b(f.entry);
     auto arg = f.fn->arg_begin();
     f.helpers = &*arg++;
     f.vm = &*arg++;
     f.frame = &*arg++;
-    f.regs = &*arg;
+    f.regs = &*arg++;
+    f.loops = nativeBody ? static_cast<llvm::Value*>(&*arg)
+                         : b.CreateAlloca(b.getPtrTy(), b.getInt32(std::max<std::uint32_t>(block_.slots, 1)), "loops");
     f.lastFired = b.CreateAlloca(b.getInt1Ty(), nullptr, "lastFired");
     b.CreateStore(b.getFalse(), f.lastFired);
     b.CreateBr(at(f, start));
@@ -168,16 +208,140 @@ class RegionLowering {
   }
   void ret(llvm::IRBuilder<>& b, Status s) { b.CreateRet(b.getInt32(s)); }
 
-  void lowerLoop(Function& f, llvm::IRBuilder<>& b, std::uint32_t pc) {
-    const std::uint32_t len = length(pc);
-    llvm::Function* body = region(pc + len);  // lowers the body (a separate function) first
-    llvm::Value* r =
-        b.CreateCall(t_.loopType, helper(f, b, kLoop), {f.helpers, f.vm, f.frame, b.getInt32(pc), body});
-    b.CreateStore(b.CreateICmpEQ(r, b.getInt32(kFired)), f.lastFired);
-    llvm::BasicBlock* stop = llvm::BasicBlock::Create(t_.context, "stop", f.fn);
-    b.CreateCondBr(b.CreateICmpEQ(r, b.getInt32(kReturn)), stop, at(f, code_[pc + len - 1]));
+  // A stack variable of the function (in its entry block, where mem2reg promotes it).
+  llvm::AllocaInst* local(Function& f, llvm::Type* type, const char* name) {
+    llvm::IRBuilder<> e(f.entry, f.entry->getFirstInsertionPt());
+    return e.CreateAlloca(type, nullptr, name);
+  }
+  llvm::BasicBlock* newBlock(Function& f, const std::string& name) {
+    return llvm::BasicBlock::Create(t_.context, name, f.fn);
+  }
+
+  // What loop_begin said about a loop (meld_native_loop), read where it is needed.
+  struct LoopView {
+    llvm::Value* slots;   // the frame's meld_native_slot array
+    llvm::Value* words;   // where the predicate's slot array is
+    llvm::Value* stride;  // i64
+    llvm::Value* argOffset;
+  };
+  LoopView loadLoopView(llvm::IRBuilder<>& b, llvm::Value* info) {
+    auto field = [&](LoopField k, llvm::Type* type) {
+      return b.CreateLoad(type, b.CreateStructGEP(t_.loopStructType, info, k));
+    };
+    return {field(kLoopSlots, b.getPtrTy()), field(kLoopWords, b.getPtrTy()),
+            b.CreateZExt(field(kLoopStride, b.getInt32Ty()), b.getInt64Ty()),
+            b.CreateZExt(field(kLoopArgOffset, b.getInt32Ty()), b.getInt64Ty())};
+  }
+  // The loop that bound slot s around this code (s is in f.bound).
+  LoopView loopView(Function& f, llvm::IRBuilder<>& b, std::uint32_t s) {
+    return loadLoopView(b, b.CreateLoad(b.getPtrTy(), b.CreateConstInBoundsGEP1_64(b.getPtrTy(), f.loops, s)));
+  }
+  llvm::Value* slotField(llvm::IRBuilder<>& b, llvm::Value* slots, std::uint32_t s, SlotField k) {
+    return b.CreateStructGEP(t_.slotType, b.CreateConstInBoundsGEP1_64(t_.slotType, slots, s), k);
+  }
+  // The address of word w of fact `fact` (the array is read each time: a body may grow it).
+  llvm::Value* factWord(llvm::IRBuilder<>& b, const LoopView& loop, llvm::Value* fact, llvm::Value* w) {
+    llvm::Value* array = b.CreateLoad(b.getPtrTy(), loop.words);
+    llvm::Value* index = b.CreateAdd(b.CreateMul(b.CreateZExt(fact, b.getInt64Ty()), loop.stride), w);
+    return b.CreateInBoundsGEP(b.getInt64Ty(), array, index);
+  }
+  llvm::Value* highHalf(llvm::IRBuilder<>& b, llvm::Value* fact, const LoopView& loop, llvm::Value* w) {
+    llvm::Value* word = b.CreateLoad(b.getInt64Ty(), factWord(b, loop, fact, w));
+    return b.CreateTrunc(b.CreateLShr(word, 32), b.getInt32Ty());
+  }
+  llvm::Value* factCount(llvm::IRBuilder<>& b, const LoopView& loop, llvm::Value* fact) {
+    return highHalf(b, fact, loop, b.getInt64(1));  // 0: consumed
+  }
+
+  // The loop's end: the same status as the interpreter's (lastFired, or return when stopping).
+  void endLoop(Function& f, llvm::IRBuilder<>& b, std::uint32_t pc, llvm::Value* fired, llvm::Value* stopping) {
+    b.CreateStore(fired, f.lastFired);
+    llvm::BasicBlock* stop = newBlock(f, "stop");
+    b.CreateCondBr(stopping, stop, at(f, code_[pc + length(pc) - 1]));
     b.SetInsertPoint(stop);
     ret(b, kReturn);
+  }
+
+  void lowerLoop(Function& f, llvm::IRBuilder<>& b, std::uint32_t pc) {
+    if (Opcode(code_[pc]) != Opcode::ITER_SORTED) return lowerNativeLoop(f, b, pc);
+    llvm::Function* body = region(pc + length(pc));  // lowers the body (a separate function) first
+    llvm::Value* r =
+        b.CreateCall(t_.loopType, helper(f, b, kLoop), {f.helpers, f.vm, f.frame, b.getInt32(pc), body});
+    endLoop(f, b, pc, b.CreateICmpEQ(r, b.getInt32(kFired)), b.CreateICmpEQ(r, b.getInt32(kReturn)));
+  }
+
+  // ITER and ITER_KEY: the VM binds the slot and finds the first fact (loop_begin); the facts are
+  // stepped through here, in the order, with the skips and the counts of Interpreter::loop.
+  void lowerNativeLoop(Function& f, llvm::IRBuilder<>& b, std::uint32_t pc) {
+    const std::uint32_t pred = code_[pc + 1], slot = code_[pc + 2], flags = code_[pc + 3];
+    std::set<std::uint32_t> bound = f.bound;
+    bound.insert(slot);
+    llvm::Function* body = region(pc + length(pc), bound, true);
+    llvm::Type* i32 = b.getInt32Ty();
+    llvm::Type* i64 = b.getInt64Ty();
+    llvm::AllocaInst* info = local(f, t_.loopStructType, "loop");
+    llvm::AllocaInst* factVar = local(f, i32, "fact");
+    llvm::AllocaInst* triedVar = local(f, i64, "tried");
+    llvm::AllocaInst* firedVar = local(f, b.getInt1Ty(), "fired");
+    b.CreateCall(t_.loopBeginType, helper(f, b, kLoopBegin), {f.vm, f.frame, b.getInt32(pc), info});
+    b.CreateStore(info, b.CreateConstInBoundsGEP1_64(b.getPtrTy(), f.loops, slot));
+    const LoopView loop = loadLoopView(b, info);
+    auto field = [&](LoopField k, llvm::Type* type) {
+      return b.CreateLoad(type, b.CreateStructGEP(t_.loopStructType, info, k));
+    };
+    llvm::Value* stopFlag = field(kLoopStop, b.getPtrTy());
+    llvm::Value* sharedStop = field(kLoopSharedStop, b.getPtrTy());
+    llvm::Value* nextWord = b.CreateZExt(field(kLoopNextWord, i32), i64);
+    b.CreateStore(field(kLoopFirst, i32), factVar);
+    b.CreateStore(b.getInt64(0), triedVar);
+    b.CreateStore(b.getFalse(), firedVar);
+    auto stopping = [&] {
+      llvm::LoadInst* shared = b.CreateLoad(b.getInt8Ty(), sharedStop);
+      shared->setAtomic(llvm::AtomicOrdering::Monotonic);  // another thread writes it
+      return b.CreateOr(b.CreateICmpNE(b.CreateLoad(b.getInt8Ty(), stopFlag), b.getInt8(0)),
+                        b.CreateICmpNE(shared, b.getInt8(0)));
+    };
+
+    llvm::BasicBlock* header = newBlock(f, "loop" + std::to_string(pc));
+    llvm::BasicBlock* advance = newBlock(f, "advance" + std::to_string(pc));
+    llvm::BasicBlock* exit = newBlock(f, "exit" + std::to_string(pc));
+    b.CreateBr(header);
+    b.SetInsertPoint(header);
+    llvm::Value* fact = b.CreateLoad(i32, factVar);
+    llvm::BasicBlock* visit = newBlock(f, "visit" + std::to_string(pc));
+    b.CreateCondBr(b.CreateICmpEQ(fact, b.getInt32(MELD_NATIVE_NO_FACT)), exit, visit);
+    b.SetInsertPoint(visit);
+    b.CreateStore(b.CreateAdd(b.CreateLoad(i64, triedVar), b.getInt64(1)), triedVar);
+    if (flags & meldvm::kIterLinear) {  // skipFact: consumed, or bound by an enclosing loop (§6.4.3)
+      llvm::BasicBlock* live = newBlock(f, "live");
+      b.CreateCondBr(b.CreateICmpEQ(factCount(b, loop, fact), b.getInt32(0)), advance, live);
+      b.SetInsertPoint(live);
+      for (std::uint32_t s = 0; s < slot; ++s) {
+        const std::int64_t known = slotPredicate(s);
+        if (known >= 0 && known != pred) continue;  // never holds a fact of this predicate
+        llvm::Value* same = b.CreateAnd(
+            b.CreateICmpEQ(b.CreateLoad(i32, slotField(b, loop.slots, s, kSlotFact)), fact),
+            b.CreateAnd(b.CreateICmpEQ(b.CreateLoad(i32, slotField(b, loop.slots, s, kSlotPred)), b.getInt32(pred)),
+                        b.CreateIsNull(b.CreateLoad(b.getPtrTy(), slotField(b, loop.slots, s, kSlotFixed)))));
+        llvm::BasicBlock* other = newBlock(f, "other");
+        b.CreateCondBr(same, advance, other);
+        b.SetInsertPoint(other);
+      }
+    }
+    b.CreateStore(fact, slotField(b, loop.slots, slot, kSlotFact));
+    llvm::Value* r = b.CreateCall(t_.bodyType, body, {f.helpers, f.vm, f.frame, f.regs, f.loops});
+    llvm::Value* firedNow = b.CreateICmpEQ(r, b.getInt32(kFired));
+    b.CreateStore(b.CreateOr(b.CreateLoad(b.getInt1Ty(), firedVar), firedNow), firedVar);
+    llvm::Value* leave = stopping();
+    if (flags & meldvm::kIterReturnOnFire) leave = b.CreateOr(leave, firedNow);
+    b.CreateCondBr(leave, exit, advance);
+    b.SetInsertPoint(advance);
+    b.CreateStore(highHalf(b, b.CreateLoad(i32, factVar), loop, nextWord), factVar);
+    b.CreateBr(header);
+
+    b.SetInsertPoint(exit);
+    b.CreateCall(t_.loopEndType, helper(f, b, kLoopEnd), {f.vm, f.frame, b.getInt32(pc), b.CreateLoad(i64, triedVar)});
+    endLoop(f, b, pc, b.CreateLoad(b.getInt1Ty(), firedVar), stopping());
   }
 
   void lowerInstruction(Function& f, llvm::IRBuilder<>& b, std::uint32_t pc) {
@@ -290,6 +454,8 @@ class RegionLowering {
         return (void)b.CreateBr(at(f, next));
       case Opcode::LOAD:
         return lowerSlotRun(f, b, pc);
+      case Opcode::CALL:
+        return lowerCall(f, b, pc);
       // ---- the interpreter's code, through the step helper: the fact store, the heap (boxed
       // registers own references), messages, the scheduler, errors ----
       case Opcode::MOV:
@@ -311,7 +477,6 @@ class RegionLowering {
       case Opcode::TAIL:
       case Opcode::STRUCT:
       case Opcode::FIELD:
-      case Opcode::CALL:
       case Opcode::CALLF:
       case Opcode::CALLX:
       case Opcode::DERIVE:
@@ -361,35 +526,57 @@ class RegionLowering {
     return op == Opcode::LOAD || (op == Opcode::TEST && integerTest(pc));
   }
 
-  // Before a boxed register takes `value` (the interpreter's retain, then setReg's release of the
-  // old value): the counts are adjusted here, and only a count that would reach zero calls the VM.
+  // Reference counts adjusted inline (a boxed value points at its 32-bit count; nil holds none):
+  // only a count that would reach zero calls the VM.
+  void adjustCount(Function& f, llvm::IRBuilder<>& b, llvm::Value* v, bool retain, std::uint32_t type) {
+    llvm::BasicBlock* object = newBlock(f, retain ? "retain" : "release");
+    llvm::BasicBlock* done = newBlock(f, retain ? "retained" : "released");
+    b.CreateCondBr(b.CreateICmpNE(v, b.getInt64(0)), object, done);
+    b.SetInsertPoint(object);
+    llvm::Value* count = b.CreateIntToPtr(v, b.getPtrTy());
+    llvm::Value* refs = b.CreateLoad(b.getInt32Ty(), count);
+    if (retain) {
+      b.CreateStore(b.CreateAdd(refs, b.getInt32(1)), count);
+      b.CreateBr(done);
+    } else {
+      llvm::BasicBlock* last = newBlock(f, "last");
+      llvm::BasicBlock* more = newBlock(f, "more");
+      b.CreateCondBr(b.CreateICmpEQ(refs, b.getInt32(1)), last, more);
+      b.SetInsertPoint(last);
+      b.CreateCall(t_.releaseLastType, helper(f, b, kReleaseLast), {f.vm, b.getInt32(type), v});
+      b.CreateBr(done);
+      b.SetInsertPoint(more);
+      b.CreateStore(b.CreateSub(refs, b.getInt32(1)), count);
+      b.CreateBr(done);
+    }
+    b.SetInsertPoint(done);
+  }
+  // Before a boxed register takes `value`: the interpreter's retain, then setReg's release of the
+  // old value.
   void setBoxed(Function& f, llvm::IRBuilder<>& b, std::uint32_t r, llvm::Value* value) {
-    auto adjust = [&](llvm::Value* v, bool retain) {
-      llvm::BasicBlock* object = llvm::BasicBlock::Create(t_.context, retain ? "retain" : "release", f.fn);
-      llvm::BasicBlock* done = llvm::BasicBlock::Create(t_.context, retain ? "retained" : "released", f.fn);
-      b.CreateCondBr(b.CreateICmpNE(v, b.getInt64(0)), object, done);  // nil holds no count
-      b.SetInsertPoint(object);
-      llvm::Value* count = b.CreateIntToPtr(v, b.getPtrTy());
-      llvm::Value* refs = b.CreateLoad(b.getInt32Ty(), count);
-      if (retain) {
-        b.CreateStore(b.CreateAdd(refs, b.getInt32(1)), count);
-        b.CreateBr(done);
-      } else {
-        llvm::BasicBlock* last = llvm::BasicBlock::Create(t_.context, "last", f.fn);
-        llvm::BasicBlock* more = llvm::BasicBlock::Create(t_.context, "more", f.fn);
-        b.CreateCondBr(b.CreateICmpEQ(refs, b.getInt32(1)), last, more);
-        b.SetInsertPoint(last);
-        b.CreateCall(t_.releaseLastType, helper(f, b, kReleaseLast),
-                     {f.vm, b.getInt32(block_.registerTypes[r]), v});
-        b.CreateBr(done);
-        b.SetInsertPoint(more);
-        b.CreateStore(b.CreateSub(refs, b.getInt32(1)), count);
-        b.CreateBr(done);
-      }
-      b.SetInsertPoint(done);
-    };
-    adjust(value, true);
-    adjust(loadReg(f, b, r), false);
+    adjustCount(f, b, value, true, block_.registerTypes[r]);
+    adjustCount(f, b, loadReg(f, b, r), false, block_.registerTypes[r]);
+  }
+
+  // CALL: the built-in's implementation is called directly (builtins[id]) with the registers'
+  // values; its result is owned, so a boxed register only lets go of its old value. fabs is inline.
+  void lowerCall(Function& f, llvm::IRBuilder<>& b, std::uint32_t pc) {
+    const std::uint32_t* c = code_.data() + pc;
+    const std::uint32_t dest = c[1], id = c[2], count = c[4];
+    if (id == fabsId_) {
+      storeFloat(f, b, dest, b.CreateUnaryIntrinsic(llvm::Intrinsic::fabs, loadFloat(f, b, c[5])));
+      return (void)b.CreateBr(at(f, pc + length(pc)));
+    }
+    llvm::Type* argsType = llvm::ArrayType::get(b.getInt64Ty(), std::max<std::uint32_t>(count, 1));
+    llvm::AllocaInst* args = local(f, argsType, "args");
+    for (std::uint32_t i = 0; i < count; ++i)
+      b.CreateStore(loadReg(f, b, c[5 + i]), b.CreateConstInBoundsGEP2_32(argsType, args, 0, i));
+    llvm::Value* entry = b.CreateConstInBoundsGEP1_64(b.getPtrTy(), helper(f, b, kBuiltins), id);
+    llvm::Value* result = b.CreateCall(t_.builtinType, invariantLoad(b, entry),
+                                       {f.vm, args, b.getInt32(count), b.getInt32(c[3])});
+    if (boxed(dest)) adjustCount(f, b, loadReg(f, b, dest), false, block_.registerTypes[dest]);
+    b.CreateStore(result, reg(f, b, dest));
+    b.CreateBr(at(f, pc + length(pc)));
   }
 
   // LOADs and TESTs of integer-like fields, one after the other on the same slot: its arguments
@@ -397,8 +584,14 @@ class RegionLowering {
   // a value touches the heap, not the fact store).
   void lowerSlotRun(Function& f, llvm::IRBuilder<>& b, std::uint32_t pc) {
     const std::uint32_t slot = code_[pc + 1];
-    llvm::Value* args =
-        b.CreateCall(t_.slotArgsType, helper(f, b, kSlotArgs), {f.vm, f.frame, b.getInt32(slot)});
+    llvm::Value* args;
+    if (f.bound.count(slot)) {  // a native loop's fact: its arguments are read in the table
+      const LoopView loop = loopView(f, b, slot);
+      llvm::Value* fact = b.CreateLoad(b.getInt32Ty(), slotField(b, loop.slots, slot, kSlotFact));
+      args = factWord(b, loop, fact, loop.argOffset);
+    } else {
+      args = b.CreateCall(t_.slotArgsType, helper(f, b, kSlotArgs), {f.vm, f.frame, b.getInt32(slot)});
+    }
     for (; inSlotRun(pc, slot); pc += length(pc)) {
       llvm::Value* field =
           b.CreateLoad(b.getInt64Ty(), b.CreateConstInBoundsGEP1_64(b.getInt64Ty(), args, code_[pc + 2]));
@@ -414,17 +607,38 @@ class RegionLowering {
     b.CreateBr(at(f, pc));
   }
 
+  // FIRE and CFIRE: the interpreter's fire(), reading the slots of native loops in place (the VM is
+  // called only for a fact to consume, or for a slot a native loop did not bind).
   void lowerFire(Function& f, llvm::IRBuilder<>& b, std::uint32_t pc, bool rule) {
-    if (std::int64_t(code_[pc + 1]) <= lastConsumingSlot_)
-      b.CreateCall(t_.fireType, helper(f, b, kFire), {f.vm, f.frame, b.getInt32(pc), b.getInt32(rule)});
-    else if (rule)
-      b.CreateCall(t_.ruleFiredType, helper(f, b, kRuleFired), {f.vm});
+    for (auto it = consumingSlots_.lower_bound(code_[pc + 1]); it != consumingSlots_.end(); ++it) {
+      const std::uint32_t s = *it;
+      llvm::Value* slot = b.getInt32(s);
+      if (!f.bound.count(s)) {
+        b.CreateCall(t_.consumeType, helper(f, b, kConsume), {f.vm, f.frame, slot});
+        continue;
+      }
+      const LoopView loop = loopView(f, b, s);
+      llvm::Value* flags = b.CreateLoad(b.getInt32Ty(), slotField(b, loop.slots, s, kSlotFlags));
+      llvm::Value* fact = b.CreateLoad(b.getInt32Ty(), slotField(b, loop.slots, s, kSlotFact));
+      llvm::BasicBlock *bound = newBlock(f, "bound"), *call = newBlock(f, "consume"), *done = newBlock(f, "consumed");
+      b.CreateCondBr(b.CreateAnd(b.CreateICmpNE(b.CreateAnd(flags, b.getInt32(meldvm::kIterConsume)), b.getInt32(0)),
+                                 b.CreateICmpNE(fact, b.getInt32(MELD_NATIVE_NO_FACT))),
+                     bound, done);
+      b.SetInsertPoint(bound);
+      b.CreateCondBr(b.CreateICmpEQ(factCount(b, loop, fact), b.getInt32(0)), done, call);
+      b.SetInsertPoint(call);
+      b.CreateCall(t_.consumeType, helper(f, b, kConsume), {f.vm, f.frame, slot});
+      b.CreateBr(done);
+      b.SetInsertPoint(done);
+    }
+    if (rule) b.CreateCall(t_.ruleFiredType, helper(f, b, kRuleFired), {f.vm});
     ret(b, rule ? kFired : kNotFired);
   }
 
   NativeTypes& t_;
   const meldvm::Program& program_;
-  std::int64_t lastConsumingSlot_ = -1;
+  std::set<std::uint32_t> consumingSlots_;  // slots some loop binds with kIterConsume
+  const std::uint32_t fabsId_ = meldvm::findBuiltin("fabs")->id;
   std::map<std::uint32_t, std::int64_t> slotPreds_;  // slot -> predicate of every loop binding it
   const meldvm::CodeBlock& block_;
   std::span<const std::uint32_t> code_;
@@ -438,16 +652,23 @@ NativeTypes::NativeTypes(llvm::Module& m) : module(m), context(m.getContext()) {
   llvm::Type* ptr = llvm::PointerType::getUnqual(context);
   llvm::Type* i32 = llvm::Type::getInt32Ty(context);
   llvm::Type* voidTy = llvm::Type::getVoidTy(context);
-  helpersType =
-      llvm::StructType::create(context, {i32, ptr, ptr, ptr, ptr, ptr, ptr, ptr, ptr}, "meld_native_helpers");
+  llvm::Type* i64 = llvm::Type::getInt64Ty(context);
+  helpersType = llvm::StructType::create(context, {i32, ptr, ptr, ptr, ptr, ptr, ptr, ptr, ptr, ptr, ptr, ptr},
+                                         "meld_native_helpers");
+  loopStructType = llvm::StructType::create(context, {ptr, ptr, ptr, ptr, i32, i32, i32, i32}, "meld_native_loop");
+  slotType = llvm::StructType::create(context, {i32, i32, i32, i32, ptr}, "meld_native_slot");
+  loopBeginType = llvm::FunctionType::get(voidTy, {ptr, ptr, i32, ptr}, false);
+  loopEndType = llvm::FunctionType::get(voidTy, {ptr, ptr, i32, i64}, false);
   blockType = llvm::FunctionType::get(i32, {ptr, ptr, ptr, ptr}, false);
+  bodyType = llvm::FunctionType::get(i32, {ptr, ptr, ptr, ptr, ptr}, false);
+  builtinType = llvm::FunctionType::get(i64, {ptr, ptr, i32, i32}, false);
   loopType = llvm::FunctionType::get(i32, {ptr, ptr, ptr, i32, ptr}, false);
   stepType = llvm::FunctionType::get(voidTy, {ptr, ptr, i32}, false);
   testType = llvm::FunctionType::get(i32, {ptr, ptr, i32}, false);
-  fireType = llvm::FunctionType::get(voidTy, {ptr, ptr, i32, i32}, false);
+  consumeType = llvm::FunctionType::get(voidTy, {ptr, ptr, i32}, false);
   updatedType = llvm::FunctionType::get(i32, {ptr}, false);
   slotArgsType = llvm::FunctionType::get(ptr, {ptr, ptr, i32}, false);
-  releaseLastType = llvm::FunctionType::get(voidTy, {ptr, i32, llvm::Type::getInt64Ty(context)}, false);
+  releaseLastType = llvm::FunctionType::get(voidTy, {ptr, i32, i64}, false);
   ruleFiredType = llvm::FunctionType::get(voidTy, {ptr}, false);
 }
 

@@ -22,8 +22,11 @@ struct NativeTypes {
   llvm::LLVMContext& context;
   llvm::StructType* helpersType;  // meld_native_helpers
   llvm::FunctionType* blockType;  // meld_native_block
-  llvm::FunctionType *loopType, *stepType, *testType, *fireType, *updatedType, *slotArgsType, *ruleFiredType,
-      *releaseLastType;
+  llvm::FunctionType* bodyType;   // a loop body run by native code: the block's arguments, then the loops
+  llvm::StructType* loopStructType;  // meld_native_loop
+  llvm::StructType* slotType;        // meld_native_slot
+  llvm::FunctionType *loopType, *stepType, *testType, *consumeType, *updatedType, *slotArgsType, *ruleFiredType,
+      *releaseLastType, *loopBeginType, *loopEndType, *builtinType;
 };
 
 // Lowers the block's code; returns its entry function, external and named `name` (the loop bodies

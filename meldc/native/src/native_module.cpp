@@ -6,6 +6,7 @@
 #include <llvm/IR/Module.h>
 #include <llvm/IR/PassManager.h>
 #include <llvm/IR/Verifier.h>
+#include <llvm/MC/MCSubtargetInfo.h>
 #include <llvm/MC/TargetRegistry.h>
 #include <llvm/Passes/PassBuilder.h>
 #include <llvm/Support/TargetSelect.h>
@@ -21,20 +22,41 @@ namespace meldc::native {
 
 std::string blockSymbol(std::size_t k) { return "meld_block_" + std::to_string(k); }
 
-std::unique_ptr<llvm::TargetMachine> hostTargetMachine() {
+namespace {
+
+const llvm::Target& processTarget(std::string& triple) {
   static std::once_flag initialised;  // LLVM's target registry is process-wide
   std::call_once(initialised, [] {
     llvm::InitializeNativeTarget();
     llvm::InitializeNativeTargetAsmPrinter();
   });
-  const std::string triple = llvm::sys::getProcessTriple();
+  triple = llvm::sys::getProcessTriple();
   std::string error;
   const llvm::Target* target = llvm::TargetRegistry::lookupTarget(triple, error);
   if (!target) throw NativeError("no LLVM target for " + triple + ": " + error);
+  return *target;
+}
+
+std::string cpuName(const std::string& cpu) {
+  return cpu == "native" ? llvm::sys::getHostCPUName().str() : cpu;
+}
+
+}  // namespace
+
+bool knownCpu(const std::string& cpu) {
+  std::string triple;
+  const llvm::Target& target = processTarget(triple);
+  const std::unique_ptr<llvm::MCSubtargetInfo> info(target.createMCSubtargetInfo(triple, "", ""));
+  return cpu == "generic" || cpu == "native" || (info && info->isCPUStringValid(cpu));
+}
+
+std::unique_ptr<llvm::TargetMachine> targetMachine(const std::string& cpu) {
+  if (!knownCpu(cpu)) throw NativeError("unknown processor '" + cpu + "' (try generic or native)");
+  std::string triple;
+  const llvm::Target& target = processTarget(triple);
   llvm::TargetOptions options;
-  std::unique_ptr<llvm::TargetMachine> machine(
-      target->createTargetMachine(triple, llvm::sys::getHostCPUName(), "", options, llvm::Reloc::PIC_,
-                                  std::nullopt, llvm::CodeGenOptLevel::Default));
+  std::unique_ptr<llvm::TargetMachine> machine(target.createTargetMachine(
+      triple, cpuName(cpu), "", options, llvm::Reloc::PIC_, std::nullopt, llvm::CodeGenOptLevel::Default));
   if (!machine) throw NativeError("cannot create an LLVM target machine for " + triple);
   return machine;
 }
@@ -78,9 +100,9 @@ std::unique_ptr<llvm::Module> buildModule(const meldvm::Program& program, llvm::
   return module;
 }
 
-std::string llvmText(const meldvm::Program& program) {
+std::string llvmText(const meldvm::Program& program, const std::string& cpu) {
   llvm::LLVMContext context;
-  std::unique_ptr<llvm::TargetMachine> target = hostTargetMachine();
+  std::unique_ptr<llvm::TargetMachine> target = targetMachine(cpu);
   std::unique_ptr<llvm::Module> module = buildModule(program, context, *target);
   std::string text;
   llvm::raw_string_ostream out(text);

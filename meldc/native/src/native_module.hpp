@@ -18,7 +18,8 @@ namespace meldc::native {
 std::string blockSymbol(std::size_t k);
 
 // The host's target machine (the native target is initialised on first use); throws NativeError.
-std::unique_ptr<llvm::TargetMachine> hostTargetMachine();
+// The target machine of this process's architecture for `cpu` (native.hpp).
+std::unique_ptr<llvm::TargetMachine> targetMachine(const std::string& cpu);
 
 // Lowers every native block (meldvm::nativeCodeBlocks) and optimises the module at O2 for `target`.
 std::unique_ptr<llvm::Module> buildModule(const meldvm::Program& program, llvm::LLVMContext& context,

@@ -93,9 +93,9 @@ void link(const std::string& object, const std::string& out) {
 
 }  // namespace
 
-void writeSharedObject(const meldvm::Program& program, const std::string& path) {
+void writeSharedObject(const meldvm::Program& program, const std::string& path, const std::string& cpu) {
   llvm::LLVMContext context;
-  std::unique_ptr<llvm::TargetMachine> target = hostTargetMachine();
+  std::unique_ptr<llvm::TargetMachine> target = targetMachine(cpu);
   std::unique_ptr<llvm::Module> module = buildModule(program, context, *target);
   addDescription(*module, program);
   const std::string object = path + ".o.tmp";

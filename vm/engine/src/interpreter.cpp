@@ -1,6 +1,8 @@
 #include "interpreter.hpp"
 
 #include <algorithm>
+#include <atomic>
+#include <cstddef>
 #include <cstring>
 
 #include "meldvm/arith.hpp"
@@ -161,37 +163,41 @@ bool Interpreter::skipFact(const Frame& f, std::uint32_t slot, PredId p, FactRef
   return false;
 }
 
+inline Interpreter::LoopHead Interpreter::beginLoop(Frame& f, std::uint32_t pc) {
+  const std::uint32_t* c = f.code + pc;
+  LoopHead h{Opcode(c[0]), c[1], c[2], c[3], pc + 5, 0, Value(), f.host};
+  if (h.op == Opcode::ITER_KEY) {
+    h.keyField = c[4];
+    h.key = f.regs[c[5]];
+    h.body = pc + 7;
+  } else if (h.op == Opcode::ITER_SORTED) {
+    h.keyField = c[4];
+    h.body = pc + 6;
+  }
+  Slot& slot = f.slots[h.slot];
+  slot.pred = h.pred;
+  // Thread facts (§6.12) live at the running thread's node and are visible to the node's rules.
+  if (h.flags & kIterThread) h.at = machine_.threadNode_;
+  slot.node = h.at;
+  slot.flags = h.flags;
+  slot.fixed = nullptr;
+  machine_.countStep();  // each loop run: a join that never fires is work too
+  return h;
+}
+
 template <class RunBody>
 bool Interpreter::loop(Frame& f, std::uint32_t pc, RunBody&& runBody) {
-  const std::uint32_t* c = f.code + pc;
-  const auto op = Opcode(c[0]);
-  const PredId p = c[1];
-  const std::uint32_t s = c[2], flags = c[3];
-  std::uint32_t body;
-  std::uint32_t keyField = 0;
-  Value key;
-  if (op == Opcode::ITER) {
-    body = pc + 5;
-  } else if (op == Opcode::ITER_KEY) {
-    keyField = c[4];
-    key = f.regs[c[5]];
-    body = pc + 7;
-  } else {
-    keyField = c[4];
-    body = pc + 6;
-  }
+  const LoopHead h = beginLoop(f, pc);
+  const auto op = h.op;
+  const PredId p = h.pred;
+  const std::uint32_t s = h.slot, flags = h.flags, body = h.body, keyField = h.keyField;
+  const Value key = h.key;
+  const NodeId at = h.at;
   const bool linear = flags & kIterLinear;
   const bool returnOnFire = flags & kIterReturnOnFire;
   bool fired = false;
   Slot& slot = f.slots[s];
-  slot.pred = p;
-  // Thread facts (§6.12) live at the running thread's node and are visible to the node's rules.
-  const NodeId at = (flags & kIterThread) ? machine_.threadNode_ : f.host;
-  slot.node = at;
-  slot.flags = flags;
-  slot.fixed = nullptr;
 
-  machine_.countStep();                     // each loop run: a join that never fires is work too
   std::uint64_t tried = 0;                  // added to the statistics once, after the loop
   auto visit = [&](FactRef fact) -> bool {  // false: stop the loop
     ++tried;
@@ -311,9 +317,46 @@ void Interpreter::step(Frame& f, std::uint32_t pc) {
 // ---- the helpers of native code (native_abi.h): the interpreter's code for each instruction ----
 
 struct NativeHelpers {
+  using Slot = Interpreter::Slot;  // native code reads and binds the frame's slots in place
+  static_assert(sizeof(Slot) == sizeof(meld_native_slot) && offsetof(Slot, pred) == offsetof(meld_native_slot, pred) &&
+                offsetof(Slot, node) == offsetof(meld_native_slot, node) &&
+                offsetof(Slot, fact) == offsetof(meld_native_slot, fact) &&
+                offsetof(Slot, flags) == offsetof(meld_native_slot, flags) &&
+                offsetof(Slot, fixed) == offsetof(meld_native_slot, fixed) && kNoFact == MELD_NATIVE_NO_FACT);
+  static_assert(sizeof(bool) == 1 && sizeof(std::atomic<bool>) == 1 && std::atomic<bool>::is_always_lock_free,
+                "native code reads the stop flags as bytes");
   static Interpreter& vm(meld_native_vm* v) { return *reinterpret_cast<Interpreter*>(v); }
   static Interpreter::Frame& frame(meld_native_frame* f) { return *reinterpret_cast<Interpreter::Frame*>(f); }
 
+  // ITER and ITER_KEY loops run in native code: the slot is bound here, native code steps through
+  // the facts (the same order, skips and statistics as loop()).
+  static void loopBegin(meld_native_vm* v, meld_native_frame* fr, std::uint32_t pc, meld_native_loop* out) {
+    Interpreter& in = vm(v);
+    Interpreter::Frame& f = frame(fr);
+    const Interpreter::LoopHead h = in.beginLoop(f, pc);
+    const FactTable& table = in.db_.table(h.pred);
+    out->slots = reinterpret_cast<meld_native_slot*>(f.slots);
+    out->words = reinterpret_cast<const std::uint64_t* const*>(table.slotArrayAddress());
+    out->stop = reinterpret_cast<const std::uint8_t*>(&in.machine_.stop_);
+    out->shared_stop = in.machine_.stopFlag_ ? reinterpret_cast<const std::uint8_t*>(in.machine_.stopFlag_)
+                                             : out->stop;
+    out->stride = table.stride();
+    out->arg_offset = table.argOffset();
+    if (h.op == Opcode::ITER_KEY) {
+      const std::uint32_t ix = in.machine_.keyIndex(h.pred, h.keyField);
+      out->first = in.db_.firstWithKey(h.at, h.pred, ix, h.key);
+      out->next_word = table.indexLinkWord(ix);
+    } else {
+      out->first = in.db_.first(h.at, h.pred);
+      out->next_word = 0;
+    }
+  }
+  static void loopEnd(meld_native_vm* v, meld_native_frame* fr, std::uint32_t pc, std::uint64_t tried) {
+    Interpreter& in = vm(v);
+    Interpreter::Frame& f = frame(fr);
+    in.machine_.stats_.factsTried += tried;
+    f.slots[f.code[pc + 2]].fact = kNoFact;
+  }
   static int32_t loop(const meld_native_helpers* h, meld_native_vm* v, meld_native_frame* fr,
                       std::uint32_t pc, meld_native_block body) {
     Interpreter& in = vm(v);
@@ -332,10 +375,10 @@ struct NativeHelpers {
     const Interpreter::Frame& f = frame(fr);
     return vm(v).testField(f, f.code + pc);
   }
-  static void fire(meld_native_vm* v, meld_native_frame* fr, std::uint32_t pc, int32_t countRule) {
-    Interpreter::Frame& f = frame(fr);
-    vm(v).fire(f, f.code[pc + 1]);
-    if (countRule) ruleFired(v);
+  static void consume(meld_native_vm* v, meld_native_frame* fr, std::uint32_t s) {
+    Interpreter& in = vm(v);
+    const Slot& sl = frame(fr).slots[s];
+    if (in.consumable(sl)) in.consumeSlot(sl);
   }
   static int32_t updated(meld_native_frame* f) { return frame(f).updated; }
   static const std::uint64_t* slotArgs(meld_native_vm* v, meld_native_frame* f, std::uint32_t slot) {
@@ -347,13 +390,26 @@ struct NativeHelpers {
     vm(v).heap_.release(TypeId(type), Value::fromBits(value));
   }
 
+  template <BuiltinFn F>
+  static std::uint64_t builtin(meld_native_vm* v, const std::uint64_t* args, std::uint32_t count,
+                               std::uint32_t result) {
+    return F(vm(v).ctx_, {reinterpret_cast<const Value*>(args), count}, TypeId(result)).bits();
+  }
+  static constexpr meld_native_builtin kBuiltins[] = {  // builtins.def's ids are dense, in order
+#define BUILTIN(id, name, impl, signature, typeArg) &builtin<&builtins::impl>,
+#include "meldvm/builtins.def"
+#undef BUILTIN
+  };
+  static_assert(std::size(kBuiltins) == kBuiltinIdCount);
+
   static constexpr meld_native_step kSteps[] = {
 #define OP(name, operands, meaning) &step<Opcode::name>,
 #include "meldvm/opcodes.def"
 #undef OP
   };
   static constexpr meld_native_helpers kTable = {
-      MELD_NATIVE_ABI_VERSION, &loop, kSteps, &test, &fire, &updated, &slotArgs, &ruleFired, &releaseLast,
+      MELD_NATIVE_ABI_VERSION, &loop,      kSteps,     &test,   &consume, &updated, &slotArgs,
+      &ruleFired,              &releaseLast, &loopBegin, &loopEnd, kBuiltins,
   };
 };
 

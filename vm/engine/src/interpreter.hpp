@@ -58,6 +58,15 @@ class Interpreter {
   enum class Status : std::uint8_t { NotFired, Fired, Return };
 
   Status exec(Frame& f, std::uint32_t pc);
+  // A loop instruction decoded, its slot bound to the predicate and node and the loop counted.
+  struct LoopHead {
+    Opcode op;
+    PredId pred;
+    std::uint32_t slot, flags, body, keyField;
+    Value key;  // ITER_KEY
+    NodeId at;  // the host, or the thread's node
+  };
+  [[gnu::always_inline]] LoopHead beginLoop(Frame& f, std::uint32_t pc);
   // The loop instruction at pc; runBody(bodyPc) runs its body once the slot is bound.
   template <class RunBody>
   [[gnu::noinline]] bool loop(Frame& f, std::uint32_t pc, RunBody&& runBody);  // kept out of exec
@@ -73,11 +82,12 @@ class Interpreter {
   // firing consumes nothing and should cost next to nothing).
   [[gnu::always_inline]] void fire(Frame& f, std::uint32_t firstSlot) {
     if (!f.boxed[f.block->registerTypes.size() + 1]) return;  // no loop of the block consumes
-    for (std::uint32_t s = firstSlot; s < f.block->slots; ++s) {
-      Slot& sl = f.slots[s];
-      if ((sl.flags & kIterConsume) && sl.fact != kNoFact && !sl.fixed && !db_.consumedMark(sl.pred, sl.fact))
-        consumeSlot(sl);
-    }
+    for (std::uint32_t s = firstSlot; s < f.block->slots; ++s)
+      if (consumable(f.slots[s])) consumeSlot(f.slots[s]);
+  }
+  // Whether FIRE consumes the fact of this slot: its loop consumes, and it is not consumed yet.
+  [[gnu::always_inline]] bool consumable(const Slot& sl) const {
+    return (sl.flags & kIterConsume) && sl.fact != kNoFact && !sl.fixed && !db_.consumedMark(sl.pred, sl.fact);
   }
   void consumeSlot(const Slot& sl);
   // Why a fact exists (DerivationLog): the rule's line and the facts its slots hold.

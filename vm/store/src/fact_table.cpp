@@ -47,6 +47,7 @@ bool FactTable::keyEqual(FactRef f, const Value* key, KeySpec spec) const {
 
 void FactTable::reserve(std::size_t facts) {
   words_.reserve(facts * stride_);
+  slotArray_ = words_.data();
   if (dedup_) facts_.reserve(std::uint32_t(facts));
   for (Index& x : indexes_) x.heads.reserve(std::uint32_t(facts));
 }
@@ -58,6 +59,7 @@ void FactTable::growForOneMore() {
   if (words_.size() + stride_ <= words_.capacity()) return;
   const std::size_t slots = words_.capacity() / stride_;
   words_.reserve((slots + std::max<std::size_t>(slots / 4, 4)) * stride_);
+  slotArray_ = words_.data();
 }
 
 std::uint64_t FactTable::dedupHash(NodeId n, const Value* key) const {

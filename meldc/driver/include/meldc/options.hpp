@@ -24,6 +24,7 @@ struct Options {
   EmitKind emit = EmitKind::Bytecode;
   bool noStdlib = false;  // --no-stdlib: do not search the standard library folder
   bool robots = false;    // --robots: node ids are block ids (no renumbering)
+  std::string cpu;        // --cpu: the processor of --emit=native (default generic) / llvm (native)
   bool help = false;
   bool version = false;
 };

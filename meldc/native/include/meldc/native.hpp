@@ -20,12 +20,16 @@ class NativeError : public std::runtime_error {
   using std::runtime_error::runtime_error;
 };
 
+// `cpu`: the processor to compile for: "generic" (any machine of this architecture), "native" (this
+// one's) or an LLVM processor name; an unknown name throws NativeError.
+bool knownCpu(const std::string& cpu);
+
 // The program's native blocks as optimised LLVM IR text.
-std::string llvmText(const meldvm::Program& program);
+std::string llvmText(const meldvm::Program& program, const std::string& cpu = "native");
 
 // The program as a shared object (`meldc --emit=native`): its native code, and its bytecode for
 // the tables (native_abi.h). Needs the system linker (`ld`, or $MELD_LD); throws NativeError.
-void writeSharedObject(const meldvm::Program& program, const std::string& path);
+void writeSharedObject(const meldvm::Program& program, const std::string& path, const std::string& cpu = "generic");
 
 // The program compiled in this process. The entry of native block k is entries()[k]; the code lives
 // as long as the Jit.

@@ -20,7 +20,7 @@ extern "C" {
 #endif
 
 /* Bumped whenever a helper, its meaning or the block signature changes. */
-#define MELD_NATIVE_ABI_VERSION 3u
+#define MELD_NATIVE_ABI_VERSION 4u
 
 typedef struct meld_native_vm meld_native_vm;       /* the interpreter running the block */
 typedef struct meld_native_frame meld_native_frame; /* its frame (registers, loop slots) */
@@ -29,6 +29,36 @@ typedef struct meld_native_helpers meld_native_helpers;
 typedef int32_t (*meld_native_block)(const meld_native_helpers* h, meld_native_vm* vm, meld_native_frame* f,
                                      uint64_t* regs);
 typedef void (*meld_native_step)(meld_native_vm* vm, meld_native_frame* f, uint32_t pc);
+/* A built-in function (builtins.def): its result (owned by the caller) from `count` arguments;
+ * `result` is the CALL's concrete result type. */
+typedef uint64_t (*meld_native_builtin)(meld_native_vm* vm, const uint64_t* args, uint32_t count, uint32_t result);
+
+#define MELD_NATIVE_NO_FACT 0xFFFFFFFFu
+
+/* A loop slot of the frame (meldvm::Interpreter::Slot, same layout): the fact a loop has bound,
+ * which the helpers (FIRE, UPDATE, why-trees) read. */
+typedef struct meld_native_slot {
+  uint32_t pred;
+  uint32_t node;
+  uint32_t fact; /* MELD_NATIVE_NO_FACT when unbound */
+  uint32_t flags;
+  const uint64_t* fixed; /* a process's trigger: pre-bound arguments instead of a stored fact */
+} meld_native_slot;
+
+/* What loop_begin tells native code about an ITER or ITER_KEY loop, so that it steps through the
+ * facts itself. A fact f is the 8-byte words [f * stride, (f + 1) * stride) of the predicate's
+ * slot array: the high half of word 1 is its count (0: consumed), the high half of word
+ * next_word links to the next fact of the loop (MELD_NATIVE_NO_FACT at the end). */
+typedef struct meld_native_loop {
+  meld_native_slot* slots;       /* the frame's loop slots */
+  const uint64_t* const* words;  /* where the slot array is: it moves when the table grows */
+  const uint8_t* stop;           /* nonzero: the run is stopping (the machine's flag) */
+  const uint8_t* shared_stop;    /* nonzero: every thread is stopping (an atomic flag) */
+  uint32_t first;                /* the loop's first fact, or MELD_NATIVE_NO_FACT */
+  uint32_t stride;
+  uint32_t next_word;
+  uint32_t arg_offset; /* the word of a fact's first argument */
+} meld_native_loop;
 
 struct meld_native_helpers {
   uint32_t abi_version;
@@ -41,18 +71,27 @@ struct meld_native_helpers {
   const meld_native_step* steps;
   /* TEST at pc: 1 if the field equals the register. */
   int32_t (*test)(meld_native_vm* vm, meld_native_frame* f, uint32_t pc);
-  /* FIRE (count_rule = 1) or CFIRE (0) at pc: consumes the linear facts of its slots. */
-  void (*fire)(meld_native_vm* vm, meld_native_frame* f, uint32_t pc, int32_t count_rule);
+  /* FIRE or CFIRE, for each slot from its first one on that a loop of the block may consume:
+   * consumes the slot's linear fact if its loop consumes and the fact is not consumed yet (native
+   * code may skip the call when it sees that nothing is to be done). */
+  void (*consume)(meld_native_vm* vm, meld_native_frame* f, uint32_t slot);
   /* RET_IF_UPDATED: 1 if an UPDATE ran in this frame. */
   int32_t (*updated)(meld_native_frame* f);
   /* The arguments of the fact bound to loop slot `slot` (8 bytes each, home excluded), valid until
    * the next instruction that stores a fact: LOAD into an unboxed register reads them directly. */
   const uint64_t* (*slot_args)(meld_native_vm* vm, meld_native_frame* f, uint32_t slot);
-  /* FIRE of a block whose loops consume nothing from its first slot on: counts the rule only. */
+  /* FIRE: counts the rule (after its consumption). */
   void (*rule_fired)(meld_native_vm* vm);
   /* Drops the last reference to a boxed value of type `type` (native code counts references
    * itself: a boxed value points at its 32-bit count; this is for when it would reach zero). */
   void (*release_last)(meld_native_vm* vm, uint32_t type, uint64_t value);
+  /* ITER or ITER_KEY at pc: binds its slot's predicate and node, counts the loop and fills `out`;
+   * native code then binds each fact to slots[slot].fact and runs the body itself. */
+  void (*loop_begin)(meld_native_vm* vm, meld_native_frame* f, uint32_t pc, meld_native_loop* out);
+  /* The end of that loop: `tried` facts were visited; unbinds the slot. */
+  void (*loop_end)(meld_native_vm* vm, meld_native_frame* f, uint32_t pc, uint64_t tried);
+  /* builtins[ID] runs the built-in function with that id of builtins.def: CALL calls it directly. */
+  const meld_native_builtin* builtins;
 };
 
 /* What a native shared object (`meldc --emit=native`) exports: meld_native_program() returns its

@@ -201,6 +201,7 @@ class Machine : private SchedulerView {
 
  private:
   friend class Interpreter;
+  friend struct NativeHelpers;  // the interpreter's helpers for native code (interpreter.cpp)
 
   // ---- what the interpreter calls ----
   void derive(NodeId host, PredId p, const Value* args, bool negative);

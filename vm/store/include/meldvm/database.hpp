@@ -116,6 +116,7 @@ class Database {
   // insertion order inside a group) like the established VM's trie at its first level (§11).
   // Aggregate values: one per group, a changed value moves to the end; compact: insertion order.
   FactRef first(NodeId n, PredId p) const { return head(n, p).first; }
+  const FactTable& table(PredId p) const { return tables_[p]; }  // its layout, for native code
   FactRef next(PredId p, FactRef f) const { return tables_[p].next(f); }
   const Value* args(PredId p, FactRef f) const { return tables_[p].args(f); }
   std::uint32_t copies(PredId p, FactRef f) const { return tables_[p].count(f); }

@@ -75,7 +75,7 @@ class FactTable {
   [[gnu::always_inline]] void prefetchKey(NodeId node, std::uint32_t index, const Value* key) const {
     indexes_[index].heads.prefetch(hashKey(node, key, indexes_[index].key));
   }
-  FactRef nextWithKey(std::uint32_t index, FactRef f) const { return hi(base(f) + 2 + index); }
+  FactRef nextWithKey(std::uint32_t index, FactRef f) const { return hi(base(f) + indexLinkWord(index)); }
   FactRef lastWithKey(NodeId node, std::uint32_t index, const Value* key) const {
     const FactRef head = firstWithKey(node, index, key);
     return head == kNoFact ? kNoFact : lo(base(head) + 2 + index);  // the head's prev is the tail
@@ -87,6 +87,14 @@ class FactTable {
   std::uint32_t count(FactRef f) const { return hi(base(f) + 1); }
   // Valid until the next insertion into this table (the slot array may move).
   const Value* args(FactRef f) const { return words_.data() + base(f) + argOffset_; }
+
+  // Native code steps through the facts itself (native_abi.h's meld_native_loop): where the slot
+  // array is (the array moves when the table grows; this address does not) and words per slot.
+  const Value* const* slotArrayAddress() const { return &slotArray_; }
+  std::uint32_t stride() const { return stride_; }
+  std::uint32_t argOffset() const { return argOffset_; }
+  // The slot word whose high half links a fact to the next one of index `index`'s chain.
+  std::uint32_t indexLinkWord(std::uint32_t index) const { return 2 + index; }
 
   std::uint32_t arity() const { return std::uint32_t(fields_.size()); }
   const std::vector<TypeId>& fields() const { return fields_; }
@@ -145,6 +153,7 @@ class FactTable {
   mutable std::uint64_t memoHash_ = 0;
   std::uint32_t stride_ = 0, argOffset_ = 0;
   LargeVector<Value> words_;
+  const Value* slotArray_ = nullptr;  // words_.data(), refreshed whenever words_ reallocates
   FactRef freeList_ = kNoFact;
   std::uint32_t live_ = 0;
 };
