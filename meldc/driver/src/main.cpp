@@ -72,7 +72,8 @@ int main(int argc, char** argv) {
     return kExitUsage;
   }
   if (options->cpu.empty()) options->cpu = options->emit == EmitKind::Llvm ? "native" : "generic";
-  if ((options->emit == EmitKind::Native || options->emit == EmitKind::Llvm) && !meldc::native::knownCpu(options->cpu)) {
+  if ((options->emit == EmitKind::Native || options->emit == EmitKind::Llvm) &&
+      !meldc::native::knownCpu(options->cpu)) {
     std::cerr << "meldc: error: unknown processor '" << options->cpu
               << "' for --cpu (generic, native, or an LLVM processor name such as x86-64-v3)\n";
     return kExitUsage;

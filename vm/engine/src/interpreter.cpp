@@ -318,7 +318,8 @@ void Interpreter::step(Frame& f, std::uint32_t pc) {
 
 struct NativeHelpers {
   using Slot = Interpreter::Slot;  // native code reads and binds the frame's slots in place
-  static_assert(sizeof(Slot) == sizeof(meld_native_slot) && offsetof(Slot, pred) == offsetof(meld_native_slot, pred) &&
+  static_assert(sizeof(Slot) == sizeof(meld_native_slot) &&
+                offsetof(Slot, pred) == offsetof(meld_native_slot, pred) &&
                 offsetof(Slot, node) == offsetof(meld_native_slot, node) &&
                 offsetof(Slot, fact) == offsetof(meld_native_slot, fact) &&
                 offsetof(Slot, flags) == offsetof(meld_native_slot, flags) &&
@@ -338,8 +339,8 @@ struct NativeHelpers {
     out->slots = reinterpret_cast<meld_native_slot*>(f.slots);
     out->words = reinterpret_cast<const std::uint64_t* const*>(table.slotArrayAddress());
     out->stop = reinterpret_cast<const std::uint8_t*>(&in.machine_.stop_);
-    out->shared_stop = in.machine_.stopFlag_ ? reinterpret_cast<const std::uint8_t*>(in.machine_.stopFlag_)
-                                             : out->stop;
+    out->shared_stop =
+        in.machine_.stopFlag_ ? reinterpret_cast<const std::uint8_t*>(in.machine_.stopFlag_) : out->stop;
     out->stride = table.stride();
     out->arg_offset = table.argOffset();
     if (h.op == Opcode::ITER_KEY) {
@@ -395,7 +396,8 @@ struct NativeHelpers {
                                std::uint32_t result) {
     return F(vm(v).ctx_, {reinterpret_cast<const Value*>(args), count}, TypeId(result)).bits();
   }
-  static constexpr meld_native_builtin kBuiltins[] = {  // builtins.def's ids are dense, in order
+  static constexpr meld_native_builtin kBuiltins[] = {
+      // builtins.def's ids are dense, in order
 #define BUILTIN(id, name, impl, signature, typeArg) &builtin<&builtins::impl>,
 #include "meldvm/builtins.def"
 #undef BUILTIN
@@ -408,8 +410,18 @@ struct NativeHelpers {
 #undef OP
   };
   static constexpr meld_native_helpers kTable = {
-      MELD_NATIVE_ABI_VERSION, &loop,      kSteps,     &test,   &consume, &updated, &slotArgs,
-      &ruleFired,              &releaseLast, &loopBegin, &loopEnd, kBuiltins,
+      MELD_NATIVE_ABI_VERSION,
+      &loop,
+      kSteps,
+      &test,
+      &consume,
+      &updated,
+      &slotArgs,
+      &ruleFired,
+      &releaseLast,
+      &loopBegin,
+      &loopEnd,
+      kBuiltins,
   };
 };
 

@@ -87,7 +87,8 @@ class Interpreter {
   }
   // Whether FIRE consumes the fact of this slot: its loop consumes, and it is not consumed yet.
   [[gnu::always_inline]] bool consumable(const Slot& sl) const {
-    return (sl.flags & kIterConsume) && sl.fact != kNoFact && !sl.fixed && !db_.consumedMark(sl.pred, sl.fact);
+    return (sl.flags & kIterConsume) && sl.fact != kNoFact && !sl.fixed &&
+           !db_.consumedMark(sl.pred, sl.fact);
   }
   void consumeSlot(const Slot& sl);
   // Why a fact exists (DerivationLog): the rule's line and the facts its slots hold.

@@ -31,7 +31,8 @@ typedef int32_t (*meld_native_block)(const meld_native_helpers* h, meld_native_v
 typedef void (*meld_native_step)(meld_native_vm* vm, meld_native_frame* f, uint32_t pc);
 /* A built-in function (builtins.def): its result (owned by the caller) from `count` arguments;
  * `result` is the CALL's concrete result type. */
-typedef uint64_t (*meld_native_builtin)(meld_native_vm* vm, const uint64_t* args, uint32_t count, uint32_t result);
+typedef uint64_t (*meld_native_builtin)(meld_native_vm* vm, const uint64_t* args, uint32_t count,
+                                        uint32_t result);
 
 #define MELD_NATIVE_NO_FACT 0xFFFFFFFFu
 
@@ -50,11 +51,11 @@ typedef struct meld_native_slot {
  * slot array: the high half of word 1 is its count (0: consumed), the high half of word
  * next_word links to the next fact of the loop (MELD_NATIVE_NO_FACT at the end). */
 typedef struct meld_native_loop {
-  meld_native_slot* slots;       /* the frame's loop slots */
-  const uint64_t* const* words;  /* where the slot array is: it moves when the table grows */
-  const uint8_t* stop;           /* nonzero: the run is stopping (the machine's flag) */
-  const uint8_t* shared_stop;    /* nonzero: every thread is stopping (an atomic flag) */
-  uint32_t first;                /* the loop's first fact, or MELD_NATIVE_NO_FACT */
+  meld_native_slot* slots;      /* the frame's loop slots */
+  const uint64_t* const* words; /* where the slot array is: it moves when the table grows */
+  const uint8_t* stop;          /* nonzero: the run is stopping (the machine's flag) */
+  const uint8_t* shared_stop;   /* nonzero: every thread is stopping (an atomic flag) */
+  uint32_t first;               /* the loop's first fact, or MELD_NATIVE_NO_FACT */
   uint32_t stride;
   uint32_t next_word;
   uint32_t arg_offset; /* the word of a fact's first argument */

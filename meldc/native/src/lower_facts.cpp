@@ -1,0 +1,246 @@
+// The lowering of what touches the fact store and the heap: loops (native for ITER and ITER_KEY),
+// FIRE, runs of LOAD and TEST on a slot, CALL of a built-in, reference counts.
+#include "region_lowering.hpp"
+
+namespace meldc::native::detail {
+
+RegionLowering::LoopView RegionLowering::loadLoopView(llvm::IRBuilder<>& b, llvm::Value* info) {
+  auto field = [&](LoopField k, llvm::Type* type) {
+    return b.CreateLoad(type, b.CreateStructGEP(t_.loopStructType, info, k));
+  };
+  return {field(kLoopSlots, b.getPtrTy()), field(kLoopWords, b.getPtrTy()),
+          b.CreateZExt(field(kLoopStride, b.getInt32Ty()), b.getInt64Ty()),
+          b.CreateZExt(field(kLoopArgOffset, b.getInt32Ty()), b.getInt64Ty())};
+}
+
+// The loop that bound slot s around this code (s is in f.bound).
+RegionLowering::LoopView RegionLowering::loopView(Function& f, llvm::IRBuilder<>& b, std::uint32_t s) {
+  return loadLoopView(b, b.CreateLoad(b.getPtrTy(), b.CreateConstInBoundsGEP1_64(b.getPtrTy(), f.loops, s)));
+}
+
+// The address of word w of fact `fact` (the array is read each time: a body may grow it).
+llvm::Value* RegionLowering::factWord(llvm::IRBuilder<>& b, const LoopView& loop, llvm::Value* fact,
+                                      llvm::Value* w) {
+  llvm::Value* array = b.CreateLoad(b.getPtrTy(), loop.words);
+  llvm::Value* index = b.CreateAdd(b.CreateMul(b.CreateZExt(fact, b.getInt64Ty()), loop.stride), w);
+  return b.CreateInBoundsGEP(b.getInt64Ty(), array, index);
+}
+
+llvm::Value* RegionLowering::highHalf(llvm::IRBuilder<>& b, llvm::Value* fact, const LoopView& loop,
+                                      llvm::Value* w) {
+  llvm::Value* word = b.CreateLoad(b.getInt64Ty(), factWord(b, loop, fact, w));
+  return b.CreateTrunc(b.CreateLShr(word, 32), b.getInt32Ty());
+}
+
+llvm::Value* RegionLowering::factCount(llvm::IRBuilder<>& b, const LoopView& loop, llvm::Value* fact) {
+  return highHalf(b, fact, loop, b.getInt64(1));  // 0: consumed
+}
+
+// The loop's end: the same status as the interpreter's (lastFired, or return when stopping).
+void RegionLowering::endLoop(Function& f, llvm::IRBuilder<>& b, std::uint32_t pc, llvm::Value* fired,
+                             llvm::Value* stopping) {
+  b.CreateStore(fired, f.lastFired);
+  llvm::BasicBlock* stop = newBlock(f, "stop");
+  b.CreateCondBr(stopping, stop, at(f, code_[pc + length(pc) - 1]));
+  b.SetInsertPoint(stop);
+  ret(b, kReturn);
+}
+
+void RegionLowering::lowerLoop(Function& f, llvm::IRBuilder<>& b, std::uint32_t pc) {
+  if (Opcode(code_[pc]) != Opcode::ITER_SORTED) return lowerNativeLoop(f, b, pc);
+  llvm::Function* body = region(pc + length(pc));  // lowers the body (a separate function) first
+  llvm::Value* r =
+      b.CreateCall(t_.loopType, helper(f, b, kLoop), {f.helpers, f.vm, f.frame, b.getInt32(pc), body});
+  endLoop(f, b, pc, b.CreateICmpEQ(r, b.getInt32(kFired)), b.CreateICmpEQ(r, b.getInt32(kReturn)));
+}
+
+// ITER and ITER_KEY: the VM binds the slot and finds the first fact (loop_begin); the facts are
+// stepped through here, in the order, with the skips and the counts of Interpreter::loop.
+void RegionLowering::lowerNativeLoop(Function& f, llvm::IRBuilder<>& b, std::uint32_t pc) {
+  const std::uint32_t pred = code_[pc + 1], slot = code_[pc + 2], flags = code_[pc + 3];
+  std::set<std::uint32_t> bound = f.bound;
+  bound.insert(slot);
+  llvm::Function* body = region(pc + length(pc), bound, true);
+  llvm::Type* i32 = b.getInt32Ty();
+  llvm::Type* i64 = b.getInt64Ty();
+  llvm::AllocaInst* info = local(f, t_.loopStructType, "loop");
+  llvm::AllocaInst* factVar = local(f, i32, "fact");
+  llvm::AllocaInst* triedVar = local(f, i64, "tried");
+  llvm::AllocaInst* firedVar = local(f, b.getInt1Ty(), "fired");
+  b.CreateCall(t_.loopBeginType, helper(f, b, kLoopBegin), {f.vm, f.frame, b.getInt32(pc), info});
+  b.CreateStore(info, b.CreateConstInBoundsGEP1_64(b.getPtrTy(), f.loops, slot));
+  const LoopView loop = loadLoopView(b, info);
+  auto field = [&](LoopField k, llvm::Type* type) {
+    return b.CreateLoad(type, b.CreateStructGEP(t_.loopStructType, info, k));
+  };
+  llvm::Value* stopFlag = field(kLoopStop, b.getPtrTy());
+  llvm::Value* sharedStop = field(kLoopSharedStop, b.getPtrTy());
+  llvm::Value* nextWord = b.CreateZExt(field(kLoopNextWord, i32), i64);
+  b.CreateStore(field(kLoopFirst, i32), factVar);
+  b.CreateStore(b.getInt64(0), triedVar);
+  b.CreateStore(b.getFalse(), firedVar);
+  auto stopping = [&] {
+    llvm::LoadInst* shared = b.CreateLoad(b.getInt8Ty(), sharedStop);
+    shared->setAtomic(llvm::AtomicOrdering::Monotonic);  // another thread writes it
+    return b.CreateOr(b.CreateICmpNE(b.CreateLoad(b.getInt8Ty(), stopFlag), b.getInt8(0)),
+                      b.CreateICmpNE(shared, b.getInt8(0)));
+  };
+
+  llvm::BasicBlock* header = newBlock(f, "loop" + std::to_string(pc));
+  llvm::BasicBlock* advance = newBlock(f, "advance" + std::to_string(pc));
+  llvm::BasicBlock* exit = newBlock(f, "exit" + std::to_string(pc));
+  b.CreateBr(header);
+  b.SetInsertPoint(header);
+  llvm::Value* fact = b.CreateLoad(i32, factVar);
+  llvm::BasicBlock* visit = newBlock(f, "visit" + std::to_string(pc));
+  b.CreateCondBr(b.CreateICmpEQ(fact, b.getInt32(MELD_NATIVE_NO_FACT)), exit, visit);
+  b.SetInsertPoint(visit);
+  b.CreateStore(b.CreateAdd(b.CreateLoad(i64, triedVar), b.getInt64(1)), triedVar);
+  if (flags & meldvm::kIterLinear) {  // skipFact: consumed, or bound by an enclosing loop (§6.4.3)
+    llvm::BasicBlock* live = newBlock(f, "live");
+    b.CreateCondBr(b.CreateICmpEQ(factCount(b, loop, fact), b.getInt32(0)), advance, live);
+    b.SetInsertPoint(live);
+    for (std::uint32_t s = 0; s < slot; ++s) {
+      const std::int64_t known = slotPredicate(s);
+      if (known >= 0 && known != pred) continue;  // never holds a fact of this predicate
+      llvm::Value* same = b.CreateAnd(
+          b.CreateICmpEQ(b.CreateLoad(i32, slotField(b, loop.slots, s, kSlotFact)), fact),
+          b.CreateAnd(
+              b.CreateICmpEQ(b.CreateLoad(i32, slotField(b, loop.slots, s, kSlotPred)), b.getInt32(pred)),
+              b.CreateIsNull(b.CreateLoad(b.getPtrTy(), slotField(b, loop.slots, s, kSlotFixed)))));
+      llvm::BasicBlock* other = newBlock(f, "other");
+      b.CreateCondBr(same, advance, other);
+      b.SetInsertPoint(other);
+    }
+  }
+  b.CreateStore(fact, slotField(b, loop.slots, slot, kSlotFact));
+  llvm::Value* r = b.CreateCall(t_.bodyType, body, {f.helpers, f.vm, f.frame, f.regs, f.loops});
+  llvm::Value* firedNow = b.CreateICmpEQ(r, b.getInt32(kFired));
+  b.CreateStore(b.CreateOr(b.CreateLoad(b.getInt1Ty(), firedVar), firedNow), firedVar);
+  llvm::Value* leave = stopping();
+  if (flags & meldvm::kIterReturnOnFire) leave = b.CreateOr(leave, firedNow);
+  b.CreateCondBr(leave, exit, advance);
+  b.SetInsertPoint(advance);
+  b.CreateStore(highHalf(b, b.CreateLoad(i32, factVar), loop, nextWord), factVar);
+  b.CreateBr(header);
+
+  b.SetInsertPoint(exit);
+  b.CreateCall(t_.loopEndType, helper(f, b, kLoopEnd),
+               {f.vm, f.frame, b.getInt32(pc), b.CreateLoad(i64, triedVar)});
+  endLoop(f, b, pc, b.CreateLoad(b.getInt1Ty(), firedVar), stopping());
+}
+
+// Reference counts adjusted inline (a boxed value points at its 32-bit count; nil holds none):
+// only a count that would reach zero calls the VM.
+void RegionLowering::adjustCount(Function& f, llvm::IRBuilder<>& b, llvm::Value* v, bool retain,
+                                 std::uint32_t type) {
+  llvm::BasicBlock* object = newBlock(f, retain ? "retain" : "release");
+  llvm::BasicBlock* done = newBlock(f, retain ? "retained" : "released");
+  b.CreateCondBr(b.CreateICmpNE(v, b.getInt64(0)), object, done);
+  b.SetInsertPoint(object);
+  llvm::Value* count = b.CreateIntToPtr(v, b.getPtrTy());
+  llvm::Value* refs = b.CreateLoad(b.getInt32Ty(), count);
+  if (retain) {
+    b.CreateStore(b.CreateAdd(refs, b.getInt32(1)), count);
+    b.CreateBr(done);
+  } else {
+    llvm::BasicBlock* last = newBlock(f, "last");
+    llvm::BasicBlock* more = newBlock(f, "more");
+    b.CreateCondBr(b.CreateICmpEQ(refs, b.getInt32(1)), last, more);
+    b.SetInsertPoint(last);
+    b.CreateCall(t_.releaseLastType, helper(f, b, kReleaseLast), {f.vm, b.getInt32(type), v});
+    b.CreateBr(done);
+    b.SetInsertPoint(more);
+    b.CreateStore(b.CreateSub(refs, b.getInt32(1)), count);
+    b.CreateBr(done);
+  }
+  b.SetInsertPoint(done);
+}
+
+// Before a boxed register takes `value`: the interpreter's retain, then setReg's release of the
+// old value.
+void RegionLowering::setBoxed(Function& f, llvm::IRBuilder<>& b, std::uint32_t r, llvm::Value* value) {
+  adjustCount(f, b, value, true, block_.registerTypes[r]);
+  adjustCount(f, b, loadReg(f, b, r), false, block_.registerTypes[r]);
+}
+
+// CALL: the built-in's implementation is called directly (builtins[id]) with the registers'
+// values; its result is owned, so a boxed register only lets go of its old value. fabs is inline.
+void RegionLowering::lowerCall(Function& f, llvm::IRBuilder<>& b, std::uint32_t pc) {
+  const std::uint32_t* c = code_.data() + pc;
+  const std::uint32_t dest = c[1], id = c[2], count = c[4];
+  if (id == fabsId_) {
+    storeFloat(f, b, dest, b.CreateUnaryIntrinsic(llvm::Intrinsic::fabs, loadFloat(f, b, c[5])));
+    return (void)b.CreateBr(at(f, pc + length(pc)));
+  }
+  llvm::Type* argsType = llvm::ArrayType::get(b.getInt64Ty(), std::max<std::uint32_t>(count, 1));
+  llvm::AllocaInst* args = local(f, argsType, "args");
+  for (std::uint32_t i = 0; i < count; ++i)
+    b.CreateStore(loadReg(f, b, c[5 + i]), b.CreateConstInBoundsGEP2_32(argsType, args, 0, i));
+  llvm::Value* entry = b.CreateConstInBoundsGEP1_64(b.getPtrTy(), helper(f, b, kBuiltins), id);
+  llvm::Value* result = b.CreateCall(t_.builtinType, invariantLoad(b, entry),
+                                     {f.vm, args, b.getInt32(count), b.getInt32(c[3])});
+  if (boxed(dest)) adjustCount(f, b, loadReg(f, b, dest), false, block_.registerTypes[dest]);
+  b.CreateStore(result, reg(f, b, dest));
+  b.CreateBr(at(f, pc + length(pc)));
+}
+
+// LOADs and TESTs of integer-like fields, one after the other on the same slot: its arguments
+// are looked up once and read in place (nothing stores a fact in between: a release that frees
+// a value touches the heap, not the fact store).
+void RegionLowering::lowerSlotRun(Function& f, llvm::IRBuilder<>& b, std::uint32_t pc) {
+  const std::uint32_t slot = code_[pc + 1];
+  llvm::Value* args;
+  if (f.bound.count(slot)) {  // a native loop's fact: its arguments are read in the table
+    const LoopView loop = loopView(f, b, slot);
+    llvm::Value* fact = b.CreateLoad(b.getInt32Ty(), slotField(b, loop.slots, slot, kSlotFact));
+    args = factWord(b, loop, fact, loop.argOffset);
+  } else {
+    args = b.CreateCall(t_.slotArgsType, helper(f, b, kSlotArgs), {f.vm, f.frame, b.getInt32(slot)});
+  }
+  for (; inSlotRun(pc, slot); pc += length(pc)) {
+    llvm::Value* field =
+        b.CreateLoad(b.getInt64Ty(), b.CreateConstInBoundsGEP1_64(b.getInt64Ty(), args, code_[pc + 2]));
+    if (Opcode(code_[pc]) == Opcode::LOAD) {
+      if (boxed(code_[pc + 3])) setBoxed(f, b, code_[pc + 3], field);
+      b.CreateStore(field, reg(f, b, code_[pc + 3]));
+      continue;
+    }
+    llvm::BasicBlock* equal = llvm::BasicBlock::Create(t_.context, "equal" + std::to_string(pc), f.fn);
+    b.CreateCondBr(b.CreateICmpEQ(field, loadReg(f, b, code_[pc + 3])), equal, at(f, code_[pc + 4]));
+    b.SetInsertPoint(equal);
+  }
+  b.CreateBr(at(f, pc));
+}
+
+// FIRE and CFIRE: the interpreter's fire(), reading the slots of native loops in place (the VM is
+// called only for a fact to consume, or for a slot a native loop did not bind).
+void RegionLowering::lowerFire(Function& f, llvm::IRBuilder<>& b, std::uint32_t pc, bool rule) {
+  for (auto it = consumingSlots_.lower_bound(code_[pc + 1]); it != consumingSlots_.end(); ++it) {
+    const std::uint32_t s = *it;
+    llvm::Value* slot = b.getInt32(s);
+    if (!f.bound.count(s)) {
+      b.CreateCall(t_.consumeType, helper(f, b, kConsume), {f.vm, f.frame, slot});
+      continue;
+    }
+    const LoopView loop = loopView(f, b, s);
+    llvm::Value* flags = b.CreateLoad(b.getInt32Ty(), slotField(b, loop.slots, s, kSlotFlags));
+    llvm::Value* fact = b.CreateLoad(b.getInt32Ty(), slotField(b, loop.slots, s, kSlotFact));
+    llvm::BasicBlock *bound = newBlock(f, "bound"), *call = newBlock(f, "consume"),
+                     *done = newBlock(f, "consumed");
+    b.CreateCondBr(
+        b.CreateAnd(b.CreateICmpNE(b.CreateAnd(flags, b.getInt32(meldvm::kIterConsume)), b.getInt32(0)),
+                    b.CreateICmpNE(fact, b.getInt32(MELD_NATIVE_NO_FACT))),
+        bound, done);
+    b.SetInsertPoint(bound);
+    b.CreateCondBr(b.CreateICmpEQ(factCount(b, loop, fact), b.getInt32(0)), done, call);
+    b.SetInsertPoint(call);
+    b.CreateCall(t_.consumeType, helper(f, b, kConsume), {f.vm, f.frame, slot});
+    b.CreateBr(done);
+    b.SetInsertPoint(done);
+  }
+  if (rule) b.CreateCall(t_.ruleFiredType, helper(f, b, kRuleFired), {f.vm});
+  ret(b, rule ? kFired : kNotFired);
+}
+
+}  // namespace meldc::native::detail

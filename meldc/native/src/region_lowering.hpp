@@ -1,0 +1,267 @@
+// The lowering of one code block (lower_block.cpp: functions and the switch over opcodes;
+// lower_facts.cpp: loops over the fact store, FIRE, LOAD/TEST runs, built-in calls and reference
+// counts). Private to meldc/native.
+#pragma once
+
+#include <llvm/IR/IRBuilder.h>
+#include <llvm/IR/Module.h>
+
+#include <cstddef>
+#include <map>
+#include <set>
+#include <string>
+#include <vector>
+
+#include "lower_block.hpp"
+#include "meldvm/builtin_signatures.hpp"
+#include "meldvm/bytecode_internal.hpp"
+
+namespace meldc::native::detail {
+
+using meldvm::Opcode;
+
+// Fields of meld_native_helpers (native_abi.h), in order.
+enum Helper : unsigned {
+  kAbiVersion,
+  kLoop,
+  kSteps,
+  kTest,
+  kConsume,
+  kUpdated,
+  kSlotArgs,
+  kRuleFired,
+  kReleaseLast,
+  kLoopBegin,
+  kLoopEnd,
+  kBuiltins
+};
+// Fields of meld_native_loop and meld_native_slot, in order.
+enum LoopField : unsigned {
+  kLoopSlots,
+  kLoopWords,
+  kLoopStop,
+  kLoopSharedStop,
+  kLoopFirst,
+  kLoopStride,
+  kLoopNextWord,
+  kLoopArgOffset
+};
+enum SlotField : unsigned { kSlotPred, kSlotNode, kSlotFact, kSlotFlags, kSlotFixed };
+enum Status : std::int32_t { kNotFired = 0, kFired = 1, kReturn = 2 };
+// The LLVM struct of the helpers ({i32, ptr, ...}) puts field k at 8 * k: so must the C one.
+static_assert(offsetof(meld_native_helpers, loop) == kLoop * 8 &&
+              offsetof(meld_native_helpers, steps) == kSteps * 8 &&
+              offsetof(meld_native_helpers, test) == kTest * 8 &&
+              offsetof(meld_native_helpers, consume) == kConsume * 8 &&
+              offsetof(meld_native_helpers, updated) == kUpdated * 8 &&
+              offsetof(meld_native_helpers, slot_args) == kSlotArgs * 8 &&
+              offsetof(meld_native_helpers, rule_fired) == kRuleFired * 8 &&
+              offsetof(meld_native_helpers, release_last) == kReleaseLast * 8 &&
+              offsetof(meld_native_helpers, loop_begin) == kLoopBegin * 8 &&
+              offsetof(meld_native_helpers, loop_end) == kLoopEnd * 8 &&
+              offsetof(meld_native_helpers, builtins) == kBuiltins * 8 &&
+              sizeof(meld_native_helpers) == (kBuiltins + 1) * 8);
+static_assert(offsetof(meld_native_loop, words) == 8 * kLoopWords &&
+              offsetof(meld_native_loop, stop) == 8 * kLoopStop &&
+              offsetof(meld_native_loop, shared_stop) == 8 * kLoopSharedStop &&
+              offsetof(meld_native_loop, first) == 8 * kLoopFirst &&
+              offsetof(meld_native_loop, stride) == 8 * kLoopFirst + 4 &&
+              offsetof(meld_native_loop, next_word) == 8 * kLoopFirst + 8 &&
+              offsetof(meld_native_loop, arg_offset) == 8 * kLoopFirst + 12 &&
+              sizeof(meld_native_loop) == 48);
+static_assert(offsetof(meld_native_slot, fact) == 4 * kSlotFact && offsetof(meld_native_slot, fixed) == 16 &&
+              sizeof(meld_native_slot) == 24);
+
+class RegionLowering {
+ public:
+  RegionLowering(NativeTypes& t, const meldvm::Program& program, const meldvm::CodeBlock& block,
+                 std::string prefix, bool process)
+      : t_(t), program_(program), block_(block), code_(block.code), prefix_(std::move(prefix)) {
+    // Which loop slots consume the fact they bind (FIRE has nothing to consume past the last).
+    meldvm::detail::forEachInstruction(code_, [&](std::size_t pc) {
+      if (!meldvm::detail::isLoop(code_[pc])) return;
+      const std::uint32_t pred = code_[pc + 1], slot = code_[pc + 2];
+      if (code_[pc + 3] & meldvm::kIterConsume) {
+        consumingSlots_.insert(slot);
+      }
+      const auto [it, fresh] = slotPreds_.try_emplace(slot, pred);
+      if (!fresh && it->second != pred) it->second = -1;
+    });
+    // A persistent process's slot 0 holds the fact that triggered it (any predicate it names).
+    if (process) slotPreds_.erase(0);
+  }
+
+  // The function for the code entered at `start` (created on first request, lowered at once).
+  // The block's start and the bodies of ITER_SORTED loops (run by the VM's loop helper) are
+  // meld_native_block functions; a body that native code loops over also gets the loops array
+  // (what loop_begin said about each loop slot bound natively: `bound` lists them).
+  llvm::Function* region(std::uint32_t start, const std::set<std::uint32_t>& bound = {},
+                         bool nativeBody = false);
+
+ private:
+  struct Function {
+    llvm::Function* fn = nullptr;
+    llvm::Value* helpers = nullptr;
+    llvm::Value* vm = nullptr;
+    llvm::Value* frame = nullptr;
+    llvm::Value* regs = nullptr;
+    llvm::Value* lastFired = nullptr;   // exec()'s `lastFired`: did the latest loop fire
+    llvm::BasicBlock* entry = nullptr;  // where the stack variables are allocated
+    llvm::Value* loops = nullptr;       // meld_native_loop* per slot (those in `bound` are set)
+    std::set<std::uint32_t> bound;      // slots bound by a native loop around this code
+    std::map<std::uint32_t, llvm::BasicBlock*> blocks;
+    std::vector<std::uint32_t> pending;
+  };
+
+  llvm::BasicBlock* at(Function& f, std::uint32_t pc) {
+    auto [it, fresh] = f.blocks.try_emplace(pc, nullptr);
+    if (fresh) {
+      it->second = llvm::BasicBlock::Create(t_.context, "pc" + std::to_string(pc), f.fn);
+      f.pending.push_back(pc);
+    }
+    return it->second;
+  }
+
+  void lowerRegion(Function& f, std::uint32_t start, bool nativeBody);
+
+  std::uint32_t length(std::uint32_t pc) const {
+    std::string why;
+    const std::size_t len = meldvm::detail::instructionLength(code_, pc, why);
+    if (len == 0) throw NativeError("block '" + block_.label + "': " + why);  // verified: cannot happen
+    return std::uint32_t(len);
+  }
+
+  // ---- helpers and registers ----
+  // The helper table is constant while a program runs: its loads may be merged and hoisted.
+  llvm::Value* invariantLoad(llvm::IRBuilder<>& b, llvm::Value* address) {
+    llvm::LoadInst* load = b.CreateLoad(b.getPtrTy(), address);
+    load->setMetadata(llvm::LLVMContext::MD_invariant_load, llvm::MDNode::get(t_.context, {}));
+    return load;
+  }
+  llvm::Value* helper(Function& f, llvm::IRBuilder<>& b, Helper h) {
+    return invariantLoad(b, b.CreateStructGEP(t_.helpersType, f.helpers, h));
+  }
+  llvm::Value* reg(Function& f, llvm::IRBuilder<>& b, std::uint32_t r) {
+    return b.CreateConstInBoundsGEP1_64(b.getInt64Ty(), f.regs, r);
+  }
+  llvm::Value* loadReg(Function& f, llvm::IRBuilder<>& b, std::uint32_t r) {
+    return b.CreateLoad(b.getInt64Ty(), reg(f, b, r));
+  }
+  llvm::Value* loadInt(Function& f, llvm::IRBuilder<>& b, std::uint32_t r) {  // Value::asInt
+    return b.CreateTrunc(loadReg(f, b, r), b.getInt32Ty());
+  }
+  llvm::Value* loadFloat(Function& f, llvm::IRBuilder<>& b, std::uint32_t r) {  // Value::asFloat
+    return b.CreateBitCast(loadReg(f, b, r), b.getDoubleTy());
+  }
+  void storeInt(Function& f, llvm::IRBuilder<>& b, std::uint32_t r, llvm::Value* i32) {  // fromInt
+    b.CreateStore(b.CreateSExt(i32, b.getInt64Ty()), reg(f, b, r));
+  }
+  void storeFloat(Function& f, llvm::IRBuilder<>& b, std::uint32_t r, llvm::Value* d) {
+    b.CreateStore(b.CreateBitCast(d, b.getInt64Ty()), reg(f, b, r));
+  }
+  void storeBool(Function& f, llvm::IRBuilder<>& b, std::uint32_t r, llvm::Value* i1) {
+    b.CreateStore(b.CreateZExt(i1, b.getInt64Ty()), reg(f, b, r));
+  }
+  void step(Function& f, llvm::IRBuilder<>& b, std::uint32_t pc) {  // steps[opcode](vm, frame, pc)
+    llvm::Value* entry = b.CreateConstInBoundsGEP1_64(b.getPtrTy(), helper(f, b, kSteps), code_[pc]);
+    b.CreateCall(t_.stepType, invariantLoad(b, entry), {f.vm, f.frame, b.getInt32(pc)});
+    b.CreateBr(at(f, pc + length(pc)));
+  }
+  void branch(Function& f, llvm::IRBuilder<>& b, llvm::Value* cond, std::uint32_t yes, std::uint32_t no) {
+    b.CreateCondBr(cond, at(f, yes), at(f, no));
+  }
+  void ret(llvm::IRBuilder<>& b, Status s) { b.CreateRet(b.getInt32(s)); }
+
+  // A stack variable of the function (in its entry block, where mem2reg promotes it).
+  llvm::AllocaInst* local(Function& f, llvm::Type* type, const char* name) {
+    llvm::IRBuilder<> e(f.entry, f.entry->getFirstInsertionPt());
+    return e.CreateAlloca(type, nullptr, name);
+  }
+  llvm::BasicBlock* newBlock(Function& f, const std::string& name) {
+    return llvm::BasicBlock::Create(t_.context, name, f.fn);
+  }
+
+  // What loop_begin said about a loop (meld_native_loop), read where it is needed.
+  struct LoopView {
+    llvm::Value* slots;   // the frame's meld_native_slot array
+    llvm::Value* words;   // where the predicate's slot array is
+    llvm::Value* stride;  // i64
+    llvm::Value* argOffset;
+  };
+  LoopView loadLoopView(llvm::IRBuilder<>& b, llvm::Value* info);
+  // The loop that bound slot s around this code (s is in f.bound).
+  LoopView loopView(Function& f, llvm::IRBuilder<>& b, std::uint32_t s);
+  llvm::Value* slotField(llvm::IRBuilder<>& b, llvm::Value* slots, std::uint32_t s, SlotField k) {
+    return b.CreateStructGEP(t_.slotType, b.CreateConstInBoundsGEP1_64(t_.slotType, slots, s), k);
+  }
+  // The address of word w of fact `fact` (the array is read each time: a body may grow it).
+  llvm::Value* factWord(llvm::IRBuilder<>& b, const LoopView& loop, llvm::Value* fact, llvm::Value* w);
+  llvm::Value* highHalf(llvm::IRBuilder<>& b, llvm::Value* fact, const LoopView& loop, llvm::Value* w);
+  llvm::Value* factCount(llvm::IRBuilder<>& b, const LoopView& loop, llvm::Value* fact);
+
+  // The loop's end: the same status as the interpreter's (lastFired, or return when stopping).
+  void endLoop(Function& f, llvm::IRBuilder<>& b, std::uint32_t pc, llvm::Value* fired,
+               llvm::Value* stopping);
+
+  void lowerLoop(Function& f, llvm::IRBuilder<>& b, std::uint32_t pc);
+
+  // ITER and ITER_KEY: the VM binds the slot and finds the first fact (loop_begin); the facts are
+  // stepped through here, in the order, with the skips and the counts of Interpreter::loop.
+  void lowerNativeLoop(Function& f, llvm::IRBuilder<>& b, std::uint32_t pc);
+
+  void lowerInstruction(Function& f, llvm::IRBuilder<>& b, std::uint32_t pc);
+
+  bool boxed(std::uint32_t r) const { return program_.types.boxed(block_.registerTypes[r]); }
+
+  // The predicate a loop slot holds facts of, when every loop that binds it has the same one
+  // (otherwise, or for a process's trigger slot, unknown: -1).
+  std::int64_t slotPredicate(std::uint32_t slot) const {
+    auto it = slotPreds_.find(slot);
+    return it == slotPreds_.end() ? -1 : it->second;
+  }
+  // Whether TEST at pc compares an int, bool, node or thread field: then equality is of the bits.
+  bool integerTest(std::uint32_t pc) const {
+    const std::int64_t p = slotPredicate(code_[pc + 1]);
+    if (p < 0) return false;
+    const meldvm::TypeKind k = program_.types.kind(program_.predicates[std::size_t(p)].fields[code_[pc + 2]]);
+    return k == meldvm::TypeKind::Int || k == meldvm::TypeKind::Bool || k == meldvm::TypeKind::Node ||
+           k == meldvm::TypeKind::Thread;
+  }
+  bool inSlotRun(std::uint32_t pc, std::uint32_t slot) const {
+    if (pc >= code_.size() || code_[pc + 1] != slot) return false;
+    const Opcode op = Opcode(code_[pc]);
+    return op == Opcode::LOAD || (op == Opcode::TEST && integerTest(pc));
+  }
+
+  // Reference counts adjusted inline (a boxed value points at its 32-bit count; nil holds none):
+  // only a count that would reach zero calls the VM.
+  void adjustCount(Function& f, llvm::IRBuilder<>& b, llvm::Value* v, bool retain, std::uint32_t type);
+  // Before a boxed register takes `value`: the interpreter's retain, then setReg's release of the
+  // old value.
+  void setBoxed(Function& f, llvm::IRBuilder<>& b, std::uint32_t r, llvm::Value* value);
+
+  // CALL: the built-in's implementation is called directly (builtins[id]) with the registers'
+  // values; its result is owned, so a boxed register only lets go of its old value. fabs is inline.
+  void lowerCall(Function& f, llvm::IRBuilder<>& b, std::uint32_t pc);
+
+  // LOADs and TESTs of integer-like fields, one after the other on the same slot: its arguments
+  // are looked up once and read in place (nothing stores a fact in between: a release that frees
+  // a value touches the heap, not the fact store).
+  void lowerSlotRun(Function& f, llvm::IRBuilder<>& b, std::uint32_t pc);
+
+  // FIRE and CFIRE: the interpreter's fire(), reading the slots of native loops in place (the VM is
+  // called only for a fact to consume, or for a slot a native loop did not bind).
+  void lowerFire(Function& f, llvm::IRBuilder<>& b, std::uint32_t pc, bool rule);
+
+  NativeTypes& t_;
+  const meldvm::Program& program_;
+  std::set<std::uint32_t> consumingSlots_;  // slots some loop binds with kIterConsume
+  const std::uint32_t fabsId_ = meldvm::findBuiltin("fabs")->id;
+  std::map<std::uint32_t, std::int64_t> slotPreds_;  // slot -> predicate of every loop binding it
+  const meldvm::CodeBlock& block_;
+  std::span<const std::uint32_t> code_;
+  std::string prefix_;
+  std::map<std::uint32_t, llvm::Function*> regions_;  // by the pc each function starts at
+};
+
+}  // namespace meldc::native::detail
