@@ -4,13 +4,15 @@
 
 namespace meldc::native::detail {
 
+llvm::Value* RegionLowering::loopField(llvm::IRBuilder<>& b, llvm::Value* info, LoopField k,
+                                       llvm::Type* type) {
+  return b.CreateLoad(type, b.CreateStructGEP(t_.loopStructType, info, k));
+}
+
 RegionLowering::LoopView RegionLowering::loadLoopView(llvm::IRBuilder<>& b, llvm::Value* info) {
-  auto field = [&](LoopField k, llvm::Type* type) {
-    return b.CreateLoad(type, b.CreateStructGEP(t_.loopStructType, info, k));
-  };
-  return {field(kLoopSlots, b.getPtrTy()), field(kLoopWords, b.getPtrTy()),
-          b.CreateZExt(field(kLoopStride, b.getInt32Ty()), b.getInt64Ty()),
-          b.CreateZExt(field(kLoopArgOffset, b.getInt32Ty()), b.getInt64Ty())};
+  return {loopField(b, info, kLoopSlots, b.getPtrTy()), loopField(b, info, kLoopWords, b.getPtrTy()),
+          b.CreateZExt(loopField(b, info, kLoopStride, b.getInt32Ty()), b.getInt64Ty()),
+          b.CreateZExt(loopField(b, info, kLoopArgOffset, b.getInt32Ty()), b.getInt64Ty())};
 }
 
 // The loop that bound slot s around this code (s is in f.bound).
@@ -70,9 +72,7 @@ void RegionLowering::lowerNativeLoop(Function& f, llvm::IRBuilder<>& b, std::uin
   b.CreateCall(t_.loopBeginType, helper(f, b, kLoopBegin), {f.vm, f.frame, b.getInt32(pc), info});
   b.CreateStore(info, b.CreateConstInBoundsGEP1_64(b.getPtrTy(), f.loops, slot));
   const LoopView loop = loadLoopView(b, info);
-  auto field = [&](LoopField k, llvm::Type* type) {
-    return b.CreateLoad(type, b.CreateStructGEP(t_.loopStructType, info, k));
-  };
+  auto field = [&](LoopField k, llvm::Type* type) { return loopField(b, info, k, type); };
   llvm::Value* stopFlag = field(kLoopStop, b.getPtrTy());
   llvm::Value* sharedStop = field(kLoopSharedStop, b.getPtrTy());
   llvm::Value* nextWord = b.CreateZExt(field(kLoopNextWord, i32), i64);

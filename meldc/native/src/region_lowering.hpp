@@ -188,6 +188,7 @@ class RegionLowering {
     llvm::Value* stride;  // i64
     llvm::Value* argOffset;
   };
+  llvm::Value* loopField(llvm::IRBuilder<>& b, llvm::Value* info, LoopField k, llvm::Type* type);
   LoopView loadLoopView(llvm::IRBuilder<>& b, llvm::Value* info);
   // The loop that bound slot s around this code (s is in f.bound).
   LoopView loopView(Function& f, llvm::IRBuilder<>& b, std::uint32_t s);
