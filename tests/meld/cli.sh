@@ -171,6 +171,15 @@ case_native() {
   printf 'not an object' >"$WORK/text.so"
   run 3 "$WORK/text.so"
   has "$ERR" "cannot load the shared object"
+  # A program of two partitions (two object files; meldc_native's partitionBlocks): every rule of
+  # the chain must run, in the .so and in the JIT.
+  python3 "$(dirname "$0")/../../bench/native/gen_rules.py" --rules 80 -o "$WORK/chain.meld" >/dev/null
+  "$MELDC" --emit=native "$WORK/chain.meld" || fail "meldc --emit=native failed on chain.meld"
+  run 0 "$WORK/chain.so" --dump
+  has "$OUT" "p80(80, 156)"
+  cp "$OUT" "$WORK/chain.dump"
+  run 0 "$WORK/chain.meld" --jit --dump
+  cmp -s "$OUT" "$WORK/chain.dump" || fail "chain.meld --jit gave another dump than chain.so"
 }
 
 "case_$CASE"

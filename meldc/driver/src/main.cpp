@@ -119,7 +119,7 @@ int main(int argc, char** argv) {
         return kExitUsage;
       }
       try {
-        meldc::native::writeSharedObject(*lowered, path, options->cpu);
+        meldc::native::writeSharedObject(*lowered, path, options->cpu, options->jobs);
       } catch (const meldc::native::NativeError& e) {
         std::cerr << "meldc: error: " << e.what() << '\n';
         return kExitProgramErrors;

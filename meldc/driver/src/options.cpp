@@ -25,7 +25,7 @@ bool validConstName(const std::string& name) {
 
 const char* usageText() {
   return "usage: meldc FILE.meld [-o OUT] [-I DIR]... [--no-stdlib] [--robots] [-DNAME=VALUE]...\n"
-         "             [--check | --emit=KIND] [--cpu=NAME]\n"
+         "             [--check | --emit=KIND] [--cpu=NAME] [-j N]\n"
          "\n"
          "Compiles a Linear Meld program to bytecode for the Meld VM: parses the program, merges its\n"
          "includes, resolves names, checks it, renumbers its nodes and lowers its rules.\n"
@@ -48,6 +48,8 @@ const char* usageText() {
          "                   architecture), native (this machine's: the default of llvm, and what\n"
          "                   meld --jit uses; may not run elsewhere) or an LLVM processor name such\n"
          "                   as x86-64-v3\n"
+         "  -j N, --jobs=N   threads compiling native code (--emit=native; default: one per\n"
+         "                   processor); the shared object is the same whatever N is\n"
          "  -o OUT           write the --emit output to OUT instead of standard output (bytecode:\n"
          "                   instead of FILE.mbc, native: of FILE.so); '-o -' is standard output,\n"
          "                   for bytecode too\n"
@@ -114,6 +116,15 @@ std::optional<Options> parseOptions(const std::vector<std::string>& args, std::s
         error = "option '--cpu=' needs a processor name (generic, native, or an LLVM name)";
         return std::nullopt;
       }
+    } else if (a.rfind("-j", 0) == 0 || a.rfind("--jobs=", 0) == 0) {  // -j N, -jN, --jobs=N
+      std::string n = a[1] == 'j' ? a.substr(2) : a.substr(7);
+      if (a == "-j" && !needValue(i, a, n)) return std::nullopt;
+      if (n.empty() || n.size() > 4 || n.find_first_not_of("0123456789") != std::string::npos ||
+          std::stoi(n) < 1) {
+        error = "option '" + a + "' needs a number of threads from 1 to 9999";
+        return std::nullopt;
+      }
+      o.jobs = static_cast<unsigned>(std::stoi(n));
     } else if (a == "-o") {
       if (!needValue(i, a, o.output)) return std::nullopt;
     } else if (a == "-I" || (a.rfind("-I", 0) == 0 && a.size() > 2)) {

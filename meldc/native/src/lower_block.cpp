@@ -220,6 +220,11 @@ void RegionLowering::lowerInstruction(Function& f, llvm::IRBuilder<>& b, std::ui
 
 using detail::RegionLowering;
 
+llvm::FunctionType* blockFunctionType(llvm::LLVMContext& context) {
+  llvm::PointerType* ptr = llvm::PointerType::getUnqual(context);
+  return llvm::FunctionType::get(llvm::Type::getInt32Ty(context), {ptr, ptr, ptr, ptr}, false);
+}
+
 NativeTypes::NativeTypes(llvm::Module& m) : module(m), context(m.getContext()) {
   llvm::Type* ptr = llvm::PointerType::getUnqual(context);
   llvm::Type* i32 = llvm::Type::getInt32Ty(context);
@@ -232,7 +237,7 @@ NativeTypes::NativeTypes(llvm::Module& m) : module(m), context(m.getContext()) {
   slotType = llvm::StructType::create(context, {i32, i32, i32, i32, ptr}, "meld_native_slot");
   loopBeginType = llvm::FunctionType::get(voidTy, {ptr, ptr, i32, ptr}, false);
   loopEndType = llvm::FunctionType::get(voidTy, {ptr, ptr, i32, i64}, false);
-  blockType = llvm::FunctionType::get(i32, {ptr, ptr, ptr, ptr}, false);
+  blockType = blockFunctionType(context);
   bodyType = llvm::FunctionType::get(i32, {ptr, ptr, ptr, ptr, ptr}, false);
   builtinType = llvm::FunctionType::get(i64, {ptr, ptr, i32, i32}, false);
   loopType = llvm::FunctionType::get(i32, {ptr, ptr, ptr, i32, ptr}, false);

@@ -15,18 +15,21 @@ class StructType;
 
 namespace meldc::native {
 
+// meld_native_block's type.
+llvm::FunctionType* blockFunctionType(llvm::LLVMContext& context);
+
 // The LLVM types of native_abi.h, made once per module.
 struct NativeTypes {
   explicit NativeTypes(llvm::Module& m);
   llvm::Module& module;
   llvm::LLVMContext& context;
-  llvm::StructType* helpersType;  // meld_native_helpers
-  llvm::FunctionType* blockType;  // meld_native_block
-  llvm::FunctionType* bodyType;   // a loop body run by native code: the block's arguments, then the loops
+  llvm::StructType* helpersType;     // meld_native_helpers
+  llvm::FunctionType* blockType;     // meld_native_block
+  llvm::FunctionType* bodyType;      // a loop body run by native code: the block's arguments, then the loops
   llvm::StructType* loopStructType;  // meld_native_loop
   llvm::StructType* slotType;        // meld_native_slot
-  llvm::FunctionType *loopType, *stepType, *testType, *consumeType, *updatedType, *slotArgsType, *ruleFiredType,
-      *releaseLastType, *loopBeginType, *loopEndType, *builtinType;
+  llvm::FunctionType *loopType, *stepType, *testType, *consumeType, *updatedType, *slotArgsType,
+      *ruleFiredType, *releaseLastType, *loopBeginType, *loopEndType, *builtinType;
 };
 
 // Lowers the block's code; returns its entry function, external and named `name` (the loop bodies

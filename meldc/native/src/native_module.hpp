@@ -1,8 +1,13 @@
-// A program's native blocks as one optimised LLVM module (native_module.cpp).
+// A program's native blocks as optimised LLVM modules (native_module.cpp) and as object code
+// compiled on several threads (object_code.cpp).
 #pragma once
 
+#include <llvm/ADT/SmallVector.h>
+
+#include <functional>
 #include <memory>
 #include <string>
+#include <vector>
 
 #include "meldc/native.hpp"
 
@@ -17,12 +22,32 @@ namespace meldc::native {
 // The name of native block k's entry function.
 std::string blockSymbol(std::size_t k);
 
-// The host's target machine (the native target is initialised on first use); throws NativeError.
-// The target machine of this process's architecture for `cpu` (native.hpp).
+// The target machine of this process's architecture for `cpu` (native.hpp); the native target is
+// initialised on first use. Throws NativeError.
 std::unique_ptr<llvm::TargetMachine> targetMachine(const std::string& cpu);
 
-// Lowers every native block (meldvm::nativeCodeBlocks) and optimises the module at O2 for `target`.
+// Native blocks [first, last) of meldvm::nativeCodeBlocks: one module, compiled on one thread.
+struct BlockRange {
+  std::size_t first = 0, last = 0;
+};
+
+// The program's blocks cut into runs of about the same amount of bytecode. The cut depends on the
+// program only, never on the number of threads, so that the code is the same whatever -j says.
+// At least one range (an empty one when the program has no native block).
+std::vector<BlockRange> partitionBlocks(const meldvm::Program& program);
+
+// Lowers the blocks of `range` (all of them by default) and optimises the module for `target`.
+std::unique_ptr<llvm::Module> buildModule(const meldvm::Program& program, llvm::LLVMContext& context,
+                                          llvm::TargetMachine& target, BlockRange range);
 std::unique_ptr<llvm::Module> buildModule(const meldvm::Program& program, llvm::LLVMContext& context,
                                           llvm::TargetMachine& target);
+
+// Called with partition k's module before it is emitted (shared_object.cpp adds the description).
+using ModuleFinisher = std::function<void(llvm::Module&, std::size_t partition)>;
+
+// The object code of each partition of partitionBlocks, in order, compiled for `cpu` on up to
+// `jobs` threads (0: one per processor). Throws NativeError (the first error of any thread).
+std::vector<llvm::SmallVector<char, 0>> compileObjects(const meldvm::Program& program, const std::string& cpu,
+                                                       unsigned jobs, const ModuleFinisher& finish = {});
 
 }  // namespace meldc::native

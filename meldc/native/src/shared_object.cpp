@@ -1,12 +1,11 @@
-// `meldc --emit=native`: the program's native module plus its description (native_abi.h), emitted
-// as an object file and linked into a shared object by the system linker. The generated code
-// calls nothing outside itself (the VM's helpers come as a table at run time), so `ld -shared`
-// links it without any library.
+// `meldc --emit=native`: the program's native code (one object file per partition, compiled on
+// several threads) plus its description (native_abi.h, in the first partition's object), linked into
+// a shared object by the system linker. The generated code calls nothing outside itself (the VM's
+// helpers come as a table at run time), so `ld -shared` links it without any library.
 #include <llvm/IR/Constants.h>
 #include <llvm/IR/GlobalVariable.h>
 #include <llvm/IR/IRBuilder.h>
 #include <llvm/IR/LLVMContext.h>
-#include <llvm/IR/LegacyPassManager.h>
 #include <llvm/IR/Module.h>
 #include <llvm/Support/FileSystem.h>
 #include <llvm/Support/raw_ostream.h>
@@ -19,6 +18,7 @@
 #include <cstdio>
 #include <cstdlib>
 
+#include "lower_block.hpp"
 #include "meldc/native.hpp"
 #include "meldvm/bytecode.hpp"
 #include "native_module.hpp"
@@ -42,7 +42,9 @@ void addDescription(llvm::Module& m, const meldvm::Program& program) {
       "meld_bytecode");
   const std::size_t count = meldvm::nativeCodeBlocks(program).size();
   std::vector<llvm::Constant*> entries;
-  for (std::size_t k = 0; k < count; ++k) entries.push_back(m.getFunction(blockSymbol(k)));
+  for (std::size_t k = 0; k < count; ++k)  // blocks of the other partitions are declared here
+    entries.push_back(
+        llvm::cast<llvm::Constant>(m.getOrInsertFunction(blockSymbol(k), blockFunctionType(c)).getCallee()));
   auto* blocksType = llvm::ArrayType::get(ptr, count);
   auto* blocks = new llvm::GlobalVariable(m, blocksType, true, llvm::GlobalValue::PrivateLinkage,
                                           llvm::ConstantArray::get(blocksType, entries), "meld_blocks");
@@ -60,23 +62,21 @@ void addDescription(llvm::Module& m, const meldvm::Program& program) {
   b.CreateRet(descVar);
 }
 
-void emitObject(llvm::Module& m, llvm::TargetMachine& target, const std::string& path) {
+void writeFile(const llvm::SmallVector<char, 0>& bytes, const std::string& path) {
   std::error_code ec;
   llvm::raw_fd_ostream out(path, ec, llvm::sys::fs::OF_None);
   if (ec) throw NativeError("cannot write '" + path + "': " + ec.message());
-  llvm::legacy::PassManager passes;
-  if (target.addPassesToEmitFile(passes, out, nullptr, llvm::CodeGenFileType::ObjectFile))
-    throw NativeError("the LLVM target cannot emit object files");
-  passes.run(m);
+  out.write(bytes.data(), bytes.size());
   out.flush();
   if (out.has_error()) throw NativeError("cannot write '" + path + "'");
 }
 
-// Runs `ld -shared -o OUT OBJECT` (no shell); throws with what went wrong.
-void link(const std::string& object, const std::string& out) {
+// Runs `ld -shared -o OUT OBJECTS...` (no shell); throws with what went wrong.
+void link(const std::vector<std::string>& objects, const std::string& out) {
   const char* linker = std::getenv("MELD_LD");
   std::string ld = linker && *linker ? linker : "ld";
-  std::vector<std::string> args = {ld, "-shared", "--hash-style=gnu", "-o", out, object};
+  std::vector<std::string> args = {ld, "-shared", "--hash-style=gnu", "-o", out};
+  args.insert(args.end(), objects.begin(), objects.end());
   std::vector<char*> argv;
   for (std::string& a : args) argv.push_back(a.data());
   argv.push_back(nullptr);
@@ -93,20 +93,24 @@ void link(const std::string& object, const std::string& out) {
 
 }  // namespace
 
-void writeSharedObject(const meldvm::Program& program, const std::string& path, const std::string& cpu) {
-  llvm::LLVMContext context;
-  std::unique_ptr<llvm::TargetMachine> target = targetMachine(cpu);
-  std::unique_ptr<llvm::Module> module = buildModule(program, context, *target);
-  addDescription(*module, program);
-  const std::string object = path + ".o.tmp";
+void writeSharedObject(const meldvm::Program& program, const std::string& path, const std::string& cpu,
+                       unsigned jobs) {
+  const std::vector<llvm::SmallVector<char, 0>> objects =
+      compileObjects(program, cpu, jobs, [&](llvm::Module& module, std::size_t partition) {
+        if (partition == 0) addDescription(module, program);
+      });
+  std::vector<std::string> files;
   try {
-    emitObject(*module, *target, object);
-    link(object, path);
+    for (std::size_t k = 0; k < objects.size(); ++k) {
+      files.push_back(path + "." + std::to_string(k) + ".o.tmp");
+      writeFile(objects[k], files.back());
+    }
+    link(files, path);
   } catch (...) {
-    std::remove(object.c_str());
+    for (const std::string& f : files) std::remove(f.c_str());
     throw;
   }
-  std::remove(object.c_str());
+  for (const std::string& f : files) std::remove(f.c_str());
 }
 
 }  // namespace meldc::native

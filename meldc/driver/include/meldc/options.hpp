@@ -25,6 +25,7 @@ struct Options {
   bool noStdlib = false;  // --no-stdlib: do not search the standard library folder
   bool robots = false;    // --robots: node ids are block ids (no renumbering)
   std::string cpu;        // --cpu: the processor of --emit=native (default generic) / llvm (native)
+  unsigned jobs = 0;      // -j: threads compiling native code (0: one per processor)
   bool help = false;
   bool version = false;
 };

@@ -1,6 +1,6 @@
 // Native code for Meld programs (the LLVM backend). The verified bytecode of every native block
 // (meldvm::nativeCodeBlocks) is lowered to LLVM IR that calls the VM's helpers (native_abi.h) for
-// everything but register arithmetic and jumps, optimised at O2, then either printed
+// everything but register arithmetic, jumps and stepping through facts, optimised, then either printed
 // (`meldc --emit=llvm`), written as a shared object (`meldc --emit=native`) or compiled in-process
 // (`meld --jit`).
 #pragma once
@@ -28,8 +28,10 @@ bool knownCpu(const std::string& cpu);
 std::string llvmText(const meldvm::Program& program, const std::string& cpu = "native");
 
 // The program as a shared object (`meldc --emit=native`): its native code, and its bytecode for
-// the tables (native_abi.h). Needs the system linker (`ld`, or $MELD_LD); throws NativeError.
-void writeSharedObject(const meldvm::Program& program, const std::string& path, const std::string& cpu = "generic");
+// the tables (native_abi.h). Compiled on up to `jobs` threads (0: one per processor; the file is the
+// same whatever the number). Needs the system linker (`ld`, or $MELD_LD); throws NativeError.
+void writeSharedObject(const meldvm::Program& program, const std::string& path, const std::string& cpu = "generic",
+                       unsigned jobs = 0);
 
 // The program compiled in this process. The entry of native block k is entries()[k]; the code lives
 // as long as the Jit.
