@@ -358,15 +358,17 @@ bool Machine::hasCandidate(NodeId n) const {
 void Machine::factAdded(NodeId n, PredId p) {
   // A thread fact makes the thread node's own rules candidates, and the rules mixing node and
   // thread facts of the node that is running (others check them when they start a run).
+  // A rule that is a candidate already needs no look at its other predicates (most adds).
+  auto isCandidate = [](const std::uint64_t* c, std::uint32_t r) { return c[r / 64] >> (r % 64) & 1; };
   std::uint64_t* cand = candidates_.data() + std::size_t(n) * tables_.ruleWords;
   const ListHead* heads = db_->listHeads(n);
   for (std::uint32_t r : tables_.rulesOf[p])
-    if (allPresent(heads, r)) cand[r / 64] |= std::uint64_t(1) << (r % 64);
+    if (!isCandidate(cand, r) && allPresent(heads, r)) cand[r / 64] |= std::uint64_t(1) << (r % 64);
   if (n != threadNode_ || !inRun_ || running_ == threadNode_) return;
   std::uint64_t* runningCand = candidates_.data() + std::size_t(running_) * tables_.ruleWords;
   const ListHead* runningHeads = db_->listHeads(running_);
   for (std::uint32_t r : tables_.rulesOf[p])
-    if (tables_.isMixedRule[r] && allPresent(runningHeads, r))
+    if (tables_.isMixedRule[r] && !isCandidate(runningCand, r) && allPresent(runningHeads, r))
       runningCand[r / 64] |= std::uint64_t(1) << (r % 64);
 }
 
