@@ -59,3 +59,29 @@ BOOST_AUTO_TEST_CASE(no_stdlib) {
   BOOST_TEST(n->noStdlib);
   BOOST_TEST(n->includeDirs.size() == 1u);  // the driver, not the parser, appends the stdlib folder
 }
+
+BOOST_AUTO_TEST_CASE(jobs) {
+  std::string error;
+  auto d = parseOptions({"prog.meld"}, error);
+  BOOST_REQUIRE(d);
+  BOOST_TEST(d->jobs == 0u);  // one thread per processor
+  for (const auto& [args, jobs] :
+       std::vector<std::pair<std::vector<std::string>, unsigned>>{{{"prog.meld", "-j", "3"}, 3u},
+                                                                  {{"-j12", "prog.meld"}, 12u},
+                                                                  {{"prog.meld", "--jobs=9999"}, 9999u}}) {
+    auto o = parseOptions(args, error);
+    BOOST_REQUIRE_MESSAGE(o, error);
+    BOOST_TEST(o->jobs == jobs);
+    BOOST_TEST(o->input == "prog.meld");
+  }
+  for (const std::vector<std::string>& bad :
+       std::vector<std::vector<std::string>>{{"prog.meld", "-j", "0"},
+                                             {"prog.meld", "-j10000"},
+                                             {"prog.meld", "--jobs=two"},
+                                             {"prog.meld", "-j-1"}}) {
+    BOOST_TEST(!parseOptions(bad, error));
+    BOOST_TEST(error.find("needs a number of threads from 1 to 9999") != std::string::npos);
+  }
+  BOOST_TEST(!parseOptions({"prog.meld", "-j"}, error));
+  BOOST_TEST(error == "option '-j' needs a value");
+}
