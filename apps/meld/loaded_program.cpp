@@ -1,8 +1,11 @@
 #include "loaded_program.hpp"
 
+#include <unistd.h>
+
 #include <iostream>
 
 #include "meldc/compile.hpp"
+#include "meldc/compile_progress_line.hpp"
 #include "meldc/diagnostics.hpp"
 #include "meldc/source.hpp"
 #include "meldvm/bytecode.hpp"
@@ -60,7 +63,9 @@ std::unique_ptr<LoadedProgram> loadProgram(const Options& options, int& status) 
   loaded->program = loaded->source.get();
   if (!options.jit) return loaded;
   try {
-    loaded->jit = meldc::native::Jit::compile(*loaded->program);
+    meldc::CompileProgressLine progress("meld", isatty(STDERR_FILENO));
+    loaded->jit = meldc::native::Jit::compile(
+        *loaded->program, [&](std::size_t done, std::size_t total) { progress.update(done, total); });
   } catch (const meldc::native::NativeError& e) {
     std::cerr << "meld: error: " << options.program << ": native code: " << e.what() << '\n';
     status = kExitRuntimeError;

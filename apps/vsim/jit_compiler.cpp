@@ -1,5 +1,6 @@
 #include "jit_compiler.hpp"
 
+#include "meldc/compile_progress_line.hpp"
 #include "meldc/native.hpp"
 
 namespace vsim {
@@ -7,7 +8,9 @@ namespace vsim {
 void JitCompiler::compile(MeldCode& code) const {
   std::shared_ptr<meldc::native::Jit> jit;
   try {
-    jit = meldc::native::Jit::compile(code.program());
+    meldc::CompileProgressLine progress("vsim", showProgress_);
+    jit = meldc::native::Jit::compile(
+        code.program(), [&](std::size_t done, std::size_t total) { progress.update(done, total); });
   } catch (const meldc::native::NativeError& e) {
     throw ProgramLoadError(std::string("native code: ") + e.what());
   }

@@ -8,7 +8,12 @@ namespace vsim {
 
 class JitCompiler final : public NativeCompiler {
  public:
+  // `showProgress`: the progress line of a compile longer than a second (meldc/compile_progress_line.hpp).
+  explicit JitCompiler(bool showProgress) : showProgress_(showProgress) {}
   void compile(MeldCode& code) const override;  // throws ProgramLoadError
+
+ private:
+  bool showProgress_;
 };
 
 }  // namespace vsim

@@ -209,7 +209,7 @@ int main(int argc, char** argv) {
     return kExitOk;
   }
   try {
-    const JitCompiler jit;
+    const JitCompiler jit(options.progress && !options.quiet && ::isatty(2));
     if (options.isMulticore()) return runMulticore(options, &jit);
     return runVsim(options, jit);
   } catch (const SessionError& e) {

@@ -122,6 +122,21 @@ case_emit_native_jobs() {
   done
   true
 }
+case_emit_native_progress() {
+  # On a terminal (script(1) gives one) a compile longer than a second shows a progress line, which
+  # it erases at the end; --no-progress, or stderr that is not a terminal, shows none.
+  python3 "$(dirname "$0")/../../bench/native/gen_rules.py" --rules 600 -o "$WORK/big.meld" >/dev/null
+  script -qec "'$MELDC' --emit=native -j 1 '$WORK/big.meld' -o '$WORK/big.so'" "$WORK/tty.txt" >/dev/null ||
+    fail "meldc failed on a terminal"
+  has "$WORK/tty.txt" "meldc: compiling native code: "
+  has "$WORK/tty.txt" "parts ("
+  script -qec "'$MELDC' --emit=native -j 1 --no-progress '$WORK/big.meld' -o '$WORK/big.so'" "$WORK/quiet.txt" \
+    >/dev/null || fail "meldc --no-progress failed on a terminal"
+  grep -q "compiling native code" "$WORK/quiet.txt" && fail "--no-progress showed a progress line"
+  run 0 --emit=native -j 1 "$WORK/big.meld" -o "$WORK/big.so"
+  grep -q "compiling native code" "$ERR" && fail "a progress line on stderr that is not a terminal"
+  true
+}
 case_emit_unsupported() {
   printf 'type edge(node, node).\ndata stanford-snap "g.txt".\n' >"$WORK/d.meld"
   run 1 "$WORK/d.meld"

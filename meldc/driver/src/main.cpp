@@ -7,6 +7,7 @@
 #include <sstream>
 
 #include "meldc/ast_dump.hpp"
+#include "meldc/compile_progress_line.hpp"
 #include "meldc/frontend.hpp"
 #include "meldc/ground_facts.hpp"
 #include "meldc/includes.hpp"
@@ -119,7 +120,10 @@ int main(int argc, char** argv) {
         return kExitUsage;
       }
       try {
-        meldc::native::writeSharedObject(*lowered, path, options->cpu, options->jobs);
+        CompileProgressLine progress("meldc", options->progress && isatty(STDERR_FILENO));
+        meldc::native::writeSharedObject(
+            *lowered, path, options->cpu, options->jobs,
+            [&](std::size_t done, std::size_t total) { progress.update(done, total); });
       } catch (const meldc::native::NativeError& e) {
         std::cerr << "meldc: error: " << e.what() << '\n';
         return kExitProgramErrors;

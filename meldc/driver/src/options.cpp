@@ -25,7 +25,7 @@ bool validConstName(const std::string& name) {
 
 const char* usageText() {
   return "usage: meldc FILE.meld [-o OUT] [-I DIR]... [--no-stdlib] [--robots] [-DNAME=VALUE]...\n"
-         "             [--check | --emit=KIND] [--cpu=NAME] [-j N]\n"
+         "             [--check | --emit=KIND] [--cpu=NAME] [-j N] [--no-progress]\n"
          "\n"
          "Compiles a Linear Meld program to bytecode for the Meld VM: parses the program, merges its\n"
          "includes, resolves names, checks it, renumbers its nodes and lowers its rules.\n"
@@ -50,6 +50,8 @@ const char* usageText() {
          "                   as x86-64-v3\n"
          "  -j N, --jobs=N   threads compiling native code (--emit=native; default: one per\n"
          "                   processor); the shared object is the same whatever N is\n"
+         "  --no-progress    no progress line (shown on a terminal when native code takes longer\n"
+         "                   than a second to compile)\n"
          "  -o OUT           write the --emit output to OUT instead of standard output (bytecode:\n"
          "                   instead of FILE.mbc, native: of FILE.so); '-o -' is standard output,\n"
          "                   for bytecode too\n"
@@ -88,6 +90,8 @@ std::optional<Options> parseOptions(const std::vector<std::string>& args, std::s
       o.version = true;
     } else if (a == "--no-stdlib") {
       o.noStdlib = true;
+    } else if (a == "--no-progress") {
+      o.progress = false;
     } else if (a == "--robots") {
       o.robots = true;
     } else if (a == "--check") {

@@ -25,8 +25,8 @@ T orThrow(llvm::Expected<T> value, const char* what) {
 }
 }  // namespace
 
-std::unique_ptr<Jit> Jit::compile(const meldvm::Program& program) {
-  std::vector<llvm::SmallVector<char, 0>> objects = compileObjects(program, "native", 0);
+std::unique_ptr<Jit> Jit::compile(const meldvm::Program& program, const CompileProgress& progress) {
+  std::vector<llvm::SmallVector<char, 0>> objects = compileObjects(program, "native", 0, {}, progress);
   std::unique_ptr<Jit> out(new Jit());
   // RuntimeDyld links the object, not JITLink: JITLink 19 took time and memory that grew faster
   // than the program (a 2,000-rule program: 0.5 GB; 10,000 rules: past 15 GB), RuntimeDyld grows

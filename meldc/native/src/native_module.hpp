@@ -46,8 +46,10 @@ std::unique_ptr<llvm::Module> buildModule(const meldvm::Program& program, llvm::
 using ModuleFinisher = std::function<void(llvm::Module&, std::size_t partition)>;
 
 // The object code of each partition of partitionBlocks, in order, compiled for `cpu` on up to
-// `jobs` threads (0: one per processor). Throws NativeError (the first error of any thread).
+// `jobs` threads (0: one per processor), telling `progress` after each partition. Throws
+// NativeError (the first error of any thread).
 std::vector<llvm::SmallVector<char, 0>> compileObjects(const meldvm::Program& program, const std::string& cpu,
-                                                       unsigned jobs, const ModuleFinisher& finish = {});
+                                                       unsigned jobs, const ModuleFinisher& finish = {},
+                                                       const CompileProgress& progress = {});
 
 }  // namespace meldc::native

@@ -34,11 +34,13 @@ llvm::SmallVector<char, 0> emitObject(llvm::Module& module, llvm::TargetMachine&
 }  // namespace
 
 std::vector<llvm::SmallVector<char, 0>> compileObjects(const meldvm::Program& program, const std::string& cpu,
-                                                       unsigned jobs, const ModuleFinisher& finish) {
+                                                       unsigned jobs, const ModuleFinisher& finish,
+                                                       const CompileProgress& progress) {
   const std::vector<BlockRange> ranges = partitionBlocks(program);
   std::vector<llvm::SmallVector<char, 0>> objects(ranges.size());
   std::atomic<std::size_t> next{0};
-  std::mutex failure;
+  std::size_t done = 0;  // under `lock`, as progress's calls
+  std::mutex lock;
   std::exception_ptr firstError;
   auto work = [&] {
     try {
@@ -48,10 +50,13 @@ std::vector<llvm::SmallVector<char, 0>> compileObjects(const meldvm::Program& pr
         std::unique_ptr<llvm::Module> module = buildModule(program, context, *target, ranges[k]);
         if (finish) finish(*module, k);
         objects[k] = emitObject(*module, *target);
+        const std::lock_guard<std::mutex> hold(lock);
+        ++done;
+        if (progress) progress(done, ranges.size());
       }
     } catch (...) {
       next = ranges.size();  // the others stop after their partition
-      const std::lock_guard<std::mutex> lock(failure);
+      const std::lock_guard<std::mutex> hold(lock);
       if (!firstError) firstError = std::current_exception();
     }
   };

@@ -94,11 +94,13 @@ void link(const std::vector<std::string>& objects, const std::string& out) {
 }  // namespace
 
 void writeSharedObject(const meldvm::Program& program, const std::string& path, const std::string& cpu,
-                       unsigned jobs) {
-  const std::vector<llvm::SmallVector<char, 0>> objects =
-      compileObjects(program, cpu, jobs, [&](llvm::Module& module, std::size_t partition) {
+                       unsigned jobs, const CompileProgress& progress) {
+  const std::vector<llvm::SmallVector<char, 0>> objects = compileObjects(
+      program, cpu, jobs,
+      [&](llvm::Module& module, std::size_t partition) {
         if (partition == 0) addDescription(module, program);
-      });
+      },
+      progress);
   std::vector<std::string> files;
   try {
     for (std::size_t k = 0; k < objects.size(); ++k) {

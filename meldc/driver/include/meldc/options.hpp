@@ -26,6 +26,7 @@ struct Options {
   bool robots = false;    // --robots: node ids are block ids (no renumbering)
   std::string cpu;        // --cpu: the processor of --emit=native (default generic) / llvm (native)
   unsigned jobs = 0;      // -j: threads compiling native code (0: one per processor)
+  bool progress = true;   // --no-progress: no progress line of native compiles
   bool help = false;
   bool version = false;
 };

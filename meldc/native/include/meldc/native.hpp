@@ -5,6 +5,8 @@
 // (`meld --jit`).
 #pragma once
 
+#include <cstddef>
+#include <functional>
 #include <memory>
 #include <stdexcept>
 #include <string>
@@ -24,20 +26,26 @@ class NativeError : public std::runtime_error {
 // one's) or an LLVM processor name; an unknown name throws NativeError.
 bool knownCpu(const std::string& cpu);
 
+// Told how far a compilation is: `done` of `total` parts compiled. Called from the compiling
+// threads, one call at a time.
+using CompileProgress = std::function<void(std::size_t done, std::size_t total)>;
+
 // The program's native blocks as optimised LLVM IR text.
 std::string llvmText(const meldvm::Program& program, const std::string& cpu = "native");
 
 // The program as a shared object (`meldc --emit=native`): its native code, and its bytecode for
 // the tables (native_abi.h). Compiled on up to `jobs` threads (0: one per processor; the file is the
 // same whatever the number). Needs the system linker (`ld`, or $MELD_LD); throws NativeError.
-void writeSharedObject(const meldvm::Program& program, const std::string& path, const std::string& cpu = "generic",
-                       unsigned jobs = 0);
+void writeSharedObject(const meldvm::Program& program, const std::string& path,
+                       const std::string& cpu = "generic", unsigned jobs = 0,
+                       const CompileProgress& progress = {});
 
 // The program compiled in this process. The entry of native block k is entries()[k]; the code lives
 // as long as the Jit.
 class Jit {
  public:
-  static std::unique_ptr<Jit> compile(const meldvm::Program& program);  // throws NativeError
+  // Compiled on one thread per processor, telling `progress`; throws NativeError.
+  static std::unique_ptr<Jit> compile(const meldvm::Program& program, const CompileProgress& progress = {});
   ~Jit();
   const std::vector<meld_native_block>& entries() const { return entries_; }
 
