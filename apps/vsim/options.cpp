@@ -46,7 +46,8 @@ options:
   --until T             stop at simulated time T: 10s, 1500ms, 2min, 250us (bare number = s)
   --seed S              seed of the per-block random streams (default: the world's, else 1)
   --fes heap|calendar|ladder
-                        future-event set implementation (default heap; same results, speed only)
+                        future-event set implementation (default ladder, the fastest on
+                        the benchmarks; same results, speed only)
   --link-rate BPS       link data rate in bit/s (target default: 38400 Blinky, 1e6 the others)
   --link-latency T      extra delay after each transmission (default 0)
   --link-jitter T       random extra delay in [0, T]; never reorders a link (default 0)

@@ -55,7 +55,7 @@ struct Options {
   std::string target;                     // --target: overrides the world's target= attribute
   std::optional<simcore::SimTime> until;  // --until; none = until the event queue is empty
   std::optional<std::uint64_t> seed;      // --seed; none = the world's seed, else 1
-  simcore::FesKind fes = simcore::FesKind::Heap;
+  simcore::FesKind fes = simcore::kDefaultFes;
   // Link and motion overrides of the target's defaults (negative = keep the target's).
   double linkRate = -1;
   simcore::SimTime linkLatency = -1, linkJitter = -1, motionTime = -1;

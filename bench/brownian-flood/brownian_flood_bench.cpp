@@ -24,7 +24,7 @@ struct Options {
   std::uint64_t blocks = 7000;
   simcore::SimTime until = 600 * simcore::kSecond;
   std::uint64_t seed = 1;
-  simcore::FesKind fes = simcore::FesKind::Heap;
+  simcore::FesKind fes = simcore::kDefaultFes;
   bool json = false;
   bool progress = isatty(2);
 };
@@ -34,7 +34,7 @@ void usage(std::FILE* out) {
       "usage: brownian-flood [--blocks N] [--until T] [--seed S] [--fes heap|calendar|ladder] [--json] "
       "[--no-progress]\n"
       "  Benchmark B1: N Smart Blocks in Brownian motion on an L x L grid (L = ceil(sqrt(2N))),\n"
-      "  flood from block 0, 1 Mbit/s links. Defaults: --blocks 7000 --until 600s --seed 1 --fes heap.\n"
+      "  flood from block 0, 1 Mbit/s links. Defaults: --blocks 7000 --until 600s --seed 1 --fes ladder.\n"
       "  T takes a unit: 600s, 10min, 1500ms (bare numbers are seconds).\n",
       out);
 }

@@ -302,11 +302,15 @@ case_csg_errors() {
 }
 
 case_same_fingerprint() {
-  # Twice the same, and the same with every future-event set: the order of events is total.
-  for fes in heap heap calendar ladder; do
-    run 0 "$WORLDS/color-flood.xml" --code "$FLOOD" --fes $fes
+  # Twice the same, and the same with every future-event set (and the default, the ladder queue:
+  # simcore::kDefaultFes): the order of events is total.
+  for fes in heap heap calendar ladder default; do
+    if [ $fes = default ]; then run 0 "$WORLDS/color-flood.xml" --code "$FLOOD"; else
+      run 0 "$WORLDS/color-flood.xml" --code "$FLOOD" --fes $fes; fi
     fingerprint "$OUT" >>"$WORK/fingerprints"
   done
+  run 0 "$WORLDS/color-flood.xml" --code "$FLOOD" --json -
+  has "$OUT" '"fes":"ladder"'
   [ "$(sort -u "$WORK/fingerprints" | wc -l)" -eq 1 ] || fail "fingerprints differ: $(cat "$WORK/fingerprints")"
   [ -n "$(head -n 1 "$WORK/fingerprints")" ] || fail "no fingerprint line"
 }

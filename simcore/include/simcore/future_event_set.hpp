@@ -29,6 +29,11 @@ class FutureEventSet {
 
 enum class FesKind { Heap, Calendar, Ladder };
 
+// The queue vsim, brownian-flood and the IDE use unless told otherwise: the one that measured
+// fastest on B1 (7k to 1M blocks: 1.4x to 3.4x the 4-ary heap) and B3 (Blinky Blocks and Catoms
+// 3D, gradient and leader election: 1.2x to 1.6x), with the same results (bench/README.md).
+inline constexpr FesKind kDefaultFes = FesKind::Ladder;
+
 std::optional<FesKind> parseFesKind(std::string_view name);
 const char* fesKindName(FesKind kind);
 std::unique_ptr<FutureEventSet> makeFutureEventSet(FesKind kind);

@@ -19,7 +19,7 @@ namespace simcore {
 
 struct SimulationConfig {
   std::uint64_t seed = 1;
-  FesKind fes = FesKind::Heap;
+  FesKind fes = kDefaultFes;
   // Overrides of the target's defaults (negative = keep the target's value).
   double linkRateBitsPerSecond = -1;
   SimTime linkLatency = -1;
