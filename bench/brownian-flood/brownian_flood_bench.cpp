@@ -1,6 +1,7 @@
 // Benchmark B1 (brownian-flood): N Smart Blocks wander on an L x L grid (L = ceil(sqrt(2N))) while
-// a flood spreads from block 0. Prints events, wall time, events/s, peak RSS, bytes per block and
-// the run fingerprint. See bench/README.md.
+// a flood spreads from block 0 (--epidemic: also to every block that comes next to an informed
+// one). Prints events, wall time, events/s, peak RSS, bytes per block, the blocks reached at each
+// tenth of the run and the run fingerprint. See bench/README.md.
 #include <sys/resource.h>
 #include <unistd.h>
 
@@ -11,12 +12,14 @@
 #include <cstdlib>
 #include <cstring>
 #include <string>
+#include <utility>
+#include <vector>
 
 #include "simcore/rng.hpp"
 #include "simcore/simulation.hpp"
 #include "smartblocks/smartblocks.hpp"
 
-extern "C" const vs_blockcode* vs_blockcode_entry(void);
+extern "C" const vs_blockcode* brownian_flood_variant(int epidemic);  // examples/c/brownian_flood.c
 
 namespace {
 
@@ -26,15 +29,17 @@ struct Options {
   std::uint64_t seed = 1;
   simcore::FesKind fes = simcore::kDefaultFes;
   bool json = false;
+  bool epidemic = false;
   bool progress = isatty(2);
 };
 
 void usage(std::FILE* out) {
   std::fputs(
-      "usage: brownian-flood [--blocks N] [--until T] [--seed S] [--fes heap|calendar|ladder] [--json] "
-      "[--no-progress]\n"
+      "usage: brownian-flood [--blocks N] [--until T] [--seed S] [--fes heap|calendar|ladder] [--epidemic]\n"
+      "                      [--json] [--no-progress]\n"
       "  Benchmark B1: N Smart Blocks in Brownian motion on an L x L grid (L = ceil(sqrt(2N))),\n"
       "  flood from block 0, 1 Mbit/s links. Defaults: --blocks 7000 --until 600s --seed 1 --fes ladder.\n"
+      "  --epidemic: an informed block also sends to every block that becomes its neighbor later.\n"
       "  T takes a unit: 600s, 10min, 1500ms (bare numbers are seconds).\n",
       out);
 }
@@ -84,6 +89,8 @@ bool parse(int argc, char** argv, Options& o) {
       if (!v || !parseValue(a, v, o)) return false;
     } else if (a == "--json") {
       o.json = true;
+    } else if (a == "--epidemic") {
+      o.epidemic = true;
     } else if (a == "--no-progress") {
       o.progress = false;
     } else {
@@ -92,6 +99,25 @@ bool parse(int argc, char** argv, Options& o) {
     }
   }
   return true;
+}
+
+std::uint64_t reachedBlocks(const simcore::Simulation& sim) {  // informed blocks are red
+  std::uint64_t n = 0;
+  for (const simcore::Block& b : sim.world().blocks()) n += b.color == 0xFF0000;
+  return n;
+}
+
+// "[[60.0,11],[120.0,40],...]" (json) or "60.0s:11 120.0s:40 ..." (text).
+std::string reachedText(const std::vector<std::pair<double, std::uint64_t>>& reached, bool json) {
+  std::string out;
+  char item[64];
+  for (std::size_t i = 0; i < reached.size(); ++i) {
+    const char* separator = i == 0 ? "" : json ? "," : " ";
+    std::snprintf(item, sizeof item, json ? "%s[%.1f,%" PRIu64 "]" : "%s%.1fs:%" PRIu64, separator,
+                  reached[i].first, reached[i].second);
+    out += item;
+  }
+  return json ? "[" + out + "]" : out;
 }
 
 long peakRssKb() {
@@ -127,12 +153,15 @@ int main(int argc, char** argv) {
       --needed;
     }
   }
-  sim.setBlockCode(vs_blockcode_entry());
+  sim.setBlockCode(brownian_flood_variant(o.epidemic ? 1 : 0));
 
+  // The run in a hundred slices (the progress line), counting the blocks reached after every tenth;
+  // the counting's own time is left out of the wall time.
+  std::vector<std::pair<double, std::uint64_t>> reached;  // (simulated s, blocks)
+  double countingS = 0;
   const auto wall0 = std::chrono::steady_clock::now();
-  const simcore::SimTime slice = o.until / 100 > 0 ? o.until / 100 : o.until;
-  for (simcore::SimTime t = 0; t < o.until;) {
-    t = std::min(o.until, t + slice);
+  for (int k = 1; k <= 100; ++k) {
+    const simcore::SimTime t = o.until / 100 * k + (k == 100 ? o.until % 100 : 0);
     sim.runUntil(t);
     if (o.progress) {
       const double w = std::chrono::duration<double>(std::chrono::steady_clock::now() - wall0).count();
@@ -140,14 +169,19 @@ int main(int argc, char** argv) {
                    double(t) / 1e9, double(o.until) / 1e9, sim.statistics().eventsProcessed,
                    w > 0 ? double(sim.statistics().eventsProcessed) / w / 1e6 : 0.0);
     }
+    if (k % 10 == 0 || sim.pendingEvents() == 0) {
+      const auto c0 = std::chrono::steady_clock::now();
+      reached.emplace_back(double(t) / 1e9, reachedBlocks(sim));
+      countingS += std::chrono::duration<double>(std::chrono::steady_clock::now() - c0).count();
+    }
     if (sim.pendingEvents() == 0) break;
   }
   if (o.progress) std::fputs("\n", stderr);
-  const double wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - wall0).count();
+  const double wall =
+      std::chrono::duration<double>(std::chrono::steady_clock::now() - wall0).count() - countingS;
 
   const simcore::Statistics& s = sim.statistics();
-  std::uint64_t flooded = 0;
-  for (const simcore::Block& b : sim.world().blocks()) flooded += b.color == 0xFF0000;
+  const std::uint64_t flooded = reached.back().second;
   const long rssKb = peakRssKb();
   const double bytesPerBlock = double(rssKb) * 1024.0 / double(o.blocks);
   const double eps = double(s.eventsProcessed) / wall;
@@ -158,14 +192,15 @@ int main(int argc, char** argv) {
                 ",\"wall_s\":%.3f,\"events_per_s\":%.0f,\"peak_rss_kb\":%ld,"
                 "\"bytes_per_block\":%.1f,\"motions\":%" PRIu64 ",\"messages_sent\":%" PRIu64
                 ",\"messages_dropped\":%" PRIu64 ",\"flooded\":%" PRIu64 ",\"max_queue\":%" PRIu64
-                ",\"fingerprint\":\"%016" PRIx64 "\"}\n",
+                ",\"epidemic\":%s,\"reached\":%s,\"fingerprint\":\"%016" PRIx64 "\"}\n",
                 o.blocks, L, double(sim.now()) / 1e9, o.seed, sim.fesName(), s.eventsProcessed, wall, eps,
                 rssKb, bytesPerBlock, s.motionsStarted, s.messagesSent, s.messagesDropped, flooded,
-                s.maxQueueSize, sim.fingerprint());
+                s.maxQueueSize, o.epidemic ? "true" : "false", reachedText(reached, true).c_str(),
+                sim.fingerprint());
   } else {
-    std::printf("brownian-flood: %" PRIu64 " blocks on a %dx%d grid, %.1f s simulated, seed %" PRIu64
-                ", fes %s\n",
-                o.blocks, L, L, double(sim.now()) / 1e9, o.seed, sim.fesName());
+    std::printf(
+        "brownian-flood%s: %" PRIu64 " blocks on a %dx%d grid, %.1f s simulated, seed %" PRIu64 ", fes %s\n",
+        o.epidemic ? " --epidemic" : "", o.blocks, L, L, double(sim.now()) / 1e9, o.seed, sim.fesName());
     std::printf("  %-18s %" PRIu64 "\n", "events", s.eventsProcessed);
     std::printf("  %-18s %.3f\n", "wall s", wall);
     std::printf("  %-18s %.2f M\n", "events/s", eps / 1e6);
@@ -174,6 +209,7 @@ int main(int argc, char** argv) {
     std::printf("  %-18s %" PRIu64 " started, messages %" PRIu64 " sent / %" PRIu64 " dropped\n", "motions",
                 s.motionsStarted, s.messagesSent, s.messagesDropped);
     std::printf("  %-18s %" PRIu64 " of %" PRIu64 " blocks\n", "flood reached", flooded, o.blocks);
+    std::printf("  %-18s %s\n", "reached over time", reachedText(reached, false).c_str());
     std::printf("  %-18s %016" PRIx64 "\n", "fingerprint", sim.fingerprint());
   }
   return 0;

@@ -6,6 +6,10 @@
  * waits again. Block 0 starts a flood at t = 0: a 4-byte message to all its neighbors; a block that
  * receives it for the first time turns red and forwards it to all its current neighbors.
  * Blocks start with a wait rather than a move so that a million blocks do not all act at t = 0.
+ *
+ * The epidemic variant (brownian_epidemic.so, `brownian-flood --epidemic`) also tells every block
+ * that becomes a neighbor of an informed one later: at half density the plain flood dies in its
+ * first cluster, while the epidemic spreads by motion until every block has it.
  */
 #include <stdint.h>
 #include <string.h>
@@ -35,6 +39,18 @@ static void forward_flood(vs_ctx* c, uint32_t hops) {
 static void on_start(vs_ctx* c) {
   if (c->block == 0) forward_flood(c, 0);
   wait_then_try(c);
+}
+
+static void on_event(vs_ctx* c, const vs_event* ev);
+
+static void on_event_epidemic(vs_ctx* c, const vs_event* ev) {
+  const brownian_state* s = (const brownian_state*)c->state;
+  if (ev->kind == VS_EV_NEIGHBOR_ADDED && s->flooded) {
+    uint32_t next = (uint32_t)s->hops + 1;
+    vs_send(c, ev->face, &next, sizeof next, 0);
+    return;
+  }
+  on_event(c, ev);
 }
 
 static void on_event(vs_ctx* c, const vs_event* ev) {
@@ -72,5 +88,17 @@ static int on_info(vs_ctx* c, char* text, size_t capacity) {
 static const vs_blockcode brownian_flood_code = {
     VS_ABI_VERSION, "brownian-flood", sizeof(brownian_state), on_start, on_event, on_info, NULL,
 };
+static const vs_blockcode brownian_epidemic_code = {
+    VS_ABI_VERSION, "brownian-epidemic", sizeof(brownian_state), on_start, on_event_epidemic, on_info, NULL,
+};
 
-const vs_blockcode* vs_blockcode_entry(void) { return &brownian_flood_code; }
+/* Either variant, for programs that link this file (the B1 benchmark). */
+const vs_blockcode* brownian_flood_variant(int epidemic) {
+  return epidemic ? &brownian_epidemic_code : &brownian_flood_code;
+}
+
+/* The shared object's entry: built twice, brownian_epidemic.so with BROWNIAN_EPIDEMIC=1. */
+#ifndef BROWNIAN_EPIDEMIC
+#define BROWNIAN_EPIDEMIC 0
+#endif
+const vs_blockcode* vs_blockcode_entry(void) { return brownian_flood_variant(BROWNIAN_EPIDEMIC); }
