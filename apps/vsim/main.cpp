@@ -15,6 +15,7 @@
 #include "progress.hpp"
 #include "report.hpp"
 #include "session.hpp"
+#include "simcore/gltf_export.hpp"
 #include "simcore/simulation.hpp"
 #include "simcore/stats.hpp"
 #include "simcore/trace.hpp"
@@ -89,7 +90,7 @@ RunEnd runSimulation(simcore::Simulation& sim, const Options& o, ProgressLine& p
 
 int runVsim(const Options& o, const NativeCompiler& jit) {
   // Outputs first (fail fast), then inputs, then the run.
-  Output json(o.jsonFile), exported(o.exportFile);
+  Output json(o.jsonFile), exported(o.exportFile), gltf(o.gltfFile);
   std::unique_ptr<std::ofstream> traceFile;
   std::ostream* traceOut = &std::cerr;
   if (o.trace && o.traceFile == "-")
@@ -177,6 +178,10 @@ int runVsim(const Options& o, const NativeCompiler& jit) {
     ran.seed = sim.seed();
     simcore::exportWorldXml(sim, ran, exported.stream());
     exported.close();
+  }
+  if (gltf.wanted()) {
+    simcore::exportGltf(sim, gltf.stream());
+    gltf.close();
   }
   return info.end == RunEnd::Interrupted ? kExitInterrupted : kExitOk;
 }

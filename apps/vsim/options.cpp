@@ -56,6 +56,8 @@ options:
   --stats               print the kernel statistics (events per kind, messages, queue size)
   --json FILE           write the summary and statistics as JSON ("-" = stdout, no text summary)
   --export FILE         write the final configuration as a world XML ("-" = stdout)
+  --export-gltf FILE    write the final configuration as glTF 2.0 (FILE.glb, binary) for
+                        renderers such as Blender: a node per block, a material per colour
   --trace FILTER        trace the run: 'blocks=0,5-9;kinds=message,tap;from=1s;to=2s'
                         (every clause optional; 'all' traces everything). Kinds: start, message,
                         neighbor-added, neighbor-removed, tap, timer, motion-end, sensor, send,
@@ -237,7 +239,11 @@ Options parseOptions(int argc, char** argv, bool worldRequired) {
       o.jsonFile = value();
     else if (arg == "--export")
       o.exportFile = value();
-    else if (arg == "--trace") {
+    else if (arg == "--export-gltf") {
+      o.gltfFile = value();
+      if (o.gltfFile.empty() || o.gltfFile == "-")
+        throw UsageError("--export-gltf needs a file name (the glTF file is binary)");
+    } else if (arg == "--trace") {
       o.traceFilter = simcore::parseTraceFilter(value());  // TraceFilterError: a usage error too
       o.trace = true;
     } else if (arg == "--trace-format") {

@@ -62,6 +62,7 @@ struct Options {
   bool stats = false;
   std::string jsonFile;    // --json ("-" = stdout)
   std::string exportFile;  // --export ("-" = stdout)
+  std::string gltfFile;    // --export-gltf
   bool trace = false;
   simcore::TraceFilter traceFilter;
   simcore::TraceFormat traceFormat = simcore::TraceFormat::Text;

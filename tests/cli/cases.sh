@@ -352,6 +352,22 @@ case_export_reload() {
   has "$WORK/final.xml" 'seed="1"'
 }
 
+case_export_gltf() {
+  # The final configuration as glTF 2.0: a node per block, a material per colour; cubes for
+  # Smart Blocks, spheres for Catoms 3D. check_glb.py re-reads the file as a reader would.
+  run 0 "$TWORLDS/flood-small.xml" --code "$FLOOD" --export-gltf "$WORK/final.glb"
+  colors=$(sed -n 's/^  colors *\([0-9]*\) distinct.*/\1/p' "$OUT")
+  python3 "$SRC/tests/cli/check_glb.py" "$WORK/final.glb" >"$WORK/glb" || fail "final.glb is not valid glTF"
+  has "$WORK/glb" "nodes 18 materials $colors meshes $colors shape 24"
+  run 0 "$WORLDS/catoms3d-box.xml" --code "$FLOOD" --export-gltf "$WORK/catoms.glb"
+  python3 "$SRC/tests/cli/check_glb.py" "$WORK/catoms.glb" >"$WORK/glb3" || fail "catoms.glb is not valid glTF"
+  has "$WORK/glb3" "shape 153"
+  run 2 "$TWORLDS/flood-small.xml" --code "$FLOOD" --export-gltf -
+  has "$ERR" "--export-gltf needs a file name"
+  run 1 "$TWORLDS/flood-small.xml" --code "$FLOOD" --export-gltf /no/such/dir/x.glb
+  has "$ERR" "cannot write '/no/such/dir/x.glb'"
+}
+
 case_link_options() {
   # Slower links stretch the flood in simulated time; a bad rate is a usage error.
   run 0 "$TWORLDS/flood-small.xml" --code "$FLOOD"
