@@ -175,7 +175,10 @@ void exportGltf(const Simulation& sim, std::ostream& out) {
   json += ",\"buffers\":[{\"byteLength\":" + std::to_string(bin.size()) + "}],";
   std::map<std::uint32_t, std::size_t> meshOf;
   for (const Block& b : sim.world().blocks()) meshOf.emplace(b.color, 0);
-  json += materialsAndMeshes(meshOf) + "," + nodes(sim, size, meshOf) + "}";
+  json += materialsAndMeshes(meshOf);  // numbers the meshes: before nodes() reads them
+  json += ',';
+  json += nodes(sim, size, meshOf);
+  json += '}';
   json.resize((json.size() + 3) / 4 * 4, ' ');  // chunks are 4-byte aligned: JSON pads with spaces
 
   const std::uint32_t header[3] = {0x46546C67u, 2u, std::uint32_t(12 + 8 + json.size() + 8 + bin.size())};

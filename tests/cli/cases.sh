@@ -359,6 +359,10 @@ case_export_gltf() {
   colors=$(sed -n 's/^  colors *\([0-9]*\) distinct.*/\1/p' "$OUT")
   python3 "$SRC/tests/cli/check_glb.py" "$WORK/final.glb" >"$WORK/glb" || fail "final.glb is not valid glTF"
   has "$WORK/glb" "nodes 18 materials $colors meshes $colors shape 24"
+  # Each block in its colour: the same histogram as vsim's summary.
+  sed -n 's/^    \(#[0-9a-f]*\) *[a-z]* *\([0-9]*\)$/\1 \2/p' "$OUT" | sort -k2,2nr -k1,1 >"$WORK/vsim-colors"
+  tail -n +2 "$WORK/glb" >"$WORK/glb-colors"
+  diff -u "$WORK/vsim-colors" "$WORK/glb-colors" >&2 || fail "the glTF blocks are not in their colours"
   run 0 "$WORLDS/catoms3d-box.xml" --code "$FLOOD" --export-gltf "$WORK/catoms.glb"
   python3 "$SRC/tests/cli/check_glb.py" "$WORK/catoms.glb" >"$WORK/glb3" || fail "catoms.glb is not valid glTF"
   has "$WORK/glb3" "shape 153"

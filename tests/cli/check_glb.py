@@ -1,7 +1,8 @@
 #!/usr/bin/env python3
 """Reads a .glb written by vsim --export-gltf as a glTF 2.0 reader would, checks its structure
 (header, chunks, buffer views and accessors inside the buffer, node and mesh references) and
-prints "nodes N materials M meshes K shape S" (S: the vertex count of the shape)."""
+prints "nodes N materials M meshes K shape S" (S: the vertex count of the shape), then a line
+"#rrggbb COUNT" per material with the number of nodes drawn in it, by decreasing count."""
 import json
 import struct
 import sys
@@ -41,5 +42,10 @@ for node in doc["nodes"]:
     assert node["mesh"] < len(doc["meshes"]) and len(node["translation"]) == 3
 assert sorted(doc["scenes"][doc["scene"]]["nodes"]) == list(range(len(doc["nodes"])))
 print(f"nodes {len(doc['nodes'])} materials {len(doc['materials'])} meshes {len(doc['meshes'])} shape {vertices}")
-for m in doc["materials"]:
-    print("material", m["name"])
+uses = {}
+for node in doc["nodes"]:
+    for prim in doc["meshes"][node["mesh"]]["primitives"]:
+        name = doc["materials"][prim["material"]]["name"].lower()
+        uses[name] = uses.get(name, 0) + 1
+for name, count in sorted(uses.items(), key=lambda item: (-item[1], item[0])):
+    print(name, count)
