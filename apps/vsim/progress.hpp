@@ -1,28 +1,25 @@
-// The progress line vsim shows on a terminal during long runs: simulated time, events, events/s.
-// It appears only after a second of wall time (short runs stay clean) and is redrawn about four
-// times a second in place, on stderr; finish() erases it so the summary starts on a clean line.
+// The progress line vsim shows on a terminal during long runs: simulated time, events, events/s
+// (support::TerminalLine: after a second, about four times a second, in place on stderr); finish()
+// erases it so the summary starts on a clean line.
 #pragma once
 
-#include <chrono>
 #include <optional>
 
 #include "simcore/simulation.hpp"
+#include "support/terminal_line.hpp"
 
 namespace vsim {
 
 class ProgressLine {
  public:
-  ProgressLine(bool enabled, std::optional<simcore::SimTime> until);
+  ProgressLine(bool enabled, std::optional<simcore::SimTime> until) : line_(enabled), until_(until) {}
   // Cheap enough to call after every slice of events: it looks at the clock and returns.
   void update(const simcore::Simulation& sim);
-  void finish();
+  void finish() { line_.erase(); }
 
  private:
-  using Clock = std::chrono::steady_clock;
-  bool enabled_;
-  bool shown_ = false;
+  support::TerminalLine line_;
   std::optional<simcore::SimTime> until_;
-  Clock::time_point start_, lastDraw_;
 };
 
 }  // namespace vsim
