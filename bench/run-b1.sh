@@ -5,6 +5,7 @@
 # Build first: cmake --preset release && cmake --build build/release --target brownian-flood
 set -euo pipefail
 here="$(cd "$(dirname "$0")" && pwd)"
+. "$here/common.sh"  # median, usage
 bin="${BROWNIAN_FLOOD:-$here/../build/release/bench/brownian-flood/brownian-flood}"
 runs=3 until=600s fes=ladder json=0 sizes="" epidemic=()
 while [ $# -gt 0 ]; do
@@ -15,7 +16,7 @@ while [ $# -gt 0 ]; do
     --fes) fes="$2"; shift 2 ;;
     --json) json=1; shift ;;
     --epidemic) epidemic=(--epidemic); shift ;;
-    -h|--help) sed -n '2,5p' "$0" | sed 's/^# \{0,1\}//'; exit 0 ;;
+    -h|--help) usage; exit 0 ;;
     *) echo "run-b1.sh: unknown option '$1' (see --help)" >&2; exit 2 ;;
   esac
 done
@@ -26,7 +27,6 @@ if [ -z "$sizes" ]; then
   [ "$avail_kb" -ge 2000000 ] && sizes="$sizes 2000000"
 fi
 
-median() { sort -g | awk '{a[NR]=$1} END {print (NR%2) ? a[(NR+1)/2] : (a[NR/2]+a[NR/2+1])/2}'; }
 field() { sed -n "s/.*\"$1\":\"\{0,1\}\([^,\"}]*\).*/\1/p"; }
 
 [ "$json" = 1 ] || printf "%-9s %6s %14s %9s %11s %10s %9s %12s %9s  %s\n" blocks runs events wall_s Mevents/s rss_MB B/block \

@@ -6,6 +6,7 @@
 # VSIM_IDE=/path/to/vsim-ide selects the program (default build/release/ide/vsim-ide).
 set -euo pipefail
 here="$(cd "$(dirname "$0")" && pwd)"
+. "$here/../common.sh"  # median, usage
 repo="$(cd "$here/../.." && pwd)"
 ide="${VSIM_IDE:-$repo/build/release/ide/vsim-ide}"
 workdir="$repo/build/bench/ide"
@@ -14,7 +15,7 @@ while [ $# -gt 0 ]; do
   case "$1" in
     --frames) frames="$2"; shift 2 ;;
     --size) size="$2"; shift 2 ;;
-    -h|--help) sed -n '2,7p' "$0" | sed 's/^# \{0,1\}//'; exit 0 ;;
+    -h|--help) usage; exit 0 ;;
     *) echo "run-frame-time.sh: unknown option '$1' (see --help)" >&2; exit 2 ;;
   esac
 done

@@ -8,6 +8,7 @@
 # IDE_SPEED=/path/to/ide_speed selects the program (default build/release/bench/ide/ide_speed).
 set -euo pipefail
 here="$(cd "$(dirname "$0")" && pwd)"
+. "$here/../common.sh"  # median, usage
 repo="$(cd "$here/../.." && pwd)"
 bin="${IDE_SPEED:-$repo/build/release/bench/ide/ide_speed}"
 workdir="$repo/build/bench/ide"
@@ -16,7 +17,7 @@ while [ $# -gt 0 ]; do
   case "$1" in
     --quick) x=40 y=40; shift ;;
     --runs) runs="$2"; shift 2 ;;
-    -h|--help) sed -n '2,9p' "$0" | sed 's/^# \{0,1\}//'; exit 0 ;;
+    -h|--help) usage; exit 0 ;;
     *) echo "run-ide-speed.sh: unknown option '$1' (see --help)" >&2; exit 2 ;;
   esac
 done
@@ -26,7 +27,6 @@ w="$workdir/speed-$x-$y-$z.xml"
 source "$here/box-world.sh"
 box_world "$w" "$x" "$y" "$z"
 echo "world: $x x $y x $z Blinky Blocks, program bench/meld-robots/gradient.meld, tap 0@1ms, $runs runs"
-median() { sort -g | awk '{a[NR]=$1} END {print (NR%2) ? a[(NR+1)/2] : (a[NR/2]+a[NR/2+1])/2}'; }
 heads="" ides="" ratios=""
 for ((r = 0; r < runs; ++r)); do
   out="$(xvfb-run -a -s "-screen 0 1600x1200x24" "$bin" "$w" --program "$repo/bench/meld-robots/gradient.meld" \

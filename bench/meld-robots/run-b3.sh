@@ -8,6 +8,7 @@
 # bytes per block (peak RSS / blocks, the whole process: VM state, world, code) and the fingerprint.
 set -euo pipefail
 here="$(cd "$(dirname "$0")" && pwd)"
+. "$here/../common.sh"  # median, usage
 repo="$(cd "$here/../.." && pwd)"
 vsim="${VSIM:-$repo/build/release/apps/vsim/vsim}"
 workdir="$repo/build/bench/meld-robots"
@@ -17,7 +18,7 @@ while [ $# -gt 0 ]; do
     --quick) quick=1; shift ;;
     --runs) runs="$2"; shift 2 ;;
     --json) json=1; shift ;;
-    -h|--help) sed -n '2,8p' "$0" | sed 's/^# \{0,1\}//'; exit 0 ;;
+    -h|--help) usage; exit 0 ;;
     *) echo "run-b3.sh: unknown option '$1' (see --help)" >&2; exit 2 ;;
   esac
 done
@@ -43,7 +44,6 @@ else
   worlds="$(world blinky-b3 blinkyblocks 100 100 10) $(world catoms3d-b3 catoms3d 47 47 46)"
 fi
 
-median() { sort -g | awk '{a[NR]=$1} END {print (NR%2) ? a[(NR+1)/2] : (a[NR/2]+a[NR/2+1])/2}'; }
 field() { sed -n "s/^  $1 *\(.*\)$/\1/p" | head -1; }
 
 [ "$json" = 1 ] || printf "%-12s %-9s %7s %11s %12s %7s %9s %12s %9s %7s %8s %9s  %s\n" \

@@ -18,6 +18,7 @@
 # compared byte for byte once per program (a difference fails the script).
 set -euo pipefail
 here="$(cd "$(dirname "$0")" && pwd)"
+. "$here/../common.sh"  # median, usage
 repo="$(cd "$here/../.." && pwd)"
 meld="${MELD:-$repo/build/release/apps/meld/meld}"
 meldc="${MELDC:-$repo/build/release/meldc/meldc}"
@@ -41,7 +42,6 @@ declare -A quick_args=(
   [belief-propagation]="--width 8 --labels 3 --iterations 5"
 )
 
-usage() { sed -n '2,15p' "$0" | sed 's/^# \{0,1\}//'; }
 while [ $# -gt 0 ]; do
   case "$1" in
     --quick) quick=1; shift ;;
@@ -94,7 +94,6 @@ generate() {  # generate program $1 with options $2, print the file name
   fi
   echo "$out"
 }
-median() { sort -g | awk '{a[NR]=$1} END {if (NR == 0) print ""; else print (NR%2) ? a[(NR+1)/2] : (a[NR/2]+a[NR/2+1])/2}'; }
 statval() {  # value of the `--stats` line "$1: VALUE" in the text on stdin (last one wins)
   sed -n "s/^[[:space:]]*$1:[[:space:]]*\([-+0-9.eE]*\).*/\1/p" | tail -1
 }

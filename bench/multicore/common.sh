@@ -1,6 +1,5 @@
-# Sourced by run-b4.sh and calibrate.sh: what both need.
-# usage: the script's leading comment block (its --help).
-usage() { awk 'NR > 1 && /^#/ { sub(/^# ?/, ""); print; next } NR > 1 { exit }' "$0"; }
+# Sourced by run-b4.sh and calibrate.sh: what both need (with bench/common.sh: usage, median).
+. "$(dirname "${BASH_SOURCE[0]}")/../common.sh"
 # field KEY FILE: the value of a "KEY: value" line of `meld --stats`.
 field() { awk -v k="$1" 'index($0, k ": ") == 1 { print substr($0, length(k) + 3) }' "$2"; }
 # b2_programs REPO QUICK ONLY: generates the B2 programs (bench/meld/run-b2.sh) and prints their

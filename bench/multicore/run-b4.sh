@@ -44,7 +44,6 @@ mkdir -p "$profiles"
 
 mapfile -t files < <(b2_programs "$repo" "$quick" "$only")
 
-median() { sort -g | awk '{ v[NR] = $1 } END { print (NR % 2) ? v[(NR + 1) / 2] : (v[NR / 2] + v[NR / 2 + 1]) / 2 }'; }
 
 echo "machine: $(nproc) cores, $(grep -m1 'model name' /proc/cpuinfo | sed 's/.*: //'), meld: $meld"
 printf '| %-20s | %7s | %8s | %7s | %10s | %13s | %8s | %7s | %7s |\n' program threads "wall s" speedup efficiency "facts derived" "Mfacts/s" "busy %" "steal %"

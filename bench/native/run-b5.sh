@@ -8,6 +8,7 @@
 # MELDC and MELD select the binaries (default: build/release/meldc/meldc, build/release/apps/meld/meld).
 set -euo pipefail
 here="$(cd "$(dirname "$0")" && pwd)"
+. "$here/../common.sh"  # median, usage
 repo="$(cd "$here/../.." && pwd)"
 meldc="${MELDC:-$repo/build/release/meldc/meldc}"
 meld="${MELD:-$repo/build/release/apps/meld/meld}"
@@ -17,7 +18,7 @@ while [ $# -gt 0 ]; do
   case "$1" in
     --runs) runs="$2"; shift 2 ;;
     --rules) rules="$2"; shift 2 ;;
-    -h|--help) sed -n '2,8p' "$0" | sed 's/^# \{0,1\}//'; exit 0 ;;
+    -h|--help) usage; exit 0 ;;
     *) echo "run-b5.sh: unknown option '$1' (see --help)" >&2; exit 2 ;;
   esac
 done
@@ -26,7 +27,6 @@ for b in "$meldc" "$meld"; do [ -x "$b" ] || { echo "run-b5.sh: $b not found (bu
 command -v /usr/bin/time > /dev/null || { echo "run-b5.sh: /usr/bin/time is needed (Debian package time)" >&2; exit 1; }
 mkdir -p "$work"
 
-median() { sort -g | awk '{a[NR]=$1} END {print (NR%2) ? a[(NR+1)/2] : (a[NR/2]+a[NR/2+1])/2}'; }
 measure() {  # median "wall_s peak_MB" of RUNS runs of the command
   local t m ts="" ms=""
   for ((r = 0; r < runs; ++r)); do
