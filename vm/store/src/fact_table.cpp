@@ -26,7 +26,7 @@ std::uint32_t FactTable::addIndex(KeySpec key) {
   if (!words_.empty()) throw std::logic_error("meldvm: index added to a table that already holds facts");
   if (key.first + key.count > arity()) throw std::out_of_range("meldvm: index key beyond the arity");
   indexes_.push_back(Index{key, {}});
-  argOffset_ = 2 + indexCount();
+  argOffset_ = indexLinkWord(indexCount());  // the arguments follow the index links
   stride_ = argOffset_ + arity();
   return indexCount() - 1;
 }
@@ -119,15 +119,15 @@ void FactTable::linkIndexes(FactRef f, std::uint32_t fromIndex) {
 }
 
 void FactTable::linkIndex(FactRef f, std::uint32_t x, FactRef head, std::uint64_t h) {
-  const std::size_t w = base(f) + 2 + x;
+  const std::size_t w = linkWord(f, x);
   setHi(w, kNoFact);
   if (head == kNoFact) {
     setLo(w, f);  // a one-fact chain: the head is its own tail
     indexes_[x].heads.insert(h, f);
   } else {
-    const std::size_t hw = base(head) + 2 + x;
+    const std::size_t hw = linkWord(head, x);
     const FactRef tail = lo(hw);
-    setHi(base(tail) + 2 + x, f);
+    setHi(linkWord(tail, x), f);
     setLo(w, tail);
     setLo(hw, f);
   }
@@ -135,7 +135,7 @@ void FactTable::linkIndex(FactRef f, std::uint32_t x, FactRef head, std::uint64_
 
 void FactTable::unlinkIndexes(FactRef f) {
   for (std::uint32_t x = 0; x < indexCount(); ++x) {
-    const std::size_t w = base(f) + 2 + x;
+    const std::size_t w = linkWord(f, x);
     std::uint64_t h;
     const FactRef head = chainHead(f, x, h);
     const FactRef p = lo(w), nx = hi(w);
@@ -143,12 +143,12 @@ void FactTable::unlinkIndexes(FactRef f) {
       if (nx == kNoFact) {
         indexes_[x].heads.erase(h, f);
       } else {
-        setLo(base(nx) + 2 + x, p);  // the new head points at the tail
+        setLo(linkWord(nx, x), p);  // the new head points at the tail
         indexes_[x].heads.replace(h, f, nx);
       }
     } else {
-      setHi(base(p) + 2 + x, nx);
-      setLo(base(nx == kNoFact ? head : nx) + 2 + x, p);
+      setHi(linkWord(p, x), nx);
+      setLo(linkWord(nx == kNoFact ? head : nx, x), p);
     }
   }
 }
@@ -207,7 +207,7 @@ FactRef FactTable::insertGrouped(ListHead& list, NodeId n, const Value* a, std::
   const std::uint64_t h = hashKey(n, a + spec.first, spec);
   const FactRef head = indexes_[0].heads.find(
       h, [&](std::uint32_t g) { return node(g) == n && keyEqual(g, a + spec.first, spec); });
-  const FactRef after = head == kNoFact ? kNoFact : lo(base(head) + 2);  // the head's prev is the tail
+  const FactRef after = head == kNoFact ? kNoFact : lo(linkWord(head, 0));  // the head's prev is the tail
   const FactRef f = place(list, n, a, cnt, after);
   linkIndex(f, 0, head, h);
   linkIndexes(f, 1);

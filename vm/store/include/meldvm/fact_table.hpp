@@ -75,10 +75,10 @@ class FactTable {
   [[gnu::always_inline]] void prefetchKey(NodeId node, std::uint32_t index, const Value* key) const {
     indexes_[index].heads.prefetch(hashKey(node, key, indexes_[index].key));
   }
-  FactRef nextWithKey(std::uint32_t index, FactRef f) const { return hi(base(f) + indexLinkWord(index)); }
+  FactRef nextWithKey(std::uint32_t index, FactRef f) const { return hi(linkWord(f, index)); }
   FactRef lastWithKey(NodeId node, std::uint32_t index, const Value* key) const {
     const FactRef head = firstWithKey(node, index, key);
-    return head == kNoFact ? kNoFact : lo(base(head) + 2 + index);  // the head's prev is the tail
+    return head == kNoFact ? kNoFact : lo(linkWord(head, index));  // the head's prev is the tail
   }
 
   FactRef next(FactRef f) const { return hi(base(f)); }
@@ -93,8 +93,9 @@ class FactTable {
   const Value* const* slotArrayAddress() const { return &slotArray_; }
   std::uint32_t stride() const { return stride_; }
   std::uint32_t argOffset() const { return argOffset_; }
-  // The slot word whose high half links a fact to the next one of index `index`'s chain.
-  std::uint32_t indexLinkWord(std::uint32_t index) const { return 2 + index; }
+  // The slot word of index `index`'s chain (after the list links and the count): its high half
+  // links a fact to the next one, its low half to the previous (the head's: to the tail).
+  static constexpr std::uint32_t indexLinkWord(std::uint32_t index) { return 2 + index; }
 
   std::uint32_t arity() const { return std::uint32_t(fields_.size()); }
   const std::vector<TypeId>& fields() const { return fields_; }
@@ -117,6 +118,7 @@ class FactTable {
   };
 
   std::size_t base(FactRef f) const { return std::size_t(f) * stride_; }
+  std::size_t linkWord(FactRef f, std::uint32_t index) const { return base(f) + indexLinkWord(index); }
   std::uint32_t lo(std::size_t w) const { return std::uint32_t(words_[w].bits()); }
   std::uint32_t hi(std::size_t w) const { return std::uint32_t(words_[w].bits() >> 32); }
   void setLo(std::size_t w, std::uint32_t v) {
