@@ -14,10 +14,6 @@
 namespace meldc::native {
 namespace detail {
 
-// The function for the code entered at `start` (created on first request, lowered at once).
-// The block's start and the bodies of ITER_SORTED loops (run by the VM's loop helper) are
-// meld_native_block functions; a body that native code loops over also gets the loops array
-// (what loop_begin said about each loop slot bound natively: `bound` lists them).
 llvm::Function* RegionLowering::region(std::uint32_t start, const std::set<std::uint32_t>& bound,
                                        bool nativeBody) {
   if (auto it = regions_.find(start); it != regions_.end()) return it->second;
@@ -35,7 +31,7 @@ llvm::Function* RegionLowering::region(std::uint32_t start, const std::set<std::
 }
 
 void RegionLowering::lowerRegion(Function& f, std::uint32_t start, bool nativeBody) {
-  f.entry = llvm::BasicBlock::Create(t_.context, "entry", f.fn);
+  f.entry = newBlock(f, "entry");
   llvm::IRBuilder<> b(f.entry);
   auto arg = f.fn->arg_begin();
   f.helpers = &*arg++;
@@ -91,7 +87,7 @@ void RegionLowering::lowerInstruction(Function& f, llvm::IRBuilder<>& b, std::ui
       return ret(b, kReturn);
     case Opcode::RET_IF_UPDATED: {
       llvm::Value* updated = b.CreateCall(t_.updatedType, helper(f, b, kUpdated), {f.frame});
-      llvm::BasicBlock* stop = llvm::BasicBlock::Create(t_.context, "updated", f.fn);
+      llvm::BasicBlock* stop = newBlock(f, "updated");
       b.CreateCondBr(b.CreateICmpNE(updated, b.getInt32(0)), stop, at(f, next));
       b.SetInsertPoint(stop);
       return ret(b, kReturn);

@@ -1,5 +1,6 @@
 // The lowering of what touches the fact store and the heap: loops (native for ITER and ITER_KEY),
-// FIRE, runs of LOAD and TEST on a slot, CALL of a built-in, reference counts.
+// FIRE, runs of LOAD and TEST on a slot, CALL of a built-in, reference counts. What each function
+// does is said once, at its declaration in region_lowering.hpp.
 #include "region_lowering.hpp"
 
 namespace meldc::native::detail {
@@ -15,12 +16,10 @@ RegionLowering::LoopView RegionLowering::loadLoopView(llvm::IRBuilder<>& b, llvm
           b.CreateZExt(loopField(b, info, kLoopArgOffset, b.getInt32Ty()), b.getInt64Ty())};
 }
 
-// The loop that bound slot s around this code (s is in f.bound).
 RegionLowering::LoopView RegionLowering::loopView(Function& f, llvm::IRBuilder<>& b, std::uint32_t s) {
   return loadLoopView(b, b.CreateLoad(b.getPtrTy(), b.CreateConstInBoundsGEP1_64(b.getPtrTy(), f.loops, s)));
 }
 
-// The address of word w of fact `fact` (the array is read each time: a body may grow it).
 llvm::Value* RegionLowering::factWord(llvm::IRBuilder<>& b, const LoopView& loop, llvm::Value* fact,
                                       llvm::Value* w) {
   llvm::Value* array = b.CreateLoad(b.getPtrTy(), loop.words);
@@ -38,7 +37,6 @@ llvm::Value* RegionLowering::factCount(llvm::IRBuilder<>& b, const LoopView& loo
   return highHalf(b, fact, loop, b.getInt64(1));  // 0: consumed
 }
 
-// The loop's end: the same status as the interpreter's (lastFired, or return when stopping).
 void RegionLowering::endLoop(Function& f, llvm::IRBuilder<>& b, std::uint32_t pc, llvm::Value* fired,
                              llvm::Value* stopping) {
   b.CreateStore(fired, f.lastFired);
@@ -56,8 +54,6 @@ void RegionLowering::lowerLoop(Function& f, llvm::IRBuilder<>& b, std::uint32_t 
   endLoop(f, b, pc, b.CreateICmpEQ(r, b.getInt32(kFired)), b.CreateICmpEQ(r, b.getInt32(kReturn)));
 }
 
-// ITER and ITER_KEY: the VM binds the slot and finds the first fact (loop_begin); the facts are
-// stepped through here, in the order, with the skips and the counts of Interpreter::loop.
 void RegionLowering::lowerNativeLoop(Function& f, llvm::IRBuilder<>& b, std::uint32_t pc) {
   const std::uint32_t pred = code_[pc + 1], slot = code_[pc + 2], flags = code_[pc + 3];
   std::set<std::uint32_t> bound = f.bound;
@@ -130,8 +126,6 @@ void RegionLowering::lowerNativeLoop(Function& f, llvm::IRBuilder<>& b, std::uin
   endLoop(f, b, pc, b.CreateLoad(b.getInt1Ty(), firedVar), stopping());
 }
 
-// Reference counts adjusted inline (a boxed value points at its 32-bit count; nil holds none):
-// only a count that would reach zero calls the VM.
 void RegionLowering::adjustCount(Function& f, llvm::IRBuilder<>& b, llvm::Value* v, bool retain,
                                  std::uint32_t type) {
   llvm::BasicBlock* object = newBlock(f, retain ? "retain" : "release");
@@ -157,15 +151,11 @@ void RegionLowering::adjustCount(Function& f, llvm::IRBuilder<>& b, llvm::Value*
   b.SetInsertPoint(done);
 }
 
-// Before a boxed register takes `value`: the interpreter's retain, then setReg's release of the
-// old value.
 void RegionLowering::setBoxed(Function& f, llvm::IRBuilder<>& b, std::uint32_t r, llvm::Value* value) {
   adjustCount(f, b, value, true, block_.registerTypes[r]);
   adjustCount(f, b, loadReg(f, b, r), false, block_.registerTypes[r]);
 }
 
-// CALL: the built-in's implementation is called directly (builtins[id]) with the registers'
-// values; its result is owned, so a boxed register only lets go of its old value. fabs is inline.
 void RegionLowering::lowerCall(Function& f, llvm::IRBuilder<>& b, std::uint32_t pc) {
   const std::uint32_t* c = code_.data() + pc;
   const std::uint32_t dest = c[1], id = c[2], count = c[4];
@@ -185,9 +175,6 @@ void RegionLowering::lowerCall(Function& f, llvm::IRBuilder<>& b, std::uint32_t 
   b.CreateBr(at(f, pc + length(pc)));
 }
 
-// LOADs and TESTs of integer-like fields, one after the other on the same slot: its arguments
-// are looked up once and read in place (nothing stores a fact in between: a release that frees
-// a value touches the heap, not the fact store).
 void RegionLowering::lowerSlotRun(Function& f, llvm::IRBuilder<>& b, std::uint32_t pc) {
   const std::uint32_t slot = code_[pc + 1];
   llvm::Value* args;
@@ -206,15 +193,13 @@ void RegionLowering::lowerSlotRun(Function& f, llvm::IRBuilder<>& b, std::uint32
       b.CreateStore(field, reg(f, b, code_[pc + 3]));
       continue;
     }
-    llvm::BasicBlock* equal = llvm::BasicBlock::Create(t_.context, "equal" + std::to_string(pc), f.fn);
+    llvm::BasicBlock* equal = newBlock(f, "equal" + std::to_string(pc));
     b.CreateCondBr(b.CreateICmpEQ(field, loadReg(f, b, code_[pc + 3])), equal, at(f, code_[pc + 4]));
     b.SetInsertPoint(equal);
   }
   b.CreateBr(at(f, pc));
 }
 
-// FIRE and CFIRE: the interpreter's fire(), reading the slots of native loops in place (the VM is
-// called only for a fact to consume, or for a slot a native loop did not bind).
 void RegionLowering::lowerFire(Function& f, llvm::IRBuilder<>& b, std::uint32_t pc, bool rule) {
   for (auto it = consumingSlots_.lower_bound(code_[pc + 1]); it != consumingSlots_.end(); ++it) {
     const std::uint32_t s = *it;

@@ -89,12 +89,11 @@ void optimise(llvm::Module& module, llvm::TargetMachine& target) {
 
 }  // namespace
 
-std::vector<BlockRange> partitionBlocks(const meldvm::Program& program) {
+std::vector<BlockRange> partitionBlocks(const std::vector<const meldvm::CodeBlock*>& blocks) {
   // About 60 rules of B5's generated program (68 words each) per module: big enough that the
   // modules' fixed costs do not show, small enough that a large program keeps every processor busy
   // and little IR in memory.
   constexpr std::size_t kWordsPerPartition = 4096;
-  const std::vector<const meldvm::CodeBlock*> blocks = meldvm::nativeCodeBlocks(program);
   std::vector<BlockRange> ranges(1);
   std::size_t words = 0;
   for (std::size_t k = 0; k < blocks.size(); ++k) {
@@ -108,13 +107,14 @@ std::vector<BlockRange> partitionBlocks(const meldvm::Program& program) {
   return ranges;
 }
 
-std::unique_ptr<llvm::Module> buildModule(const meldvm::Program& program, llvm::LLVMContext& context,
-                                          llvm::TargetMachine& target, BlockRange range) {
+std::unique_ptr<llvm::Module> buildModule(const meldvm::Program& program,
+                                          const std::vector<const meldvm::CodeBlock*>& blocks,
+                                          llvm::LLVMContext& context, llvm::TargetMachine& target,
+                                          BlockRange range) {
   auto module = std::make_unique<llvm::Module>("meld", context);
   module->setTargetTriple(target.getTargetTriple().str());
   module->setDataLayout(target.createDataLayout());
   NativeTypes types(*module);
-  const std::vector<const meldvm::CodeBlock*> blocks = meldvm::nativeCodeBlocks(program);
   // nativeCodeBlocks' order: rules, then processes, then functions and the globals' initialiser.
   const std::size_t processesFrom = program.rules.size(),
                     processesTo = processesFrom + program.processes.size();
@@ -128,15 +128,11 @@ std::unique_ptr<llvm::Module> buildModule(const meldvm::Program& program, llvm::
   return module;
 }
 
-std::unique_ptr<llvm::Module> buildModule(const meldvm::Program& program, llvm::LLVMContext& context,
-                                          llvm::TargetMachine& target) {
-  return buildModule(program, context, target, {0, meldvm::nativeCodeBlocks(program).size()});
-}
-
 std::string llvmText(const meldvm::Program& program, const std::string& cpu) {
   llvm::LLVMContext context;
   std::unique_ptr<llvm::TargetMachine> target = targetMachine(cpu);
-  std::unique_ptr<llvm::Module> module = buildModule(program, context, *target);
+  const std::vector<const meldvm::CodeBlock*> blocks = meldvm::nativeCodeBlocks(program);
+  std::unique_ptr<llvm::Module> module = buildModule(program, blocks, context, *target, {0, blocks.size()});
   std::string text;
   llvm::raw_string_ostream out(text);
   module->print(out, nullptr);

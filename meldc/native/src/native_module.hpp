@@ -31,16 +31,17 @@ struct BlockRange {
   std::size_t first = 0, last = 0;
 };
 
-// The program's blocks cut into runs of about the same amount of bytecode. The cut depends on the
-// program only, never on the number of threads, so that the code is the same whatever -j says.
-// At least one range (an empty one when the program has no native block).
-std::vector<BlockRange> partitionBlocks(const meldvm::Program& program);
+// The blocks cut into runs of about the same amount of bytecode. The cut depends on the program
+// only, never on the number of threads, so that the code is the same whatever -j says. At least
+// one range (an empty one when the program has no native block).
+std::vector<BlockRange> partitionBlocks(const std::vector<const meldvm::CodeBlock*>& blocks);
 
-// Lowers the blocks of `range` (all of them by default) and optimises the module for `target`.
-std::unique_ptr<llvm::Module> buildModule(const meldvm::Program& program, llvm::LLVMContext& context,
-                                          llvm::TargetMachine& target, BlockRange range);
-std::unique_ptr<llvm::Module> buildModule(const meldvm::Program& program, llvm::LLVMContext& context,
-                                          llvm::TargetMachine& target);
+// Lowers `blocks` [range.first, range.last) (meldvm::nativeCodeBlocks of the program) and
+// optimises the module for `target`.
+std::unique_ptr<llvm::Module> buildModule(const meldvm::Program& program,
+                                          const std::vector<const meldvm::CodeBlock*>& blocks,
+                                          llvm::LLVMContext& context, llvm::TargetMachine& target,
+                                          BlockRange range);
 
 // Called with partition k's module before it is emitted (shared_object.cpp adds the description).
 using ModuleFinisher = std::function<void(llvm::Module&, std::size_t partition)>;

@@ -36,7 +36,8 @@ llvm::SmallVector<char, 0> emitObject(llvm::Module& module, llvm::TargetMachine&
 std::vector<llvm::SmallVector<char, 0>> compileObjects(const meldvm::Program& program, const std::string& cpu,
                                                        unsigned jobs, const ModuleFinisher& finish,
                                                        const CompileProgress& progress) {
-  const std::vector<BlockRange> ranges = partitionBlocks(program);
+  const std::vector<const meldvm::CodeBlock*> blocks = meldvm::nativeCodeBlocks(program);
+  const std::vector<BlockRange> ranges = partitionBlocks(blocks);
   std::vector<llvm::SmallVector<char, 0>> objects(ranges.size());
   std::atomic<std::size_t> next{0};
   std::size_t done = 0;  // under `lock`, as progress's calls
@@ -47,7 +48,7 @@ std::vector<llvm::SmallVector<char, 0>> compileObjects(const meldvm::Program& pr
       std::unique_ptr<llvm::TargetMachine> target = targetMachine(cpu);
       for (std::size_t k = next++; k < ranges.size(); k = next++) {
         llvm::LLVMContext context;
-        std::unique_ptr<llvm::Module> module = buildModule(program, context, *target, ranges[k]);
+        std::unique_ptr<llvm::Module> module = buildModule(program, blocks, context, *target, ranges[k]);
         if (finish) finish(*module, k);
         objects[k] = emitObject(*module, *target);
         const std::lock_guard<std::mutex> hold(lock);

@@ -116,7 +116,7 @@ class RegionLowering {
   llvm::BasicBlock* at(Function& f, std::uint32_t pc) {
     auto [it, fresh] = f.blocks.try_emplace(pc, nullptr);
     if (fresh) {
-      it->second = llvm::BasicBlock::Create(t_.context, "pc" + std::to_string(pc), f.fn);
+      it->second = newBlock(f, "pc" + std::to_string(pc));
       f.pending.push_back(pc);
     }
     return it->second;
