@@ -1,5 +1,7 @@
 #include "simcore/gltf_export.hpp"
 
+#include <algorithm>
+#include <bit>
 #include <cmath>
 #include <cstdint>
 #include <cstdio>
@@ -12,6 +14,9 @@
 namespace simcore {
 
 namespace {
+
+// GLB is little-endian; the writer copies floats, indices and lengths as they are in memory.
+static_assert(std::endian::native == std::endian::little, "gltf_export writes little-endian data as is");
 
 // One shape of unit size, centred on the origin, as glTF wants it: positions and normals
 // (float x, y, z each) and triangles (counter-clockwise seen from outside).
@@ -181,7 +186,11 @@ void exportGltf(const Simulation& sim, std::ostream& out) {
   json += '}';
   json.resize((json.size() + 3) / 4 * 4, ' ');  // chunks are 4-byte aligned: JSON pads with spaces
 
-  const std::uint32_t header[3] = {0x46546C67u, 2u, std::uint32_t(12 + 8 + json.size() + 8 + bin.size())};
+  const std::uint64_t total = 12 + 8 + json.size() + 8 + bin.size();
+  if (total > 0xFFFFFFFFu)  // GLB's lengths are 32-bit
+    throw std::runtime_error("the world is too large for one glTF binary file (" +
+                             std::to_string(total >> 20) + " MiB; at most 4 GiB)");
+  const std::uint32_t header[3] = {0x46546C67u, 2u, std::uint32_t(total)};
   out.write(reinterpret_cast<const char*>(header), sizeof header);
   writeChunk(out, 0x4E4F534Au, json);  // "JSON"
   writeChunk(out, 0x004E4942u, bin);   // "BIN\0"
