@@ -179,6 +179,20 @@ go(X), !at(X, A, B, C) -o moveTo(X, A, B + 1, C).
   BOOST_TEST((w.sim->world().block(0).cell == simcore::Cell{0, 1, 0}));
 }
 
+BOOST_AUTO_TEST_CASE(move_to_from_a_persistent_rule_retracts_the_old_position) {
+  // The rule runs while `at` is being delivered to the block: the retraction that moveTo posts to
+  // the block itself must not be lost with the mailbox being delivered (each old `at` stayed).
+  World w("smartblocks", {{0, 0, 0}}, R"(
+type at(node, int, int, int).
+type linear action moveTo(node, int, int, int).
+!at(B, X, Y, Z), Y < 2 -o moveTo(B, X, Y + 1, Z).
+)");
+  w.sim->runUntilEmpty();
+  BOOST_TEST(w.vm->error() == "");
+  BOOST_TEST(w.facts(0) == "!at(0, 2, 0)\n");
+  BOOST_TEST(w.sim->statistics().motionsEnded == 2u);
+}
+
 BOOST_AUTO_TEST_CASE(a_delayed_fact_arrives_after_its_delay_in_simulated_time) {
   // ping(X)@+250ms for the block itself waits on a timer; pong for the neighbour leaves 250 ms
   // late on the link.

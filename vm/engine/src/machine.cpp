@@ -197,6 +197,10 @@ void Machine::receive(NodeId n, PredId p, const Value* args, bool negative) {
   start();
   if (n >= db_->nodeCount() || (shard_ && !holdsNode(n)))
     throw RuntimeError("fact for node @" + std::to_string(n) + ", which does not exist");
+  if (delivering_ && n == running_) [[unlikely]] {
+    heldBack_.push_back({n, p, negative, pushArgs(heldBackArgs_, p, args)});
+    return;
+  }
   post(n, p, args, negative);
 }
 

@@ -66,6 +66,7 @@ void Machine::deliverIncoming(NodeId n) {
   // one FIFO, §6.5). Nothing posts to the running node, so the box is stable meanwhile. Until a
   // linear fact has been sent at all, the first pass has nothing to find.
   bool persistent = !linearPosted_;
+  delivering_ = true;
   if (linearPosted_)
     mail_->forEach(
         n,
@@ -83,5 +84,15 @@ void Machine::deliverIncoming(NodeId n) {
         n, [&](PredId p) { return tables_.isLinear[p] == 0; },
         [&](PredId p, bool negative, const Value* args) { applyPersistent(n, p, args, negative); });
   mail_->release(n);
+  delivering_ = false;
+  if (!heldBack_.empty()) [[unlikely]] {
+    for (const PendingFact& e : heldBack_) {
+      const Value* args = heldBackArgs_.data() + e.args;
+      post(e.node, e.pred, args, e.negative);
+      releaseArgs(e.pred, args);
+    }
+    heldBack_.clear();
+    heldBackArgs_.clear();
+  }
 }
 }  // namespace meldvm

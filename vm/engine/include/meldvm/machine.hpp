@@ -326,6 +326,12 @@ class Machine : private SchedulerView {
   NodeId initialNodes_ = 0;
 
   bool linearPosted_ = false;  // some linear fact went into a mailbox
+  // While a node's mailbox is being delivered, facts the host gives that node (a robot's action
+  // retracting its own `at`, run by a persistent rule during the delivery) wait here: the box is
+  // released when the delivery ends, so a post into it would be lost. Posted right after.
+  bool delivering_ = false;
+  std::vector<PendingFact> heldBack_;
+  ValueBuffer heldBackArgs_;
 
   // Candidate rules per node: a bitset of rulesWords_ words per node.
   LargeVector<std::uint64_t> candidates_;
