@@ -108,8 +108,7 @@ void Simulation::dispatch(const Event& e) {
       break;
     case EventKind::MotionEnd: {
       MotionSlot& m = motions_[std::uint32_t(e.arg)];
-      world_.clearCell(m.from);
-      if (m.sweptFace >= 0) world_.clearCell(world_.lattice().neighborCell(m.from, m.sweptFace));
+      clearMotionCells(m, world_.block(e.block).cell);
       world_.settle(world_.block(e.block).cell, e.block);
       world_.block(e.block).motion = kNoBlock;
       releaseMotion(std::uint32_t(e.arg));
@@ -228,8 +227,7 @@ void Simulation::removeBlock(BlockId id) {
   if (!world_.isAlive(id)) return;
   if (b.motion != kNoBlock) {
     const MotionSlot& m = motions_[b.motion];  // released when its MotionEnd event comes
-    world_.clearCell(m.from);
-    if (m.sweptFace >= 0) world_.clearCell(world_.lattice().neighborCell(m.from, m.sweptFace));
+    clearMotionCells(m, b.cell);
     world_.clearCell(b.cell);
   } else {
     breakLinks(id);

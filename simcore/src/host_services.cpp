@@ -170,10 +170,14 @@ int Simulation::move(BlockId id, int f) {
     if (rc != VS_OK) return rc;
     // A target's rule is checked again (isFree includes the bounds): it may refuse a motion wrongly,
     // but never corrupt the grid.
-    if (plan.sweptFace >= faceCount_ || plan.pivotFace >= faceCount_) return VS_ERR_BAD_FACE;
-    if (!world_.isFree(plan.to) ||
-        (plan.sweptFace >= 0 && !world_.isFree(world_.lattice().neighborCell(b.cell, plan.sweptFace))))
-      return VS_ERR_CELL_OCCUPIED;
+    constexpr unsigned kFaceBits = (1u << kMaxMotionFaces) - 1;
+    const unsigned faceMask = faceCount_ >= kMaxMotionFaces ? kFaceBits : (1u << faceCount_) - 1;
+    if (plan.pivotFace >= faceCount_ || (plan.sweptFromFaces & ~faceMask) || (plan.sweptToFaces & ~faceMask))
+      return VS_ERR_BAD_FACE;
+    bool free = world_.isFree(plan.to);
+    forEachSweptCell(world_.lattice(), b.cell, plan.to, plan.sweptFromFaces, plan.sweptToFaces,
+                     [&](const Cell& c) { free = free && world_.isFree(c); });
+    if (!free) return VS_ERR_CELL_OCCUPIED;
   }
   const Cell& to = plan.to;
   breakLinks(id);  // while the block is still settled, so its neighbors are found
@@ -181,11 +185,12 @@ int Simulation::move(BlockId id, int f) {
   MotionSlot& m = motions_[slot];
   m.from = b.cell;
   m.end = queue_.now() + motionDuration_;
-  m.sweptFace = std::int8_t(plan.sweptFace);
+  m.sweptFromFaces = plan.sweptFromFaces;
+  m.sweptToFaces = plan.sweptToFaces;
   m.pivotFace = std::int8_t(plan.pivotFace);
   world_.reserve(m.from, id);
   world_.reserve(to, id);
-  if (m.sweptFace >= 0) world_.reserve(world_.lattice().neighborCell(m.from, m.sweptFace), id);
+  if (m.sweptFromFaces | m.sweptToFaces) [[unlikely]] setSweptCells(m, to, id);
   b.cell = to;
   b.motion = slot;
   ++stats_.motionsStarted;
@@ -238,6 +243,15 @@ Simulation::FaceState& Simulation::faceForSending(BlockId b, int f) {
 
 void Simulation::releaseMessage(std::uint32_t slot) { releaseSlot(messages_, freeMessage_, slot); }
 void Simulation::releaseMotion(std::uint32_t slot) { releaseSlot(motions_, freeMotion_, slot); }
+
+void Simulation::setSweptCells(const MotionSlot& m, const Cell& to, BlockId id) {
+  forEachSweptCell(world_.lattice(), m.from, to, m.sweptFromFaces, m.sweptToFaces, [&](const Cell& c) {
+    if (id == kNoBlock)
+      world_.clearCell(c);
+    else
+      world_.reserve(c, id);
+  });
+}
 void Simulation::releaseTimer(std::uint32_t slot) { releaseSlot(timers_, freeTimer_, slot); }
 
 }  // namespace simcore

@@ -27,7 +27,8 @@ int HexRotationRule::plan(const simcore::World& world, simcore::BlockId id, int 
       continue;
     }
     plan.to = to;
-    plan.sweptFace = sweptFace;
+    plan.sweptFromFaces = std::uint16_t(1u << sweptFace);
+    plan.sweptToFaces = 0;
     plan.pivotFace = pivotFace;
     return VS_OK;
   }

@@ -3,6 +3,7 @@
 #include <memory>
 
 #include "catoms3d/fcc_lattice.hpp"
+#include "catoms3d/rotation_rule.hpp"
 
 namespace targets {
 
@@ -16,9 +17,8 @@ simcore::TargetSpec catoms3DTarget() {
   // we use 1 Mbit/s and no extra latency, like Catoms 2D, both overridable per run.
   t.link.rateBitsPerSecond = 1e6;
   t.link.latency = 0;
-  // Rotations (the published Catoms 3D motion rules) are a later issue: no rule, so move() is
-  // refused with VS_ERR_UNSUPPORTED.
-  t.canTranslate = false;
+  // Rotations over a neighbor's surface with the published blocking rules (rotation_rule.hpp).
+  t.motionRule = std::make_shared<FccRotationRule>();
   // VisibleSim lets the user tap any module; there is no accelerometer and no display.
   t.hasTap = true;
   t.blockSizeMm = 10.0;  // VisibleSim's Catoms 3D worlds use blockSize="10,10,10"

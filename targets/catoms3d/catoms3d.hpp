@@ -1,6 +1,6 @@
 // Catoms 3D: quasi-spherical modules on a face-centred cubic lattice (fcc_lattice.hpp), 12
-// connectors, an RGB LED. No motion yet: move() answers VS_ERR_UNSUPPORTED (the published rotation
-// rules come with a later issue).
+// connectors, an RGB LED. move(face) rotates the catom over a neighbor's surface into the cell behind
+// `face` (rotation_rule.hpp).
 #pragma once
 
 #include "simcore/target_spec.hpp"

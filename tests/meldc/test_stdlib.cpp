@@ -92,5 +92,5 @@ BOOST_AUTO_TEST_CASE(catoms3d) {
   expectLines(dump, {"const side0 = 0", "const side1 = 1", "const top2 = 2", "const top3 = 3",
                      "const top4 = 4", "const top5 = 5", "const side6 = 6", "const side7 = 7",
                      "const bottom8 = 8", "const bottom9 = 9", "const bottom10 = 10", "const bottom11 = 11"});
-  expectNoLine(dump, "type linear action moveTo");  // no motion yet
+  expectLines(dump, {"type linear action moveTo(node, int, int, int)"});
 }

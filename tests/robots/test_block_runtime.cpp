@@ -193,6 +193,28 @@ type linear action moveTo(node, int, int, int).
   BOOST_TEST(w.sim->statistics().motionsEnded == 2u);
 }
 
+BOOST_AUTO_TEST_CASE(move_to_rotates_a_catom_3d_over_its_neighbour) {
+  // Catoms 3D: block 0 at (2,2,2) rotates over block 1 at (3,2,2) (its side0) into (2,2,3) (its
+  // top2); it then touches block 1 through connector bottom9, and block 1 it through top3.
+  World w("catoms3d", {{2, 2, 2}, {3, 2, 2}}, R"(
+type route neighbor(node, node, int).
+type at(node, int, int, int).
+type linear action moveTo(node, int, int, int).
+type linear go(node).
+type linear start(node).
+start(@0).
+start(X) -o go(X)@+100ms.
+go(X), !at(X, A, B, C) -o moveTo(X, A, B, C + 1).
+)");
+  w.sim->runUntil(simcore::SimTime(50) * 1000000);
+  BOOST_TEST(w.facts(0) == "!at(2, 2, 2)\n!neighbor(@1, 0)\n");
+  w.sim->runUntilEmpty();
+  BOOST_TEST(w.vm->error() == "");
+  BOOST_TEST(w.facts(0) == "!at(2, 2, 3)\n!neighbor(@1, 9)\n");
+  BOOST_TEST(w.facts(1).find("!neighbor(@0, 3)") != std::string::npos);
+  BOOST_TEST((w.sim->world().block(0).cell == simcore::Cell{2, 2, 3}));
+}
+
 BOOST_AUTO_TEST_CASE(a_delayed_fact_arrives_after_its_delay_in_simulated_time) {
   // ping(X)@+250ms for the block itself waits on a timer; pong for the neighbour leaves 250 ms
   // late on the link.

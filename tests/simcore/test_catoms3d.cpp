@@ -2,6 +2,7 @@
 #include <boost/test/unit_test.hpp>
 #include <cmath>
 #include <set>
+#include <string>
 #include <tuple>
 #include <vector>
 
@@ -106,7 +107,8 @@ BOOST_AUTO_TEST_CASE(target_names_and_spec) {
   const TargetSpec t = targets::catoms3DTarget();
   BOOST_CHECK_EQUAL(t.faceNames.size(), 12u);
   BOOST_CHECK_EQUAL(t.faceNames[targets::kC3DBottom11], "bottom11");
-  BOOST_CHECK(!t.canMove());
+  BOOST_CHECK(t.canMove() && !t.canTranslate);
+  BOOST_CHECK_EQUAL(std::string(t.motionRule->name()), "fcc-rotation");
   BOOST_CHECK_EQUAL(t.link.rateBitsPerSecond, 1e6);
   BOOST_CHECK_EQUAL(t.makeLattice()->faceCount(), 12);
   BOOST_CHECK(!t.makeLattice()->isPlanar());
@@ -167,20 +169,6 @@ BOOST_AUTO_TEST_CASE(messages_cross_layers_on_the_opposite_connector) {
   BOOST_REQUIRE_EQUAL(got.size(), 1u);
   BOOST_CHECK_EQUAL(got[0].face, targets::kC3DBottom9);
   BOOST_CHECK_EQUAL(got[0].other, 0u);
-}
-
-BOOST_AUTO_TEST_CASE(move_is_refused_as_unsupported) {
-  auto sim = makeC3D({4, 4, 4}, {{1, 1, 1}, {2, 1, 1}});
-  Script s(*sim);
-  std::vector<int> codes;
-  s.onStart = [&](vs_ctx* ctx) {
-    if (ctx->block == 0)
-      for (int f = 0; f < 12; ++f) codes.push_back(ctx->api->move(ctx, f));
-  };
-  sim->runUntilEmpty();
-  BOOST_CHECK((codes == std::vector<int>(12, VS_ERR_UNSUPPORTED)));
-  BOOST_CHECK_EQUAL(sim->statistics().motionsStarted, 0u);
-  BOOST_CHECK_EQUAL(sim->world().neighbor(0, targets::kC3DSide0), 1u);
 }
 
 // --- World files and the flood example ---

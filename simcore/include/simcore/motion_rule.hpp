@@ -4,21 +4,26 @@
 // and events consistent — so it knows no target: Smart Blocks slide, Catoms 2D roll around a pivot.
 #pragma once
 
+#include <cstdint>
+
 #include "simcore/blockcode.h"
 #include "simcore/lattice.hpp"
 #include "simcore/world.hpp"
 
 namespace simcore {
 
-// The cells a motion needs besides its destination are named by a face of the block's origin cell:
-// the kernel keeps one byte for each per moving block (a million may move at once). That covers a
-// roll around a neighbor; a rule needing cells farther away would extend this struct.
+// The cells a motion needs besides its destination are named by faces of the block's origin cell
+// and of its destination cell, as two bit masks: the kernel keeps four bytes for them per moving
+// block (a million may move at once). That covers a roll around a neighbor (Catoms 2D: one cell
+// beside the path) and a rotation over a neighbor's surface (Catoms 3D: cells next to either end).
+inline constexpr int kMaxMotionFaces = 16;  // faces a swept-cell mask can name
+
 struct MotionPlan {
   Cell to;  // the destination: reserved at once, settled when the motion ends
-  // The cell behind this face of the origin is one the block passes through (a roll sweeps the cell
-  // beside its path): it must be free when the motion starts and stays reserved until it ends, so
-  // no other block can enter it meanwhile. -1: none.
-  int sweptFace = -1;
+  // The cells behind these faces of the origin (bit f: face f) and of the destination are ones the
+  // block passes through or next to: they must be free when the motion starts and stay reserved until
+  // it ends, so no other block can enter them meanwhile.
+  std::uint16_t sweptFromFaces = 0, sweptToFaces = 0;
   // The block turns around the centre of the cell behind this face of the origin (its pivot):
   // position() follows the arc instead of the chord. -1: none.
   int pivotFace = -1;
@@ -49,10 +54,20 @@ class TranslationRule final : public MotionRule {
     if (!world.inBounds(to) || !world.lattice().isValidCell(to)) return VS_ERR_OUT_OF_WORLD;
     if (!world.isFree(to)) return VS_ERR_CELL_OCCUPIED;
     plan.to = to;
-    plan.sweptFace = plan.pivotFace = -1;
+    plan.sweptFromFaces = plan.sweptToFaces = 0;
+    plan.pivotFace = -1;
     return VS_OK;
   }
 };
+
+// Calls fn(cell) for each swept cell of a plan (the masks as MotionPlan keeps them); a cell next to
+// both ends may come twice.
+template <class Fn>
+void forEachSweptCell(const Lattice& lattice, const Cell& from, const Cell& to, std::uint16_t fromFaces,
+                      std::uint16_t toFaces, Fn&& fn) {
+  for (; fromFaces; fromFaces &= std::uint16_t(fromFaces - 1)) fn(lattice.neighborCell(from, __builtin_ctz(fromFaces)));
+  for (; toFaces; toFaces &= std::uint16_t(toFaces - 1)) fn(lattice.neighborCell(to, __builtin_ctz(toFaces)));
+}
 
 // The point a fraction `f` (0..1) of the way from `from` to `to`: along the chord, or along the arc
 // around `pivot` when there is one (both ends are then at the same distance from it).

@@ -110,14 +110,15 @@ class Simulation {
     std::uint32_t nextFree = kNoBlock;
     std::vector<std::uint8_t> data;  // capacity is kept across reuse
   };
-  // The destination is the block's cell; the start is end - motionDuration_. The swept cell (reserved
-  // for the whole motion) and the pivot (for position()) are the cells behind these faces of `from`
-  // (-1: none), as the target's MotionPlan said.
+  // The destination is the block's cell; the start is end - motionDuration_. The swept cells
+  // (reserved for the whole motion) and the pivot (for position(); -1: none) are named by faces of
+  // `from` and of the destination, as the target's MotionPlan said.
   struct MotionSlot {
     Cell from;
     std::uint32_t nextFree = kNoBlock;
     SimTime end = 0;
-    std::int8_t sweptFace = -1, pivotFace = -1;
+    std::uint16_t sweptFromFaces = 0, sweptToFaces = 0;
+    std::int8_t pivotFace = -1;
   };
   static_assert(sizeof(MotionSlot) == 32);
   // Timer events carry their tag in `arg`, unless the program asked for an id to cancel them: then
@@ -150,6 +151,14 @@ class Simulation {
   SimTime transmissionTime(std::uint32_t size) const;
   void releaseMessage(std::uint32_t slot);
   void releaseMotion(std::uint32_t slot);
+  // Frees the origin and the swept cells of a motion whose destination is `to` (not `to` itself).
+  // (Translations, B1's motions, have no swept cells: the rest stays out of their way.)
+  void clearMotionCells(const MotionSlot& m, const Cell& to) {
+    world_.clearCell(m.from);
+    if (m.sweptFromFaces | m.sweptToFaces) [[unlikely]] setSweptCells(m, to, kNoBlock);
+  }
+  // Reserves the swept cells of a motion for block `id`, or frees them (id = kNoBlock).
+  [[gnu::noinline]] void setSweptCells(const MotionSlot& m, const Cell& to, BlockId id);
   void releaseTimer(std::uint32_t slot);
 
   // Services (called through the ABI).
