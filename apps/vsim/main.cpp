@@ -17,6 +17,7 @@
 #include "session.hpp"
 #include "simcore/gltf_export.hpp"
 #include "simcore/simulation.hpp"
+#include "simcore/stability.hpp"
 #include "simcore/stats.hpp"
 #include "simcore/trace.hpp"
 #include "simcore/xml_world.hpp"
@@ -107,6 +108,25 @@ int runVsim(const Options& o, const NativeCompiler& jit) {
   streams.warnings = !o.quiet;
   Session session(o, streams, &jit);
   simcore::Simulation& sim = session.simulation();
+  std::optional<simcore::StabilityGuard> guard;
+  if (o.checkStability) {
+    if (!sim.target().gravity.applies)
+      throw Failure{kExitUsage, "--check-stability: " + sim.target().name +
+                                    " blocks lie on a surface, not under gravity: nothing to check"};
+    const simcore::StabilityReport initial = simcore::checkStability(sim.world(), sim.target());
+    if (!session.hasBlockProgram()) {
+      simcore::printStability(std::cout, initial, sim.target());
+      return initial.stable() ? kExitOk : kExitUnstable;
+    }
+    if (!initial.stable()) {
+      std::cerr << "vsim: " << (o.refuseUnstable ? "error" : "warning") << ": the world as loaded: ";
+      simcore::printStability(std::cerr, initial, sim.target());
+      if (o.refuseUnstable)
+        throw Failure{kExitUnstable, "--refuse-unstable: the world does not hold as loaded, so every motion would be refused"};
+    }
+    guard.emplace(o.quiet ? nullptr : &std::cerr, o.refuseUnstable);
+    sim.setMotionCheck(&*guard);
+  }
   // --why: the facts are checked before the run (a typo fails at once), derivations recorded.
   std::vector<meldvm::FactAt> why;
   meldvm::DerivationLog derivations;
@@ -153,6 +173,14 @@ int runVsim(const Options& o, const NativeCompiler& jit) {
   std::ostream& report = stdoutTaken ? std::cerr : std::cout;
   if (!o.quiet) printSummary(report, sim, info);
   if (o.stats) simcore::printStatistics(report, sim.statistics(), sim.fingerprint());
+  bool unstable = false;
+  if (guard) {
+    const simcore::StabilityReport final = simcore::checkStability(sim.world(), sim.target());
+    simcore::printStability(report, final, sim.target());
+    report << "motions checked " << guard->checked() << ", " << guard->unstable()
+           << (o.refuseUnstable ? " refused as unstable\n" : " would not hold\n");
+    unstable = !final.stable();
+  }
   report.flush();
   if (session.meld() && o.dump) {
     session.meld()->dump(std::cout);
@@ -183,7 +211,8 @@ int runVsim(const Options& o, const NativeCompiler& jit) {
     simcore::exportGltf(sim, gltf.stream());
     gltf.close();
   }
-  return info.end == RunEnd::Interrupted ? kExitInterrupted : kExitOk;
+  if (info.end == RunEnd::Interrupted) return kExitInterrupted;
+  return unstable ? kExitUnstable : kExitOk;
 }
 
 int reportFailure(const Failure& f) {

@@ -92,6 +92,7 @@ void checkMulticoreOptions(Options& o, bool multicoreOptionGiven) {
   refuse(o.trace, "--trace");
   refuse(!o.exportFile.empty(), "--export");
   refuse(!o.gltfFile.empty(), "--export-gltf");
+  refuse(o.checkStability, "--check-stability");
   refuse(!o.jsonFile.empty(), "--json");
   refuse(o.until.has_value(), "--until");
   refuse(o.timePerRule >= 0, "--time-per-rule (see --costs)");

@@ -51,13 +51,22 @@ options:
   --link-rate BPS       link data rate in bit/s (target default: 38400 Blinky, 1e6 the others)
   --link-latency T      extra delay after each transmission (default 0)
   --link-jitter T       random extra delay in [0, T]; never reorders a link (default 0)
-  --motion-time T       duration of one motion (Smart Blocks, Catoms 2D; default 1s)
+  --motion-time T       duration of one motion (Smart Blocks, Catoms 2D and 3D; default 1s)
   --tap ID@T            tap block ID at time T (repeatable, or comma-separated: 0@1s,3@2s)
   --stats               print the kernel statistics (events per kind, messages, queue size)
   --json FILE           write the summary and statistics as JSON ("-" = stdout, no text summary)
   --export FILE         write the final configuration as a world XML ("-" = stdout)
   --export-gltf FILE    write the final configuration as glTF 2.0 (FILE.glb, binary) for
                         renderers such as Blender: a node per block, a material per colour
+  --check-stability     the reality checker (Blinky Blocks, Catoms 2D and 3D, under gravity): is
+                        every structure on the floor, over its floor contacts, and is every link
+                        strong enough for what hangs from it? Prints `stability: stable` or
+                        `stability: unstable (...)` with the blocks, links and pivot axes for the
+                        final configuration (exit status 4 when unstable), and a warning for each
+                        motion whose result would not hold. Without a block program the world is
+                        checked as it is, and nothing runs
+  --refuse-unstable     --check-stability, and a motion whose result would not hold is refused
+                        (the block program gets VS_ERR_UNSTABLE)
   --trace FILTER        trace the run: 'blocks=0,5-9;kinds=message,tap;from=1s;to=2s'
                         (every clause optional; 'all' traces everything). Kinds: start, message,
                         neighbor-added, neighbor-removed, tap, timer, motion-end, sensor, send,
@@ -100,6 +109,7 @@ exit codes:
   1    runtime error: the simulation failed, or an output file could not be written
   2    usage error: bad command line, bad trace filter, no block code given
   3    input error: bad or missing world file, unknown target in it, bad block code .so
+  4    --check-stability: the final configuration does not stand
   130  interrupted (Ctrl-C); the summary of the partial run is printed
 
 examples:
@@ -108,6 +118,7 @@ examples:
        --tap 2@1s --trace 'kinds=tap,color'
   vsim examples/worlds/meld-gradient-tap.xml --program examples/meld/gradient-tap.meld \
        --tap 0@1s --dump
+  vsim examples/worlds/stability-overhang.xml --check-stability
   vsim --target multicore --program bench/meld/pagerank/pagerank.meld --cores 1,2,4,8,16,32
 )";
 }
@@ -243,6 +254,10 @@ Options parseOptions(int argc, char** argv, bool worldRequired) {
       o.gltfFile = value();
       if (o.gltfFile.empty() || o.gltfFile == "-")
         throw UsageError("--export-gltf needs a file name (the glTF file is binary)");
+    } else if (arg == "--check-stability") {
+      o.checkStability = true;
+    } else if (arg == "--refuse-unstable") {
+      o.checkStability = o.refuseUnstable = true;
     } else if (arg == "--trace") {
       o.traceFilter = simcore::parseTraceFilter(value());  // TraceFilterError: a usage error too
       o.trace = true;

@@ -22,6 +22,7 @@ enum ExitCode : int {
   kExitRuntime = 1,       // the run failed, or an output file could not be written
   kExitUsage = 2,         // bad command line
   kExitInput = 3,         // bad world file, unknown target in it, block code that cannot be loaded
+  kExitUnstable = 4,      // --check-stability: the final configuration does not hold
   kExitInterrupted = 130  // Ctrl-C: the run stopped early (the summary is still printed)
 };
 
@@ -63,6 +64,8 @@ struct Options {
   std::string jsonFile;    // --json ("-" = stdout)
   std::string exportFile;  // --export ("-" = stdout)
   std::string gltfFile;    // --export-gltf
+  bool checkStability = false;  // --check-stability (also set by --refuse-unstable)
+  bool refuseUnstable = false;  // --refuse-unstable
   bool trace = false;
   simcore::TraceFilter traceFilter;
   simcore::TraceFormat traceFormat = simcore::TraceFormat::Text;

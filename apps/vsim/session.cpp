@@ -86,7 +86,7 @@ Session::Session(const Options& o, const SessionStreams& streams, const NativeCo
   scheduleTaps(o, *sim_);
   if (meldCode_)
     startMeld(o, streams);
-  else
+  else if (library_)
     sim_->setBlockCode(library_->code());
 }
 
@@ -98,6 +98,10 @@ void Session::loadBlockProgram(const Options& o, const SessionStreams& streams, 
                                   : o.code.empty() && world_.code.empty() ? world_.program
                                                                           : std::string();
   codePath_ = !programPath.empty() ? programPath : !o.code.empty() ? o.code : world_.code;
+  // `--check-stability` on a world without a program: the world is checked as it is.
+  const bool checkAlone = o.checkStability && o.jsonFile.empty() && o.exportFile.empty() && o.gltfFile.empty() &&
+                          !o.trace && !o.dump && o.why.empty() && !o.jit;
+  if (codePath_.empty() && checkAlone) return;
   if (codePath_.empty())
     throw SessionError{kExitUsage,
                        "no block code: give --code LIB.so or --program PROG.meld (or code=\"LIB.so\" "
@@ -144,7 +148,9 @@ void Session::startMeld(const Options& o, const SessionStreams& streams) {
   sim_->setBlockCode(meld_->blockcode());
 }
 
-std::string Session::codeName() const { return meld_ ? std::string("meld-vm") : library_->name(); }
+std::string Session::codeName() const {
+  return meld_ ? std::string("meld-vm") : library_ ? library_->name() : std::string();
+}
 
 std::string Session::programError() const { return meld_ ? meld_->error() : std::string(); }
 

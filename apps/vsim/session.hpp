@@ -52,6 +52,8 @@ class Session {
   const std::string& codePath() const { return codePath_; }
   std::string codeName() const;
   bool isMeld() const { return meld_ != nullptr; }
+  // Whether a block program runs (not so for `--check-stability` on a world alone).
+  bool hasBlockProgram() const { return meld_ != nullptr || library_.has_value(); }
   // The Meld program's first run-time error, or empty.
   std::string programError() const;
   // The block program's counters for reports (the Meld VM's facts, rules, messages).

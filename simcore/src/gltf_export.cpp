@@ -173,7 +173,7 @@ std::string nodes(const Simulation& sim, double size, const std::map<std::uint32
 void exportGltf(const Simulation& sim, std::ostream& out) {
   const TargetSpec& target = sim.target();
   const double size = target.blockSizeMm / 1000.0;
-  const bool round = target.name.rfind("catoms", 0) == 0;
+  const bool round = target.shape == BodyShape::Sphere;
   std::string bin;
   std::string json = "{\"asset\":{\"version\":\"2.0\",\"generator\":\"vsim (meld toolchain)\"},\"scene\":0,";
   json += geometry(round ? sphere() : cube(), size, bin);

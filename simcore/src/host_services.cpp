@@ -179,6 +179,10 @@ int Simulation::move(BlockId id, int f) {
                      [&](const Cell& c) { free = free && world_.isFree(c); });
     if (!free) return VS_ERR_CELL_OCCUPIED;
   }
+  if (motionCheck_) [[unlikely]] {
+    const int rc = motionCheck_->check(*this, id, plan.to);
+    if (rc != VS_OK) return rc;
+  }
   const Cell& to = plan.to;
   breakLinks(id);  // while the block is still settled, so its neighbors are found
   const std::uint32_t slot = allocateSlot(motions_, freeMotion_);

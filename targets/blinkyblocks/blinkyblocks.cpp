@@ -21,6 +21,10 @@ simcore::TargetSpec blinkyBlocksTarget() {
   t.hasTap = true;
   t.hasAccelerometer = true;
   t.blockSizeMm = 40.0;
+  // Under gravity: 40 mm cubes of an assumed 60 g, standing on their bottom face. Link strength
+  // assumed 2.5 N (4.2 block weights): a block holds two blocks out on one side, not three (the
+  // reality checker's model, stability.hpp; the VisibleSim paper's Fig. 6a case).
+  t.gravity = {true, 0.060, 2.5, 40.0, true};
   t.defaultColor = 0x808080;
   return t;
 }

@@ -22,6 +22,10 @@ simcore::TargetSpec catoms3DTarget() {
   // VisibleSim lets the user tap any module; there is no accelerometer and no display.
   t.hasTap = true;
   t.blockSizeMm = 10.0;  // VisibleSim's Catoms 3D worlds use blockSize="10,10,10"
+  t.shape = simcore::BodyShape::Sphere;
+  // Under gravity: an assumed 30 g per catom, resting on a point of the floor; a link's connector
+  // is taken as half a diameter wide, with an assumed strength of 1.25 N (4.2 catom weights).
+  t.gravity = {true, 0.030, 1.25, 5.0, false};
   t.defaultColor = 0x808080;
   return t;
 }

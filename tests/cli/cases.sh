@@ -372,6 +372,36 @@ case_export_gltf() {
   has "$ERR" "cannot write '/no/such/dir/x.glb'"
 }
 
+case_stability() {
+  # The reality checker on worlds worked out by hand (tests/simcore/test_stability.cpp has the
+  # figures): a world alone is checked as loaded, exit status 4 when it does not hold.
+  run 4 "$WORLDS/stability-overhang.xml" --check-stability
+  has "$OUT" "stability: unstable (1 link overloaded; largest link force 4.41 N of 2.50 N)"
+  has "$OUT" "  link #4 right -> #5: must carry 4.41 N, holds 2.50 N (3 blocks' weight on it)"
+  run 4 "$WORLDS/stability-tipping.xml" --check-stability
+  has "$OUT" "it tips about the axis (20.0, -20.0) - (20.0, 20.0) mm of floor block #0"
+  run 0 "$WORLDS/catoms3d-pyramid.xml" --check-stability --until 0
+  has "$OUT" "stability: stable (1 structure of 14 blocks"
+  has "$OUT" "motions checked 0, 0 would not hold"
+  # During a run: the second roll would tip the catoms; reported (the run goes on and ends
+  # unstable), or refused (the catom stays, the world stands).
+  run 4 "$TWORLDS/catoms2d-tip.xml" --check-stability --no-progress
+  has "$ERR" "vsim: warning: at 1.000000000 s block #4 moving to (2,0,1): stability: unstable (1 structure tips over"
+  has "$OUT" "    #4   (2,0,1)"
+  has "$OUT" "it tips about the corner (10.0, 0.0) mm of floor block #1"
+  has "$OUT" "motions checked 2, 1 would not hold"
+  run 0 "$TWORLDS/catoms2d-tip.xml" --refuse-unstable --no-progress
+  has "$ERR" "vsim: refused: at 1.000000000 s block #4 moving to (2,0,1)"
+  has "$OUT" "    #4   (2,0,2)"
+  has "$OUT" "stability: stable"
+  has "$OUT" "motions checked 2, 1 refused as unstable"
+  # A world that does not hold as loaded cannot be run with --refuse-unstable.
+  run 4 "$WORLDS/stability-tipping.xml" --refuse-unstable --code "$FLOOD"
+  has "$ERR" "vsim: error: --refuse-unstable: the world does not hold as loaded"
+  run 2 "$WORLDS/smartblocks-line.xml" --check-stability
+  has "$ERR" "--check-stability: smartblocks blocks lie on a surface, not under gravity"
+}
+
 case_link_options() {
   # Slower links stretch the flood in simulated time; a bad rate is a usage error.
   run 0 "$TWORLDS/flood-small.xml" --code "$FLOOD"

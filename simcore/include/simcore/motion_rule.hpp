@@ -60,6 +60,16 @@ class TranslationRule final : public MotionRule {
   }
 };
 
+class Simulation;
+
+// Asked by the kernel before a legal motion starts (Simulation::setMotionCheck): VS_OK lets it go,
+// any other vs_status refuses it with that code. The reality checker's StabilityGuard is one.
+class MotionCheck {
+ public:
+  virtual ~MotionCheck() = default;
+  virtual int check(const Simulation& sim, BlockId id, const Cell& to) = 0;
+};
+
 // Calls fn(cell) for each swept cell of a plan (the masks as MotionPlan keeps them); a cell next to
 // both ends may come twice.
 template <class Fn>

@@ -79,6 +79,8 @@ class Simulation {
     if (observer->wantsMessages()) messageObservers_.push_back(observer);
   }
   void removeObserver(SimulationObserver* observer);
+  // Asked before every legal motion starts (nullptr: none); not owned.
+  void setMotionCheck(MotionCheck* check) { motionCheck_ = check; }
   // Interpolated position (cell units) of a block, mid-motion included.
   Vec3 position(BlockId id) const;
   // The value a block displays (targets with a display; 0 otherwise).
@@ -173,6 +175,7 @@ class Simulation {
   LinkModel link_;
   std::shared_ptr<const MotionRule> motionRule_;  // the target's own rule, if any
   bool translates_;                               // no rule of its own, but canTranslate
+  MotionCheck* motionCheck_ = nullptr;
   SimTime motionDuration_;
   World world_;
   int faceCount_;

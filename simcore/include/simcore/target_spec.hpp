@@ -20,6 +20,19 @@ struct LinkModel {
   SimTime jitter = 0;              // uniform extra delay in [0, jitter]; never reorders a link
 };
 
+// What the reality checker (stability.hpp) needs of a target that stands on a floor (z = 0) under
+// gravity (-z). The figures are assumptions stated per target (targets/README.md): no published
+// measurement of link strength exists for these modules.
+struct GravityModel {
+  bool applies = false;        // Smart Blocks lie on a table: no
+  double blockMassKg = 0;      // every block the same
+  double linkStrengthN = 0;    // the largest force one link carries before it lets go
+  double linkLeverMm = 0;      // width of a link's contact: the arm of the couple that resists a moment
+  bool flatBottom = false;     // cubes stand on their bottom square; spheres and discs on a point
+};
+
+enum class BodyShape { Cube, Sphere };
+
 struct TargetSpec {
   std::string name;  // "blinkyblocks", "smartblocks", "catoms2d", "catoms3d"
   std::function<std::unique_ptr<Lattice>()> makeLattice;
@@ -35,6 +48,8 @@ struct TargetSpec {
   bool hasAccelerometer = false;
   bool hasDisplayValue = false;
   double blockSizeMm = 40.0;
+  BodyShape shape = BodyShape::Cube;  // how renderers draw a block (cube of the size, or ball)
+  GravityModel gravity;
   // Simulated computing time of one step of a block program on the block's processor: an
   // assumption per target that interpreted programs charge per step (the Meld VM: per rule
   // firing). vsim --time-per-rule overrides it.

@@ -302,7 +302,7 @@ void BlockRuntime::action(NodeId from, NodeId, PredId p, const Value* args) {
       auto& st = *static_cast<BlockState*>(ctx->state);
       sense(from, s.at, {st.at[0], st.at[1], st.at[2]}, true);  // §7.2: `at` is retracted at once
     } else {
-      ctx->api->trace(ctx, "moveTo refused by the world (cell taken, no pivot, or no motion)");
+      ctx->api->trace(ctx, "moveTo refused by the world (cell taken, no pivot, no motion, or a result that would not stand)");
     }
   } else if (p == s.terminate) {
     static_cast<BlockState*>(ctx->state)->terminated = 1;

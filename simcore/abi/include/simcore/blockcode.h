@@ -49,7 +49,8 @@ enum vs_status {
   VS_ERR_BUSY = -6,          /* the block is already moving */
   VS_ERR_TOO_LARGE = -7,     /* message larger than VS_MAX_MESSAGE_SIZE */
   VS_ERR_BAD_ARGUMENT = -8,  /* negative delay, null pointer with non-zero size, ... */
-  VS_ERR_NOT_FOUND = -9      /* timer id unknown or already fired */
+  VS_ERR_NOT_FOUND = -9,     /* timer id unknown or already fired */
+  VS_ERR_UNSTABLE = -10      /* the motion would leave the structure unstable (vsim --refuse-unstable) */
 };
 
 /* Kinds of events delivered to `event`. */
@@ -115,11 +116,12 @@ struct vs_host_api {
   /* Set the value the block displays (Smart Blocks). */
   int (*set_value)(vs_ctx* ctx, int32_t value);
   /* Start a motion into the adjacent cell behind `face`: a translation (Smart Blocks), or whatever
-   * the target's motion rule makes of it (Catoms 2D: a 60-degree roll around a neighbor; see
-   * targets/README.md). The destination, and any cell swept on the way, is reserved at once; links
-   * break now and form again when VS_EV_MOTION_END arrives. Errors: VS_ERR_UNSUPPORTED (the target
-   * cannot move: Blinky Blocks, Catoms 3D), VS_ERR_BUSY, VS_ERR_CELL_OCCUPIED, VS_ERR_OUT_OF_WORLD,
-   * VS_ERR_BAD_FACE, VS_ERR_NO_NEIGHBOR (a roll with no neighbor to pivot on). */
+   * the target's motion rule makes of it (Catoms 2D: a 60-degree roll around a neighbor; Catoms 3D:
+   * a 60-degree rotation over a neighbor's surface; see targets/README.md). The destination, and
+   * any cell swept on the way, is reserved at once; links break now and form again when
+   * VS_EV_MOTION_END arrives. Errors: VS_ERR_UNSUPPORTED (the target cannot move: Blinky Blocks),
+   * VS_ERR_BUSY, VS_ERR_CELL_OCCUPIED, VS_ERR_OUT_OF_WORLD, VS_ERR_BAD_FACE, VS_ERR_NO_NEIGHBOR (no
+   * neighbor to pivot on), VS_ERR_UNSTABLE (refused by the reality checker). */
   int (*move)(vs_ctx* ctx, int face);
   /* The block attached on `face`, or VS_NO_BLOCK. */
   vs_block_id (*neighbor)(vs_ctx* ctx, int face);
