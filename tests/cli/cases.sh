@@ -402,6 +402,20 @@ case_stability() {
   has "$ERR" "--check-stability: smartblocks blocks lie on a surface, not under gravity"
 }
 
+case_polling_wave() {
+  # The same wave written with callbacks and as a loop that waits (coroutines): the same run
+  # (fingerprint) and the same trace of messages, sends and colours.
+  for style in events polling; do
+    run 0 "$WORLDS/color-flood.xml" --code "$BLOCKCODES/wave_$style.so" --no-progress \
+      --trace kinds=message,send,color --trace-file "$WORK/trace-$style"
+    fingerprint "$OUT" >"$WORK/fp-$style"
+    has "$OUT" "  block code      wave-$style"
+  done
+  [ "$(wc -l <"$WORK/trace-polling")" -gt 500 ] || fail "the wave trace is too short"
+  cmp -s "$WORK/fp-events" "$WORK/fp-polling" || fail "the two styles ran differently"
+  diff -u "$WORK/trace-events" "$WORK/trace-polling" >&2 || fail "the two styles' traces differ"
+}
+
 case_link_options() {
   # Slower links stretch the flood in simulated time; a bad rate is a usage error.
   run 0 "$TWORLDS/flood-small.xml" --code "$FLOOD"
