@@ -3,6 +3,7 @@
 #include <unistd.h>
 
 #include <csignal>
+#include <cstdio>
 #include <fstream>
 #include <iostream>
 #include <memory>
@@ -64,6 +65,28 @@ class Output {
   std::unique_ptr<std::ofstream> file_;
 };
 
+// --mobiles-csv: a line per physics step and mobile. Numbers with fixed decimals, so that two runs
+// compare line by line.
+class MobilesCsv final : public simcore::SimulationObserver {
+ public:
+  explicit MobilesCsv(std::ostream& out) : out_(out) { out_ << "t,mobile,x,y,angle\n"; }
+  bool wantsEvents() const override { return false; }
+  bool wantsMessages() const override { return false; }
+  void onPhysicsStep(const simcore::Simulation& sim) override {
+    const simcore::Physics& p = *sim.physics();
+    char line[128];
+    for (std::size_t i = 0; i < p.mobileCount(); ++i) {
+      const Eigen::Vector2d at = p.positionMm(i);
+      std::snprintf(line, sizeof line, "%.6f,%zu,%.4f,%.4f,%.4f\n", double(sim.now()) / double(simcore::kSecond), i,
+                    at.x(), at.y(), p.angleDeg(i));
+      out_ << line;
+    }
+  }
+
+ private:
+  std::ostream& out_;
+};
+
 // Runs in slices of events so that the progress line and Ctrl-C are looked at regularly.
 RunEnd runSimulation(simcore::Simulation& sim, const Options& o, ProgressLine& progress) {
   constexpr std::uint64_t kSliceEvents = 1u << 16;
@@ -91,7 +114,7 @@ RunEnd runSimulation(simcore::Simulation& sim, const Options& o, ProgressLine& p
 
 int runVsim(const Options& o, const NativeCompiler& jit) {
   // Outputs first (fail fast), then inputs, then the run.
-  Output json(o.jsonFile), exported(o.exportFile), gltf(o.gltfFile);
+  Output json(o.jsonFile), exported(o.exportFile), gltf(o.gltfFile), mobilesCsv(o.mobilesCsv);
   std::unique_ptr<std::ofstream> traceFile;
   std::ostream* traceOut = &std::cerr;
   if (o.trace && o.traceFile == "-")
@@ -139,6 +162,13 @@ int runVsim(const Options& o, const NativeCompiler& jit) {
   }
   if (!why.empty()) session.meld()->recordDerivations(&derivations);
 
+  std::optional<MobilesCsv> trajectories;
+  if (mobilesCsv.wanted()) {
+    if (!sim.physics())
+      throw Failure{kExitUsage, "--mobiles-csv: " + o.world + " has no mobiles (<mobileList>)"};
+    trajectories.emplace(mobilesCsv.stream());
+    sim.addObserver(&*trajectories);
+  }
   std::optional<simcore::Trace> trace;
   if (o.trace) {
     trace.emplace(*traceOut, o.traceFilter, o.traceFormat);
@@ -169,7 +199,7 @@ int runVsim(const Options& o, const NativeCompiler& jit) {
   }
 
   // The text report goes to stdout unless stdout carries JSON or XML.
-  const bool stdoutTaken = o.jsonFile == "-" || o.exportFile == "-";
+  const bool stdoutTaken = o.jsonFile == "-" || o.exportFile == "-" || o.mobilesCsv == "-";
   std::ostream& report = stdoutTaken ? std::cerr : std::cout;
   if (!o.quiet) printSummary(report, sim, info);
   if (o.stats) simcore::printStatistics(report, sim.statistics(), sim.fingerprint());
@@ -195,6 +225,7 @@ int runVsim(const Options& o, const NativeCompiler& jit) {
     report << "derivations     " << derivations.size() << " recorded, " << derivations.bytesInUse()
            << " bytes\n";
   std::cout.flush();
+  if (mobilesCsv.wanted()) mobilesCsv.close();
   if (json.wanted()) {
     writeJsonReport(json.stream(), sim, info);
     json.close();

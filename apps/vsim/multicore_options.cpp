@@ -93,6 +93,8 @@ void checkMulticoreOptions(Options& o, bool multicoreOptionGiven) {
   refuse(!o.exportFile.empty(), "--export");
   refuse(!o.gltfFile.empty(), "--export-gltf");
   refuse(o.checkStability, "--check-stability");
+  refuse(!o.mobilesCsv.empty(), "--mobiles-csv");
+  refuse(o.physicsStep > 0, "--physics-step");
   refuse(!o.jsonFile.empty(), "--json");
   refuse(o.until.has_value(), "--until");
   refuse(o.timePerRule >= 0, "--time-per-rule (see --costs)");

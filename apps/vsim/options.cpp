@@ -58,6 +58,10 @@ options:
   --export FILE         write the final configuration as a world XML ("-" = stdout)
   --export-gltf FILE    write the final configuration as glTF 2.0 (FILE.glb, binary) for
                         renderers such as Blender: a node per block, a material per colour
+  --mobiles-csv FILE    worlds with mobiles (Smart Blocks and air jets, <mobileList>): write one
+                        line per physics step and mobile, `t,mobile,x,y,angle` (s, mm, mm,
+                        degrees) after a `t,mobile,x,y,angle` header ("-" = stdout)
+  --physics-step T      the physics' Euler step (default 1ms)
   --check-stability     the reality checker (Blinky Blocks, Catoms 2D and 3D, under gravity): is
                         every structure on the floor, over its floor contacts, and is every link
                         strong enough for what hangs from it? Prints `stability: stable` or
@@ -254,6 +258,12 @@ Options parseOptions(int argc, char** argv, bool worldRequired) {
       o.gltfFile = value();
       if (o.gltfFile.empty() || o.gltfFile == "-")
         throw UsageError("--export-gltf needs a file name (the glTF file is binary)");
+    } else if (arg == "--mobiles-csv") {
+      o.mobilesCsv = value();
+      if (o.mobilesCsv.empty()) throw UsageError("--mobiles-csv needs a file name");
+    } else if (arg == "--physics-step") {
+      o.physicsStep = parseTime("--physics-step", value());
+      if (o.physicsStep <= 0) throw UsageError("--physics-step must be longer than 0");
     } else if (arg == "--check-stability") {
       o.checkStability = true;
     } else if (arg == "--refuse-unstable") {
@@ -285,8 +295,8 @@ Options parseOptions(int argc, char** argv, bool worldRequired) {
     throw UsageError("no world file given (usage: vsim WORLD.xml --code LIB.so; see --help)");
   if (!o.program.empty() && !o.code.empty()) throw UsageError("give --code or --program, not both");
   if (traceFormatOrFile) o.trace = true;
-  if (o.jsonFile == "-" && o.exportFile == "-")
-    throw UsageError("--json and --export cannot both write to stdout");
+  if (int(o.jsonFile == "-") + int(o.exportFile == "-") + int(o.mobilesCsv == "-") > 1)
+    throw UsageError("--json, --export and --mobiles-csv cannot share stdout");
   return o;
 }
 

@@ -64,6 +64,8 @@ struct Options {
   std::string jsonFile;    // --json ("-" = stdout)
   std::string exportFile;  // --export ("-" = stdout)
   std::string gltfFile;    // --export-gltf
+  std::string mobilesCsv;       // --mobiles-csv: the mobiles' trajectories, a line per physics step
+  simcore::SimTime physicsStep = -1;  // --physics-step (negative: the model's 1 ms)
   bool checkStability = false;  // --check-stability (also set by --refuse-unstable)
   bool refuseUnstable = false;  // --refuse-unstable
   bool trace = false;

@@ -77,6 +77,7 @@ Session::Session(const Options& o, const SessionStreams& streams, const NativeCo
   config.linkLatency = o.linkLatency;
   config.linkJitter = o.linkJitter;
   config.motionDuration = o.motionTime;
+  if (o.physicsStep > 0) world_.airJets.step = o.physicsStep;
   sim_ = std::make_unique<simcore::Simulation>(target, world_.grid, config);
   try {
     simcore::populateSimulation(world_, *sim_);

@@ -30,9 +30,19 @@ std::string Simulation::blockInfo(BlockId id) {
   return longer;
 }
 
+// A physics step is addressed to block 0 but belongs to no block (it runs even if block 0 is gone);
+// handled inside dispatch's switch, so that worlds without physics pay no test for it.
+void Simulation::dispatchPhysicsStep(const Event& e) {
+  ++stats_.eventsProcessed;
+  ++stats_.eventsByKind[std::size_t(e.kind)];
+  fingerprint_.add(e.time, e.block, e.kind);
+  stepPhysics();
+}
+
 void Simulation::dispatch(const Event& e) {
   // Only the compact alive array is read here: neighbor notifications need nothing else of the block.
   if (!world_.isAlive(e.block)) {
+    if (e.kind == EventKind::PhysicsStep) return dispatchPhysicsStep(e);
     // Events for a removed block are discarded unseen; only their slots are given back.
     if (e.kind == EventKind::Message) releaseMessage(std::uint32_t(e.arg));
     if (e.kind == EventKind::MotionEnd) releaseMotion(std::uint32_t(e.arg));
@@ -128,6 +138,15 @@ void Simulation::dispatch(const Event& e) {
       ev.values[2] = v[2];
       break;
     }
+    case EventKind::Mobile:
+      if (code_ && code_->abi_version < 3) return;  // (a program of ABI 2 knows no such event)
+      ev.kind = VS_EV_MOBILE;
+      ev.values[0] = std::int32_t(e.arg);
+      ev.values[1] = e.face;
+      ev.values[2] = 0;
+      break;
+    case EventKind::PhysicsStep:
+      return dispatchPhysicsStep(e);
     case EventKind::Count:
       return;
   }

@@ -18,6 +18,10 @@ const char* eventKindName(EventKind kind) {
       return "timer";
     case EventKind::MotionEnd:
       return "motion-end";
+    case EventKind::Mobile:
+      return "mobile";
+    case EventKind::PhysicsStep:
+      return "physics-step";
     case EventKind::Sensor:
       return "sensor";
     case EventKind::Count:

@@ -150,7 +150,10 @@ std::string materialsAndMeshes(std::map<std::uint32_t, std::size_t>& meshOf) {
   return materials + "]," + meshes + "]";
 }
 
-// A node per block at its position (metres, +Y up), and the scene of them all.
+constexpr std::uint32_t kMobileColor = 0xE08020;  // mobiles: orange slabs
+constexpr double kMobileThicknessMm = 5;
+
+// A node per block at its position (metres, +Y up), then one per mobile, and the scene of them all.
 std::string nodes(const Simulation& sim, double size, const std::map<std::uint32_t, std::size_t>& meshOf) {
   std::string list = "\"nodes\":[", scene = "\"scenes\":[{\"nodes\":[";
   const BlockVector& blocks = sim.world().blocks();
@@ -165,6 +168,26 @@ std::string nodes(const Simulation& sim, double size, const std::map<std::uint32
     std::snprintf(item, sizeof item, "%s%zu", comma, id);
     scene += item;
   }
+  // Mobiles (Smart Blocks with physics): the block's cube scaled to a thin slab lying on the blocks,
+  // turned about the vertical by the mobile's angle.
+  if (const Physics* physics = sim.physics())
+    for (std::size_t i = 0; i < physics->mobileCount(); ++i) {
+      const MobileSpec& m = physics->spec(i);
+      const Eigen::Vector2d at = physics->positionMm(i) / 1000.0;
+      const double half = physics->angleDeg(i) * M_PI / 360.0, thick = kMobileThicknessMm / 1000.0;
+      const std::size_t node = blocks.size() + i;
+      std::snprintf(item, sizeof item, ",{\"name\":\"mobile %zu\",\"mesh\":%zu,\"translation\":[%s,%s,%s],",
+                    i, meshOf.at(kMobileColor), number(at.x()).c_str(), number(size / 2 + thick / 2).c_str(),
+                    number(-at.y()).c_str());
+      list += item;
+      std::snprintf(item, sizeof item, "\"rotation\":[0,%s,0,%s],\"scale\":[%s,%s,%s]}",
+                    number(std::sin(half)).c_str(), number(std::cos(half)).c_str(),
+                    number(m.lxMm / 1000.0 / size).c_str(), number(thick / size).c_str(),
+                    number(m.lyMm / 1000.0 / size).c_str());
+      list += item;
+      std::snprintf(item, sizeof item, ",%zu", node);
+      scene += item;
+    }
   return list + "]," + scene + "]}]";
 }
 
@@ -180,6 +203,7 @@ void exportGltf(const Simulation& sim, std::ostream& out) {
   json += ",\"buffers\":[{\"byteLength\":" + std::to_string(bin.size()) + "}],";
   std::map<std::uint32_t, std::size_t> meshOf;
   for (const Block& b : sim.world().blocks()) meshOf.emplace(b.color, 0);
+  if (sim.physics() && sim.physics()->mobileCount()) meshOf.emplace(kMobileColor, 0);
   json += materialsAndMeshes(meshOf);  // numbers the meshes: before nodes() reads them
   json += ',';
   json += nodes(sim, size, meshOf);

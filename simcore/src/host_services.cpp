@@ -82,6 +82,12 @@ struct Simulation::Services {
     for (SimulationObserver* o : s.observers_) o->onBlockTrace(s, c->block, text);
   }
   static uint32_t blockCount(vs_ctx* c) { return uint32_t(sim(c).world_.blockCount()); }
+  static int mobileAbove(vs_ctx* c, int32_t* mobile, double xyAngle[3]) {
+    return sim(c).mobileAbove(c->block, mobile, xyAngle);
+  }
+  static int airJet(vs_ctx* c, int face, double power, vs_time duration) {
+    return sim(c).airJet(c->block, face, power, duration);
+  }
   static int faceToward(vs_ctx* c, const int32_t xyz[3]) {
     Simulation& s = sim(c);
     if (!xyz) return VS_ERR_BAD_ARGUMENT;
@@ -113,7 +119,34 @@ const vs_host_api kHostApi = {
     &Simulation::Services::trace,
     &Simulation::Services::blockCount,
     &Simulation::Services::faceToward,
+    &Simulation::Services::mobileAbove,
+    &Simulation::Services::airJet,
 };
+
+int Simulation::mobileAbove(BlockId id, std::int32_t* mobile, double xyAngle[3]) const {
+  if (!physics_) return VS_ERR_UNSUPPORTED;
+  if (!mobile || !xyAngle) return VS_ERR_BAD_ARGUMENT;
+  const int m = physics_->mobileOver(id);
+  if (m < 0) return VS_ERR_NOT_FOUND;
+  const Eigen::Vector2d p = physics_->positionMm(std::size_t(m));
+  *mobile = m;
+  xyAngle[0] = p.x();
+  xyAngle[1] = p.y();
+  xyAngle[2] = physics_->angleDeg(std::size_t(m));
+  return VS_OK;
+}
+
+int Simulation::airJet(BlockId id, int face, double power, SimTime duration) {
+  if (!physics_) return VS_ERR_UNSUPPORTED;
+  if (face < 0 || face >= faceCount_) return VS_ERR_BAD_FACE;
+  if (!(power >= 0 && power <= 1) || duration < 0) return VS_ERR_BAD_ARGUMENT;
+  const Lattice& lattice = world_.lattice();
+  const Cell from = world_.block(id).cell, to = lattice.neighborCell(from, face);
+  const Vec3 a = lattice.cellCenter(from), b = lattice.cellCenter(to);
+  physics_->setJet(id, face, Eigen::Vector2d(b.x - a.x, b.y - a.y), power, queue_.now() + duration);
+  wakePhysics();
+  return VS_OK;
+}
 
 int Simulation::send(BlockId from, int f, const void* data, std::uint32_t size, SimTime delay) {
   if (f < 0 || f >= faceCount_) return VS_ERR_BAD_FACE;

@@ -45,10 +45,11 @@ BlockId Simulation::addBlock(const Cell& cell, std::uint32_t color) {
 
 void Simulation::setBlockCode(const vs_blockcode* code) {
   if (started_) throw std::logic_error("the block code must be set before the simulation starts");
-  if (code && code->abi_version != VS_ABI_VERSION)
+  if (code && (code->abi_version < VS_ABI_OLDEST_VERSION || code->abi_version > VS_ABI_VERSION))
     throw std::runtime_error("block code '" + std::string(code->name ? code->name : "?") +
                              "' was built for block ABI version " + std::to_string(code->abi_version) +
-                             ", this simulator speaks version " + std::to_string(VS_ABI_VERSION));
+                             ", this simulator speaks versions " + std::to_string(VS_ABI_OLDEST_VERSION) +
+                             " to " + std::to_string(VS_ABI_VERSION));
   code_ = code;
 }
 
@@ -97,6 +98,33 @@ void Simulation::startIfNeeded() {
     stateBase_ = raw + ((16 - (reinterpret_cast<std::uintptr_t>(raw) & 15)) & 15);
   }
   for (BlockId id = 0; id < n; ++id) schedule(0, id, EventKind::Start, 0, 0, /*bypassFifo=*/true);
+  if (physics_) announceCoverage();  // the blocks under a mobile at the start hear of it first thing
+}
+
+void Simulation::setPhysics(std::unique_ptr<Physics> physics) {
+  if (started_) throw std::logic_error("the physics must be set before the simulation starts");
+  if (physics && !target_.canTranslate)
+    throw std::invalid_argument("mobiles and air jets need a surface of Smart Blocks, not " + target_.name);
+  physics_ = std::move(physics);
+}
+
+void Simulation::announceCoverage() {
+  for (const Physics::CoverChange& c : physics_->coverChanges())
+    schedule(queue_.now(), c.block, EventKind::Mobile, c.arrived ? 1 : 0, std::uint64_t(c.mobile));
+}
+
+void Simulation::wakePhysics() {
+  if (physicsScheduled_) return;
+  physicsScheduled_ = true;
+  schedule(queue_.now() + physics_->model().step, 0, EventKind::PhysicsStep, 0, 0);
+}
+
+void Simulation::stepPhysics() {
+  const bool goOn = physics_->step(queue_.now());
+  announceCoverage();
+  for (SimulationObserver* o : observers_) o->onPhysicsStep(*this);
+  physicsScheduled_ = false;
+  if (goOn) wakePhysics();
 }
 
 SimTime Simulation::transmissionTime(std::uint32_t size) const {

@@ -197,6 +197,10 @@ class Loader {
   void fillBox(Node n, Attr sizeAttr, const Cell& origin, const Cell& size,
                std::optional<std::uint32_t> color);
   void readSchedule(Node schedule);
+  void readMobiles(Node list);
+  void readObstacles(Node list);
+  // A list of `count` finite numbers (positive ones when `positive`), or a message at the attribute.
+  std::vector<double> numbers(Node n, Attr a, std::size_t count, bool positive) const;
   BlockId blockIdAttribute(Node n);
   SimTime timeAttribute(Node n);
   void checkScheduledBlocks();
@@ -320,7 +324,7 @@ WorldDescription Loader::run() {
 
 void Loader::readWorld(Node world) {
   readWorldAttributes(world);
-  forChildren(world, {"camera", "spotlight", "blockList", "schedule"}, [&](Node child) {
+  forChildren(world, {"camera", "spotlight", "blockList", "schedule", "mobileList", "obstacleList"}, [&](Node child) {
     const std::string_view name = child.name();
     if (sameName(name, "camera"))
       readKept(child, world_.camera);
@@ -328,6 +332,10 @@ void Loader::readWorld(Node world) {
       readKept(child, world_.spotlight);
     else if (sameName(name, "blockList"))
       readBlockList(child);
+    else if (sameName(name, "mobileList"))
+      readMobiles(child);
+    else if (sameName(name, "obstacleList"))
+      readObstacles(child);
     else
       readSchedule(child);
   });
@@ -566,6 +574,50 @@ void Loader::readSchedule(Node schedule) {
       if (c < INT32_MIN || c > INT32_MAX) badAttribute(n, value, "is not three integers");
     world_.accels.push_back(ScheduledAccel{
         id, t, {std::int32_t((*v)[0]), std::int32_t((*v)[1]), std::int32_t((*v)[2])}, posOf(n)});
+  });
+}
+
+std::vector<double> Loader::numbers(Node n, Attr a, std::size_t count, bool positive) const {
+  const auto v = parseRealList(a.value());
+  const char* what = count == 1 ? (positive ? "is not a positive number" : "is not a number")
+                                : (positive ? "is not two positive numbers (like 50,50)" : "is not two numbers (like 75,425)");
+  if (!v || v->size() != count) badAttribute(n, a, what);
+  for (double x : *v)
+    if (positive && !(x > 0)) badAttribute(n, a, what);
+  return *v;
+}
+
+void Loader::readMobiles(Node list) {
+  warnUnknownAttributes(list, {});
+  forChildren(list, {"mobile"}, [&](Node n) {
+    warnUnknownAttributes(n, {"position", "size", "mass", "angle"});
+    MobileSpec m;
+    const std::vector<double> p = numbers(n, required(n, "position"), 2, false);
+    m.xMm = p[0];
+    m.yMm = p[1];
+    if (Attr a = attr(n, "size")) {
+      const std::vector<double> size = numbers(n, a, 2, true);
+      m.lxMm = size[0];
+      m.lyMm = size[1];
+    }
+    if (Attr a = attr(n, "mass")) m.massKg = numbers(n, a, 1, true)[0];
+    if (Attr a = attr(n, "angle")) m.angleDeg = numbers(n, a, 1, false)[0];
+    world_.mobiles.push_back(MobileDescription{m, posOf(n)});
+  });
+}
+
+void Loader::readObstacles(Node list) {
+  warnUnknownAttributes(list, {});
+  forChildren(list, {"obstacle"}, [&](Node n) {
+    warnUnknownAttributes(n, {"position", "size"});
+    ObstacleSpec o;
+    const std::vector<double> p = numbers(n, required(n, "position"), 2, false);
+    const std::vector<double> size = numbers(n, required(n, "size"), 2, true);
+    o.xMm = p[0];
+    o.yMm = p[1];
+    o.lxMm = size[0];
+    o.lyMm = size[1];
+    world_.obstacles.push_back(ObstacleDescription{o, posOf(n)});
   });
 }
 

@@ -1,10 +1,13 @@
 // From a world description to a running Simulation, and from a Simulation back to a world file.
+#include <cstdio>
+#include <cstdlib>
 #include <filesystem>
 #include <ostream>
 #include <pugixml.hpp>
 
 #include "simcore/csg.hpp"
 #include "simcore/simulation.hpp"
+#include "simcore/physics.hpp"
 #include "simcore/xml_world.hpp"
 
 namespace simcore {
@@ -80,6 +83,30 @@ void addCsgBlocks(const WorldDescription& d, const CsgDescription& c, Simulation
 
 }  // namespace
 
+namespace {
+
+// The mobiles ride on the blocks' surface: the physics knows each block's centre in mm.
+void addPhysics(const WorldDescription& d, Simulation& sim) {
+  const SourcePos& at = d.mobiles.front().pos;
+  if (!sim.target().canTranslate)
+    throw XmlWorldError(d.path, at.line, at.column,
+                        "<mobileList>: mobiles ride on a surface of Smart Blocks, not on " + sim.target().name);
+  const World& w = sim.world();
+  std::vector<Eigen::Vector2d> centres;
+  centres.reserve(w.blockCount());
+  for (BlockId id = 0; id < w.blockCount(); ++id) {
+    const Vec3 c = w.lattice().cellCenter(w.block(id).cell);
+    centres.emplace_back(c.x * sim.target().blockSizeMm, c.y * sim.target().blockSizeMm);
+  }
+  std::vector<MobileSpec> mobiles;
+  for (const MobileDescription& m : d.mobiles) mobiles.push_back(m.spec);
+  std::vector<ObstacleSpec> obstacles;
+  for (const ObstacleDescription& o : d.obstacles) obstacles.push_back(o.spec);
+  sim.setPhysics(std::make_unique<Physics>(std::move(centres), std::move(mobiles), std::move(obstacles), d.airJets));
+}
+
+}  // namespace
+
 void populateSimulation(const WorldDescription& d, Simulation& sim) {
   // Ids in the schedule are indices in d.blocks; they stay valid only if we number from 0.
   if (sim.world().blockCount() != 0)
@@ -97,6 +124,7 @@ void populateSimulation(const WorldDescription& d, Simulation& sim) {
     checkScheduled(d, sim, a.block, a.pos, sim.target().hasAccelerometer, "accelerometer");
     sim.scheduleAccel(a.block, a.time, a.value[0], a.value[1], a.value[2]);
   }
+  if (!d.mobiles.empty()) addPhysics(d, sim);
 }
 
 namespace {
@@ -114,6 +142,18 @@ void writeWorldAttributes(pugi::xml_node world, const Simulation& sim, const Wor
   if (!original.program.empty())
     world.append_attribute("program") =
         std::filesystem::absolute(original.program).lexically_normal().c_str();
+}
+
+// Shortest text that reads back as the same double.
+std::string realText(double v) {
+  char text[32];
+  std::snprintf(text, sizeof text, "%.17g", v);
+  for (int digits = 1; digits <= 17; ++digits) {
+    char shorter[32];
+    std::snprintf(shorter, sizeof shorter, "%.*g", digits, v);
+    if (std::strtod(shorter, nullptr) == v) return shorter;
+  }
+  return text;
 }
 
 void writeKept(pugi::xml_node world, const char* name, const KeptElement& kept) {
@@ -152,6 +192,26 @@ void exportWorldXml(const Simulation& sim, const WorldDescription& original, std
     if (id < original.blocks.size())
       for (const auto& [key, value] : original.blocks[id].kept)
         n.append_attribute(key.c_str()) = value.c_str();
+  }
+  if (const Physics* physics = sim.physics()) {  // the mobiles where they are now
+    pugi::xml_node mobiles = world.append_child("mobileList");
+    for (std::size_t i = 0; i < physics->mobileCount(); ++i) {
+      const MobileSpec& m = physics->spec(i);
+      const Eigen::Vector2d p = physics->positionMm(i);
+      pugi::xml_node n = mobiles.append_child("mobile");
+      n.append_attribute("position") = (realText(p.x()) + "," + realText(p.y())).c_str();
+      n.append_attribute("size") = (realText(m.lxMm) + "," + realText(m.lyMm)).c_str();
+      n.append_attribute("mass") = realText(m.massKg).c_str();
+      n.append_attribute("angle") = realText(physics->angleDeg(i)).c_str();
+    }
+    if (!physics->obstacles().empty()) {
+      pugi::xml_node obstacles = world.append_child("obstacleList");
+      for (const ObstacleSpec& o : physics->obstacles()) {
+        pugi::xml_node n = obstacles.append_child("obstacle");
+        n.append_attribute("position") = (realText(o.xMm) + "," + realText(o.yMm)).c_str();
+        n.append_attribute("size") = (realText(o.lxMm) + "," + realText(o.lyMm)).c_str();
+      }
+    }
   }
   doc.save(out, "  ", pugi::format_default, pugi::encoding_utf8);
   out << '\n';  // pugixml ends the file without one

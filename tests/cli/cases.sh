@@ -416,6 +416,37 @@ case_polling_wave() {
   diff -u "$WORK/trace-events" "$WORK/trace-polling" >&2 || fail "the two styles' traces differ"
 }
 
+case_conveyor() {
+  # The VisibleSim paper's air-jet experiment (Fig. 11): the part follows the broken line within the
+  # goals (mean distance <= 15 mm between 2 s and 24 s, final position within 20 mm of (400, 75)),
+  # the same run twice, and halving the physics step moves the trajectory by less than 1 mm.
+  W="$WORLDS/smartblocks-conveyor.xml"
+  run 0 "$W" --code "$BLOCKCODES/conveyor.so" --mobiles-csv "$WORK/traj.csv" --no-progress
+  fingerprint "$OUT" >"$WORK/fp1"
+  [ "$(head -n 1 "$WORK/traj.csv")" = "t,mobile,x,y,angle" ] || fail "no CSV header"
+  [ "$(wc -l <"$WORK/traj.csv")" -gt 20000 ] || fail "fewer physics steps than 20 s of 1 ms"
+  sh "$SRC/examples/physics/conveyor-figures.sh" "$WORK/traj.csv" >"$WORK/figures" || fail "conveyor-figures.sh failed"
+  cat "$WORK/figures"
+  awk '/^mean distance/ { m = $(NF - 1) } /^final position/ { d = $(NF - 4) }
+       END { exit !(m != "" && m <= 15 && d != "" && d <= 20) }' "$WORK/figures" || fail "the part missed the goals"
+  run 0 "$W" --code "$BLOCKCODES/conveyor.so" --no-progress
+  fingerprint "$OUT" | cmp -s - "$WORK/fp1" || fail "two runs differ"
+  run 0 "$W" --code "$BLOCKCODES/conveyor.so" --mobiles-csv "$WORK/half.csv" --physics-step 0.5ms --no-progress
+  sh "$SRC/examples/physics/conveyor-figures.sh" "$WORK/traj.csv" "$WORK/half.csv" >"$WORK/halved" || fail "figures of two runs"
+  cat "$WORK/halved"
+  awk '/^largest distance between/ { a = $(NF - 4) } END { exit !(a != "" && a < 1) }' "$WORK/halved" ||
+    fail "halving the step moved the trajectory by 1 mm or more"
+  # The final configuration for renderers: 400 blocks and the part (an orange slab).
+  run 0 "$W" --code "$BLOCKCODES/conveyor.so" --no-progress --export-gltf "$WORK/final.glb"
+  python3 "$SRC/tests/cli/check_glb.py" "$WORK/final.glb" >"$WORK/glb" || fail "final.glb is not valid glTF"
+  has "$WORK/glb" "nodes 401 materials 2"
+  has "$WORK/glb" "#e08020 1"
+  run 2 "$TWORLDS/flood-small.xml" --code "$FLOOD" --mobiles-csv "$WORK/none.csv"
+  has "$ERR" "--mobiles-csv: $TWORLDS/flood-small.xml has no mobiles (<mobileList>)"
+  run 2 "$W" --physics-step 0
+  has "$ERR" "--physics-step must be longer than 0"
+}
+
 case_link_options() {
   # Slower links stretch the flood in simulated time; a bad rate is a usage error.
   run 0 "$TWORLDS/flood-small.xml" --code "$FLOOD"

@@ -16,6 +16,8 @@ enum class EventKind : std::uint8_t {
   Timer,            // arg = timer id
   MotionEnd,        // arg = motion slot
   Sensor,           // arg = packed sensor reading slot
+  Mobile,           // a mobile came over the block (face 1) or left it (face 0); arg = the mobile
+  PhysicsStep,      // one step of the physics (simcore/physics.hpp); block 0, not delivered
   Count
 };
 
@@ -35,6 +37,7 @@ inline PriorityClass priorityClassOf(EventKind kind) {
     // the block ABI promises `start` before any `event`.
     case EventKind::Start:
     case EventKind::MotionEnd:
+    case EventKind::PhysicsStep:
       return PriorityClass::World;
     case EventKind::NeighborAdded:
     case EventKind::NeighborRemoved:

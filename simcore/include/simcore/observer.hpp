@@ -32,6 +32,8 @@ class SimulationObserver {
                                const Cell& /*to*/, SimTime /*end*/) {}
   // Text from the block program's trace service.
   virtual void onBlockTrace(const Simulation&, std::uint32_t /*block*/, std::string_view /*text*/) {}
+  // After each step of the physics (Simulation::physics()), mobiles moved.
+  virtual void onPhysicsStep(const Simulation&) {}
 };
 
 }  // namespace simcore

@@ -11,6 +11,7 @@
 #include "simcore/event_queue.hpp"
 #include "simcore/motion_rule.hpp"
 #include "simcore/observer.hpp"
+#include "simcore/physics.hpp"
 #include "simcore/stats.hpp"
 #include "simcore/target_spec.hpp"
 #include "simcore/world.hpp"
@@ -79,6 +80,9 @@ class Simulation {
     if (observer->wantsMessages()) messageObservers_.push_back(observer);
   }
   void removeObserver(SimulationObserver* observer);
+  // Mobiles and air jets (Smart Blocks; before the start). Without, nothing of physics runs.
+  void setPhysics(std::unique_ptr<Physics> physics);
+  const Physics* physics() const { return physics_.get(); }
   // Asked before every legal motion starts (nullptr: none); not owned.
   void setMotionCheck(MotionCheck* check) { motionCheck_ = check; }
   // Interpolated position (cell units) of a block, mid-motion included.
@@ -153,6 +157,13 @@ class Simulation {
   SimTime transmissionTime(std::uint32_t size) const;
   void releaseMessage(std::uint32_t slot);
   void releaseMotion(std::uint32_t slot);
+  // Physics: one step now; the next one scheduled unless one is; blocks told of coverage changes.
+  void stepPhysics();
+  void dispatchPhysicsStep(const Event& e);
+  void wakePhysics();
+  void announceCoverage();
+  int mobileAbove(BlockId id, std::int32_t* mobile, double xyAngle[3]) const;
+  int airJet(BlockId id, int face, double power, SimTime duration);
   // Frees the origin and the swept cells of a motion whose destination is `to` (not `to` itself).
   // (Translations, B1's motions, have no swept cells: the rest stays out of their way.)
   void clearMotionCells(const MotionSlot& m, const Cell& to) {
@@ -176,6 +187,8 @@ class Simulation {
   std::shared_ptr<const MotionRule> motionRule_;  // the target's own rule, if any
   bool translates_;                               // no rule of its own, but canTranslate
   MotionCheck* motionCheck_ = nullptr;
+  std::unique_ptr<Physics> physics_;
+  bool physicsScheduled_ = false;
   SimTime motionDuration_;
   World world_;
   int faceCount_;

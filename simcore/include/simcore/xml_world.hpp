@@ -19,6 +19,7 @@
 #include <vector>
 
 #include "simcore/lattice.hpp"
+#include "simcore/physics_spec.hpp"
 #include "simcore/time.hpp"
 #include "simcore/world.hpp"
 
@@ -85,6 +86,18 @@ struct CsgDescription {
   SourcePos pos;                       // of the <csg> element
 };
 
+// <mobileList><mobile position="75,425" size="50,50" mass="0.02" angle="0"/></mobileList> and
+// <obstacleList><obstacle position="x,y" size="lx,ly"/></obstacleList>: millimetres on the surface
+// (x east, y north; block i's centre is at i * block size), kilograms, degrees.
+struct MobileDescription {
+  MobileSpec spec;
+  SourcePos pos;
+};
+struct ObstacleDescription {
+  ObstacleSpec spec;
+  SourcePos pos;
+};
+
 struct WorldDescription {
   std::string path;     // the file read (or the name given to parseWorldXml)
   std::string target;   // as written, blanks trimmed ("" if absent); not validated here
@@ -100,6 +113,9 @@ struct WorldDescription {
   std::string program;  // Meld program; resolved likewise
   std::vector<ScheduledTap> taps;
   std::vector<ScheduledAccel> accels;
+  std::vector<MobileDescription> mobiles;
+  std::vector<ObstacleDescription> obstacles;
+  AirJetModel airJets;  // not in the file: the front end may change it (vsim --physics-step)
   std::vector<std::string> warnings;  // "file:line:col: warning: ..." (unknown elements, ...)
 };
 

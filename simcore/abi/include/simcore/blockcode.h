@@ -25,7 +25,10 @@
 extern "C" {
 #endif
 
-#define VS_ABI_VERSION 2
+#define VS_ABI_VERSION 3
+/* The oldest version the host still loads: a program of version 2 simply never calls the services
+ * added since (mobile_above, air_jet) and gets no VS_EV_MOBILE it does not ask for. */
+#define VS_ABI_OLDEST_VERSION 2
 
 typedef int64_t vs_time; /* simulated nanoseconds */
 typedef uint32_t vs_block_id;
@@ -61,7 +64,9 @@ enum vs_event_kind {
   VS_EV_TAP = 4,              /* the block was tapped (Blinky Blocks) */
   VS_EV_TIMER = 5,            /* a timer set with vs_host_api.set_timer fired: timer_id, tag */
   VS_EV_MOTION_END = 6,       /* the motion started by `move` ended; the block is at its new cell */
-  VS_EV_SENSOR = 7            /* a sensor reading changed: sensor, values[0..2] */
+  VS_EV_SENSOR = 7,           /* a sensor reading changed: sensor, values[0..2] */
+  VS_EV_MOBILE = 8            /* a mobile came over the block (values[1] = 1) or left it (0); values[0]:
+                                 the mobile (Smart Blocks with physics; since ABI 3) */
 };
 
 enum vs_sensor { VS_SENSOR_ACCEL = 1 };
@@ -141,6 +146,15 @@ struct vs_host_api {
   /* The face of this block whose adjacent cell is `xyz` (e.g. to turn a target cell into a `move`),
    * or VS_ERR_BAD_ARGUMENT when `xyz` is not an adjacent cell (since ABI 2). */
   int (*face_toward)(vs_ctx* ctx, const int32_t xyz[3]);
+  /* Since ABI 3 (Smart Blocks with mobiles, simcore/physics.hpp). The mobile over this block: its
+   * number in *mobile and its centre and angle in xy_angle (mm on the surface, degrees); or
+   * VS_ERR_NOT_FOUND when none covers the block's centre, VS_ERR_UNSUPPORTED without physics. */
+  int (*mobile_above)(vs_ctx* ctx, int32_t* mobile, double xy_angle[3]);
+  /* Blow this block's jet towards `face` at `power` (0..1) for `duration` ns: it pushes a mobile
+   * over or next to the block that way. A new command replaces the jet's last one; power 0 closes
+   * it. VS_ERR_BAD_FACE, VS_ERR_BAD_ARGUMENT (power outside 0..1, negative duration),
+   * VS_ERR_UNSUPPORTED without physics. */
+  int (*air_jet)(vs_ctx* ctx, int face, double power, vs_time duration);
 };
 
 /* The table a block program exports. Callbacks may be NULL where the program has nothing to do. */
