@@ -436,6 +436,21 @@ case_conveyor() {
   cat "$WORK/halved"
   awk '/^largest distance between/ { a = $(NF - 4) } END { exit !(a != "" && a < 1) }' "$WORK/halved" ||
     fail "halving the step moved the trajectory by 1 mm or more"
+  # The same controller in Meld, in every execution mode: bytecode, native code in memory (--jit)
+  # and a native shared object (meldc --robots --emit=native): one run, within the goals.
+  M="$WORLDS/meld-conveyor.xml"
+  run 0 "$M" --mobiles-csv "$WORK/meld.csv" --no-progress
+  fingerprint "$OUT" >"$WORK/fp-meld"
+  sh "$SRC/examples/physics/conveyor-figures.sh" "$WORK/meld.csv" >"$WORK/meld-figures" || fail "figures of the Meld run"
+  cat "$WORK/meld-figures"
+  awk '/^mean distance/ { m = $(NF - 1) } /^final position/ { d = $(NF - 4) }
+       END { exit !(m != "" && m <= 15 && d != "" && d <= 20) }' "$WORK/meld-figures" || fail "the Meld controller missed the goals"
+  run 0 "$M" --jit --mobiles-csv "$WORK/jit.csv" --no-progress
+  fingerprint "$OUT" | cmp -s - "$WORK/fp-meld" || fail "--jit ran differently"
+  cmp -s "$WORK/meld.csv" "$WORK/jit.csv" || fail "--jit moved the part differently"
+  "$MELDC" --robots --emit=native "$SRC/examples/meld/conveyor.meld" -o "$WORK/conveyor.so" || fail "meldc --emit=native"
+  run 0 "$M" --program "$WORK/conveyor.so" --no-progress
+  fingerprint "$OUT" | cmp -s - "$WORK/fp-meld" || fail "the native .so ran differently"
   # The final configuration for renderers: 400 blocks and the part (an orange slab).
   run 0 "$W" --code "$BLOCKCODES/conveyor.so" --no-progress --export-gltf "$WORK/final.glb"
   python3 "$SRC/tests/cli/check_glb.py" "$WORK/final.glb" >"$WORK/glb" || fail "final.glb is not valid glTF"

@@ -74,7 +74,9 @@ BOOST_AUTO_TEST_CASE(smartblocks) {
   std::string dump = frontEndDump("smartblocks");
   expectLines(dump, kCommon);
   expectLines(dump, {"type linear action moveTo(node, int, int, int)", "const north = 0", "const east = 1",
-                     "const south = 2", "const west = 3"});
+                     "const south = 2", "const west = 3", "type mobileOver(node, int)",
+                     "type linear action senseMobile(node)", "type linear mobileAt(node, int, float, float, int)",
+                     "type linear action airJet(node, int, float, int)"});
   expectNoLine(dump, "type linear accel");
 }
 

@@ -215,6 +215,23 @@ go(X), !at(X, A, B, C) -o moveTo(X, A, B, C + 1).
   BOOST_TEST((w.sim->world().block(0).cell == simcore::Cell{2, 2, 3}));
 }
 
+BOOST_AUTO_TEST_CASE(air_jets_and_mobile_sensing_need_physics) {
+  // A Smart Blocks world without mobiles: senseMobile answers nothing, airJet is a run-time error
+  // naming the action (examples/meld/conveyor.meld runs them on a world with physics: cli.conveyor).
+  World w("smartblocks", {{0, 0, 0}}, R"(
+type linear action senseMobile(node).
+type linear mobileAt(node, int, float, float, int).
+type linear action airJet(node, int, float, int).
+type linear start(node).
+start(@0).
+start(X) -o senseMobile(X), airJet(X, 1, 0.5, 10).
+)");
+  w.sim->runUntilEmpty();
+  BOOST_TEST(w.vm->error().find("airJet(1, 0.500000, 10): refused by the world (no physics here)") !=
+             std::string::npos, w.vm->error());
+  BOOST_TEST(w.facts(0).find("mobileAt") == std::string::npos);
+}
+
 BOOST_AUTO_TEST_CASE(a_delayed_fact_arrives_after_its_delay_in_simulated_time) {
   // ping(X)@+250ms for the block itself waits on a timer; pong for the neighbour leaves 250 ms
   // late on the link.

@@ -7,7 +7,7 @@ namespace meldvm {
 
 RobotPredicates checkRobotProgram(const Program& program) {
   const PredicateTable& preds = program.predicates;
-  const TypeId I = TypeTable::kInt, N = TypeTable::kNode;
+  const TypeId I = TypeTable::kInt, N = TypeTable::kNode, F = TypeTable::kFloat;
   auto find = [&](std::initializer_list<const char*> names, std::vector<TypeId> shape,
                   const char* declaration) -> PredId {
     for (const char* name : names) {
@@ -31,6 +31,11 @@ RobotPredicates checkRobotProgram(const Program& program) {
   s.at = find({"at"}, {I, I, I}, "type at(node, int, int, int).");
   s.moveto = find({"moveto"}, {I, I, I}, "type linear action moveTo(node, int, int, int).");
   s.terminate = find({"terminate"}, {}, "type linear action terminate(node).");
+  // Smart Blocks with mobiles (simcore/physics.hpp).
+  s.mobileOver = find({"mobileover"}, {I}, "type mobileOver(node, int).");
+  s.mobileAt = find({"mobileat"}, {I, F, F, I}, "type linear mobileAt(node, int, float, float, int).");
+  s.senseMobile = find({"sensemobile"}, {}, "type linear action senseMobile(node).");
+  s.airJet = find({"airjet"}, {I, F, I}, "type linear action airJet(node, int, float, int).");
   s.setcolor2 = preds.find("setcolor2") == preds.size() ? Program::kNoPred : preds.find("setcolor2");
   s.setcolor = preds.find("setcolor") == preds.size() ? Program::kNoPred : preds.find("setcolor");
   s.writeString = preds.find("write-string") == preds.size() ? Program::kNoPred : preds.find("write-string");

@@ -199,6 +199,9 @@ void BlockRuntime::event(vs_ctx* ctx, const vs_event& ev) {
         sense(n, s.accel, {ev.values[0]}, false);
         sense(n, s.shake, {ev.values[0], ev.values[1], ev.values[2]}, false);
         break;
+      case VS_EV_MOBILE:  // values[0]: the mobile; values[1]: 1 it came over, 0 it left
+        sense(n, s.mobileOver, {ev.values[0]}, ev.values[1] == 0);
+        break;
       case VS_EV_MOTION_END:
         ctx->api->position(ctx, st.at);
         sense(n, s.at, {st.at[0], st.at[1], st.at[2]}, false);
@@ -304,6 +307,21 @@ void BlockRuntime::action(NodeId from, NodeId, PredId p, const Value* args) {
     } else {
       ctx->api->trace(ctx, "moveTo refused by the world (cell taken, no pivot, no motion, or a result that would not stand)");
     }
+  } else if (p == s.senseMobile) {
+    std::int32_t mobile;
+    double at[3];
+    if (s.mobileAt != Program::kNoPred && ctx->api->mobile_above(ctx, &mobile, at) == VS_OK) {
+      const Value sensed[4] = {Value::fromInt(mobile), Value::fromFloat(at[0]), Value::fromFloat(at[1]),
+                               Value::fromInt(std::int32_t(ctx->api->now(ctx) / VS_MS))};
+      receiveSensed(from, s.mobileAt, sensed, false);
+    }
+  } else if (p == s.airJet) {
+    const std::int32_t face = args[0].asInt(), ms = args[2].asInt();
+    const int rc = ctx->api->air_jet(ctx, face, args[1].asFloat(), vs_time(ms) * VS_MS);
+    if (rc != VS_OK)
+      throw RuntimeError("airJet(" + std::to_string(face) + ", " + std::to_string(args[1].asFloat()) + ", " +
+                         std::to_string(ms) + "): refused by the world (" +
+                         (rc == VS_ERR_UNSUPPORTED ? "no physics here" : "bad face, power or duration") + ")");
   } else if (p == s.terminate) {
     static_cast<BlockState*>(ctx->state)->terminated = 1;
   } else if (p == s.writeString && options_.output) {

@@ -19,6 +19,7 @@ class BlockProgramError : public std::runtime_error {
 struct RobotPredicates {
   PredId neighbor, vacant, neighborCount, tap, accel, shake, at;
   PredId setcolor, setcolor2, moveto, terminate, writeString;
+  PredId mobileOver, mobileAt, senseMobile, airJet;  // Smart Blocks with mobiles
 };
 
 // The one check of a program meant for robots, made by `meldc --robots` and by the runtime alike:
