@@ -157,16 +157,7 @@ BOOST_AUTO_TEST_CASE(swept_cell_stays_reserved_during_the_roll) {
   auto sim = makeC2D({6, 1, 4}, {{2, 0, 0}, {3, 0, 0}, {1, 0, 2}, {0, 0, 1}});
   Script s(*sim);
   std::vector<std::pair<BlockId, int>> codes;
-  s.onStart = [&](vs_ctx* ctx) {
-    if (ctx->block == 0) codes.emplace_back(0, ctx->api->move(ctx, kTopRight));
-    if (ctx->block == 2) {
-      ctx->api->set_timer(ctx, 500 * kMillisecond, 0, nullptr);
-      ctx->api->set_timer(ctx, 1500 * kMillisecond, 0, nullptr);
-    }
-  };
-  s.onEvent = [&](vs_ctx* ctx, const vs_event& ev) {
-    if (ctx->block == 2 && ev.kind == VS_EV_TIMER) codes.emplace_back(2, ctx->api->move(ctx, kBottomRight));
-  };
+  testsupport::competeForACell(s, kTopRight, kBottomRight, codes);
   sim->runUntil(600 * kMillisecond);
   BOOST_CHECK_EQUAL(sim->world().anyAt(Cell{1, 0, 1}), 0u);
   sim->runUntilEmpty();
@@ -194,34 +185,9 @@ BOOST_AUTO_TEST_CASE(random_rolls_keep_the_world_consistent_and_deterministic) {
   // testsupport's random walk (each catom tries moves through random faces, a flood spreads) on a
   // crowded patch: whatever rolls succeed, every catom ends settled in its own cell, no reservation
   // is left behind, links are symmetric, and the same seed gives the same run.
-  std::uint64_t prints[2] = {0, 0};
-  for (int run = 0; run < 2; ++run) {
-    std::vector<Cell> cells;
-    for (int z = 2; z < 8; ++z)
-      for (int x = 2; x < 9; ++x)
-        if ((x + z) % 3 != 0) cells.push_back(Cell{x, 0, z});
-    SimulationConfig cfg;
-    cfg.seed = 11;
-    auto sim = makeC2D({11, 1, 10}, cells, cfg);
-    sim->setBlockCode(&testsupport::kRandomWalk);
-    sim->runUntilEmpty();
-    const World& w = sim->world();
-    const Statistics& st = sim->statistics();
-    BOOST_CHECK_GT(st.motionsStarted, 10u);
-    BOOST_CHECK_EQUAL(st.motionsStarted, st.motionsEnded);
-    std::size_t taken = 0;
-    for (int z = 0; z < 10; ++z)
-      for (int x = 0; x < 11; ++x) taken += !w.isFree(Cell{x, 0, z});
-    BOOST_CHECK_EQUAL(taken, cells.size());
-    for (BlockId id = 0; id < w.blockCount(); ++id) {
-      BOOST_CHECK_EQUAL(w.block(id).motion, kNoBlock);
-      BOOST_CHECK_EQUAL(w.settledAt(w.block(id).cell), id);
-      for (int f = 0; f < 6; ++f) {
-        const BlockId n = w.neighbor(id, f);
-        if (n != kNoBlock) BOOST_CHECK_EQUAL(w.neighbor(n, (f + 3) % 6), id);
-      }
-    }
-    prints[run] = sim->fingerprint();
-  }
-  BOOST_CHECK_EQUAL(prints[0], prints[1]);
+  std::vector<Cell> cells;
+  for (int z = 2; z < 8; ++z)
+    for (int x = 2; x < 9; ++x)
+      if ((x + z) % 3 != 0) cells.push_back(Cell{x, 0, z});
+  testsupport::checkRandomWalk(targets::catoms2DTarget(), {11, 1, 10}, cells, 11);
 }

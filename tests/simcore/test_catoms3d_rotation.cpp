@@ -181,16 +181,7 @@ BOOST_AUTO_TEST_CASE(a_reserved_cell_blocks_another_rotation_until_the_first_end
   auto sim = makeC3D({6, 6, 6}, {kA, kP, {1, 1, 3}, {2, 1, 2}});
   Script s(*sim);
   std::vector<std::pair<BlockId, int>> codes;
-  s.onStart = [&](vs_ctx* ctx) {
-    if (ctx->block == 0) codes.emplace_back(0, ctx->api->move(ctx, kC3DTop2));
-    if (ctx->block == 2) {
-      ctx->api->set_timer(ctx, 500 * kMillisecond, 0, nullptr);
-      ctx->api->set_timer(ctx, 1500 * kMillisecond, 0, nullptr);
-    }
-  };
-  s.onEvent = [&](vs_ctx* ctx, const vs_event& ev) {
-    if (ctx->block == 2 && ev.kind == VS_EV_TIMER) codes.emplace_back(2, ctx->api->move(ctx, kC3DSide0));
-  };
+  testsupport::competeForACell(s, kC3DTop2, kC3DSide0, codes);
   sim->runUntilEmpty();
   const std::vector<std::pair<BlockId, int>> expected = {{0, VS_OK}, {2, VS_ERR_CELL_OCCUPIED}, {2, VS_OK}};
   BOOST_CHECK(codes == expected);
@@ -198,36 +189,10 @@ BOOST_AUTO_TEST_CASE(a_reserved_cell_blocks_another_rotation_until_the_first_end
 }
 
 BOOST_AUTO_TEST_CASE(random_rotations_keep_the_world_consistent_and_deterministic) {
-  std::uint64_t prints[2] = {0, 0};
-  for (int run = 0; run < 2; ++run) {
-    std::vector<Cell> cells;
-    for (int z = 1; z < 7; ++z)
-      for (int y = 1; y < 7; ++y)
-        for (int x = 1; x < 7; ++x)
-          if ((x + 2 * y + 3 * z) % 4 != 0) cells.push_back(Cell{x, y, z});
-    SimulationConfig cfg;
-    cfg.seed = 7;
-    auto sim = testsupport::makeSim(catoms3DTarget(), {8, 8, 8}, cells, cfg);
-    sim->setBlockCode(&testsupport::kRandomWalk);
-    sim->runUntilEmpty();
-    const World& w = sim->world();
-    const Statistics& st = sim->statistics();
-    BOOST_CHECK_GT(st.motionsStarted, 10u);
-    BOOST_CHECK_EQUAL(st.motionsStarted, st.motionsEnded);
-    std::size_t taken = 0;
-    for (int z = 0; z < 8; ++z)
-      for (int y = 0; y < 8; ++y)
-        for (int x = 0; x < 8; ++x) taken += !w.isFree(Cell{x, y, z});
-    BOOST_CHECK_EQUAL(taken, cells.size());
-    for (BlockId id = 0; id < w.blockCount(); ++id) {
-      BOOST_CHECK_EQUAL(w.block(id).motion, kNoBlock);
-      BOOST_CHECK_EQUAL(w.settledAt(w.block(id).cell), id);
-      for (int f = 0; f < 12; ++f) {
-        const BlockId n = w.neighbor(id, f);
-        if (n != kNoBlock) BOOST_CHECK_EQUAL(w.neighbor(n, (f + 6) % 12), id);
-      }
-    }
-    prints[run] = sim->fingerprint();
-  }
-  BOOST_CHECK_EQUAL(prints[0], prints[1]);
+  std::vector<Cell> cells;
+  for (int z = 1; z < 7; ++z)
+    for (int y = 1; y < 7; ++y)
+      for (int x = 1; x < 7; ++x)
+        if ((x + 2 * y + 3 * z) % 4 != 0) cells.push_back(Cell{x, y, z});
+  testsupport::checkRandomWalk(catoms3DTarget(), {8, 8, 8}, cells, 7);
 }

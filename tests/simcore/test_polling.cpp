@@ -37,13 +37,20 @@ void note(vs_ctx* c, const std::string& what) {
   gLog.push_back(line.str());
 }
 
-std::unique_ptr<Simulation> run(const vs_polling_program& program, GridSize size, const std::vector<Cell>& cells,
-                                vs_blockcode& table, SimTime until = kTimeInfinity) {
+// Blinky Blocks at `cells` running `program` (through `table`), not started yet.
+std::unique_ptr<Simulation> prepare(const vs_polling_program& program, GridSize size, const std::vector<Cell>& cells,
+                                    vs_blockcode& table) {
   gLog.clear();
   auto sim = testsupport::makeBlinky(size, cells);
   vs_polling_blockcode(&program, &table);
   sim->setBlockCode(&table);
-  sim->runUntil(until);
+  return sim;
+}
+
+std::unique_ptr<Simulation> run(const vs_polling_program& program, GridSize size, const std::vector<Cell>& cells,
+                                vs_blockcode& table) {
+  auto sim = prepare(program, size, cells, table);
+  sim->runUntilEmpty();
   return sim;
 }
 
@@ -78,10 +85,7 @@ void talker(vs_ctx* c) {
 BOOST_AUTO_TEST_CASE(waits_sleeps_timeouts_and_the_inbox) {
   const vs_polling_program program{"talker", talker, 0, 0, 0, 0, nullptr};
   vs_blockcode table;
-  gLog.clear();
-  auto sim = testsupport::makeBlinky({2, 1, 1}, {{0, 0, 0}, {1, 0, 0}});
-  vs_polling_blockcode(&program, &table);
-  sim->setBlockCode(&table);
+  auto sim = prepare(program, {2, 1, 1}, {{0, 0, 0}, {1, 0, 0}}, table);
   sim->scheduleTap(1, 7 * kMillisecond);
   sim->runUntilEmpty();
   // 38.4 kbit/s: "hi" takes 0.42 ms on the link, so it arrives at 10 ms (rounded down here).
@@ -114,10 +118,7 @@ BOOST_AUTO_TEST_CASE(a_full_inbox_drops_and_says_so) {
   // Inbox of 2 events and 4 bytes: messages of 1 and 2 bytes fit (3 bytes), 3 and 4 do not.
   const vs_polling_program program{"chatter", chatter, 0, 0, 2, 4, nullptr};
   vs_blockcode table;
-  gLog.clear();
-  auto sim = testsupport::makeBlinky({2, 1, 1}, {{0, 0, 0}, {1, 0, 0}});
-  vs_polling_blockcode(&program, &table);
-  sim->setBlockCode(&table);
+  auto sim = prepare(program, {2, 1, 1}, {{0, 0, 0}, {1, 0, 0}}, table);
   TraceLines traces(*sim);
   sim->scheduleTap(1, kSecond);
   sim->runUntilEmpty();
@@ -137,7 +138,7 @@ void quitter(vs_ctx* c) { note(c, "started and done"); }
 BOOST_AUTO_TEST_CASE(a_block_whose_loop_returns_ignores_its_events) {
   const vs_polling_program program{"quitter", quitter, 0, 0, 0, 0, nullptr};
   vs_blockcode table;
-  auto sim = run(program, {3, 1, 1}, {{0, 0, 0}, {1, 0, 0}, {2, 0, 0}}, table);
+  auto sim = prepare(program, {3, 1, 1}, {{0, 0, 0}, {1, 0, 0}, {2, 0, 0}}, table);
   sim->scheduleTap(1, kSecond);
   sim->runUntilEmpty();
   BOOST_CHECK_EQUAL(gLog.size(), 3u);  // each block's loop ran once; the tap found block 1 done
@@ -186,7 +187,6 @@ BOOST_AUTO_TEST_CASE(state_survives_and_runs_are_deterministic) {
   for (int i = 0; i < 2; ++i) {
     vs_blockcode table;
     auto sim = run(program, {20, 20, 1}, cells, table);
-    sim->runUntilEmpty();
     // The program's state is the last 16 bytes of each block's (after stack, record and inbox).
     for (BlockId b = 0; b < cells.size(); ++b)
       BOOST_CHECK_EQUAL(

@@ -12,6 +12,8 @@
 #include <string>
 #include <vector>
 
+#include <boost/test/unit_test.hpp>
+
 #include "blinkyblocks/blinkyblocks.hpp"
 #include "simcore/blockcode.h"
 #include "simcore/rng.hpp"
@@ -39,6 +41,26 @@ inline std::unique_ptr<simcore::Simulation> makeSmart(simcore::GridSize size, co
 inline std::unique_ptr<simcore::Simulation> makeBlinky(simcore::GridSize size, const std::vector<Cell>& cells,
                                                        const simcore::SimulationConfig& cfg = {}) {
   return makeSim(targets::blinkyBlocksTarget(), size, cells, cfg);
+}
+
+// After a run with motions: every block settled in its own cell, exactly `blocks` cells taken (no
+// reservation left behind), and every link seen from both ends.
+inline void checkSettledWorld(const simcore::Simulation& sim, std::size_t blocks) {
+  const simcore::World& w = sim.world();
+  const simcore::GridSize g = w.size();
+  std::size_t taken = 0;
+  for (int z = 0; z < g.z; ++z)
+    for (int y = 0; y < g.y; ++y)
+      for (int x = 0; x < g.x; ++x) taken += !w.isFree(Cell{x, y, z});
+  BOOST_CHECK_EQUAL(taken, blocks);
+  for (BlockId id = 0; id < w.blockCount(); ++id) {
+    BOOST_CHECK_EQUAL(w.block(id).motion, simcore::kNoBlock);
+    BOOST_CHECK_EQUAL(w.settledAt(w.block(id).cell), id);
+    for (int f = 0; f < w.faceCount(); ++f) {
+      const BlockId n = w.neighbor(id, f);
+      if (n != simcore::kNoBlock) BOOST_CHECK_EQUAL(w.neighbor(n, w.lattice().oppositeFace(w.block(id).cell, f)), id);
+    }
+  }
 }
 
 // One callback as the block program saw it. kind 0 stands for `start`.
@@ -251,6 +273,41 @@ inline std::unique_ptr<simcore::Simulation> makeWalkWorld(std::uint32_t n, std::
   }
   sim->setBlockCode(&kRandomWalk);
   return sim;
+}
+
+// Two blocks competing for a cell: block 0 moves through `first` at the start; block 2 tries
+// `second` at 0.5 s and again at 1.5 s. The move codes, in order, go to `codes`.
+inline void competeForACell(Script& s, int first, int second, std::vector<std::pair<BlockId, int>>& codes) {
+  s.onStart = [&codes, first](vs_ctx* ctx) {
+    if (ctx->block == 0) codes.emplace_back(0, ctx->api->move(ctx, first));
+    if (ctx->block == 2) {
+      ctx->api->set_timer(ctx, 500 * simcore::kMillisecond, 0, nullptr);
+      ctx->api->set_timer(ctx, 1500 * simcore::kMillisecond, 0, nullptr);
+    }
+  };
+  s.onEvent = [&codes, second](vs_ctx* ctx, const vs_event& ev) {
+    if (ctx->block == 2 && ev.kind == VS_EV_TIMER) codes.emplace_back(2, ctx->api->move(ctx, second));
+  };
+}
+
+// kRandomWalk on a crowded patch, twice with the same seed: more than ten motions, every one
+// ended, the world settled (checkSettledWorld), and the same fingerprint both times.
+inline void checkRandomWalk(const simcore::TargetSpec& target, simcore::GridSize size, const std::vector<Cell>& cells,
+                            std::uint64_t seed) {
+  std::uint64_t prints[2] = {0, 0};
+  for (int run = 0; run < 2; ++run) {
+    simcore::SimulationConfig cfg;
+    cfg.seed = seed;
+    auto sim = makeSim(target, size, cells, cfg);
+    sim->setBlockCode(&kRandomWalk);
+    sim->runUntilEmpty();
+    const simcore::Statistics& st = sim->statistics();
+    BOOST_CHECK_GT(st.motionsStarted, 10u);
+    BOOST_CHECK_EQUAL(st.motionsStarted, st.motionsEnded);
+    checkSettledWorld(*sim, cells.size());
+    prints[run] = sim->fingerprint();
+  }
+  BOOST_CHECK_EQUAL(prints[0], prints[1]);
 }
 
 }  // namespace testsupport
