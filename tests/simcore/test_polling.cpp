@@ -235,8 +235,19 @@ BOOST_AUTO_TEST_CASE(a_stack_overflow_is_reported_with_the_block_and_the_size) {
   close(pipefd[0]);
   int status = 0;
   waitpid(child, &status, 0);
+#if defined(__SANITIZE_ADDRESS__)
+  // Under AddressSanitizer, which polling.c tells of each block's stack at every switch, ASan may
+  // catch the overflow first, as it happens (the x86-64 switch), or the guard words do (ucontext):
+  // either way the child stops with a report of the overflow.
+  BOOST_CHECK(WIFSIGNALED(status) || (WIFEXITED(status) && WEXITSTATUS(status) != 0));
+  BOOST_CHECK_MESSAGE(err.find("AddressSanitizer: stack-overflow") != std::string::npos ||
+                          err.find("vs_polling: block 1 of program 'overflow' overflowed its 4096-byte stack") !=
+                              std::string::npos,
+                      err);
+#else
   BOOST_CHECK(WIFSIGNALED(status) && WTERMSIG(status) == SIGABRT);
   BOOST_CHECK_MESSAGE(err.find("vs_polling: block 1 of program 'overflow' overflowed its 4096-byte stack") !=
                           std::string::npos,
                       err);
+#endif
 }
