@@ -73,8 +73,9 @@ options:
                         (the block program gets VS_ERR_UNSTABLE)
   --trace FILTER        trace the run: 'blocks=0,5-9;kinds=message,tap;from=1s;to=2s'
                         (every clause optional; 'all' traces everything). Kinds: start, message,
-                        neighbor-added, neighbor-removed, tap, timer, motion-end, sensor, send,
-                        drop, color, motion, trace; groups: all, events, neighbor
+                        neighbor-added, neighbor-removed, tap, timer, motion-end, sensor, mobile,
+                        physics-step, send, drop, color, motion, trace; groups: all, events,
+                        neighbor
   --trace-format text|json
                         one readable line or one JSON object per record (default text)
   --trace-file FILE     where the trace goes (default stderr; "-" = stdout); --trace-format and
