@@ -1,6 +1,5 @@
 // From a world description to a running Simulation, and from a Simulation back to a world file.
-#include <cstdio>
-#include <cstdlib>
+#include <charconv>
 #include <filesystem>
 #include <ostream>
 #include <pugixml.hpp>
@@ -144,16 +143,11 @@ void writeWorldAttributes(pugi::xml_node world, const Simulation& sim, const Wor
         std::filesystem::absolute(original.program).lexically_normal().c_str();
 }
 
-// Shortest text that reads back as the same double.
+// The shortest text that reads back as the same double ("50", "0.02", "74.97377511962831").
 std::string realText(double v) {
   char text[32];
-  std::snprintf(text, sizeof text, "%.17g", v);
-  for (int digits = 1; digits <= 17; ++digits) {
-    char shorter[32];
-    std::snprintf(shorter, sizeof shorter, "%.*g", digits, v);
-    if (std::strtod(shorter, nullptr) == v) return shorter;
-  }
-  return text;
+  const auto [end, ec] = std::to_chars(text, text + sizeof text, v);
+  return ec == std::errc() ? std::string(text, end) : std::to_string(v);
 }
 
 void writeKept(pugi::xml_node world, const char* name, const KeptElement& kept) {

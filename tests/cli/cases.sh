@@ -451,6 +451,13 @@ case_conveyor() {
   "$MELDC" --robots --emit=native "$SRC/examples/meld/conveyor.meld" -o "$WORK/conveyor.so" || fail "meldc --emit=native"
   run 0 "$M" --program "$WORK/conveyor.so" --no-progress
   fingerprint "$OUT" | cmp -s - "$WORK/fp-meld" || fail "the native .so ran differently"
+  # --export writes the part where it ended; the exported world loads with it there.
+  run 0 "$W" --code "$BLOCKCODES/conveyor.so" --no-progress --export "$WORK/final.xml"
+  has "$WORK/final.xml" '<mobile position="400'
+  has "$WORK/final.xml" 'size="50,50" mass="0.02"'
+  run 0 "$WORK/final.xml" --code "$BLOCKCODES/conveyor.so" --until 100ms --mobiles-csv "$WORK/again.csv" --no-progress
+  awk -F, 'NR == 2 { exit !($3 > 399 && $3 < 401 && $4 > 74 && $4 < 76) }' "$WORK/again.csv" ||
+    fail "the exported world does not put the part where it ended"
   # The final configuration for renderers: 400 blocks and the part (an orange slab).
   run 0 "$W" --code "$BLOCKCODES/conveyor.so" --no-progress --export-gltf "$WORK/final.glb"
   python3 "$SRC/tests/cli/check_glb.py" "$WORK/final.glb" >"$WORK/glb" || fail "final.glb is not valid glTF"
