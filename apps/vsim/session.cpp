@@ -4,8 +4,10 @@
 
 #include <cerrno>
 #include <cstring>
+#include <filesystem>
 #include <ostream>
 
+#include "code_search.hpp"
 #include "meld_program.hpp"
 #include "targets.hpp"
 
@@ -121,6 +123,22 @@ void Session::loadBlockProgram(const Options& o, const SessionStreams& streams, 
       throw SessionError{kExitInput, e.what()};
     }
     return;
+  }
+  // A bare file name is searched for: next to the world (or here, for --code), on VSIM_CODE_PATH,
+  // then in the installed and build folders next to this program (code_search.hpp).
+  const std::string asWritten = !o.code.empty() ? o.code : world_.codeAsWritten;
+  if (isBareName(asWritten) && !std::filesystem::exists(codePath_)) {
+    const std::string firstDir =
+        !o.code.empty() ? std::string(".") : std::filesystem::path(o.world).parent_path().string();
+    const std::vector<std::string> dirs = codeSearchPath(firstDir);
+    if (const auto found = findBlockCode(asWritten, dirs)) {
+      codePath_ = *found;
+    } else {
+      std::string looked;
+      for (const std::string& d : dirs) looked += (looked.empty() ? "" : ", ") + d;
+      throw SessionError{kExitInput, "block code '" + asWritten + "' not found; looked in " + looked +
+                                         " (set VSIM_CODE_PATH to the folder that holds it)"};
+    }
   }
   try {
     library_.emplace(simcore::BlockCodeLibrary::open(codePath_));

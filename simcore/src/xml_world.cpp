@@ -363,6 +363,7 @@ void Loader::readWorldAttributes(Node world) {
     if (!*p || std::filesystem::path(p).is_absolute()) return p;
     return (std::filesystem::path(path_).parent_path() / p).lexically_normal().string();
   };
+  world_.codeAsWritten = attr(world, "code").value();
   world_.code = resolve(attr(world, "code").value());
   world_.program = resolve(attr(world, "program").value());
 }

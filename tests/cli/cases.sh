@@ -469,6 +469,25 @@ case_conveyor() {
   has "$ERR" "--physics-step must be longer than 0"
 }
 
+case_code_search() {
+  # A BlockCode named by file name alone is searched for: next to the world, on VSIM_CODE_PATH,
+  # then in the build (or installation) of the vsim that runs.
+  run 0 "$WORLDS/color-flood.xml" --no-progress
+  has "$OUT" "blockcodes/color_flood.so)"
+  run 0 "$WORLDS/tap-cycle.xml" --code tap_cycle.so --no-progress
+  has "$OUT" "blockcodes/tap_cycle.so)"
+  mkdir -p "$WORK/mine"
+  cp "$TAPS" "$WORK/mine/my_taps.so"
+  sed 's|code="tap_cycle.so"|code="my_taps.so"|' "$WORLDS/tap-cycle.xml" >"$WORK/taps.xml"
+  run 3 "$WORK/taps.xml"
+  has "$ERR" "block code 'my_taps.so' not found; looked in $WORK,"
+  has "$ERR" "(set VSIM_CODE_PATH to the folder that holds it)"
+  export VSIM_CODE_PATH="/nonexistent:$WORK/mine"
+  run 0 "$WORK/taps.xml" --no-progress
+  unset VSIM_CODE_PATH
+  has "$OUT" "$WORK/mine/my_taps.so)"
+}
+
 case_link_options() {
   # Slower links stretch the flood in simulated time; a bad rate is a usage error.
   run 0 "$TWORLDS/flood-small.xml" --code "$FLOOD"

@@ -110,6 +110,7 @@ struct WorldDescription {
   std::optional<CsgDescription> csg;     // its blocks come after `blocks`
   std::optional<std::uint64_t> seed;
   std::string code;     // C BlockCode .so; relative paths resolved against the file's folder
+  std::string codeAsWritten;  // the attribute itself: a bare file name is searched for (vsim)
   std::string program;  // Meld program; resolved likewise
   std::vector<ScheduledTap> taps;
   std::vector<ScheduledAccel> accels;
