@@ -161,6 +161,13 @@ std::optional<ast::Program> loadProgram(const std::string& mainPath,
 
 std::string defaultStdlibDir() {
   if (const char* env = std::getenv("MELD_STDLIB")) return env;
+  // An installed program: <prefix>/bin/meldc (or meld, vsim ...) next to <prefix>/share/meld/stdlib.
+  std::error_code ec;
+  const std::filesystem::path exe = std::filesystem::read_symlink("/proc/self/exe", ec);
+  if (!ec) {
+    const std::filesystem::path installed = exe.parent_path().parent_path() / "share" / "meld" / "stdlib";
+    if (std::filesystem::is_regular_file(installed / "common.meld", ec)) return installed.string();
+  }
 #ifdef MELD_STDLIB_DIR
   return MELD_STDLIB_DIR;
 #else

@@ -25,7 +25,8 @@ std::optional<ast::Program> loadProgram(const std::string& mainPath,
                                         Diagnostics& diag, bool groundFacts = false);
 
 // The standard library folder searched after the -I directories: the value of the environment
-// variable MELD_STDLIB when it is set (an empty value means no standard library folder), otherwise
+// variable MELD_STDLIB when it is set (an empty value means no standard library folder), else an
+// installation's <prefix>/share/meld/stdlib when the running program is <prefix>/bin/..., otherwise
 // the stdlib/ folder of the source tree, fixed at build time (MELD_STDLIB_DIR). "" when there is
 // none. A lookup rather than a constant so that a moved tree or an installed compiler can be
 // pointed elsewhere without rebuilding.
