@@ -1,25 +1,14 @@
 #include "code_search.hpp"
 
-#include <unistd.h>
-
 #include <cstdlib>
 #include <filesystem>
 #include <system_error>
 
+#include "support/program_dir.hpp"
+
 namespace vsim {
 
 namespace fs = std::filesystem;
-
-namespace {
-
-// The folder of the running executable (Linux: /proc/self/exe), or "" if unknown.
-fs::path programDir() {
-  std::error_code ec;
-  const fs::path exe = fs::read_symlink("/proc/self/exe", ec);
-  return ec ? fs::path() : exe.parent_path();
-}
-
-}  // namespace
 
 bool isBareName(const std::string& path) { return !path.empty() && path.find('/') == std::string::npos; }
 
@@ -33,7 +22,7 @@ std::vector<std::string> codeSearchPath(const std::string& firstDir) {
       start = colon + 1;
     }
   }
-  if (const fs::path here = programDir(); !here.empty())
+  if (const fs::path here = support::runningProgramDir(); !here.empty())
     for (const char* relative : {"../lib/meld/blockcodes", "../blockcodes", "../../blockcodes"})
       dirs.push_back((here / relative).lexically_normal().string());
   return dirs;

@@ -112,6 +112,40 @@ RunEnd runSimulation(simcore::Simulation& sim, const Options& o, ProgressLine& p
   return end;
 }
 
+// --check-stability before the run: the world as loaded is checked; with no block program that is
+// all (the exit code is returned), otherwise `guard` is installed to check every motion.
+std::optional<int> startStabilityCheck(const Options& o, Session& session,
+                                       std::optional<simcore::StabilityGuard>& guard) {
+  simcore::Simulation& sim = session.simulation();
+  if (!sim.target().gravity.applies)
+    throw Failure{kExitUsage, "--check-stability: " + sim.target().name +
+                                  " blocks lie on a surface, not under gravity: nothing to check"};
+  const simcore::StabilityReport initial = simcore::checkStability(sim.world(), sim.target());
+  if (!session.hasBlockProgram()) {
+    simcore::printStability(std::cout, initial, sim.target());
+    return initial.stable() ? kExitOk : kExitUnstable;
+  }
+  if (!initial.stable()) {
+    std::cerr << "vsim: " << (o.refuseUnstable ? "error" : "warning") << ": the world as loaded: ";
+    simcore::printStability(std::cerr, initial, sim.target());
+    if (o.refuseUnstable)
+      throw Failure{kExitUnstable, "--refuse-unstable: the world does not hold as loaded, so every motion would be refused"};
+  }
+  guard.emplace(o.quiet ? nullptr : &std::cerr, o.refuseUnstable);
+  sim.setMotionCheck(&*guard);
+  return std::nullopt;
+}
+
+// After the run: the final configuration's verdict and the motions checked. Whether it stands.
+bool reportStability(std::ostream& report, const simcore::Simulation& sim, const simcore::StabilityGuard& guard,
+                     bool refused) {
+  const simcore::StabilityReport final = simcore::checkStability(sim.world(), sim.target());
+  simcore::printStability(report, final, sim.target());
+  report << "motions checked " << guard.checked() << ", " << guard.unstable()
+         << (refused ? " refused as unstable\n" : " would not hold\n");
+  return final.stable();
+}
+
 int runVsim(const Options& o, const NativeCompiler& jit) {
   // Outputs first (fail fast), then inputs, then the run.
   Output json(o.jsonFile), exported(o.exportFile), gltf(o.gltfFile), mobilesCsv(o.mobilesCsv);
@@ -132,24 +166,8 @@ int runVsim(const Options& o, const NativeCompiler& jit) {
   Session session(o, streams, &jit);
   simcore::Simulation& sim = session.simulation();
   std::optional<simcore::StabilityGuard> guard;
-  if (o.checkStability) {
-    if (!sim.target().gravity.applies)
-      throw Failure{kExitUsage, "--check-stability: " + sim.target().name +
-                                    " blocks lie on a surface, not under gravity: nothing to check"};
-    const simcore::StabilityReport initial = simcore::checkStability(sim.world(), sim.target());
-    if (!session.hasBlockProgram()) {
-      simcore::printStability(std::cout, initial, sim.target());
-      return initial.stable() ? kExitOk : kExitUnstable;
-    }
-    if (!initial.stable()) {
-      std::cerr << "vsim: " << (o.refuseUnstable ? "error" : "warning") << ": the world as loaded: ";
-      simcore::printStability(std::cerr, initial, sim.target());
-      if (o.refuseUnstable)
-        throw Failure{kExitUnstable, "--refuse-unstable: the world does not hold as loaded, so every motion would be refused"};
-    }
-    guard.emplace(o.quiet ? nullptr : &std::cerr, o.refuseUnstable);
-    sim.setMotionCheck(&*guard);
-  }
+  if (o.checkStability)
+    if (const std::optional<int> exitNow = startStabilityCheck(o, session, guard)) return *exitNow;
   // --why: the facts are checked before the run (a typo fails at once), derivations recorded.
   std::vector<meldvm::FactAt> why;
   meldvm::DerivationLog derivations;
@@ -203,14 +221,7 @@ int runVsim(const Options& o, const NativeCompiler& jit) {
   std::ostream& report = stdoutTaken ? std::cerr : std::cout;
   if (!o.quiet) printSummary(report, sim, info);
   if (o.stats) simcore::printStatistics(report, sim.statistics(), sim.fingerprint());
-  bool unstable = false;
-  if (guard) {
-    const simcore::StabilityReport final = simcore::checkStability(sim.world(), sim.target());
-    simcore::printStability(report, final, sim.target());
-    report << "motions checked " << guard->checked() << ", " << guard->unstable()
-           << (o.refuseUnstable ? " refused as unstable\n" : " would not hold\n");
-    unstable = !final.stable();
-  }
+  const bool unstable = guard && !reportStability(report, sim, *guard, o.refuseUnstable);
   report.flush();
   if (session.meld() && o.dump) {
     session.meld()->dump(std::cout);

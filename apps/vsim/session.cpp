@@ -127,7 +127,7 @@ void Session::loadBlockProgram(const Options& o, const SessionStreams& streams, 
   // A bare file name is searched for: next to the world (or here, for --code), on VSIM_CODE_PATH,
   // then in the installed and build folders next to this program (code_search.hpp).
   const std::string asWritten = !o.code.empty() ? o.code : world_.codeAsWritten;
-  if (isBareName(asWritten) && !std::filesystem::exists(codePath_)) {
+  if (isBareName(asWritten)) {
     const std::string firstDir =
         !o.code.empty() ? std::string(".") : std::filesystem::path(o.world).parent_path().string();
     const std::vector<std::string> dirs = codeSearchPath(firstDir);

@@ -5,11 +5,15 @@
 # (400, 75) at 24 s, interpolated in time) between 2 s and 24 s: mean and maximum; the final
 # position and its distance to (400, 75).
 #   conveyor-figures.sh TRAJ.csv [OTHER.csv]
+#   conveyor-figures.sh --steps TRAJ.csv
 # With a second file (the same run at another --physics-step), also the largest distance between
-# the two trajectories at the times both have.
+# the two trajectories at the times both have. With --steps, instead, one line per physics step:
+# t, x, y and the distance to the goal (what plot-conveyor.sh draws).
 set -eu
-[ $# -ge 1 ] || { sed -n '2,9p' "$0" | sed 's/^# \{0,1\}//'; exit 2; }
-awk -F, -v other="${2:-}" '
+steps=0
+if [ "${1:-}" = --steps ]; then steps=1; shift; fi
+[ $# -ge 1 ] || { sed -n '2,11p' "$0" | sed 's/^# \{0,1\}//'; exit 2; }
+awk -F, -v other="${2:-}" -v steps="$steps" '
 function goal(t,   i, f) {
   if (t <= T[0]) { gx = X[0]; gy = Y[0]; return }
   for (i = 0; i < 3; ++i)
@@ -21,12 +25,16 @@ BEGIN {
   for (i = 0; i < 4; ++i) { T[i] = T[i + 1]; X[i] = X[i + 1]; Y[i] = Y[i + 1] }
   if (other != "") while ((getline line < other) > 0) { split(line, f, ","); if (f[2] == "0") { ox[f[1]] = f[3]; oy[f[1]] = f[4] } }
 }
+NR > 1 && $2 == 0 && steps {
+  goal($1 + 0); print $1 + 0, $3, $4, sqrt(($3 - gx) ^ 2 + ($4 - gy) ^ 2); next
+}
 NR > 1 && $2 == 0 {
   t = $1 + 0; x = $3; y = $4; fx = x; fy = y
   if (t >= 2 && t <= 24) { goal(t); d = sqrt((x - gx) ^ 2 + (y - gy) ^ 2); sum += d; n++; if (d > max) max = d }
   if (other != "" && ($1 in ox)) { dd = sqrt((x - ox[$1]) ^ 2 + (y - oy[$1]) ^ 2); shared++; if (dd > apart) apart = dd }
 }
 END {
+  if (steps) exit 0
   if (n == 0) { print "conveyor-figures: no line of mobile 0 between 2 s and 24 s" > "/dev/stderr"; exit 1 }
   printf "mean distance to the goal (2..24 s): %.2f mm\n", sum / n
   printf "max distance to the goal (2..24 s): %.2f mm\n", max

@@ -5,20 +5,13 @@
 #   plot-conveyor.sh TRAJ.csv OUT.png
 # TRAJ.csv: vsim examples/worlds/smartblocks-conveyor.xml --mobiles-csv TRAJ.csv
 set -eu
-[ $# -eq 2 ] || { sed -n '2,7p' "$0" | sed 's/^# \{0,1\}//'; exit 2; }
+[ $# -eq 2 ] || { sed -n '2,6p' "$0" | sed 's/^# \{0,1\}//'; exit 2; }
 command -v gnuplot >/dev/null || { echo "plot-conveyor.sh: gnuplot is not installed (apt-get install gnuplot-nox)" >&2; exit 1; }
 here=$(cd "$(dirname "$0")" && pwd)
 work=$(mktemp -d)
 trap 'rm -rf "$work"' EXIT
 "$here/conveyor-figures.sh" "$1" | tee "$work/figures"
-# The distance to the goal at every step (the figures script's goal, one line per step of mobile 0).
-awk -F, 'BEGIN { split("0 10 13 24", T, " "); split("75 350 400 400", X, " "); split("425 425 375 75", Y, " ") }
-NR > 1 && $2 == 0 {
-  t = $1 + 0; gx = X[4]; gy = Y[4]
-  if (t <= T[1]) { gx = X[1]; gy = Y[1] }
-  else for (i = 1; i < 4; ++i) if (t <= T[i + 1]) { f = (t - T[i]) / (T[i + 1] - T[i]); gx = X[i] + f * (X[i + 1] - X[i]); gy = Y[i] + f * (Y[i + 1] - Y[i]); break }
-  print t, $3, $4, sqrt(($3 - gx) ^ 2 + ($4 - gy) ^ 2)
-}' "$1" >"$work/steps"
+"$here/conveyor-figures.sh" --steps "$1" >"$work/steps"
 printf '75 425\n350 425\n400 375\n400 75\n' >"$work/goal"
 mean=$(sed -n 's/^mean distance to the goal (2..24 s): \([0-9.]*\) mm/\1/p' "$work/figures")
 gnuplot <<GNUPLOT

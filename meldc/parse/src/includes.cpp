@@ -8,6 +8,7 @@
 
 #include "meldc/case_folding.hpp"
 #include "meldc/parser.hpp"
+#include "support/program_dir.hpp"
 
 namespace meldc {
 
@@ -162,10 +163,9 @@ std::optional<ast::Program> loadProgram(const std::string& mainPath,
 std::string defaultStdlibDir() {
   if (const char* env = std::getenv("MELD_STDLIB")) return env;
   // An installed program: <prefix>/bin/meldc (or meld, vsim ...) next to <prefix>/share/meld/stdlib.
-  std::error_code ec;
-  const std::filesystem::path exe = std::filesystem::read_symlink("/proc/self/exe", ec);
-  if (!ec) {
-    const std::filesystem::path installed = exe.parent_path().parent_path() / "share" / "meld" / "stdlib";
+  if (const std::filesystem::path bin = support::runningProgramDir(); !bin.empty()) {
+    const std::filesystem::path installed = bin.parent_path() / "share" / "meld" / "stdlib";
+    std::error_code ec;
     if (std::filesystem::is_regular_file(installed / "common.meld", ec)) return installed.string();
   }
 #ifdef MELD_STDLIB_DIR
