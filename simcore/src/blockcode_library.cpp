@@ -66,7 +66,7 @@ BlockCodeLibrary BlockCodeLibrary::open(const std::string& path) {
   std::memcpy(&entry, &symbol, sizeof entry);  // object -> function pointer, as POSIX allows
   const vs_blockcode* code = entry();
   if (!code) closeAndFail("`" VS_BLOCKCODE_ENTRY_SYMBOL "` returned no block program (NULL)");
-  if (code->abi_version < VS_ABI_OLDEST_VERSION || code->abi_version > VS_ABI_VERSION)
+  if (!vs_abi_supported(code->abi_version))
     closeAndFail("was built for block ABI version " + std::to_string(code->abi_version) +
                  ", this simulator speaks versions " + std::to_string(VS_ABI_OLDEST_VERSION) + " to " +
                  std::to_string(VS_ABI_VERSION) + "; rebuild it against this simcore/include/simcore/blockcode.h");

@@ -281,6 +281,8 @@ Simulation::FaceState& Simulation::faceForSending(BlockId b, int f) {
 void Simulation::releaseMessage(std::uint32_t slot) { releaseSlot(messages_, freeMessage_, slot); }
 void Simulation::releaseMotion(std::uint32_t slot) { releaseSlot(motions_, freeMotion_, slot); }
 
+void Simulation::releaseTimer(std::uint32_t slot) { releaseSlot(timers_, freeTimer_, slot); }
+
 void Simulation::setSweptCells(const MotionSlot& m, const Cell& to, BlockId id) {
   forEachSweptCell(world_.lattice(), m.from, to, m.sweptFromFaces, m.sweptToFaces, [&](const Cell& c) {
     if (id == kNoBlock)
@@ -289,6 +291,5 @@ void Simulation::setSweptCells(const MotionSlot& m, const Cell& to, BlockId id) 
       world_.reserve(c, id);
   });
 }
-void Simulation::releaseTimer(std::uint32_t slot) { releaseSlot(timers_, freeTimer_, slot); }
 
 }  // namespace simcore

@@ -45,7 +45,7 @@ BlockId Simulation::addBlock(const Cell& cell, std::uint32_t color) {
 
 void Simulation::setBlockCode(const vs_blockcode* code) {
   if (started_) throw std::logic_error("the block code must be set before the simulation starts");
-  if (code && (code->abi_version < VS_ABI_OLDEST_VERSION || code->abi_version > VS_ABI_VERSION))
+  if (code && !vs_abi_supported(code->abi_version))
     throw std::runtime_error("block code '" + std::string(code->name ? code->name : "?") +
                              "' was built for block ABI version " + std::to_string(code->abi_version) +
                              ", this simulator speaks versions " + std::to_string(VS_ABI_OLDEST_VERSION) +

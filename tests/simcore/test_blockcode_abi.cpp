@@ -323,3 +323,19 @@ BOOST_AUTO_TEST_CASE(c_blockcode_loaded_with_dlopen_runs) {
   }
   BOOST_CHECK_EQUAL(prints[0], prints[1]);
 }
+
+BOOST_AUTO_TEST_CASE(programs_of_abi_2_still_run_and_others_are_refused) {
+  // ABI 3 only added services at the end of the host table and one event kind: a program of ABI 2
+  // runs unchanged (and gets no VS_EV_MOBILE); versions outside 2..3 are refused.
+  BOOST_CHECK(vs_abi_supported(2) && vs_abi_supported(3));
+  BOOST_CHECK(!vs_abi_supported(1) && !vs_abi_supported(4) && !vs_abi_supported(999));
+  auto sim = testsupport::makeSmart({2, 1, 1}, {{0, 0, 0}, {1, 0, 0}});
+  static int started = 0;
+  static const vs_blockcode v2 = {2, "abi-2", 0, [](vs_ctx*) { ++started; }, nullptr, nullptr, nullptr};
+  sim->setBlockCode(&v2);
+  sim->runUntilEmpty();
+  BOOST_CHECK_EQUAL(started, 2);
+  static const vs_blockcode v1 = {1, "abi-1", 0, nullptr, nullptr, nullptr, nullptr};
+  auto other = testsupport::makeSmart({1, 1, 1}, {{0, 0, 0}});
+  BOOST_CHECK_THROW(other->setBlockCode(&v1), std::runtime_error);
+}

@@ -29,6 +29,10 @@ extern "C" {
 /* The oldest version the host still loads: a program of version 2 simply never calls the services
  * added since (mobile_above, air_jet) and gets no VS_EV_MOBILE it does not ask for. */
 #define VS_ABI_OLDEST_VERSION 2
+/* Whether a host of this header runs a program built for block ABI `version`. */
+static inline int vs_abi_supported(uint32_t version) {
+  return version >= VS_ABI_OLDEST_VERSION && version <= VS_ABI_VERSION;
+}
 
 typedef int64_t vs_time; /* simulated nanoseconds */
 typedef uint32_t vs_block_id;
