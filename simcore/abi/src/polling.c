@@ -39,7 +39,7 @@ typedef struct coroutine {
   uint64_t timeout_id;       /* cancellable timeout pending (0: none) */
   uint32_t waiting_kinds;    /* while suspended in a wait; 0 otherwise */
   int waiting_sensor;        /* for VS_EV_SENSOR: the sensor wanted (0: any) */
-  uint8_t timeout_pending, done, started, drop_reported;
+  uint8_t timeout_pending, done, drop_reported;
   uint32_t dropped;
   uint32_t inbox_count, inbox_bytes_used;
   int32_t lent; /* inbox entry returned by the last wait, removed at the next (-1: none) */
@@ -194,14 +194,13 @@ static void on_start(vs_ctx* c) {
   for (int i = 0; i < GUARD_WORDS; ++i) g[i] = GUARD_WORD;
   vs_co_make(&co->co, (char*)c->state + GUARD_WORDS * sizeof(uint64_t), l.stack - GUARD_WORDS * sizeof(uint64_t),
              block_entry, co);
-  co->started = 1;
   to_block(co, &l);
 }
 
 static void on_event(vs_ctx* c, const vs_event* ev) {
   const layout l = layout_of(program_of(c));
   coroutine* co = record_of(c, &l);
-  if (co->done || !co->started) return;
+  if (co->done) return;  // (the ABI promises `start` before any event)
   refresh(co, c);
   if (ev->kind == VS_EV_TIMER && ev->tag == TIMEOUT_TAG) {
     /* Ours: the pending timeout (cancelled ones never fire). */
