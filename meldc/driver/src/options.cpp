@@ -1,13 +1,5 @@
 #include "meldc/options.hpp"
 
-// --help names the built-in standard library folder, so that users can see where an include such
-// as #blinkyblocks.meld comes from.
-#ifdef MELD_STDLIB_DIR
-#define MELD_STDLIB_DIR_TEXT MELD_STDLIB_DIR
-#else
-#define MELD_STDLIB_DIR_TEXT "(none built in)"
-#endif
-
 namespace meldc {
 
 namespace {
@@ -59,9 +51,9 @@ const char* usageText() {
          "  --robots         node ids are block ids (for vsim --program): node literals keep their\n"
          "                   numbers and every id up to the largest exists (no renumbering, §6.1)\n"
          "  --no-stdlib      do not search the standard library folder, which comes after the -I\n"
-         "                   folders: $MELD_STDLIB if set (empty: none), otherwise\n"
-         "                   " MELD_STDLIB_DIR_TEXT
-         "\n"
+         "                   folders: $MELD_STDLIB if set (empty: none), otherwise PREFIX/share/\n"
+         "                   meld/stdlib for a meldc installed as PREFIX/bin/meldc, otherwise the\n"
+         "                   stdlib/ folder of the source tree it was built from\n"
          "  -DNAME=VALUE     define the constant NAME as the Meld expression VALUE (replaces a\n"
          "                   'const NAME = ...' of the program, or adds one)\n"
          "  --help           print this help\n"
