@@ -11,7 +11,7 @@ PACKAGES=(
   qt6-base-dev libqt6opengl6-dev
   libboost-test-dev libpugixml-dev libeigen3-dev
   xvfb xauth libgl1-mesa-dri fonts-dejavu-core
-  python3
+  python3 pkg-config groff-base dpkg-dev file
 )
 missing=()
 for package in "${PACKAGES[@]}"; do

@@ -118,8 +118,8 @@ exit codes:
   130  interrupted (Ctrl-C); the summary of the partial run is printed
 
 examples:
-  vsim examples/worlds/color-flood.xml --code build/release/blockcodes/color_flood.so
-  vsim examples/worlds/tap-cycle.xml --code build/release/blockcodes/tap_cycle.so \
+  vsim examples/worlds/color-flood.xml                  (the world names its code=color_flood.so)
+  vsim examples/worlds/tap-cycle.xml --code tap_cycle.so \
        --tap 2@1s --trace 'kinds=tap,color'
   vsim examples/worlds/meld-gradient-tap.xml --program examples/meld/gradient-tap.meld \
        --tap 0@1s --dump

@@ -11,7 +11,8 @@ rm -rf "$WORK" && mkdir -p "$WORK"
 "$CMAKE" --install "$BUILD" --prefix "$P" >"$WORK/install.log" 2>&1 || { cat "$WORK/install.log"; fail "cmake --install"; }
 for f in bin/meldc bin/meld bin/vsim include/simcore/blockcode.h include/simcore/blockcode_polling.h \
          share/meld/stdlib/common.meld share/meld/stdlib/smartblocks.meld lib/meld/blockcodes/color_flood.so \
-         share/meld/examples/worlds/color-flood.xml share/meld/examples/meld/gradient-tap.meld; do
+         share/meld/examples/worlds/color-flood.xml share/meld/examples/meld/gradient-tap.meld \
+         share/man/man1/meldc.1 share/man/man1/meld.1 share/man/man1/vsim.1; do
   [ -e "$P/$f" ] || fail "$f was not installed"
 done
 ls "$P"/lib*/libblockcode_polling.a >/dev/null 2>&1 || fail "the polling library was not installed"
