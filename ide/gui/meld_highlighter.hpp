@@ -1,6 +1,6 @@
 // Meld syntax colouring for the program editor: keywords, types, predicates, variables, numbers,
 // strings, node literals, and `//` and `/* */` comments (the latter across lines, carried in the
-// block state). The word lists are the reference's (meld-language.md §1.3).
+// block state). The word lists are the reference's (docs/meld-language.md §1.3).
 #pragma once
 
 #include <QRegularExpression>

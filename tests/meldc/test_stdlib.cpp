@@ -1,6 +1,6 @@
 // The standard library include files (stdlib/) and the default include folder of the drivers:
 // each target file passes the front end when included without -I, and declares the sensing and
-// action predicates with exactly the shapes of meld-language.md §7 (the runtime writes their
+// action predicates with exactly the shapes of docs/meld-language.md §7 (the runtime writes their
 // fields by position) and the face constants of its target.
 #define BOOST_TEST_MODULE meldc_stdlib
 #include <boost/test/unit_test.hpp>

@@ -1,4 +1,4 @@
-// Meld.g4 — grammar of Linear Meld as accepted by meldc (see shared/meld-language.md §1–§5).
+// Meld.g4 — grammar of Linear Meld as accepted by meldc (docs/meld-language.md §1–§5).
 //
 // Differences from cl-meld, all of them a harmless superset (spec §11):
 //  * `/* ... */` comments may span lines; `//` comments always run to the end of the line;

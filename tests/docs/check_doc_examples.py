@@ -1,0 +1,125 @@
+#!/usr/bin/env python3
+"""Runs the Meld examples of the documentation and compares them with the text the documents show.
+
+Usage: check_doc_examples.py MELD MELDC WORK DOC.md...
+
+Two kinds of example, each a fenced block whose info string names it:
+
+  ```meld example=NAME            a program; the next fenced block (```dump) is what
+  ...                             `meld NAME.meld --dump` prints, byte for byte. It is run in every
+  ```                             execution mode: the bytecode VM, the JIT (--jit), a shared object
+  ```dump                         (meldc --emit=native), and on 2 worker threads (-j 2), except
+  ...                             with `serial` in the info string (a result that depends on the
+  ```                             order nodes run in, said so in the text around it).
+
+  ```meld error=NAME              a program meldc refuses: `meldc --check` exits 1, and every line of
+  ...                             the next fenced block (```text) appears in what it prints, with
+  ```                             NAME.meld as the file name.
+  ```text
+  NAME.meld:3:1: error: ...
+  ```
+"""
+import os
+import re
+import subprocess
+import sys
+
+FENCE = re.compile(r"^```(\S*)(.*)$")
+
+
+def fenced_blocks(path):
+    """(info, text, line) for every fenced block of a Markdown file."""
+    with open(path, encoding="utf-8") as doc:
+        lines = doc.read().split("\n")
+    i = 0
+    while i < len(lines):
+        match = FENCE.match(lines[i])
+        if match and match.group(1):
+            start = i
+            i += 1
+            body = []
+            while i < len(lines) and lines[i] != "```":
+                body.append(lines[i])
+                i += 1
+            yield (match.group(1) + match.group(2)).split(), "\n".join(body) + "\n", start + 1
+        i += 1
+
+
+def examples(path):
+    blocks = list(fenced_blocks(path))
+    for k, (info, text, line) in enumerate(blocks):
+        if info[0] != "meld":
+            continue
+        attrs = dict(a.split("=", 1) if "=" in a else (a, "") for a in info[1:])
+        if "example" not in attrs and "error" not in attrs:
+            continue
+        want = "dump" if "example" in attrs else "text"
+        if k + 1 >= len(blocks) or blocks[k + 1][0][0] != want:
+            sys.exit(f"FAIL: {path}:{line}: the example is not followed by a ```{want} block")
+        name = attrs.get("example") or attrs.get("error")
+        yield name, attrs, text, blocks[k + 1][1], f"{path}:{line}"
+
+
+def run(command, cwd):
+    return subprocess.run(command, cwd=cwd, capture_output=True, text=True, timeout=60)
+
+
+def check_example(meld, meldc, work, name, attrs, program, expected, where):
+    source = os.path.join(work, name + ".meld")
+    with open(source, "w", encoding="utf-8") as out:
+        out.write(program)
+    modes = [("bytecode", [meld, source, "--dump"]), ("jit", [meld, source, "--jit", "--dump"])]
+    native = os.path.join(work, name + ".so")
+    built = run([meldc, "--emit=native", "--no-progress", "-o", native, source], work)
+    if built.returncode != 0:
+        return [f"{where} ({name}): meldc --emit=native failed:\n{built.stderr}"]
+    modes.append(("native", [meld, native, "--dump"]))
+    if "serial" not in attrs:
+        modes.append(("-j 2", [meld, source, "-j", "2", "--dump"]))
+    failures = []
+    for mode, command in modes:
+        done = run(command, work)
+        if done.returncode != 0 or done.stdout != expected:
+            failures.append(f"{where} ({name}, {mode}): exit {done.returncode}\n--- the document\n{expected}"
+                            f"--- meld\n{done.stdout}{done.stderr}")
+    return failures
+
+
+def check_error(meldc, work, name, program, expected, where):
+    source = name + ".meld"
+    with open(os.path.join(work, source), "w", encoding="utf-8") as out:
+        out.write(program)
+    done = run([meldc, "--check", source], work)
+    said = done.stdout + done.stderr
+    if done.returncode != 1:
+        return [f"{where} ({name}): meldc --check exited {done.returncode}, not 1:\n{said}"]
+    return [f"{where} ({name}): meldc does not say {line!r}; it says:\n{said}"
+            for line in expected.splitlines() if line.strip() and line not in said]
+
+
+def main():
+    if len(sys.argv) < 5:
+        sys.exit(__doc__)
+    meld, meldc, work = (os.path.abspath(a) for a in sys.argv[1:4])
+    os.makedirs(work, exist_ok=True)
+    failures, count, names = [], 0, set()
+    for doc in sys.argv[4:]:
+        for name, attrs, program, expected, where in examples(doc):
+            if name in names:
+                sys.exit(f"FAIL: {where}: a second example named {name}")
+            names.add(name)
+            count += 1
+            if "example" in attrs:
+                failures += check_example(meld, meldc, work, name, attrs, program, expected, where)
+            else:
+                failures += check_error(meldc, work, name, program, expected, where)
+    for failure in failures:
+        print("FAIL:", failure)
+    if count == 0:
+        sys.exit("FAIL: no examples found")
+    print(f"{count} examples of {len(sys.argv) - 4} documents, {len(failures)} failures")
+    sys.exit(1 if failures else 0)
+
+
+if __name__ == "__main__":
+    main()
