@@ -1,4 +1,4 @@
-// Reading XML world files (format: examples/worlds/README.md). The loader parses the whole file
+// Reading XML world files (format: docs/world-format.md). The loader parses the whole file
 // with pugixml in place, so every element and attribute name still points into our own buffer:
 // that pointer gives the byte offset, and the offset gives the line:col of every message.
 #include "simcore/xml_world.hpp"

@@ -1,9 +1,9 @@
 #!/usr/bin/env python3
 """Runs the Meld examples of the documentation and compares them with the text the documents show.
 
-Usage: check_doc_examples.py MELD MELDC WORK DOC.md...
+Usage: check_doc_examples.py MELD MELDC VSIM ABI_INCLUDE_DIR SOURCE_DIR WORK DOC.md...
 
-Two kinds of example, each a fenced block whose info string names it:
+Three kinds of example, each a fenced block whose info string names it:
 
   ```meld example=NAME            a program; the next fenced block (```dump) is what
   ...                             `meld NAME.meld --dump` prints, byte for byte. It is run in every
@@ -18,6 +18,10 @@ Two kinds of example, each a fenced block whose info string names it:
   ```text
   NAME.meld:3:1: error: ...
   ```
+
+  ```c example=NAME world=PATH    a C BlockCode: built with `cc -shared -fPIC` against the block ABI
+  ...                             and run by vsim on the world PATH (relative to SOURCE_DIR), which
+  ```                             must exit 0.
 """
 import os
 import re
@@ -48,10 +52,13 @@ def fenced_blocks(path):
 def examples(path):
     blocks = list(fenced_blocks(path))
     for k, (info, text, line) in enumerate(blocks):
-        if info[0] != "meld":
+        if info[0] not in ("meld", "c"):
             continue
         attrs = dict(a.split("=", 1) if "=" in a else (a, "") for a in info[1:])
         if "example" not in attrs and "error" not in attrs:
+            continue
+        if info[0] == "c":
+            yield attrs.get("example"), attrs, text, None, f"{path}:{line}"
             continue
         want = "dump" if "example" in attrs else "text"
         if k + 1 >= len(blocks) or blocks[k + 1][0][0] != want:
@@ -97,19 +104,37 @@ def check_error(meldc, work, name, program, expected, where):
             for line in expected.splitlines() if line.strip() and line not in said]
 
 
+def check_blockcode(vsim, abi_include, source_dir, work, name, attrs, program, where):
+    source = os.path.join(work, name + ".c")
+    with open(source, "w", encoding="utf-8") as out:
+        out.write(program)
+    library = os.path.join(work, name + ".so")
+    built = run(["cc", "-shared", "-fPIC", "-Wall", "-Werror", "-I", abi_include, source, "-o", library], work)
+    if built.returncode != 0:
+        return [f"{where} ({name}): cc failed:\n{built.stderr}"]
+    if "world" not in attrs:
+        return [f"{where} ({name}): a C example names the world it runs on (world=PATH)"]
+    done = run([vsim, os.path.join(source_dir, attrs["world"]), "--code", library, "--quiet"], work)
+    if done.returncode != 0:
+        return [f"{where} ({name}): vsim exited {done.returncode}:\n{done.stdout}{done.stderr}"]
+    return []
+
+
 def main():
-    if len(sys.argv) < 5:
+    if len(sys.argv) < 8:
         sys.exit(__doc__)
-    meld, meldc, work = (os.path.abspath(a) for a in sys.argv[1:4])
+    meld, meldc, vsim, abi_include, source_dir, work = (os.path.abspath(a) for a in sys.argv[1:7])
     os.makedirs(work, exist_ok=True)
     failures, count, names = [], 0, set()
-    for doc in sys.argv[4:]:
+    for doc in sys.argv[7:]:
         for name, attrs, program, expected, where in examples(doc):
             if name in names:
                 sys.exit(f"FAIL: {where}: a second example named {name}")
             names.add(name)
             count += 1
-            if "example" in attrs:
+            if program is not None and expected is None:
+                failures += check_blockcode(vsim, abi_include, source_dir, work, name, attrs, program, where)
+            elif "example" in attrs:
                 failures += check_example(meld, meldc, work, name, attrs, program, expected, where)
             else:
                 failures += check_error(meldc, work, name, program, expected, where)
@@ -117,7 +142,7 @@ def main():
         print("FAIL:", failure)
     if count == 0:
         sys.exit("FAIL: no examples found")
-    print(f"{count} examples of {len(sys.argv) - 4} documents, {len(failures)} failures")
+    print(f"{count} examples of {len(sys.argv) - 7} documents, {len(failures)} failures")
     sys.exit(1 if failures else 0)
 
 

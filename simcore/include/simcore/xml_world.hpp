@@ -2,7 +2,7 @@
 // positions are lattice cells, whatever the lattice) plus our own attributes:
 // reading them into a plain description, building a Simulation from one, and writing the final
 // configuration of a run back in the same format. The format is documented in
-// examples/worlds/README.md.
+// docs/world-format.md.
 //
 // The loader knows nothing of targets (simcore must not depend on targets/): the target name is
 // stored as written, and the front end turns it into a TargetSpec.
