@@ -124,7 +124,8 @@ examples:
   vsim examples/worlds/meld-gradient-tap.xml --program examples/meld/gradient-tap.meld \
        --tap 0@1s --dump
   vsim examples/worlds/stability-overhang.xml --check-stability
-  vsim --target multicore --program bench/meld/pagerank/pagerank.meld --cores 1,2,4,8,16,32
+  bench/meld/pagerank/gen.py --nodes 1000 --iterations 10 -o pr.meld
+  vsim --target multicore --program pr.meld --cores 1,2,4,8,16,32
 )";
 }
 

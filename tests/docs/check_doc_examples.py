@@ -19,6 +19,12 @@ Three kinds of example, each a fenced block whose info string names it:
   NAME.meld:3:1: error: ...
   ```
 
+  ```xml world=NAME               a world file, written as NAME.xml for the robot examples below
+  ```meld robot=NAME world=W      a robot program, written as NAME.meld and run by `vsim W.xml` (the
+  ```                             world names it), as bytecode and with --jit; every line of the
+  ```text                         next block (```text) must appear in what vsim prints.
+  ```
+
   ```c example=NAME world=PATH    a C BlockCode: built with `cc -shared -fPIC` against the block ABI
   ...                             and run by vsim on the world PATH (relative to SOURCE_DIR), which
   ```                             must exit 0.
@@ -52,15 +58,26 @@ def fenced_blocks(path):
 def examples(path):
     blocks = list(fenced_blocks(path))
     for k, (info, text, line) in enumerate(blocks):
-        if info[0] not in ("meld", "c"):
+        if info[0] not in ("meld", "c", "xml"):
             continue
         attrs = dict(a.split("=", 1) if "=" in a else (a, "") for a in info[1:])
-        if "example" not in attrs and "error" not in attrs:
+        if info[0] == "xml":
+            if "world" in attrs:
+                yield attrs["world"], attrs, text, "", f"{path}:{line}"
+            continue
+        if "example" not in attrs and "error" not in attrs and "robot" not in attrs:
             continue
         if info[0] == "c":
             yield attrs.get("example"), attrs, text, None, f"{path}:{line}"
             continue
         want = "dump" if "example" in attrs else "text"
+        if "robot" in attrs:
+            # The robot example's text block may follow a shell block (the command to run it).
+            following = [b for b in blocks[k + 1:k + 3] if b[0][0] == "text"]
+            if not following:
+                sys.exit(f"FAIL: {path}:{line}: the robot example is not followed by a ```text block")
+            yield attrs["robot"], attrs, text, following[0][1], f"{path}:{line}"
+            continue
         if k + 1 >= len(blocks) or blocks[k + 1][0][0] != want:
             sys.exit(f"FAIL: {path}:{line}: the example is not followed by a ```{want} block")
         name = attrs.get("example") or attrs.get("error")
@@ -104,6 +121,22 @@ def check_error(meldc, work, name, program, expected, where):
             for line in expected.splitlines() if line.strip() and line not in said]
 
 
+def check_robot(vsim, work, name, attrs, program, expected, where):
+    with open(os.path.join(work, name + ".meld"), "w", encoding="utf-8") as out:
+        out.write(program)
+    world = os.path.join(work, attrs.get("world", "") + ".xml")
+    if not os.path.isfile(world):
+        return [f"{where} ({name}): no ```xml world={attrs.get('world')} block before it"]
+    failures = []
+    for mode, extra in (("bytecode", []), ("jit", ["--jit"])):
+        done = run([vsim, world, "--no-progress"] + extra, work)
+        said = done.stdout + done.stderr
+        missing = [line for line in expected.splitlines() if line.strip() and line not in said.splitlines()]
+        if done.returncode != 0 or missing:
+            failures.append(f"{where} ({name}, {mode}): exit {done.returncode}, missing {missing}; vsim says:\n{said}")
+    return failures
+
+
 def check_blockcode(vsim, abi_include, source_dir, work, name, attrs, program, where):
     source = os.path.join(work, name + ".c")
     with open(source, "w", encoding="utf-8") as out:
@@ -132,7 +165,13 @@ def main():
                 sys.exit(f"FAIL: {where}: a second example named {name}")
             names.add(name)
             count += 1
-            if program is not None and expected is None:
+            if "world" in attrs and "robot" not in attrs and "example" not in attrs:
+                with open(os.path.join(work, name + ".xml"), "w", encoding="utf-8") as out:
+                    out.write(program)
+                continue
+            if "robot" in attrs:
+                failures += check_robot(vsim, work, name, attrs, program, expected, where)
+            elif program is not None and expected is None:
                 failures += check_blockcode(vsim, abi_include, source_dir, work, name, attrs, program, where)
             elif "example" in attrs:
                 failures += check_example(meld, meldc, work, name, attrs, program, expected, where)
