@@ -2,7 +2,7 @@
 # P/share/meld/stdlib (meldc finds it there, relative to its own location), the block ABI headers in
 # P/include/simcore with the polling library in P/lib, the example BlockCodes in
 # P/lib/meld/blockcodes (vsim finds worlds' `code="name.so"` there), the examples in
-# P/share/meld/examples, and what a BlockCode built elsewhere needs: the CMake package
+# P/share/meld/examples, the documents in P/share/doc/meld-toolchain, and what a BlockCode built elsewhere needs: the CMake package
 # (find_package(MeldToolchain)) and the pkg-config files. Every path is relative to the prefix.
 include(GNUInstallDirs)
 include(CMakePackageConfigHelpers)
@@ -26,6 +26,10 @@ install(DIRECTORY ${PROJECT_SOURCE_DIR}/examples/worlds ${PROJECT_SOURCE_DIR}/ex
                   ${PROJECT_SOURCE_DIR}/examples/c ${PROJECT_SOURCE_DIR}/examples/physics
                   ${PROJECT_SOURCE_DIR}/examples/blockcode-project
         DESTINATION ${CMAKE_INSTALL_DATADIR}/meld/examples)
+
+# The documents (user guide, language reference, world format, block ABI, architecture).
+install(DIRECTORY ${PROJECT_SOURCE_DIR}/docs/ DESTINATION ${CMAKE_INSTALL_DATADIR}/doc/meld-toolchain
+        FILES_MATCHING PATTERN "*.md" PATTERN "*.png")
 
 # The CMake package: MeldToolchain::blockcode (the ABI header) and ::blockcode_polling.
 install(TARGETS blockcode_abi blockcode_polling EXPORT MeldToolchainTargets

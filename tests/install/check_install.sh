@@ -12,7 +12,8 @@ rm -rf "$WORK" && mkdir -p "$WORK"
 for f in bin/meldc bin/meld bin/vsim include/simcore/blockcode.h include/simcore/blockcode_polling.h \
          share/meld/stdlib/common.meld share/meld/stdlib/smartblocks.meld lib/meld/blockcodes/color_flood.so \
          share/meld/examples/worlds/color-flood.xml share/meld/examples/meld/gradient-tap.meld \
-         share/man/man1/meldc.1 share/man/man1/meld.1 share/man/man1/vsim.1; do
+         share/man/man1/meldc.1 share/man/man1/meld.1 share/man/man1/vsim.1 \
+         share/doc/meld-toolchain/meld-language.md share/doc/meld-toolchain/images/vsim-ide.png; do
   [ -e "$P/$f" ] || fail "$f was not installed"
 done
 ls "$P"/lib*/libblockcode_polling.a >/dev/null 2>&1 || fail "the polling library was not installed"
