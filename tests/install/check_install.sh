@@ -29,4 +29,12 @@ echo "const installedMarker = 1." >>"$P/share/meld/stdlib/common.meld"
 printf 'include #blinkyblocks.meld\ntype linear x(node, int).\nx(@0, installedMarker).\n' >"$WORK/marker.meld"
 "$P/bin/meldc" --robots --check "$WORK/marker.meld" >"$WORK/meldc" 2>&1 ||
   { cat "$WORK/meldc"; fail "the installed meldc did not read the installed standard library"; }
+# The installed IDE draws the installed Meld example (a picture under Xvfb, as the IDE tests do).
+if [ -x "$P/bin/vsim-ide" ]; then
+  command -v xvfb-run >/dev/null || fail "xvfb-run is missing (scripts/install-packages.sh installs it)"
+  xvfb-run -a "$P/bin/vsim-ide" "$P/share/meld/examples/worlds/meld-gradient-tap.xml" --screenshot "$WORK/ide.png" \
+    --until 3s --size 320x240 >"$WORK/ide" 2>&1 || { cat "$WORK/ide"; fail "the installed vsim-ide did not draw the example"; }
+  fp=$("$P/bin/vsim" "$P/share/meld/examples/worlds/meld-gradient-tap.xml" --until 3s --no-progress | awk '/fingerprint/ {print $2}')
+  grep -q "fingerprint $fp" "$WORK/ide" || { cat "$WORK/ide"; fail "the installed vsim-ide ran another run than vsim ($fp)"; }
+fi
 echo "installed into $P: the demo, a Meld example and the installed stdlib all ran"
