@@ -2,9 +2,11 @@
 # `cmake --install` into a fresh prefix, then the installed programs run the examples from there:
 # vsim finds the installed BlockCodes by name, meldc the installed standard library (a constant
 # added to the installed copy only proves it is that one), the headers and the polling library are
-# in place. Usage: check_install.sh CMAKE BUILD_DIR WORK
+# in place. Usage: check_install.sh CMAKE BUILD_DIR WORK [GUI_ENV...] (GUI_ENV: a command prefix for
+# the IDE under the sanitizers, e.g. env LD_PRELOAD=...)
 set -u
 CMAKE=$1 BUILD=$2 WORK=$3
+shift 3
 P="$WORK/prefix"
 fail() { echo "FAIL: $*"; exit 1; }
 rm -rf "$WORK" && mkdir -p "$WORK"
@@ -32,7 +34,7 @@ printf 'include #blinkyblocks.meld\ntype linear x(node, int).\nx(@0, installedMa
 # The installed IDE draws the installed Meld example (a picture under Xvfb, as the IDE tests do).
 if [ -x "$P/bin/vsim-ide" ]; then
   command -v xvfb-run >/dev/null || fail "xvfb-run is missing (scripts/install-packages.sh installs it)"
-  xvfb-run -a "$P/bin/vsim-ide" "$P/share/meld/examples/worlds/meld-gradient-tap.xml" --screenshot "$WORK/ide.png" \
+  xvfb-run -a "$@" "$P/bin/vsim-ide" "$P/share/meld/examples/worlds/meld-gradient-tap.xml" --screenshot "$WORK/ide.png" \
     --until 3s --size 320x240 >"$WORK/ide" 2>&1 || { cat "$WORK/ide"; fail "the installed vsim-ide did not draw the example"; }
   fp=$("$P/bin/vsim" "$P/share/meld/examples/worlds/meld-gradient-tap.xml" --until 3s --no-progress | awk '/fingerprint/ {print $2}')
   grep -q "fingerprint $fp" "$WORK/ide" || { cat "$WORK/ide"; fail "the installed vsim-ide ran another run than vsim ($fp)"; }
