@@ -12,6 +12,10 @@ Three kinds of example, each a fenced block whose info string names it:
   ...                             with `serial` in the info string (a result that depends on the
   ```                             order nodes run in, said so in the text around it).
 
+  Attributes of an example: `serial` (above); `args=A,B` (program arguments, `-- A B`, read as
+  @arg1, @arg2). A block ```meld file=NAME``` is written as NAME.meld for the examples after it to
+  include (`include #NAME.meld`).
+
   ```meld error=NAME              a program meldc refuses: `meldc --check` exits 1, and every line of
   ...                             the next fenced block (```text) appears in what it prints, with
   ```                             NAME.meld as the file name.
@@ -65,6 +69,9 @@ def examples(path):
             if "world" in attrs:
                 yield attrs["world"], attrs, text, "", f"{path}:{line}"
             continue
+        if info[0] == "meld" and "file" in attrs:
+            yield attrs["file"], attrs, text, "", f"{path}:{line}"
+            continue
         if "example" not in attrs and "error" not in attrs and "robot" not in attrs:
             continue
         if info[0] == "c":
@@ -92,14 +99,15 @@ def check_example(meld, meldc, work, name, attrs, program, expected, where):
     source = os.path.join(work, name + ".meld")
     with open(source, "w", encoding="utf-8") as out:
         out.write(program)
-    modes = [("bytecode", [meld, source, "--dump"]), ("jit", [meld, source, "--jit", "--dump"])]
+    args = ["--"] + attrs["args"].split(",") if attrs.get("args") else []
+    modes = [("bytecode", [meld, source, "--dump"] + args), ("jit", [meld, source, "--jit", "--dump"] + args)]
     native = os.path.join(work, name + ".so")
     built = run([meldc, "--emit=native", "--no-progress", "-o", native, source], work)
     if built.returncode != 0:
         return [f"{where} ({name}): meldc --emit=native failed:\n{built.stderr}"]
-    modes.append(("native", [meld, native, "--dump"]))
+    modes.append(("native", [meld, native, "--dump"] + args))
     if "serial" not in attrs:
-        modes.append(("-j 2", [meld, source, "-j", "2", "--dump"]))
+        modes.append(("-j 2", [meld, source, "-j", "2", "--dump"] + args))
     failures = []
     for mode, command in modes:
         done = run(command, work)
@@ -165,6 +173,10 @@ def main():
                 sys.exit(f"FAIL: {where}: a second example named {name}")
             names.add(name)
             count += 1
+            if "file" in attrs and "example" not in attrs:
+                with open(os.path.join(work, name + ".meld"), "w", encoding="utf-8") as out:
+                    out.write(program)
+                continue
             if "world" in attrs and "robot" not in attrs and "example" not in attrs:
                 with open(os.path.join(work, name + ".xml"), "w", encoding="utf-8") as out:
                     out.write(program)
