@@ -3,7 +3,7 @@
 
 Usage: check_doc_examples.py MELD MELDC VSIM ABI_INCLUDE_DIR SOURCE_DIR WORK DOC.md...
 
-Three kinds of example, each a fenced block whose info string names it:
+The examples, each a fenced block whose info string names it:
 
   ```meld example=NAME            a program; the next fenced block (```dump) is what
   ...                             `meld NAME.meld --dump` prints, byte for byte. It is run in every
@@ -33,6 +33,7 @@ Three kinds of example, each a fenced block whose info string names it:
   ...                             and run by vsim on the world PATH (relative to SOURCE_DIR), which
   ```                             must exit 0.
 """
+import collections
 import os
 import re
 import subprocess
@@ -59,141 +60,146 @@ def fenced_blocks(path):
         i += 1
 
 
+# kind: file, world (written for the examples after them), dump, error, robot, blockcode (checked).
+Example = collections.namedtuple("Example", "kind name attrs text expected where")
+
+
 def examples(path):
     blocks = list(fenced_blocks(path))
     for k, (info, text, line) in enumerate(blocks):
-        if info[0] not in ("meld", "c", "xml"):
-            continue
         attrs = dict(a.split("=", 1) if "=" in a else (a, "") for a in info[1:])
-        if info[0] == "xml":
-            if "world" in attrs:
-                yield attrs["world"], attrs, text, "", f"{path}:{line}"
+        where = f"{path}:{line}"
+
+        def followed_by(language, within=1):
+            # A robot example's output may come after a shell block (the command that runs it).
+            found = [b for b in blocks[k + 1:k + 1 + within] if b[0][0] == language]
+            if not found:
+                sys.exit(f"FAIL: {where}: the example is not followed by a ```{language} block")
+            return found[0][1]
+
+        language = info[0]
+        if language == "xml" and "world" in attrs:
+            yield Example("world", attrs["world"], attrs, text, None, where)
+        elif language == "c" and "example" in attrs:
+            yield Example("blockcode", attrs["example"], attrs, text, None, where)
+        elif language != "meld":
             continue
-        if info[0] == "meld" and "file" in attrs:
-            yield attrs["file"], attrs, text, "", f"{path}:{line}"
-            continue
-        if "example" not in attrs and "error" not in attrs and "robot" not in attrs:
-            continue
-        if info[0] == "c":
-            yield attrs.get("example"), attrs, text, None, f"{path}:{line}"
-            continue
-        want = "dump" if "example" in attrs else "text"
-        if "robot" in attrs:
-            # The robot example's text block may follow a shell block (the command to run it).
-            following = [b for b in blocks[k + 1:k + 3] if b[0][0] == "text"]
-            if not following:
-                sys.exit(f"FAIL: {path}:{line}: the robot example is not followed by a ```text block")
-            yield attrs["robot"], attrs, text, following[0][1], f"{path}:{line}"
-            continue
-        if k + 1 >= len(blocks) or blocks[k + 1][0][0] != want:
-            sys.exit(f"FAIL: {path}:{line}: the example is not followed by a ```{want} block")
-        name = attrs.get("example") or attrs.get("error")
-        yield name, attrs, text, blocks[k + 1][1], f"{path}:{line}"
+        elif "file" in attrs:
+            yield Example("file", attrs["file"], attrs, text, None, where)
+        elif "example" in attrs:
+            yield Example("dump", attrs["example"], attrs, text, followed_by("dump"), where)
+        elif "error" in attrs:
+            yield Example("error", attrs["error"], attrs, text, followed_by("text"), where)
+        elif "robot" in attrs:
+            yield Example("robot", attrs["robot"], attrs, text, followed_by("text", within=2), where)
 
 
 def run(command, cwd):
     return subprocess.run(command, cwd=cwd, capture_output=True, text=True, timeout=60)
 
 
-def check_example(meld, meldc, work, name, attrs, program, expected, where):
-    source = os.path.join(work, name + ".meld")
-    with open(source, "w", encoding="utf-8") as out:
-        out.write(program)
-    args = ["--"] + attrs["args"].split(",") if attrs.get("args") else []
-    modes = [("bytecode", [meld, source, "--dump"] + args), ("jit", [meld, source, "--jit", "--dump"] + args)]
-    native = os.path.join(work, name + ".so")
-    built = run([meldc, "--emit=native", "--no-progress", "-o", native, source], work)
-    if built.returncode != 0:
-        return [f"{where} ({name}): meldc --emit=native failed:\n{built.stderr}"]
-    modes.append(("native", [meld, native, "--dump"] + args))
-    if "serial" not in attrs:
-        modes.append(("-j 2", [meld, source, "-j", "2", "--dump"] + args))
-    failures = []
-    for mode, command in modes:
-        done = run(command, work)
-        if done.returncode != 0 or done.stdout != expected:
-            failures.append(f"{where} ({name}, {mode}): exit {done.returncode}\n--- the document\n{expected}"
-                            f"--- meld\n{done.stdout}{done.stderr}")
-    return failures
+def write(work, filename, text):
+    path = os.path.join(work, filename)
+    with open(path, "w", encoding="utf-8") as out:
+        out.write(text)
+    return path
 
 
-def check_error(meldc, work, name, program, expected, where):
-    source = name + ".meld"
-    with open(os.path.join(work, source), "w", encoding="utf-8") as out:
-        out.write(program)
-    done = run([meldc, "--check", source], work)
-    said = done.stdout + done.stderr
-    if done.returncode != 1:
-        return [f"{where} ({name}): meldc --check exited {done.returncode}, not 1:\n{said}"]
-    return [f"{where} ({name}): meldc does not say {line!r}; it says:\n{said}"
-            for line in expected.splitlines() if line.strip() and line not in said]
+class Checker:
+    """The programs and folders every check needs; one method per kind of example."""
 
+    def __init__(self, meld, meldc, vsim, abi_include, source_dir, work):
+        self.meld, self.meldc, self.vsim = meld, meldc, vsim
+        self.abi_include, self.source_dir, self.work = abi_include, source_dir, work
 
-def check_robot(vsim, work, name, attrs, program, expected, where):
-    with open(os.path.join(work, name + ".meld"), "w", encoding="utf-8") as out:
-        out.write(program)
-    world = os.path.join(work, attrs.get("world", "") + ".xml")
-    if not os.path.isfile(world):
-        return [f"{where} ({name}): no ```xml world={attrs.get('world')} block before it"]
-    failures = []
-    for mode, extra in (("bytecode", []), ("jit", ["--jit"])):
-        done = run([vsim, world, "--no-progress"] + extra, work)
+    def check(self, ex):
+        return getattr(self, ex.kind)(ex)
+
+    def file(self, ex):
+        write(self.work, ex.name + ".meld", ex.text)
+        return []
+
+    def world(self, ex):
+        write(self.work, ex.name + ".xml", ex.text)
+        return []
+
+    def dump(self, ex):
+        source = write(self.work, ex.name + ".meld", ex.text)
+        args = ["--"] + ex.attrs["args"].split(",") if ex.attrs.get("args") else []
+        native = os.path.join(self.work, ex.name + ".so")
+        built = run([self.meldc, "--emit=native", "--no-progress", "-o", native, source], self.work)
+        if built.returncode != 0:
+            return [f"{ex.where} ({ex.name}): meldc --emit=native failed:\n{built.stderr}"]
+        modes = [("bytecode", [source]), ("jit", [source, "--jit"]), ("native", [native])]
+        if "serial" not in ex.attrs:
+            modes.append(("-j 2", [source, "-j", "2"]))
+        failures = []
+        for mode, command in modes:
+            done = run([self.meld] + command + ["--dump"] + args, self.work)
+            if done.returncode != 0 or done.stdout != ex.expected:
+                failures.append(f"{ex.where} ({ex.name}, {mode}): exit {done.returncode}\n--- the document\n"
+                                f"{ex.expected}--- meld\n{done.stdout}{done.stderr}")
+        return failures
+
+    def error(self, ex):
+        source = ex.name + ".meld"
+        write(self.work, source, ex.text)
+        done = run([self.meldc, "--check", source], self.work)
         said = done.stdout + done.stderr
-        missing = [line for line in expected.splitlines() if line.strip() and line not in said.splitlines()]
-        if done.returncode != 0 or missing:
-            failures.append(f"{where} ({name}, {mode}): exit {done.returncode}, missing {missing}; vsim says:\n{said}")
-    return failures
+        if done.returncode != 1:
+            return [f"{ex.where} ({ex.name}): meldc --check exited {done.returncode}, not 1:\n{said}"]
+        return [f"{ex.where} ({ex.name}): meldc does not say {line!r}; it says:\n{said}"
+                for line in ex.expected.splitlines() if line.strip() and line not in said]
 
+    def robot(self, ex):
+        write(self.work, ex.name + ".meld", ex.text)
+        world = os.path.join(self.work, ex.attrs.get("world", "") + ".xml")
+        if not os.path.isfile(world):
+            return [f"{ex.where} ({ex.name}): no ```xml world={ex.attrs.get('world')} block before it"]
+        failures = []
+        for mode, extra in (("bytecode", []), ("jit", ["--jit"])):
+            done = run([self.vsim, world, "--no-progress"] + extra, self.work)
+            said = done.stdout + done.stderr
+            missing = [line for line in ex.expected.splitlines() if line.strip() and line not in said.splitlines()]
+            if done.returncode != 0 or missing:
+                failures.append(f"{ex.where} ({ex.name}, {mode}): exit {done.returncode}, missing {missing}; "
+                                f"vsim says:\n{said}")
+        return failures
 
-def check_blockcode(vsim, abi_include, source_dir, work, name, attrs, program, where):
-    source = os.path.join(work, name + ".c")
-    with open(source, "w", encoding="utf-8") as out:
-        out.write(program)
-    library = os.path.join(work, name + ".so")
-    built = run(["cc", "-shared", "-fPIC", "-Wall", "-Werror", "-I", abi_include, source, "-o", library], work)
-    if built.returncode != 0:
-        return [f"{where} ({name}): cc failed:\n{built.stderr}"]
-    if "world" not in attrs:
-        return [f"{where} ({name}): a C example names the world it runs on (world=PATH)"]
-    done = run([vsim, os.path.join(source_dir, attrs["world"]), "--code", library, "--quiet"], work)
-    if done.returncode != 0:
-        return [f"{where} ({name}): vsim exited {done.returncode}:\n{done.stdout}{done.stderr}"]
-    return []
+    def blockcode(self, ex):
+        if "world" not in ex.attrs:
+            return [f"{ex.where} ({ex.name}): a C example names the world it runs on (world=PATH)"]
+        source = write(self.work, ex.name + ".c", ex.text)
+        library = os.path.join(self.work, ex.name + ".so")
+        built = run(["cc", "-shared", "-fPIC", "-Wall", "-Werror", "-I", self.abi_include, source, "-o", library],
+                    self.work)
+        if built.returncode != 0:
+            return [f"{ex.where} ({ex.name}): cc failed:\n{built.stderr}"]
+        done = run([self.vsim, os.path.join(self.source_dir, ex.attrs["world"]), "--code", library, "--quiet"],
+                   self.work)
+        if done.returncode != 0:
+            return [f"{ex.where} ({ex.name}): vsim exited {done.returncode}:\n{done.stdout}{done.stderr}"]
+        return []
 
 
 def main():
     if len(sys.argv) < 8:
         sys.exit(__doc__)
-    meld, meldc, vsim, abi_include, source_dir, work = (os.path.abspath(a) for a in sys.argv[1:7])
-    os.makedirs(work, exist_ok=True)
-    failures, count, names = [], 0, set()
+    checker = Checker(*(os.path.abspath(a) for a in sys.argv[1:7]))
+    os.makedirs(checker.work, exist_ok=True)
+    failures, names, checked = [], set(), 0
     for doc in sys.argv[7:]:
-        for name, attrs, program, expected, where in examples(doc):
-            if name in names:
-                sys.exit(f"FAIL: {where}: a second example named {name}")
-            names.add(name)
-            count += 1
-            if "file" in attrs and "example" not in attrs:
-                with open(os.path.join(work, name + ".meld"), "w", encoding="utf-8") as out:
-                    out.write(program)
-                continue
-            if "world" in attrs and "robot" not in attrs and "example" not in attrs:
-                with open(os.path.join(work, name + ".xml"), "w", encoding="utf-8") as out:
-                    out.write(program)
-                continue
-            if "robot" in attrs:
-                failures += check_robot(vsim, work, name, attrs, program, expected, where)
-            elif program is not None and expected is None:
-                failures += check_blockcode(vsim, abi_include, source_dir, work, name, attrs, program, where)
-            elif "example" in attrs:
-                failures += check_example(meld, meldc, work, name, attrs, program, expected, where)
-            else:
-                failures += check_error(meldc, work, name, program, expected, where)
+        for ex in examples(doc):
+            if ex.name in names:
+                sys.exit(f"FAIL: {ex.where}: a second example named {ex.name}")
+            names.add(ex.name)
+            checked += ex.kind not in ("file", "world")
+            failures += checker.check(ex)
     for failure in failures:
         print("FAIL:", failure)
-    if count == 0:
+    if checked == 0:
         sys.exit("FAIL: no examples found")
-    print(f"{count} examples of {len(sys.argv) - 7} documents, {len(failures)} failures")
+    print(f"{checked} examples of {len(sys.argv) - 7} documents, {len(failures)} failures")
     sys.exit(1 if failures else 0)
 
 

@@ -5,11 +5,10 @@
 # dependency) and run by the packaged meld, and a man page.
 # Usage: check_deb.sh CPACK BUILD_DIR WORK
 set -u
+. "$(dirname "$0")/common.sh"
 CPACK=$1 BUILD=$2 WORK=$3
-fail() { echo "FAIL: $*"; exit 1; }
 rm -rf "$WORK" && mkdir -p "$WORK"
-"$CPACK" -G DEB --config "$BUILD/CPackConfig.cmake" -B "$WORK/pkg" >"$WORK/cpack.log" 2>&1 ||
-  { cat "$WORK/cpack.log"; fail "cpack -G DEB"; }
+run_or_fail "$WORK/cpack.log" "cpack -G DEB" "$CPACK" -G DEB --config "$BUILD/CPackConfig.cmake" -B "$WORK/pkg"
 DEB=$(ls "$WORK"/pkg/meld-toolchain_*_*.deb 2>/dev/null | head -1)
 [ -n "$DEB" ] || { cat "$WORK/cpack.log"; fail "no meld-toolchain_*.deb made"; }
 
@@ -25,28 +24,23 @@ echo "$DEPENDS" | tr ',' '\n' | sed 's/[(|].*//; s/ //g' | while read -r dep; do
 done || exit 1
 
 R="$WORK/root"
+U="$R/usr"
 dpkg-deb -x "$DEB" "$R" || fail "dpkg-deb -x"
-for f in usr/bin/meldc usr/bin/meld usr/bin/vsim usr/bin/vsim-ide usr/share/meld/stdlib/common.meld \
+expect_files "$R" usr/bin/meldc usr/bin/meld usr/bin/vsim usr/bin/vsim-ide usr/share/meld/stdlib/common.meld \
          usr/lib/meld/blockcodes/color_flood.so usr/include/simcore/blockcode.h \
          usr/lib/cmake/MeldToolchain/MeldToolchainConfig.cmake usr/lib/pkgconfig/meld-blockcode.pc \
-         usr/share/man/man1/vsim.1 usr/share/meld/examples/worlds/color-flood.xml; do
-  [ -e "$R/$f" ] || fail "the package lacks /$f"
-done
+         usr/share/man/man1/vsim.1 usr/share/meld/examples/worlds/color-flood.xml
 unset MELD_STDLIB VSIM_CODE_PATH
 cd "$WORK" || exit 1
-"$R/usr/bin/vsim" "$R/usr/share/meld/examples/worlds/color-flood.xml" --no-progress >"$WORK/demo" 2>&1 ||
-  { cat "$WORK/demo"; fail "the packaged vsim did not run the demo"; }
-grep -q "block code      color-flood ($R/usr/lib/meld/blockcodes/color_flood.so)" "$WORK/demo" ||
-  { cat "$WORK/demo"; fail "the demo did not run the packaged BlockCode"; }
-"$R/usr/bin/meldc" --robots --emit=native --no-progress -o "$WORK/rainbow.so" \
-  "$R/usr/share/meld/examples/meld/rainbow.meld" >"$WORK/meldc" 2>&1 ||
-  { cat "$WORK/meldc"; fail "the packaged meldc did not compile to native code with the packaged stdlib"; }
-"$R/usr/bin/vsim" "$R/usr/share/meld/examples/worlds/meld-rainbow.xml" --program "$WORK/rainbow.so" \
-  --no-progress >"$WORK/native" 2>&1 || { cat "$WORK/native"; fail "the packaged vsim did not run the native program"; }
-"$R/usr/bin/vsim" "$R/usr/share/meld/examples/worlds/meld-rainbow.xml" --no-progress >"$WORK/bytecode" 2>&1 ||
-  { cat "$WORK/bytecode"; fail "the packaged vsim did not run the Meld example"; }
-[ "$(grep fingerprint "$WORK/native")" = "$(grep fingerprint "$WORK/bytecode")" ] ||
-  fail "native and bytecode runs differ: $(grep fingerprint "$WORK/native") / $(grep fingerprint "$WORK/bytecode")"
-MANWIDTH=80 man -l "$R/usr/share/man/man1/vsim.1" 2>/dev/null | grep -q "simulate modular robots" ||
+check_demo "$U" "$WORK/demo"
+run_or_fail "$WORK/meldc" "the packaged meldc did not compile to native code with the packaged stdlib" \
+  "$U/bin/meldc" --robots --emit=native --no-progress -o "$WORK/rainbow.so" "$U/share/meld/examples/meld/rainbow.meld"
+world="$U/share/meld/examples/worlds/meld-rainbow.xml"
+run_or_fail "$WORK/native" "the packaged vsim did not run the native program" \
+  "$U/bin/vsim" "$world" --program "$WORK/rainbow.so" --no-progress
+run_or_fail "$WORK/bytecode" "the packaged vsim did not run the Meld example" "$U/bin/vsim" "$world" --no-progress
+[ "$(fingerprint "$WORK/native")" = "$(fingerprint "$WORK/bytecode")" ] ||
+  fail "native and bytecode runs differ: $(fingerprint "$WORK/native") / $(fingerprint "$WORK/bytecode")"
+MANWIDTH=80 man -l "$U/share/man/man1/vsim.1" 2>/dev/null | grep -q "simulate modular robots" ||
   fail "the packaged man page vsim.1 does not render"
 echo "$(basename "$DEB"): $(du -k "$DEB" | cut -f1) KiB, unpacked into $R: demo, native Meld and man page ran"
