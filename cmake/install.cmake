@@ -2,8 +2,9 @@
 # P/share/meld/stdlib (meldc finds it there, relative to its own location), the block ABI headers in
 # P/include/simcore with the polling library in P/lib, the example BlockCodes in
 # P/lib/meld/blockcodes (vsim finds worlds' `code="name.so"` there), the examples in
-# P/share/meld/examples, the documents in P/share/doc/meld-toolchain, and what a BlockCode built elsewhere needs: the CMake package
-# (find_package(MeldToolchain)) and the pkg-config files. Every path is relative to the prefix.
+# P/share/meld/examples, the documents in P/share/doc/meld-toolchain, and what a BlockCode built
+# elsewhere needs: the CMake package (find_package(MeldToolchain)) and the pkg-config files. The man
+# pages are man.cmake's. Every path is relative to the prefix.
 include(GNUInstallDirs)
 include(CMakePackageConfigHelpers)
 # Fixed, not GNUInstallDirs' LIBDIR: vsim looks for <bin>/../lib/meld/blockcodes.
