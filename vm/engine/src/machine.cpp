@@ -10,6 +10,7 @@
 #include "meldvm/bytecode_internal.hpp"
 #include "meldvm/dump.hpp"
 #include "meldvm/mailboxes.hpp"
+#include "send_order.hpp"
 
 namespace meldvm {
 
@@ -47,6 +48,7 @@ Machine::Machine(const Program& program, MachineOptions options)
   for (PredId p = 0; p < preds; ++p)
     for (TypeId t : program.predicates[p].fields) shapes[p].push_back(argWidth(program.types.kind(t)));
   mail_ = std::make_unique<Mailboxes>(shapes);
+  sendOrder_ = std::make_unique<detail::SendOrder>();
   linearOutArgs_.reserve(1024);
   persistentArgs_.reserve(1024);
 }
@@ -95,7 +97,6 @@ void Machine::start() {
   if (tables_.hasThreads) threadNode_ = n + placement_.self;
   db_->addNodes(all);
   candidates_.assign(std::size_t(all) * tables_.ruleWords, 0);
-  axiomCandidates_.assign(tables_.ruleWords, 0);
   mail_->addNodes(all);
   created_.assign(all, 0);
   if (!program_.globalsInit.code.empty()) {
@@ -207,6 +208,17 @@ void Machine::receive(NodeId n, PredId p, const Value* args, bool negative) {
 std::uint64_t Machine::runNode(NodeId n) {
   start();
   const std::uint64_t firedBefore = stats_.rulesFired;
+  // §6.4.6: a node that sent facts to itself runs again at once, before any other node and
+  // keeping its priority (on the VM's own graph; a host schedules its blocks itself).
+  nodeRunning_ = true;  // what it sends itself wakes nothing: it runs again here
+  do runOnce(n);
+  while (!host_ && n != threadNode_ && !stopRequested() && hasWork(n));
+  nodeRunning_ = false;
+  if (!host_ && n != threadNode_) sched_.finished(n, hasWork(n));
+  return stats_.rulesFired - firedBefore;
+}
+
+void Machine::runOnce(NodeId n) {
   // The FIFO says which nodes run next: fetch their mailbox entries and list heads three runs
   // ahead, then their first messages and first facts two runs ahead, so that a run rarely waits
   // for memory when it starts.
@@ -224,7 +236,6 @@ std::uint64_t Machine::runNode(NodeId n) {
   running_ = n;
   inRun_ = true;
   runDerived_ = runConsumed_ = 0;
-  axiomsDeferred_ = false;
   ++stats_.nodeRuns;
   deliverIncoming(n);
   processPersistent();
@@ -239,6 +250,7 @@ std::uint64_t Machine::runNode(NodeId n) {
     for (std::uint32_t r : tables_.mixedRules)
       if (allPresent(heads, r)) cand[r / 64] |= std::uint64_t(1) << (r % 64);
   }
+  // §6.4.2: the lowest-numbered candidate, of the node or of its thread, until none is left.
   while (!stopRequested()) {
     const std::uint64_t* threadCand =
         withThread ? candidates_.data() + std::size_t(threadNode_) * tables_.ruleWords : nullptr;
@@ -250,53 +262,16 @@ std::uint64_t Machine::runNode(NodeId n) {
       rule = w * 64 + std::uint32_t(__builtin_ctzll(bits));
       if (!(cand[w] & (std::uint64_t(1) << (rule % 64)))) host = threadNode_;
     }
-    if (rule == ~0u) {
-      if (!takeAxiomCandidates(cand)) break;
-      continue;
-    }
+    if (rule == ~0u) break;
     std::uint64_t* hostCand = candidates_.data() + std::size_t(host) * tables_.ruleWords;
     hostCand[rule / 64] &= ~(std::uint64_t(1) << (rule % 64));
-    if (rule == 0) std::copy(cand, cand + tables_.ruleWords, axiomCandidates_.begin());
     runRule(host, rule);
     finishRuleRun();
     cand = candidates_.data() + std::size_t(n) * tables_.ruleWords;  // exists may have grown the array
-    if (rule == 0) deferAxiomCandidates(cand);
   }
   inRun_ = false;
   flushOutgoing();
   applyPriorityRequests();
-  if (!host_ && n != threadNode_) sched_.finished(n, hasWork(n));
-  return stats_.rulesFired - firedBefore;
-}
-
-// The established VM stores a node's axioms when rule 0 runs, but the rules they enable are tried
-// only after the rules enabled by the facts the node had already received: a node whose first
-// run finds messages waiting handles them before its own axioms (§6.2, §6.11).
-void Machine::deferAxiomCandidates(std::uint64_t* cand) {
-  for (std::uint32_t w = 0; w < tables_.ruleWords; ++w) {
-    const std::uint64_t fresh = cand[w] & ~axiomCandidates_[w];
-    axiomCandidates_[w] = fresh;
-    cand[w] &= ~fresh;
-  }
-  axiomsDeferred_ = true;
-}
-
-bool Machine::takeAxiomCandidates(std::uint64_t* cand) {
-  if (!axiomsDeferred_) return false;
-  axiomsDeferred_ = false;
-  bool any = false;
-  const ListHead* heads = db_->listHeads(running_);
-  for (std::uint32_t w = 0; w < tables_.ruleWords; ++w) {
-    for (std::uint64_t bits = axiomCandidates_[w]; bits; bits &= bits - 1) {
-      const std::uint32_t r = w * 64 + std::uint32_t(__builtin_ctzll(bits));
-      if (allPresent(heads, r)) {
-        cand[w] |= std::uint64_t(1) << (r % 64);
-        any = true;
-      }
-    }
-    axiomCandidates_[w] = 0;
-  }
-  return any;
 }
 
 void Machine::requestKeyIndex(PredId p, std::uint32_t field) {
@@ -425,7 +400,10 @@ void Machine::send(NodeId host, NodeId dest, PredId p, const Value* args, bool n
   // Delays need simulated time: only a host has it; on the VM's own graph a delayed fact is sent
   // at once.
   if (!host_) delayMs = 0;
-  if (dest == host && delayMs == 0) return derive(host, p, args, negative);
+  // On the VM's own graph a fact sent to the sending node itself is a message like any other
+  // (§6.4.4): the established VM buffers it and delivers it when the node run ends, and the node
+  // then runs again (runNode). A block of a host derives it at once.
+  if (dest == host && delayMs == 0 && host_) return derive(host, p, args, negative);
   if (shard_) [[unlikely]] {
     const ThreadId owner = shard_->ownerOf(dest);
     if (owner == kNoThread) noSuchNode(p, dest);

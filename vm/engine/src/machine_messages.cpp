@@ -2,6 +2,7 @@
 // in when the receiver runs.
 #include "meldvm/machine.hpp"
 #include "meldvm/mailboxes.hpp"
+#include "send_order.hpp"
 
 namespace meldvm {
 
@@ -10,7 +11,7 @@ void Machine::post(NodeId dest, PredId p, const Value* args, bool negative) {
   linearPosted_ |= tables_.isLinear[p];
   mail_->post(dest, p, negative, args);
   // The thread node is served apart (runNext), never from the queue.
-  if (!host_ && !(inRun_ && dest == running_) && dest != threadNode_) sched_.wake(dest);
+  if (!host_ && !(nodeRunning_ && dest == running_) && dest != threadNode_) sched_.wake(dest);
 }
 
 void Machine::postOrRoute(const PendingFact& e, const Value* args) {
@@ -32,15 +33,19 @@ void Machine::flushOutgoing() {
         releaseArgs(e.pred, args);
       }
   } else {
-    postAll(sentPersistent_);
-    postAll(sentLinear_);
+    postAll(sentPersistent_, nullptr);
+    // The linear ones in the established VM's delivery order (send_order.hpp).
+    const auto& order = sendOrder_->arrange(
+        sentLinear_.size(), [&](std::size_t i) { return sentLinear_[i].node; },
+        [&](std::size_t i) { return sentLinear_[i].pred; });
+    postAll(sentLinear_, &order);
   }
   sentPersistent_.clear();
   sentLinear_.clear();
   sentArgs_.clear();
 }
 
-void Machine::postAll(const std::vector<PendingFact>& facts) {
+void Machine::postAll(const std::vector<PendingFact>& facts, const std::vector<std::uint32_t>* order) {
   // send() fetched each destination's mailbox entry and scheduler record when the fact was
   // derived; here the last chunk of each mailbox is fetched a few posts ahead (the first ones
   // before the loop), since its address is only known from the entry.
@@ -48,12 +53,12 @@ void Machine::postAll(const std::vector<PendingFact>& facts) {
   const std::size_t n = facts.size();
   // (A shard's facts may name nodes of other threads beyond its own arrays: no prefetch there.)
   const NodeId nodes = shard_ ? db_->nodeCount() : ~NodeId(0);
+  auto at = [&](std::size_t i) -> const PendingFact& { return facts[order ? (*order)[i] : i]; };
   for (std::size_t i = 0; i < n && i < kTailAhead; ++i)
-    if (facts[i].node < nodes) mail_->prefetchTail(facts[i].node);
+    if (at(i).node < nodes) mail_->prefetchTail(at(i).node);
   for (std::size_t i = 0; i < n; ++i) {
-    if (i + kTailAhead < n && facts[i + kTailAhead].node < nodes)
-      mail_->prefetchTail(facts[i + kTailAhead].node);
-    const PendingFact& e = facts[i];
+    if (i + kTailAhead < n && at(i + kTailAhead).node < nodes) mail_->prefetchTail(at(i + kTailAhead).node);
+    const PendingFact& e = at(i);
     const Value* args = sentArgs_.data() + e.args;
     postOrRoute(e, args);
     releaseArgs(e.pred, args);

@@ -65,14 +65,15 @@ void SerialScheduler::finished(NodeId n, bool hasWork) {
   if (hasWork) wake(n);
 }
 
-void SerialScheduler::changed(NodeId n) {
+void SerialScheduler::changed(NodeId n, double old) {
   if (nodes_[n].where == Where::Heap) {
     if (nodes_[n].prio == noPriority_) {  // back to the FIFO
       heapRemove(n);
       nodes_[n].where = Where::Idle;
       wake(n);
-    } else {
+    } else if (asUrgent(nodes_[n].prio, old)) {  // the established VM's move_node
       siftUp(nodes_[n].heapIndex);
+    } else {
       siftDown(nodes_[n].heapIndex);
     }
   } else if (nodes_[n].where == Where::Fifo && nodes_[n].prio != noPriority_) {
@@ -84,34 +85,39 @@ void SerialScheduler::changed(NodeId n) {
 
 void SerialScheduler::setPriority(NodeId n, double p) {
   if (!moreUrgent(p, nodes_[n].prio)) return;
+  const double old = nodes_[n].prio;
   nodes_[n].prio = p;
-  changed(n);
+  changed(n, old);
 }
 
 void SerialScheduler::addPriority(NodeId n, double delta) {
   // Plain addition, as the established VM: "no priority" (-DBL_MAX, +DBL_MAX for asc) absorbs
   // any small delta, so a node without a priority keeps none.
+  const double old = nodes_[n].prio;
   nodes_[n].prio += delta;
-  changed(n);
+  changed(n, old);
 }
 
 void SerialScheduler::removePriority(NodeId n) {
+  const double old = nodes_[n].prio;
   nodes_[n].prio = nodes_[n].defaultPrio;
-  changed(n);
+  changed(n, old);
 }
 
 void SerialScheduler::setDefaultPriority(NodeId n, double p) {
   const bool followsDefault = nodes_[n].prio == nodes_[n].defaultPrio;
   nodes_[n].defaultPrio = p;
   if (followsDefault) {
+    const double old = nodes_[n].prio;
     nodes_[n].prio = p;
-    changed(n);
+    changed(n, old);
   }
 }
 
 void SerialScheduler::scheduleNext(NodeId n) {
+  const double old = nodes_[n].prio;
   nodes_[n].prio = desc_ ? DBL_MAX : -DBL_MAX;
-  changed(n);
+  changed(n, old);
 }
 
 void SerialScheduler::heapPush(NodeId n) {
@@ -121,6 +127,11 @@ void SerialScheduler::heapPush(NodeId n) {
   siftUp(nodes_[n].heapIndex);
 }
 
+// The heap works as the established VM's, ties included, since the order of nodes of equal
+// priority is observable: a node taken out is replaced by the last one, which moves up only when
+// it is strictly more urgent than its new parent and otherwise down (so it stays put when it
+// equals its parent); going down, a node stops when it is as urgent as both children, and of two
+// equally urgent children takes the right one.
 void SerialScheduler::heapRemove(NodeId n) {
   const std::uint32_t i = nodes_[n].heapIndex;
   const NodeId last = heap_.back();
@@ -128,34 +139,39 @@ void SerialScheduler::heapRemove(NodeId n) {
   if (last == n) return;
   heap_[i] = last;
   nodes_[last].heapIndex = i;
-  siftDown(i);
-  siftUp(nodes_[last].heapIndex);
+  if (i > 0 && asUrgent(nodes_[last].prio, nodes_[heap_[(i - 1) / 2]].prio))
+    siftUp(i);
+  else
+    siftDown(i);
 }
 
 void SerialScheduler::siftUp(std::uint32_t i) {
   while (i > 0) {
     const std::uint32_t parent = (i - 1) / 2;
     if (!moreUrgent(nodes_[heap_[i]].prio, nodes_[heap_[parent]].prio)) break;
-    std::swap(heap_[i], heap_[parent]);
-    nodes_[heap_[i]].heapIndex = i;
-    nodes_[heap_[parent]].heapIndex = parent;
+    swapEntries(i, parent);
     i = parent;
   }
 }
 
 void SerialScheduler::siftDown(std::uint32_t i) {
   const std::uint32_t size = std::uint32_t(heap_.size());
+  auto prio = [&](std::uint32_t k) { return nodes_[heap_[k]].prio; };
   for (;;) {
     const std::uint32_t left = 2 * i + 1, right = left + 1;
-    std::uint32_t best = i;
-    if (left < size && moreUrgent(nodes_[heap_[left]].prio, nodes_[heap_[best]].prio)) best = left;
-    if (right < size && moreUrgent(nodes_[heap_[right]].prio, nodes_[heap_[best]].prio)) best = right;
-    if (best == i) return;
-    std::swap(heap_[i], heap_[best]);
-    nodes_[heap_[i]].heapIndex = i;
-    nodes_[heap_[best]].heapIndex = best;
-    i = best;
+    if (left >= size) return;
+    const bool hasRight = right < size;
+    if (asUrgent(prio(i), prio(left)) && (!hasRight || asUrgent(prio(i), prio(right)))) return;
+    const std::uint32_t next = hasRight && asUrgent(prio(right), prio(left)) ? right : left;
+    swapEntries(i, next);
+    i = next;
   }
+}
+
+void SerialScheduler::swapEntries(std::uint32_t a, std::uint32_t b) {
+  std::swap(heap_[a], heap_[b]);
+  nodes_[heap_[a]].heapIndex = a;
+  nodes_[heap_[b]].heapIndex = b;
 }
 
 }  // namespace meldvm

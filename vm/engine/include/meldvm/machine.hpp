@@ -102,6 +102,9 @@ struct MachineStats {
 class DerivationLog;
 class Interpreter;
 class Mailboxes;
+namespace detail {
+class SendOrder;
+}
 
 class Machine : private SchedulerView {
  public:
@@ -229,8 +232,7 @@ class Machine : private SchedulerView {
   void runRule(NodeId n, std::uint32_t rule);
   void finishRuleRun();
   void publishAdded(NodeId n, PredId p);
-  void deferAxiomCandidates(std::uint64_t* cand);
-  bool takeAxiomCandidates(std::uint64_t* cand);
+  void runOnce(NodeId n);  // one run of node n (runNode repeats it while the node sent itself facts)
   void storeDerivedLinear();  // the linear facts derived for the host, appended in order (§6.4.4)
   void deliverIncoming(NodeId n);
   void processPersistent();  // the queue's entries name their own nodes
@@ -323,6 +325,7 @@ class Machine : private SchedulerView {
   void postOrRoute(const PendingFact& e, const Value* args);
   NodeId running_ = 0;
   bool inRun_ = false;
+  bool nodeRunning_ = false;  // within runNode (its repeated runs included)
   NodeId initialNodes_ = 0;
 
   bool linearPosted_ = false;  // some linear fact went into a mailbox
@@ -335,10 +338,6 @@ class Machine : private SchedulerView {
 
   // Candidate rules per node: a bitset of rulesWords_ words per node.
   LargeVector<std::uint64_t> candidates_;
-  // Rules that the facts of rule 0 (the node's axioms) made candidates: they join the candidate
-  // set only once the node has no other candidate (runNode).
-  std::vector<std::uint64_t> axiomCandidates_;
-  bool axiomsDeferred_ = false;
 
   std::unique_ptr<Mailboxes> mail_;
 
@@ -361,7 +360,8 @@ class Machine : private SchedulerView {
   // posting them together is unobservable, and it lets the posts prefetch their mailboxes.
   std::vector<PendingFact> sentPersistent_, sentLinear_;
   ValueBuffer sentArgs_;
-  void postAll(const std::vector<PendingFact>& facts);
+  void postAll(const std::vector<PendingFact>& facts, const std::vector<std::uint32_t>* order);
+  std::unique_ptr<detail::SendOrder> sendOrder_;
   std::vector<std::pair<NodeId, double>> priorityRequests_;
   std::vector<Value> triggerAdded_, triggerRemoved_;
 

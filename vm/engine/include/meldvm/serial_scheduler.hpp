@@ -102,6 +102,7 @@ class SerialScheduler {
   std::size_t waiting() const { return heap_.size() + fifoLive_; }
   // Urgency order: true when a is strictly more urgent than b.
   bool moreUrgent(double a, double b) const { return desc_ ? a > b : a < b; }
+  bool asUrgent(double a, double b) const { return desc_ ? a >= b : a <= b; }  // at least as urgent
   double noPriority() const { return noPriority_; }
 
  private:
@@ -112,7 +113,8 @@ class SerialScheduler {
   void heapRemove(NodeId n);
   void siftUp(std::uint32_t i);
   void siftDown(std::uint32_t i);
-  void changed(NodeId n);  // its priority changed: move between FIFO and heap as needed
+  void changed(NodeId n, double old);  // its priority changed from old: FIFO/heap moves
+  void swapEntries(std::uint32_t a, std::uint32_t b);
 
   bool desc_;
   double noPriority_, initial_, default_;
