@@ -92,15 +92,19 @@ void Machine::publishAdded(NodeId n, PredId p) {
 }
 
 void Machine::runProcesses(NodeId n, PredId p, const Value* args, bool negative) {
+  // §6.12: a new thread fact, while a node runs, triggers the persistent rules that also read
+  // node facts at that node (the established VM runs them with the running node as host).
+  const bool atRunningNode = n == threadNode_ && inRun_ && running_ != threadNode_;
   for (std::uint32_t i : tables_.processesOf[p]) {
+    const NodeId host = atRunningNode && !tables_.processNeeds[i].empty() ? running_ : n;
     bool ready = true;  // a loop over a predicate without facts here: nothing can fire
-    for (PredId q : tables_.processNeeds[i]) ready = ready && db_->factCount(n, q) != 0;
+    for (PredId q : tables_.processNeeds[i]) ready = ready && db_->factCount(host, q) != 0;
     if (!ready) continue;
     countStep();
     try {
-      interp_->run(program_.processes[i].block, n, negative, p, args);
+      interp_->run(program_.processes[i].block, host, negative, p, args);
     } catch (const RuntimeError& e) {
-      fail(e, n, "persistent rule (" + program_.processes[i].block.label + ")");
+      fail(e, host, "persistent rule (" + program_.processes[i].block.label + ")");
     }
     storeDerivedLinear();
   }
