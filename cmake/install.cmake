@@ -13,6 +13,8 @@ set(MELD_STDLIB_DIR ${CMAKE_INSTALL_DATADIR}/meld/stdlib)
 set(MELD_CMAKE_DIR ${CMAKE_INSTALL_LIBDIR}/cmake/MeldToolchain)
 
 install(TARGETS meldc meld vsim RUNTIME DESTINATION ${CMAKE_INSTALL_BINDIR})
+# The JIT (meld --jit, vsim --jit) as a module, where both look for it: <bin>/../lib/meld.
+install(TARGETS meld_jit LIBRARY DESTINATION lib/meld)
 if(TARGET vsim-ide)
   install(TARGETS vsim-ide RUNTIME DESTINATION ${CMAKE_INSTALL_BINDIR})
 endif()

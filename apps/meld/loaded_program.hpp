@@ -5,7 +5,7 @@
 
 #include <memory>
 
-#include "meldc/native.hpp"
+#include "meldc/jit_loader.hpp"
 #include "meldvm/native_code.hpp"
 #include "meldvm/native_library.hpp"
 #include "meldvm/program.hpp"
@@ -19,7 +19,7 @@ struct LoadedProgram {
   // Owners (the native code must outlive every machine that runs it).
   std::unique_ptr<meldvm::Program> source;
   std::unique_ptr<meldvm::NativeLibrary> library;
-  std::unique_ptr<meldc::native::Jit> jit;
+  std::unique_ptr<meldc::native::JitCode> jit;
   std::unique_ptr<meldvm::NativeCode> jitCode;
 };
 

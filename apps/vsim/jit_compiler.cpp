@@ -1,17 +1,17 @@
 #include "jit_compiler.hpp"
 
 #include "meldc/compile_progress_line.hpp"
-#include "meldc/native.hpp"
+#include "meldc/jit_loader.hpp"
 
 namespace vsim {
 
 void JitCompiler::compile(MeldCode& code) const {
-  std::shared_ptr<meldc::native::Jit> jit;
+  std::shared_ptr<meldc::native::JitCode> jit;
   try {
     meldc::CompileProgressLine progress("vsim", showProgress_);
-    jit = meldc::native::Jit::compile(
+    jit = meldc::native::JitCode::compile(
         code.program(), [&](std::size_t done, std::size_t total) { progress.update(done, total); });
-  } catch (const meldc::native::NativeError& e) {
+  } catch (const meldc::native::JitError& e) {
     throw ProgramLoadError(std::string("native code: ") + e.what());
   }
   code.jitCode = std::make_unique<meldvm::NativeCode>(code.program(), jit->entries());

@@ -1,5 +1,5 @@
-// vsim --jit: the LLVM backend behind vsim_session's NativeCompiler (the backend is linked into
-// the vsim executable, not into the session library the IDE shares).
+// vsim --jit: the LLVM backend behind vsim_session's NativeCompiler, in the module libmeld_jit.so that
+// vsim loads on the first --jit compile (meldc/jit_loader.hpp), never for bytecode.
 #pragma once
 
 #include "meld_program.hpp"

@@ -27,7 +27,7 @@ R="$WORK/root"
 U="$R/usr"
 dpkg-deb -x "$DEB" "$R" || fail "dpkg-deb -x"
 expect_files "$R" usr/bin/meldc usr/bin/meld usr/bin/vsim usr/bin/vsim-ide usr/share/meld/stdlib/common.meld \
-         usr/lib/meld/blockcodes/color_flood.so usr/include/simcore/blockcode.h \
+         usr/lib/meld/blockcodes/color_flood.so usr/lib/meld/libmeld_jit.so usr/include/simcore/blockcode.h \
          usr/lib/cmake/MeldToolchain/MeldToolchainConfig.cmake usr/lib/pkgconfig/meld-blockcode.pc \
          usr/share/man/man1/vsim.1 usr/share/meld/examples/worlds/color-flood.xml
 unset MELD_STDLIB VSIM_CODE_PATH
@@ -41,6 +41,11 @@ run_or_fail "$WORK/native" "the packaged vsim did not run the native program" \
 run_or_fail "$WORK/bytecode" "the packaged vsim did not run the Meld example" "$U/bin/vsim" "$world" --no-progress
 [ "$(fingerprint "$WORK/native")" = "$(fingerprint "$WORK/bytecode")" ] ||
   fail "native and bytecode runs differ: $(fingerprint "$WORK/native") / $(fingerprint "$WORK/bytecode")"
+# vsim --jit from the package loads the packaged JIT module.
+LD_DEBUG=files "$U/bin/vsim" "$world" --jit --no-progress >"$WORK/jit" 2>"$WORK/jit.err" ||
+  { cat "$WORK/jit.err"; fail "the packaged vsim --jit failed"; }
+grep -q "file=$U/lib/meld/libmeld_jit.so" "$WORK/jit.err" || fail "the packaged vsim --jit did not load the packaged module"
+[ "$(fingerprint "$WORK/jit")" = "$(fingerprint "$WORK/bytecode")" ] || fail "the packaged vsim --jit ran another run"
 MANWIDTH=80 man -l "$U/share/man/man1/vsim.1" 2>/dev/null | grep -q "simulate modular robots" ||
   fail "the packaged man page vsim.1 does not render"
 echo "$(basename "$DEB"): $(du -k "$DEB" | cut -f1) KiB, unpacked into $R: demo, native Meld and man page ran"

@@ -147,6 +147,28 @@ case_jit() {
   has "$OUT" "--jit"
 }
 
+case_jit_module() {
+  # The LLVM backend is a module loaded only for --jit (meldc/jit_loader.hpp): meld does not link
+  # LLVM, runs bytecode without the module, and says what is wrong with a missing or foreign one.
+  command -v ldd >/dev/null && ldd "$MELD" | grep -q libLLVM && fail "meld links libLLVM"
+  LD_DEBUG=files "$MELD" "$WORK/reach.meld" --dump >"$OUT" 2>"$ERR" || fail "a bytecode run failed"
+  grep -q 'libLLVM' "$ERR" && fail "a bytecode run loaded libLLVM"
+  LD_DEBUG=files "$MELD" "$WORK/reach.meld" --dump --jit >"$OUT" 2>"$ERR" || fail "a --jit run failed"
+  grep -q 'libmeld_jit.so' "$ERR" || fail "--jit did not load libmeld_jit.so"
+  export MELD_JIT_MODULE="$WORK/none.so"
+  run 0 "$WORK/reach.meld" --dump
+  has "$OUT" "!reach(2)"
+  run 4 "$WORK/reach.meld" --jit
+  has "$ERR" "MELD_JIT_MODULE names $WORK/none.so, which does not exist"
+  printf 'not an object' >"$WORK/none.so"
+  run 4 "$WORK/reach.meld" --jit
+  has "$ERR" "cannot load the native code module $WORK/none.so"
+  export MELD_JIT_MODULE="$BLOCKCODE"
+  run 4 "$WORK/reach.meld" --jit
+  has "$ERR" "is not a native code module of this toolchain"
+  unset MELD_JIT_MODULE
+}
+
 case_native() {
   # meldc --emit=native, then meld FILE.so: the bytecode's dump. Files that are not native Meld
   # programs, or were built for another version, are refused with exit status 3.
