@@ -179,6 +179,14 @@ case_native() {
   run 0 "$WORK/reach.so" --dump
   cmp -s "$OUT" "$WORK/bytecode" || fail "reach.so gave another dump"
   run 0 "$WORK/reach.so" --dump -j 2
+  # A run-time error thrown by a helper unwinds through the shared object's code (its unwind
+  # tables are found: ld --eh-frame-hdr), serially and on threads: a message and status 4.
+  printf 'type linear go(node, int).\ntype linear r(node, int).\ngo(@0, 0).\ngo(A, N) -o r(A, 10 / N).\n' >"$WORK/div.meld"
+  "$MELDC" --emit=native --no-progress "$WORK/div.meld" || fail "meldc --emit=native failed on div.meld"
+  run 4 "$WORK/div.so"
+  has "$ERR" "integer division by zero"
+  run 4 "$WORK/div.so" -j 2
+  has "$ERR" "integer division by zero"
   run 2 "$WORK/reach.so" --jit
   has "$ERR" "native code already"
   run 3 "$FAKES/fake_abi.so"

@@ -75,7 +75,9 @@ void writeFile(const llvm::SmallVector<char, 0>& bytes, const std::string& path)
 void link(const std::vector<std::string>& objects, const std::string& out) {
   const char* linker = std::getenv("MELD_LD");
   std::string ld = linker && *linker ? linker : "ld";
-  std::vector<std::string> args = {ld, "-shared", "--hash-style=gnu", "-o", out};
+  // --eh-frame-hdr: the unwinder finds a shared object's unwind tables through PT_GNU_EH_FRAME;
+  // without it a run-time error thrown by a helper cannot unwind through the native code.
+  std::vector<std::string> args = {ld, "-shared", "--hash-style=gnu", "--eh-frame-hdr", "-o", out};
   args.insert(args.end(), objects.begin(), objects.end());
   std::vector<char*> argv;
   for (std::string& a : args) argv.push_back(a.data());
