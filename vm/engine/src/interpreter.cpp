@@ -207,7 +207,7 @@ bool Interpreter::loop(Frame& f, std::uint32_t pc, RunBody&& runBody) {
       fired = true;
       if (returnOnFire) return false;
     }
-    return !machine_.stopRequested();
+    return !machine_.interrupted();
   };
 
   if (op == Opcode::ITER_KEY) {
@@ -260,7 +260,7 @@ Interpreter::Status Interpreter::exec(Frame& f, std::uint32_t pc) {
       case Opcode::ITER_SORTED: {
         lastFired = loop(f, pc, [&](std::uint32_t body) { return exec(f, body); });
         pc = Opcode(c[0]) == Opcode::ITER ? c[4] : Opcode(c[0]) == Opcode::ITER_KEY ? c[6] : c[5];
-        if (machine_.stopRequested()) return Status::Return;
+        if (machine_.interrupted()) return Status::Return;
         break;
       }
       case Opcode::NEXT:
@@ -365,7 +365,7 @@ struct NativeHelpers {
     const bool fired = in.loop(f, pc, [&](std::uint32_t) {
       return Interpreter::Status(body(h, v, fr, reinterpret_cast<std::uint64_t*>(f.regs)));
     });
-    if (in.machine_.stopRequested()) return int32_t(Interpreter::Status::Return);
+    if (in.machine_.interrupted()) return int32_t(Interpreter::Status::Return);
     return int32_t(fired ? Interpreter::Status::Fired : Interpreter::Status::NotFired);
   }
   template <Opcode OP>

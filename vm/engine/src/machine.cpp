@@ -177,6 +177,22 @@ void Machine::run() {
   while (!stop_ && runNext()) {
   }
   if (!stop_) collectGarbageNodes();
+  else if (!shard_ && !host_) storeUndeliveredLinear();
+}
+
+// §6.13: after stop-program the established VM's dump shows the linear facts sent to nodes that
+// never ran again (it stores them in the receiver as they arrive); persistent ones wait unseen.
+void Machine::storeUndeliveredLinear() {
+  for (NodeId n = 0; n < db_->nodeCount(); ++n) {
+    if (!hasWork(n)) continue;
+    mail_->forEach(
+        n, [&](PredId) { return true; },
+        [&](PredId p, bool, const Value* args) {
+          if (tables_.isLinear[p]) db_->addLinear(n, p, args);
+          releaseArgs(p, args);
+        });
+    mail_->release(n);
+  }
 }
 
 bool Machine::runNext() {
@@ -250,8 +266,9 @@ void Machine::runOnce(NodeId n) {
     for (std::uint32_t r : tables_.mixedRules)
       if (allPresent(heads, r)) cand[r / 64] |= std::uint64_t(1) << (r % 64);
   }
-  // §6.4.2: the lowest-numbered candidate, of the node or of its thread, until none is left.
-  while (!stopRequested()) {
+  // §6.4.2: the lowest-numbered candidate, of the node or of its thread, until none is left
+  // (stop-program too lets the run finish, §6.13: only another thread's stop or a cancel cuts it).
+  while (!interrupted()) {
     const std::uint64_t* threadCand =
         withThread ? candidates_.data() + std::size_t(threadNode_) * tables_.ruleWords : nullptr;
     std::uint32_t rule = ~0u;

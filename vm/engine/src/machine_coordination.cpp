@@ -20,11 +20,13 @@ void Machine::priorityRequest(NodeId n, double p) {
       throw RuntimeError("set-priority for node " + nodeName(n) + ", which does not exist");
     if (owner != placement_.self) return shard_->coordinateRemote(owner, Opcode::SET_PRIORITY, n, p);
   }
-  priorityRequests_.emplace_back(n, p);
+  // One request per node: the most urgent (the established VM's COORDINATION_BUFFERING).
+  const auto [it, added] = priorityRequests_.try_emplace(n, p);
+  if (!added && sched_.moreUrgent(p, it->second)) it->second = p;
 }
 
 void Machine::applyPriorityRequests() {
-  for (const auto& [n, p] : priorityRequests_) sched_.setPriority(n, p);
+  for (const auto& [n, p] : priorityRequests_) sched_.setPriority(NodeId(n), p);
   priorityRequests_.clear();
 }
 

@@ -13,7 +13,9 @@
 #include <functional>
 #include <iosfwd>
 #include <memory>
+#include <memory_resource>
 #include <string>
+#include <unordered_map>
 #include <vector>
 
 #include "meldvm/builtins.hpp"
@@ -134,7 +136,10 @@ class Machine : private SchedulerView {
   // Room for that many facts of p (all nodes together), when the driver knows the count.
   void reserveFacts(PredId p, std::size_t facts) { db_->reserve(p, facts); }
   bool stopped() const { return stop_; }
-  bool stopRequested() const { return stop_ || (stopFlag_ && stopFlag_->load(std::memory_order_relaxed)); }
+  bool stopRequested() const { return stop_ || interrupted(); }
+  // Stopped from outside (another thread's stop-program, a cancel): the run in progress ends at
+  // once, where this machine's own stop-program lets it finish (§6.13).
+  bool interrupted() const { return !stop_ && stopFlag_ && stopFlag_->load(std::memory_order_relaxed); }
   // Another thread ran stop-program: stop after the current node run.
   void requestStop() { stop_ = true; }
   // A coordination fact (§5.7) that another thread sent for a node of this shard.
@@ -232,7 +237,8 @@ class Machine : private SchedulerView {
   void runRule(NodeId n, std::uint32_t rule);
   void finishRuleRun();
   void publishAdded(NodeId n, PredId p);
-  void runOnce(NodeId n);  // one run of node n (runNode repeats it while the node sent itself facts)
+  void runOnce(NodeId n);
+  void storeUndeliveredLinear();  // one run of node n (runNode repeats it while the node sent itself facts)
   void storeDerivedLinear();  // the linear facts derived for the host, appended in order (§6.4.4)
   void deliverIncoming(NodeId n);
   void processPersistent();  // the queue's entries name their own nodes
@@ -362,7 +368,12 @@ class Machine : private SchedulerView {
   ValueBuffer sentArgs_;
   void postAll(const std::vector<PendingFact>& facts, const std::vector<std::uint32_t>* order);
   std::unique_ptr<detail::SendOrder> sendOrder_;
-  std::vector<std::pair<NodeId, double>> priorityRequests_;
+  // set-priority requests of the node run, applied when it ends (§5.7). The established VM keeps
+  // them in a std::unordered_map keyed by node id (identity hash) and applies them in its
+  // iteration order, which decides ties in the heap: the same container, fed the same way, gives
+  // the same order. Its pool reuses the nodes, so the steady state allocates nothing.
+  std::pmr::unsynchronized_pool_resource priorityPool_;
+  std::pmr::unordered_map<std::uint64_t, double> priorityRequests_{&priorityPool_};
   std::vector<Value> triggerAdded_, triggerRemoved_;
 
   std::vector<Value> globals_;
