@@ -541,13 +541,19 @@ class Checker {
                                    text(var(v.name, scope)) + "'");
         terms(t.head, scope, false);
         break;
-      case TermKind::Comprehension:
-        terms(t.body, scope, true);
-        terms(t.head, scope, false);
+      case TermKind::Comprehension: {
+        // The variables first bound inside are its own (§5.3.3): another comprehension or
+        // aggregate of the head may use the same names for values of other types.
+        Scope inner = scope;
+        terms(t.body, inner, true);
+        terms(t.head, inner, false);
         break;
-      case TermKind::Aggregate:
-        aggregate(t, scope);
+      }
+      case TermKind::Aggregate: {
+        Scope inner = scope;
+        aggregate(t, inner);
         break;
+      }
       case TermKind::Conditional:
         condition(t.cond, scope, "the condition of 'if'");
         terms(t.head, scope, false);

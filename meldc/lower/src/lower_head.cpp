@@ -233,9 +233,11 @@ void RuleLowering::aggregate(const Term& t, std::uint32_t slot) {
   });
   cb_.place(end);
   ex.env = saved;
-  // The final head sees each spec variable bound to its aggregated value (even with no match).
+  // The final head sees each spec variable bound to its aggregated value (even with no match);
+  // after it the names are free again, for the rest of the rule's head (§5.3.4).
   for (const Acc& a : accs) ex.env[a.spec->var] = a.acc;
   head(t.head, nullptr, slot);
+  ex.env = saved;
 }
 
 }  // namespace meldc

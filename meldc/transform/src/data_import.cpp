@@ -4,7 +4,7 @@
 #include <charconv>
 #include <filesystem>
 #include <fstream>
-#include <map>
+#include <unordered_map>
 #include <sstream>
 
 #include "support/splitmix.hpp"
@@ -56,13 +56,7 @@ class Importer {
     if (!read(d, g)) return;
     const std::string& t = d.name;
     if (t == "stanford-snap-pagerank") {
-      std::map<std::int64_t, std::int64_t> outdeg;
-      for (const Edge& e : g.edges) ++outdeg[e.src];
-      for (const Edge& e : g.edges) {
-        const double w = 1.0 / double(outdeg[e.src]);
-        fact("output", {nodeLit(e.src, loc_), nodeLit(e.dst, loc_), floatLit(w, loc_)});
-        fact("input", {nodeLit(e.dst, loc_), nodeLit(e.src, loc_), floatLit(w, loc_)});
-      }
+      pagerank(g);
     } else if (t == "stanford-snap-search") {
       search(d, g);
     } else {
@@ -123,6 +117,36 @@ class Importer {
     char* end = nullptr;
     out = std::strtod(s.c_str(), &end);
     return !s.empty() && end == s.c_str() + s.size();
+  }
+
+  // The established compiler's facts and their order per node, on which the order of a node's
+  // loops over them (and so async pagerank's results) depends: each node's distinct successors in
+  // file order; its predecessors in the order the nodes first appear in the file (as either end of
+  // an edge); both lists are then reversed (it pushes each fact onto a list), the predecessors'
+  // `input` facts first. Weights are 1 / out-degree in single precision, as its literals are.
+  void pagerank(const Graph& g) {
+    std::vector<std::int64_t> appearance;
+    std::unordered_map<std::int64_t, std::vector<std::int64_t>> out, in;
+    auto see = [&](std::int64_t id) {
+      if (out.try_emplace(id).second) appearance.push_back(id);
+    };
+    for (const Edge& e : g.edges) {
+      see(e.src);
+      see(e.dst);
+      std::vector<std::int64_t>& succ = out[e.src];
+      if (std::find(succ.begin(), succ.end(), e.dst) == succ.end()) succ.push_back(e.dst);
+    }
+    auto weight = [&](std::int64_t id) { return double(1.0f / float(out[id].size())); };
+    for (std::int64_t m : appearance)
+      for (std::int64_t succ : out[m]) in[succ].push_back(m);
+    for (std::int64_t n : appearance) {
+      const std::vector<std::int64_t>& pred = in[n];
+      for (auto it = pred.rbegin(); it != pred.rend(); ++it)
+        fact("input", {nodeLit(n, loc_), nodeLit(*it, loc_), floatLit(weight(*it), loc_)});
+      const std::vector<std::int64_t>& succ = out[n];
+      for (auto it = succ.rbegin(); it != succ.rend(); ++it)
+        fact("output", {nodeLit(n, loc_), nodeLit(*it, loc_), floatLit(weight(n), loc_)});
+    }
   }
 
   void search(const Directive& d, const Graph& g) {
