@@ -85,8 +85,22 @@ std::string hostVariable(const Lowering& L, const Rule& rule) {
     return t.args[0].name;
   }
   for (const Term& t : rule.body)
-    if (isPredicateSubgoal(L, t)) return "";  // only thread facts
+    if (isPredicateSubgoal(L, t)) return hostConstraintVariable(rule.body);  // only thread facts
   throw LowerError(rule.loc, "internal error: rule without body facts");
+}
+
+// A rule over thread facts only runs while a node runs (§6.12); a constraint `V = @host` names
+// that node, and facts at V (in a comprehension or aggregate) are the running node's, as the
+// established compiler has it.
+std::string hostConstraintVariable(const std::vector<Term>& body) {
+  for (const Term& t : body) {
+    if (t.kind != TermKind::Constraint || t.cond.kind != ExprKind::Compare || t.cond.op != BinOp::Eq) continue;
+    const Expr& a = t.cond.args.at(0);
+    const Expr& b = t.cond.args.at(1);
+    if (a.kind == ExprKind::Var && b.kind == ExprKind::Host) return a.name;
+    if (b.kind == ExprKind::Var && a.kind == ExprKind::Host) return b.name;
+  }
+  return "";
 }
 
 BodyPlan planBody(const Lowering& L, const std::vector<Term>& body, const std::vector<Term>& head,

@@ -38,6 +38,7 @@ struct BodyPlan {
 // not a variable. Empty for a rule whose body has only thread facts: it runs at the thread node
 // (§6.12) and has no host node variable.
 std::string hostVariable(const Lowering& L, const ast::Rule& rule);
+std::string hostConstraintVariable(const std::vector<ast::Term>& body);
 
 // Plans a body (a rule's, a comprehension's or an aggregate's) against the head items that may
 // re-derive its facts. `allowUpdate`: in-place updates apply (top-level rule bodies only).

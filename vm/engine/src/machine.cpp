@@ -259,7 +259,7 @@ void Machine::runOnce(NodeId n) {
   // §6.12: while a normal node runs, its thread's facts are visible: rules over node and thread
   // facts are checked again (the thread's facts may have changed since this node last ran), and
   // the thread node's own candidates (rule 1, rules over thread facts only) compete with the
-  // node's by rule number, running on the thread node.
+  // node's by rule number.
   const bool withThread = threadNode_ != kNoNode && n != threadNode_;
   if (withThread) {
     const ListHead* heads = db_->listHeads(n);
@@ -271,18 +271,20 @@ void Machine::runOnce(NodeId n) {
   while (!interrupted()) {
     const std::uint64_t* threadCand =
         withThread ? candidates_.data() + std::size_t(threadNode_) * tables_.ruleWords : nullptr;
+    // A rule of the thread node's own candidates runs with the running node as its host (@host,
+    // §6.12), as the established VM runs it; the candidate bit is the thread node's.
     std::uint32_t rule = ~0u;
-    NodeId host = n;
+    NodeId owner = n;
     for (std::uint32_t w = 0; w < tables_.ruleWords && rule == ~0u; ++w) {
       const std::uint64_t bits = cand[w] | (threadCand ? threadCand[w] : 0);
       if (!bits) continue;
       rule = w * 64 + std::uint32_t(__builtin_ctzll(bits));
-      if (!(cand[w] & (std::uint64_t(1) << (rule % 64)))) host = threadNode_;
+      if (!(cand[w] & (std::uint64_t(1) << (rule % 64)))) owner = threadNode_;
     }
     if (rule == ~0u) break;
-    std::uint64_t* hostCand = candidates_.data() + std::size_t(host) * tables_.ruleWords;
-    hostCand[rule / 64] &= ~(std::uint64_t(1) << (rule % 64));
-    runRule(host, rule);
+    std::uint64_t* ownerCand = candidates_.data() + std::size_t(owner) * tables_.ruleWords;
+    ownerCand[rule / 64] &= ~(std::uint64_t(1) << (rule % 64));
+    runRule(n, rule);
     finishRuleRun();
     cand = candidates_.data() + std::size_t(n) * tables_.ruleWords;  // exists may have grown the array
   }
