@@ -71,8 +71,9 @@ BOOST_AUTO_TEST_CASE(a_waiting_node_is_queued_once_and_a_finished_node_falls_bac
   s.wake(1);
   s.wake(1);
   BOOST_TEST(s.waiting() == 2u);
+  // As the established VM: only the default changes; the node takes it when its run ends.
   s.setDefaultPriority(0, 4.0);
-  BOOST_TEST(s.priority(0) == 4.0);
+  BOOST_TEST(s.priority(0) == s.noPriority());
   NodeId n;
   BOOST_REQUIRE(s.pop(n));
   BOOST_TEST(n == 0u);
@@ -80,4 +81,28 @@ BOOST_AUTO_TEST_CASE(a_waiting_node_is_queued_once_and_a_finished_node_falls_bac
   s.finished(0, false);
   BOOST_TEST(s.priority(0) == 4.0);
   BOOST_TEST(drain(s) == (std::vector<NodeId>{1}), boost::test_tools::per_element());
+}
+
+BOOST_AUTO_TEST_CASE(add_priority_moves_a_fifo_node_to_the_heap_even_without_a_priority) {
+  // The established VM's do_set_node_priority: a node in the FIFO leaves it for the heap whatever
+  // add-priority gave it ("no priority" + 3 is still "no priority"), and the heap is served first;
+  // remove-priority sends a node of the heap to the end of the FIFO.
+  SchedulingOptions o;
+  o.noInitialPriorities = true;
+  SerialScheduler s(o);
+  s.start(4, 0, 4);  // FIFO 0 1 2 3
+  s.addPriority(2, 3.0);
+  BOOST_TEST(s.priority(2) == s.noPriority());
+  s.setPriority(3, 5.0);
+  s.removePriority(3);
+  BOOST_TEST(drain(s) == (std::vector<NodeId>{2, 0, 1, 3}), boost::test_tools::per_element());
+}
+
+BOOST_AUTO_TEST_CASE(schedule_next_queues_an_idle_node_at_once) {
+  SchedulingOptions o;
+  o.noInitialPriorities = true;
+  SerialScheduler s(o);
+  s.start(3, 0, 2);  // FIFO 0 1; node 2 idle
+  s.scheduleNext(2);
+  BOOST_TEST(drain(s) == (std::vector<NodeId>{2, 0, 1}), boost::test_tools::per_element());
 }

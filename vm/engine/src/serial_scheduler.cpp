@@ -65,60 +65,55 @@ void SerialScheduler::finished(NodeId n, bool hasWork) {
   if (hasWork) wake(n);
 }
 
-void SerialScheduler::changed(NodeId n, double old) {
-  if (nodes_[n].where == Where::Heap) {
-    if (nodes_[n].prio == noPriority_) {  // back to the FIFO
-      heapRemove(n);
-      nodes_[n].where = Where::Idle;
-      wake(n);
-    } else if (asUrgent(nodes_[n].prio, old)) {  // the established VM's move_node
-      siftUp(nodes_[n].heapIndex);
-    } else {
-      siftDown(nodes_[n].heapIndex);
-    }
-  } else if (nodes_[n].where == Where::Fifo && nodes_[n].prio != noPriority_) {
-    nodes_[n].where = Where::Idle;  // the FIFO entry goes stale
-    --fifoLive_;
-    heapPush(n);
+// The established VM's do_set_node_priority: the priority only ever becomes more urgent here; a
+// node in the heap moves when it did; a node in the FIFO always leaves it for the heap, with
+// whatever priority it has now ("no priority" included: such a node then still runs before the
+// FIFO); an idle node keeps the priority for when work arrives, or, for schedule-next, is queued
+// at once.
+void SerialScheduler::raise(NodeId n, double p, bool queueIdle) {
+  NodeState& s = nodes_[n];
+  const double old = s.prio;
+  const bool raised = moreUrgent(p, old);
+  if (raised) s.prio = p;
+  switch (s.where) {
+    case Where::Heap:
+      if (raised) asUrgent(p, old) ? siftUp(s.heapIndex) : siftDown(s.heapIndex);
+      break;
+    case Where::Fifo:
+      s.where = Where::Idle;  // its FIFO entry goes stale
+      --fifoLive_;
+      heapPush(n);
+      break;
+    case Where::Idle:
+      if (queueIdle) enqueue(n);
+      break;
   }
 }
 
 void SerialScheduler::setPriority(NodeId n, double p) {
-  if (!moreUrgent(p, nodes_[n].prio)) return;
-  const double old = nodes_[n].prio;
-  nodes_[n].prio = p;
-  changed(n, old);
+  if (moreUrgent(p, nodes_[n].prio)) raise(n, p, false);
 }
 
 void SerialScheduler::addPriority(NodeId n, double delta) {
   // Plain addition, as the established VM: "no priority" (-DBL_MAX, +DBL_MAX for asc) absorbs
-  // any small delta, so a node without a priority keeps none.
-  const double old = nodes_[n].prio;
-  nodes_[n].prio += delta;
-  changed(n, old);
+  // any small delta, and a less urgent sum changes nothing (but still moves a node of the FIFO).
+  raise(n, nodes_[n].prio + delta, false);
 }
 
 void SerialScheduler::removePriority(NodeId n) {
-  const double old = nodes_[n].prio;
+  // Back to the default, and a node of the heap goes to the end of the FIFO, whatever its default.
   nodes_[n].prio = nodes_[n].defaultPrio;
-  changed(n, old);
+  if (nodes_[n].where != Where::Heap) return;
+  heapRemove(n);
+  nodes_[n].where = Where::Fifo;
+  fifo_.push_back({n, ++nodes_[n].ticket});
+  ++fifoLive_;
 }
 
-void SerialScheduler::setDefaultPriority(NodeId n, double p) {
-  const bool followsDefault = nodes_[n].prio == nodes_[n].defaultPrio;
-  nodes_[n].defaultPrio = p;
-  if (followsDefault) {
-    const double old = nodes_[n].prio;
-    nodes_[n].prio = p;
-    changed(n, old);
-  }
-}
+// Only the default changes: a node takes it when its next run ends (finished).
+void SerialScheduler::setDefaultPriority(NodeId n, double p) { nodes_[n].defaultPrio = p; }
 
-void SerialScheduler::scheduleNext(NodeId n) {
-  const double old = nodes_[n].prio;
-  nodes_[n].prio = desc_ ? DBL_MAX : -DBL_MAX;
-  changed(n, old);
-}
+void SerialScheduler::scheduleNext(NodeId n) { raise(n, desc_ ? DBL_MAX : -DBL_MAX, true); }
 
 void SerialScheduler::heapPush(NodeId n) {
   nodes_[n].where = Where::Heap;

@@ -113,7 +113,7 @@ class SerialScheduler {
   void heapRemove(NodeId n);
   void siftUp(std::uint32_t i);
   void siftDown(std::uint32_t i);
-  void changed(NodeId n, double old);  // its priority changed from old: FIFO/heap moves
+  void raise(NodeId n, double p, bool queueIdle);  // p if more urgent; FIFO/heap moves
   void swapEntries(std::uint32_t a, std::uint32_t b);
 
   bool desc_;
