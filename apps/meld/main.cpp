@@ -190,6 +190,7 @@ int main(int argc, char** argv) {
   mo.output = &std::cout;
   mo.seed = options->seed;
   mo.maxSteps = options->maxSteps;
+  mo.coordination = !options->noScheduling;
   const double loadSeconds = secondsSince(start);
   return options->threads > 1 || !options->profile.empty() ? runThreaded(*options, program, mo, loadSeconds)
                                                            : runSerial(*options, program, mo, loadSeconds);

@@ -29,6 +29,10 @@ const char* usageText() {
          "                  at by rules, matching or not), wall time, peak memory and the\n"
          "                  VM's memory by part on standard error; with -j, a table per\n"
          "                  thread too\n"
+         "  --no-scheduling ignore set-priority, add-priority, remove-priority,\n"
+         "                  set-default-priority, set-static, set-moving, set-cpu, set-affinity\n"
+         "                  and stop-program, as the established VM's -n does (its test suite\n"
+         "                  runs some programs so)\n"
          "  -I DIR          include directory (for .meld input)\n"
          "  -D NAME=VALUE   define the constant NAME (for .meld input)\n"
          "  --seed S        seed of the random stream of randint, degeneratevector and [:random]\n"
@@ -70,6 +74,8 @@ std::optional<Options> parseOptions(const std::vector<std::string>& args, std::s
       o.stats = true;
     } else if (a == "--jit") {
       o.jit = true;
+    } else if (a == "--no-scheduling") {
+      o.noScheduling = true;
     } else if (a == "--why") {
       auto v = value("a fact like 'reach(@3, 3)'");
       if (!v) return std::nullopt;

@@ -32,6 +32,7 @@ struct Options {
   std::vector<std::string> why;  // --why FACT: print its derivation tree after the run
   unsigned threads = 1;          // -j N / --threads N: worker threads (1: the serial VM)
   std::string profile;           // --profile FILE.json: the threads' timelines (Chrome trace)
+  bool noScheduling = false;     // --no-scheduling: coordination instructions do nothing
   bool jit = false;              // --jit: compile the rules to native code in memory first
 };
 

@@ -13,8 +13,11 @@ __mangledname* left out, numbers within a relative 1e-4, as the conformance scri
 otherwise the first line that differs. A figure is only worth comparing where the dumps agree (or
 the program's result depends on the order nodes run in, which the note column cannot tell).
 
-PROGRAM.meld=ARGS passes ARGS (blank-separated) to the program (@arg1 ...). Programs run from
-their own folder, so their includes and data files are found as the established VM finds them.
+PROGRAM.meld=ARGS passes ARGS (blank-separated) to the program (@arg1 ...). A program of the
+established suite (its benchs/progs or tests/progs) with a file ../args/NAME gets that file's
+PROG_ARGS when no ARGS are given, and its MELD_ARGS' -n (coordination instructions ignored): -n for
+the established VM, --no-scheduling for ours. Programs run from their own folder, so their includes
+and data files are found as the established VM finds them.
 
 Modes (--modes, comma-separated; default bc,so,j2,ref1,ref2):
   bc    meld X.mbc               (ours, bytecode)
@@ -83,6 +86,17 @@ class Program:
         self.name = os.path.splitext(os.path.basename(path))[0]
         self.dir = os.path.dirname(self.path)
         self.args = args.split()
+        # A program of the established suite (benchs/progs, tests/progs) may have ../args/NAME:
+        # PROG_ARGS (used unless ARGS were given) and MELD_ARGS, whose -n (no coordination) both
+        # VMs then get (ours: --no-scheduling).
+        self.ref_flags, self.our_flags = [], []
+        suite_args = os.path.join(self.dir, "..", "args", self.name)
+        if os.path.isfile(suite_args):
+            values = dict(re.findall(r'^(\w+)="?([^"\n]*)"?', open(suite_args).read(), re.M))
+            if not self.args:
+                self.args = values.get("PROG_ARGS", "").split()
+            if "-n" in values.get("MELD_ARGS", "").split():
+                self.ref_flags, self.our_flags = ["-n"], ["--no-scheduling"]
         self.tools = tools
         base = os.path.join(workdir, self.name)
         os.makedirs(base, exist_ok=True)
@@ -114,9 +128,9 @@ class Program:
         if mode in ("bc", "so", "jit", "j2"):
             target = self.so if mode == "so" else self.mbc
             flags = {"jit": ["--jit"], "j2": ["-j", "2"]}.get(mode, [])
-            return [t.meld, target] + flags + (["--dump"] if dump else []) + extra
+            return [t.meld, target] + flags + self.our_flags + (["--dump"] if dump else []) + extra
         sched = "th1" if mode == "ref1" else "th2"
-        return [t.meld_ref, "-f", self.m, "-c", sched] + (["-d"] if dump else []) + extra
+        return [t.meld_ref, "-f", self.m, "-c", sched] + self.ref_flags + (["-d"] if dump else []) + extra
 
 
 NUMBER = re.compile(r"-?(?:\d+\.\d*|\.\d+|\d+)(?:[eE][-+]?\d+)?")

@@ -147,6 +147,38 @@ case_jit() {
   has "$OUT" "--jit"
 }
 
+case_no_scheduling() {
+  # --no-scheduling (the established VM's -n): set-priority and stop-program do nothing. Node 1
+  # pings nodes 2, 3, 4 and asks them priority 5 (applied: node 4 runs first); without
+  # coordination they run in FIFO order, and the stop-program of node 4 is ignored.
+  cat >"$WORK/prio.meld" <<'MELD'
+type linear t(node).
+type linear go(node).
+type linear ping(node).
+type linear log(node, int).
+type linear cnt(node, int).
+type linear seen(node, int, int).
+priority @order @desc.
+t(@4). t(@3). t(@2).
+go(@1).
+cnt(@0, 0).
+go(A) -o ping(@2), ping(@3), ping(@4), set-priority(@2, 5.0), set-priority(@3, 5.0), set-priority(@4, 5.0).
+ping(A) -o log(@0, node2int(A)), (if node2int(A) = 4 then stop-program(A) otherwise 1 end).
+log(A, X), cnt(A, N) -o seen(A, X, N), cnt(A, N + 1).
+MELD
+  # With coordination node 4 runs first and stops the program: its log waits at node 0.
+  run 0 "$WORK/prio.meld" --dump
+  has "$OUT" "log(4)"
+  has "$OUT" "cnt(0)"
+  run 0 "$WORK/prio.meld" --dump --no-scheduling
+  has "$OUT" "seen(2, 0)"
+  has "$OUT" "seen(3, 1)"
+  has "$OUT" "seen(4, 2)"
+  has "$OUT" "cnt(3)"
+  run 0 --help
+  has "$OUT" "--no-scheduling"
+}
+
 case_jit_module() {
   # The LLVM backend is a module loaded only for --jit (meldc/jit_loader.hpp): meld does not link
   # LLVM, runs bytecode without the module, and says what is wrong with a missing or foreign one.

@@ -265,6 +265,11 @@ void Machine::runOnce(NodeId n) {
     const ListHead* heads = db_->listHeads(n);
     for (std::uint32_t r : tables_.mixedRules)
       if (allPresent(heads, r)) cand[r / 64] |= std::uint64_t(1) << (r % 64);
+    // The thread's own rules are tried again at every node run, as the established VM marks its
+    // thread facts anew for each node: their host, and what `A = @host` allows, is that node.
+    std::uint64_t* threadCand = candidates_.data() + std::size_t(threadNode_) * tables_.ruleWords;
+    for (std::uint32_t r : tables_.threadRules)
+      if (allPresent(heads, r)) threadCand[r / 64] |= std::uint64_t(1) << (r % 64);
   }
   // §6.4.2: the lowest-numbered candidate, of the node or of its thread, until none is left
   // (stop-program too lets the run finish, §6.13: only another thread's stop or a cancel cuts it).

@@ -13,6 +13,7 @@ std::string nodeName(NodeId n) { return "@" + std::to_string(n); }
 }  // namespace
 
 void Machine::priorityRequest(NodeId n, double p) {
+  if (!options_.coordination) return;
   if (n == running_ && inRun_) return;  // §5.7: ignored for the running node
   if (shard_ && !ownedHere(n)) [[unlikely]] {
     const ThreadId owner = shard_->ownerOf(n);
@@ -31,6 +32,7 @@ void Machine::applyPriorityRequests() {
 }
 
 void Machine::coordination(Opcode op, NodeId n, Value arg) {
+  if (!options_.coordination && op != Opcode::SCHEDULE_NEXT) return;
   if (op == Opcode::SET_AFFINITY || op == Opcode::SET_CPU) return placeNode(op, n, arg);
   const double value = op == Opcode::ADD_PRIORITY || op == Opcode::SET_DEFAULT_PRIORITY ? arg.asFloat() : 0.0;
   if (shard_ && !ownedHere(n)) {
@@ -42,6 +44,9 @@ void Machine::coordination(Opcode op, NodeId n, Value arg) {
     throw RuntimeError("coordination fact for node " + nodeName(n) + ", which does not exist");
   }
   if (op == Opcode::ADD_PRIORITY && n == running_ && inRun_) return;  // §5.7: not the running node
+  // schedule-next of the running node only gives it the most urgent priority until its run ends:
+  // it is not queued again (the established VM's do_set_node_priority for the current node).
+  if (op == Opcode::SCHEDULE_NEXT && n == running_ && nodeRunning_) return sched_.scheduleRunning(n);
   coordinateOwned(op, n, value);
 }
 

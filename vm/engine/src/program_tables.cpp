@@ -68,6 +68,7 @@ ProgramTables::ProgramTables(const Program& program) {
     bool node = false, thread = false;
     for (PredId p : program.rules[r].bodyPredicates) (isThreadPred[p] ? thread : node) = true;
     if (node && thread) mixedRules.push_back(r);
+    if (thread && !node) threadRules.push_back(r);
     isMixedRule.push_back(node && thread);
   }
   ruleWords = std::max<std::uint32_t>(1, std::uint32_t((program.rules.size() + 63) / 64));

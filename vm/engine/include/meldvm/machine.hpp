@@ -70,6 +70,11 @@ struct MachineOptions {
   // Native entry points of the program's blocks (meld --jit, a native .so); they must outlive the
   // machine. nullptr: everything runs in the interpreter.
   const NativeCode* native = nullptr;
+  // false: the coordination instructions that steer the order of work (set-priority,
+  // add-priority, remove-priority, set-default-priority, set-static, set-moving, set-cpu,
+  // set-affinity) and stop-program do nothing, as under the established VM's -n (meld
+  // --no-scheduling); schedule-next still works there too.
+  bool coordination = true;
 };
 
 // Memory a machine holds for its nodes, by part (capacities, not what is in use).
@@ -228,6 +233,7 @@ class Machine : private SchedulerView {
   void growNodes(NodeId end);  // node arrays up to id end (a shard's block of created ids)
   void initNode(NodeId n);     // its _init fact
   void stopProgram() {
+    if (!options_.coordination) return;
     stop_ = true;
     if (shard_) shard_->stopAll();
   }

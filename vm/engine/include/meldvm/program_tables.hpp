@@ -28,6 +28,8 @@ struct ProgramTables {
   // Rules whose bodies have node and thread facts (§6.12), and the flag per rule.
   std::vector<std::uint32_t> mixedRules;
   std::vector<std::uint8_t> isMixedRule;
+  // Rules whose bodies have thread facts only: they run with the node that runs as host (@host).
+  std::vector<std::uint32_t> threadRules;
   bool hasThreads = false;
   bool usesRandom = false;      // randint, degeneratevector or a [:random] selector
   std::uint32_t ruleWords = 1;  // 64-bit words of a node's candidate-rule bitset

@@ -49,6 +49,8 @@ class SerialScheduler {
   void removePriority(NodeId n);
   void setDefaultPriority(NodeId n, double p);
   void scheduleNext(NodeId n);
+  // schedule-next of the node that runs: the most urgent priority until its run ends (finished).
+  void scheduleRunning(NodeId n) { nodes_[n].prio = desc_ ? DBL_MAX : -DBL_MAX; }
   void setStatic(NodeId n, bool isStatic) { nodes_[n].isStatic = isStatic; }
 
   // Work stealing (a threaded run): the waiting nodes (heap and FIFO) that `movable(n)` allows

@@ -1,0 +1,31 @@
+#!/usr/bin/env bash
+# suite-run.sh MODE NAME.meld [-- ARGS]: runs one program of the established toolchain's test
+# suite on this toolchain and prints its dump; the command prefix suite.sh gives
+# ../shared/tools/meld-conformance.sh. MODE: bc (meld NAME.meld), jit (--jit), so (meldc
+# --emit=native, then meld NAME.so), j2 (-j 2). The suite's MELD_ARGS (exported by the conformance
+# script) may hold -n, the established VM's "no coordination": ours is --no-scheduling.
+# MELD and MELDC name the binaries (default: this repository's build/release).
+set -euo pipefail
+here="$(cd "$(dirname "$0")" && pwd)"
+repo="$(cd "$here/../.." && pwd)"
+meld="${MELD:-$repo/build/release/apps/meld/meld}"
+meldc="${MELDC:-$repo/build/release/meldc/meldc}"
+[ $# -ge 2 ] || { echo "usage: suite-run.sh bc|jit|so|j2 NAME.meld [-- ARGS]" >&2; exit 2; }
+mode=$1 program=$2
+shift 2
+flags=()
+for a in ${MELD_ARGS:-}; do
+  [ "$a" = -n ] && flags+=(--no-scheduling)
+done
+case "$mode" in
+  bc) exec "$meld" "$program" --dump "${flags[@]}" "$@" ;;
+  jit) exec "$meld" "$program" --dump --jit "${flags[@]}" "$@" ;;
+  j2) exec "$meld" "$program" --dump -j 2 "${flags[@]}" "$@" ;;
+  so)
+    tmp="$(mktemp -d)"
+    trap 'rm -rf "$tmp"' EXIT
+    "$meldc" --emit=native --no-progress "$program" -o "$tmp/program.so" >&2
+    "$meld" "$tmp/program.so" --dump "${flags[@]}" "$@"
+    ;;
+  *) echo "suite-run.sh: unknown mode '$mode'" >&2; exit 2 ;;
+esac
