@@ -27,8 +27,9 @@ class SendOrder {
   template <class NodeOf, class PredOf>
   const std::vector<std::uint32_t>& arrange(std::size_t n, NodeOf nodeOf, PredOf predOf) {
     order_.clear();
-    if (n <= 1) {
-      if (n == 1) order_.push_back(0);
+    if (n <= kFirstSeen && distinctDestinations(n, nodeOf)) {
+      // One fact per destination, all among the first eight: sending order (most runs).
+      for (std::uint32_t i = 0; i < n; ++i) order_.push_back(i);
       return order_;
     }
     entries_.clear();
@@ -40,6 +41,12 @@ class SendOrder {
     std::sort(entries_.begin(), entries_.end(), [](const Entry& a, const Entry& b) {
       return a.dest != b.dest ? a.dest < b.dest : a.pred != b.pred ? a.pred < b.pred : a.index < b.index;
     });
+    if (std::adjacent_find(entries_.begin(), entries_.end(), [](const Entry& a, const Entry& b) {
+          return a.dest == b.dest;
+        }) == entries_.end()) {  // one fact per destination: that order is final
+      for (const Entry& e : entries_) order_.push_back(e.index);
+      return order_;
+    }
     groups_.clear();
     for (std::size_t i = 0; i < entries_.size(); ++i) {
       if (i == 0 || entries_[i].dest != entries_[i - 1].dest || entries_[i].pred != entries_[i - 1].pred)
@@ -55,6 +62,14 @@ class SendOrder {
   }
 
  private:
+  template <class NodeOf>
+  static bool distinctDestinations(std::size_t n, NodeOf nodeOf) {
+    for (std::size_t i = 1; i < n; ++i)
+      for (std::size_t j = 0; j < i; ++j)
+        if (nodeOf(i) == nodeOf(j)) return false;
+    return true;
+  }
+
   struct Entry {
     std::uint64_t dest;  // 0..7: the first destinations by first send; then kFirstSeen + node id
     std::uint64_t pred;
