@@ -66,7 +66,7 @@ std::unique_ptr<LoadedProgram> loadProgram(const Options& options, int& status) 
     meldc::CompileProgressLine progress("meld", isatty(STDERR_FILENO));
     loaded->jit = meldc::native::JitCode::compile(
         *loaded->program, [&](std::size_t done, std::size_t total) { progress.update(done, total); });
-  } catch (const meldc::native::JitError& e) {
+  } catch (const meldc::native::NativeError& e) {
     std::cerr << "meld: error: " << options.program << ": native code: " << e.what() << '\n';
     status = kExitRuntimeError;
     return nullptr;

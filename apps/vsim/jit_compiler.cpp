@@ -11,7 +11,7 @@ void JitCompiler::compile(MeldCode& code) const {
     meldc::CompileProgressLine progress("vsim", showProgress_);
     jit = meldc::native::JitCode::compile(
         code.program(), [&](std::size_t done, std::size_t total) { progress.update(done, total); });
-  } catch (const meldc::native::JitError& e) {
+  } catch (const meldc::native::NativeError& e) {
     throw ProgramLoadError(std::string("native code: ") + e.what());
   }
   code.jitCode = std::make_unique<meldvm::NativeCode>(code.program(), jit->entries());

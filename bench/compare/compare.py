@@ -150,11 +150,16 @@ def normalised(dump):
 def same_line(a, b):
     if a == b:
         return True
-    # Numbers within a relative 1e-4 (dumps print %.5g); node and thread references exactly.
+    # Numbers with a point or an exponent within a relative 1e-4 (dumps print %.5g); integers,
+    # node and thread references exactly.
     split_a, split_b = NUMBER.split(a), NUMBER.split(b)
     if split_a != split_b:
         return False
     for x, y in zip(NUMBER.findall(a), NUMBER.findall(b)):
+        if not any(c in x + y for c in ".eE"):  # integers (and node ids) exactly
+            if int(x) != int(y):
+                return False
+            continue
         fx, fy = float(x), float(y)
         if fx != fy and abs(fx - fy) > 1e-4 * max(abs(fx), abs(fy)):
             return False

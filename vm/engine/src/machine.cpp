@@ -255,22 +255,9 @@ void Machine::runOnce(NodeId n) {
   ++stats_.nodeRuns;
   deliverIncoming(n);
   processPersistent();
-  std::uint64_t* cand = candidates_.data() + std::size_t(n) * tables_.ruleWords;
-  // §6.12: while a normal node runs, its thread's facts are visible: rules over node and thread
-  // facts are checked again (the thread's facts may have changed since this node last ran), and
-  // the thread node's own candidates (rule 1, rules over thread facts only) compete with the
-  // node's by rule number.
   const bool withThread = threadNode_ != kNoNode && n != threadNode_;
-  if (withThread) {
-    const ListHead* heads = db_->listHeads(n);
-    for (std::uint32_t r : tables_.mixedRules)
-      if (allPresent(heads, r)) cand[r / 64] |= std::uint64_t(1) << (r % 64);
-    // The thread's own rules are tried again at every node run, as the established VM marks its
-    // thread facts anew for each node: their host, and what `A = @host` allows, is that node.
-    std::uint64_t* threadCand = candidates_.data() + std::size_t(threadNode_) * tables_.ruleWords;
-    for (std::uint32_t r : tables_.threadRules)
-      if (allPresent(heads, r)) threadCand[r / 64] |= std::uint64_t(1) << (r % 64);
-  }
+  if (withThread) markThreadCandidates(n);
+  std::uint64_t* cand = candidates_.data() + std::size_t(n) * tables_.ruleWords;
   // §6.4.2: the lowest-numbered candidate, of the node or of its thread, until none is left
   // (stop-program too lets the run finish, §6.13: only another thread's stop or a cancel cuts it).
   while (!interrupted()) {
@@ -296,6 +283,21 @@ void Machine::runOnce(NodeId n) {
   inRun_ = false;
   flushOutgoing();
   applyPriorityRequests();
+}
+
+// §6.12: while a normal node runs, its thread's facts are visible. The rules over node and thread
+// facts are checked again (the thread's facts may have changed since this node last ran), and so
+// are the thread's own rules (rule 1, rules over thread facts only): the established VM marks the
+// thread's facts anew for each node, and their host, and what `A = @host` allows, is that node.
+// Both compete with the node's rules by number.
+void Machine::markThreadCandidates(NodeId n) {
+  const ListHead* heads = db_->listHeads(n);
+  std::uint64_t* cand = candidates_.data() + std::size_t(n) * tables_.ruleWords;
+  for (std::uint32_t r : tables_.mixedRules)
+    if (allPresent(heads, r)) cand[r / 64] |= std::uint64_t(1) << (r % 64);
+  std::uint64_t* threadCand = candidates_.data() + std::size_t(threadNode_) * tables_.ruleWords;
+  for (std::uint32_t r : tables_.threadRules)
+    if (allPresent(heads, r)) threadCand[r / 64] |= std::uint64_t(1) << (r % 64);
 }
 
 void Machine::requestKeyIndex(PredId p, std::uint32_t field) {

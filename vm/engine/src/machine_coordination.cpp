@@ -46,7 +46,7 @@ void Machine::coordination(Opcode op, NodeId n, Value arg) {
   if (op == Opcode::ADD_PRIORITY && n == running_ && inRun_) return;  // §5.7: not the running node
   // schedule-next of the running node only gives it the most urgent priority until its run ends:
   // it is not queued again (the established VM's do_set_node_priority for the current node).
-  if (op == Opcode::SCHEDULE_NEXT && n == running_ && nodeRunning_) return sched_.scheduleRunning(n);
+  if (op == Opcode::SCHEDULE_NEXT && n == running_ && inRun_) return sched_.scheduleRunning(n);
   coordinateOwned(op, n, value);
 }
 

@@ -6,7 +6,7 @@ SerialScheduler::SerialScheduler(const SchedulingOptions& o) : desc_(o.order == 
   noPriority_ = o.hasNoPriority ? o.noPriority : (desc_ ? -DBL_MAX : DBL_MAX);
   default_ = o.hasDefaultPriority ? o.defaultPriority : noPriority_;
   // §4.4: the initial priority defaults to the most urgent value.
-  initial_ = o.hasInitialPriority ? o.initialPriority : (desc_ ? DBL_MAX : -DBL_MAX);
+  initial_ = o.hasInitialPriority ? o.initialPriority : mostUrgent();
   if (o.noInitialPriorities) initial_ = default_;
 }
 
@@ -54,10 +54,14 @@ void SerialScheduler::enqueue(NodeId n) {
   if (nodes_[n].prio != noPriority_) {
     heapPush(n);
   } else {
-    nodes_[n].where = Where::Fifo;
-    fifo_.push_back({n, ++nodes_[n].ticket});
-    ++fifoLive_;
+    fifoPush(n);
   }
+}
+
+void SerialScheduler::fifoPush(NodeId n) {
+  nodes_[n].where = Where::Fifo;
+  fifo_.push_back({n, ++nodes_[n].ticket});
+  ++fifoLive_;
 }
 
 void SerialScheduler::finished(NodeId n, bool hasWork) {
@@ -77,7 +81,7 @@ void SerialScheduler::raise(NodeId n, double p, bool queueIdle) {
   if (raised) s.prio = p;
   switch (s.where) {
     case Where::Heap:
-      if (raised) asUrgent(p, old) ? siftUp(s.heapIndex) : siftDown(s.heapIndex);
+      if (raised) siftUp(s.heapIndex);  // more urgent: it can only move up
       break;
     case Where::Fifo:
       s.where = Where::Idle;  // its FIFO entry goes stale
@@ -105,15 +109,13 @@ void SerialScheduler::removePriority(NodeId n) {
   nodes_[n].prio = nodes_[n].defaultPrio;
   if (nodes_[n].where != Where::Heap) return;
   heapRemove(n);
-  nodes_[n].where = Where::Fifo;
-  fifo_.push_back({n, ++nodes_[n].ticket});
-  ++fifoLive_;
+  fifoPush(n);
 }
 
 // Only the default changes: a node takes it when its next run ends (finished).
 void SerialScheduler::setDefaultPriority(NodeId n, double p) { nodes_[n].defaultPrio = p; }
 
-void SerialScheduler::scheduleNext(NodeId n) { raise(n, desc_ ? DBL_MAX : -DBL_MAX, true); }
+void SerialScheduler::scheduleNext(NodeId n) { raise(n, mostUrgent(), true); }
 
 void SerialScheduler::heapPush(NodeId n) {
   nodes_[n].where = Where::Heap;

@@ -243,8 +243,9 @@ class Machine : private SchedulerView {
   void runRule(NodeId n, std::uint32_t rule);
   void finishRuleRun();
   void publishAdded(NodeId n, PredId p);
-  void runOnce(NodeId n);
-  void storeUndeliveredLinear();  // one run of node n (runNode repeats it while the node sent itself facts)
+  void runOnce(NodeId n);  // one run of node n (runNode repeats it while the node sent itself facts)
+  void markThreadCandidates(NodeId n);  // §6.12: at the start of a normal node's run
+  void storeUndeliveredLinear();        // after stop-program (§6.13)
   void storeDerivedLinear();  // the linear facts derived for the host, appended in order (§6.4.4)
   void deliverIncoming(NodeId n);
   void processPersistent();  // the queue's entries name their own nodes

@@ -50,7 +50,7 @@ class SerialScheduler {
   void setDefaultPriority(NodeId n, double p);
   void scheduleNext(NodeId n);
   // schedule-next of the node that runs: the most urgent priority until its run ends (finished).
-  void scheduleRunning(NodeId n) { nodes_[n].prio = desc_ ? DBL_MAX : -DBL_MAX; }
+  void scheduleRunning(NodeId n) { nodes_[n].prio = mostUrgent(); }
   void setStatic(NodeId n, bool isStatic) { nodes_[n].isStatic = isStatic; }
 
   // Work stealing (a threaded run): the waiting nodes (heap and FIFO) that `movable(n)` allows
@@ -105,6 +105,7 @@ class SerialScheduler {
   // Urgency order: true when a is strictly more urgent than b.
   bool moreUrgent(double a, double b) const { return desc_ ? a > b : a < b; }
   bool asUrgent(double a, double b) const { return desc_ ? a >= b : a <= b; }  // at least as urgent
+  double mostUrgent() const { return desc_ ? DBL_MAX : -DBL_MAX; }
   double noPriority() const { return noPriority_; }
 
  private:
@@ -117,6 +118,7 @@ class SerialScheduler {
   void siftDown(std::uint32_t i);
   void raise(NodeId n, double p, bool queueIdle);  // p if more urgent; FIFO/heap moves
   void swapEntries(std::uint32_t a, std::uint32_t b);
+  void fifoPush(NodeId n);
 
   bool desc_;
   double noPriority_, initial_, default_;
