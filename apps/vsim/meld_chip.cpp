@@ -19,15 +19,13 @@ class MeldChip::CoreShard final : public meldvm::ShardLink {
     const meldvm::threads::NodeDirectory& d = *chip.directory_;
     options.placement = {self, d.threads(), d.firstOwned(self), d.endOwned(self)};
     machine = std::make_unique<meldvm::Machine>(chip.program_, std::move(options));
-    sharing_.reserve(d.threads());
-    for (ThreadId t = 0; t < d.threads(); ++t) sharing_.emplace_back(machine->heap());
   }
 
   ThreadId ownerOf(NodeId n) const override { return chip_.directory_->ownerOf(n); }
   void sendRemote(ThreadId to, NodeId dest, meldvm::PredId p, const meldvm::Value* args,
                   bool negative) override {
     const std::size_t before = outgoing_[to].size();
-    chip_.mail_.putFact(outgoing_[to], sharing_[to], dest, p, args, negative);
+    chip_.mail_.putFact(outgoing_[to], machine->heap(), dest, p, args, negative);
     bytes_ += outgoing_[to].size() - before;
     ++facts_[to];
   }
@@ -61,7 +59,6 @@ class MeldChip::CoreShard final : public meldvm::ShardLink {
   void drain(Take&& take) {
     for (ThreadId to = 0; to < outgoing_.size(); ++to) {
       if (outgoing_[to].empty()) continue;
-      chip_.mail_.endBatch(outgoing_[to], sharing_[to]);
       take(to, facts_[to], outgoing_[to]);
       outgoing_[to].clear();
       facts_[to] = 0;
@@ -76,9 +73,6 @@ class MeldChip::CoreShard final : public meldvm::ShardLink {
   MeldChip& chip_;
   std::vector<meldvm::MailBytes> outgoing_;
   std::vector<std::uint64_t> facts_;
-  // Per destination: the lists its batch has sent (declared after `machine`, whose heap holds
-  // their references: destroyed before it).
-  std::vector<meldvm::ListEncoderShare> sharing_;
   std::size_t bytes_ = 0;
   unsigned runsSinceFlush_ = 0;
 };
@@ -87,16 +81,16 @@ MeldChip::MeldChip(const meldvm::Program& program, meldvm::MachineOptions option
     : program_(program), mail_(program), staticNodes_(cores, 0) {
   if (cores == 0 || cores > 1024) throw std::invalid_argument("a chip has 1 to 1024 cores");
   if (options.host) throw std::invalid_argument("a chip drives its own nodes (no host)");
-  if (program.predicates.size() > 0xFFFF)  // fact_codec.hpp numbers predicates in 16 bits
-    throw meldvm::RuntimeError("the multicore target handles at most 65535 predicates; this program has " +
-                               std::to_string(program.predicates.size()));
   const NodeId graph = std::max<NodeId>(NodeId(program.nodeSourceIds.size()), options.nodes);
   const meldvm::ProgramTables tables(program);
   directory_ = std::make_unique<meldvm::threads::NodeDirectory>(graph, cores, tables.hasThreads);
   for (ThreadId c = 0; c < cores; ++c) cores_.push_back(std::make_unique<CoreShard>(*this, options, c));
 }
 
-MeldChip::~MeldChip() = default;
+MeldChip::~MeldChip() {
+  // The shards hold references to each other's heap objects: all let go before any heap goes.
+  for (auto& c : cores_) c->machine->releaseAll();
+}
 
 multicore::Work MeldChip::workSince(unsigned core, const meldvm::MachineStats& before) const {
   const meldvm::MachineStats& now = cores_[core]->machine->stats();
@@ -145,9 +139,7 @@ void MeldChip::deliver(unsigned core, std::uint64_t handle) {
 
 std::uint64_t MeldChip::moveNode(unsigned from, unsigned to, NodeId n, bool moved) {
   moving_.clear();
-  meldvm::ListEncoderShare share(cores_[from]->machine->heap());
-  mail_.putNode(moving_, share, *cores_[from]->machine, n, moved);
-  mail_.endBatch(moving_, share);
+  mail_.putNode(moving_, *cores_[from]->machine, n, moved);
   directory_->moveNode(n, to);
   meldvm::ShardMail::Taken taken;
   mail_.apply(*cores_[to]->machine, moving_, taken);

@@ -198,7 +198,7 @@ void ChipSimulator::completeBarrier(simcore::SimTime now) {
   }
   std::vector<std::uint64_t> takenBefore(chip_.cores);
   for (unsigned c = 0; c < chip_.cores; ++c) takenBefore[c] = stats_[c].nodesTaken;
-  std::uint64_t bytes = 0;  // a moving node's facts are encoded and rebuilt, as a crossing fact's are
+  std::uint64_t bytes = 0;  // a moving node's records: its facts go as a crossing fact's do
   std::size_t moved = work_.applyRequestedMoves(bytes);
   if (chip_.stealing) moved += stealPlan(now, bytes);
   const double cost = chip_.costs.rebalance + double(moved) * chip_.costs.nodeMoved +

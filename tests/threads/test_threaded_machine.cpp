@@ -263,8 +263,8 @@ BOOST_AUTO_TEST_CASE(set_cpu_moves_nodes_to_another_thread_where_they_get_just_m
 }
 
 // Node @0 conses 40 heads onto one 600-element list and sends each to another node, 20 of them
-// in the other thread's range: the facts of one batch share the tail on the receiving thread as
-// they did on the sender (fact_codec.hpp, ListEncoderShare), instead of 20 copies of 600 cells.
+// in the other thread's range: the lists are handed over (heap.hpp, Heap::share), so the
+// receiving thread holds the sender's cells, not 20 copies of 600 cells.
 BOOST_AUTO_TEST_CASE(lists_consed_on_one_tail_cross_threads_still_sharing_it) {
   std::string s =
       "type route edge(node, node, int).\n"
@@ -290,8 +290,8 @@ BOOST_AUTO_TEST_CASE(lists_consed_on_one_tail_cross_threads_still_sharing_it) {
   meldvm::ThreadedMachine m(*p, o, 2);
   m.run();
   BOOST_TEST(m.dump() == serial);
-  // Copies would take 20 x 601 cells of 24 bytes (288 KB) in the receiving heap; shared, the
-  // tail and the 20 heads fit in its first 64 KiB slab, as the serial heap's 640 cells do.
+  // Copies would take 20 x 601 cells of 24 bytes (288 KB) in the receiving heap; handed over,
+  // the sender's 640 cells are all there is, as in the serial heap.
   meldvm::Machine serialMachine(*p);
   serialMachine.run();
   BOOST_TEST(m.memoryUse().heaps <= 2 * serialMachine.memoryUse().heaps);

@@ -134,14 +134,25 @@ void RegionLowering::adjustCount(Function& f, llvm::IRBuilder<>& b, llvm::Value*
   b.SetInsertPoint(object);
   llvm::Value* count = b.CreateIntToPtr(v, b.getPtrTy());
   llvm::Value* refs = b.CreateLoad(b.getInt32Ty(), count);
+  // A count with its top bit set belongs to a value shared between threads (meldvm/heap.hpp):
+  // it changes atomically, and dropping a reference to it goes through the VM.
+  llvm::Value* shared = b.CreateICmpSLT(refs, b.getInt32(0));
   if (retain) {
+    llvm::BasicBlock* atomic = newBlock(f, "retain.shared");
+    llvm::BasicBlock* plain = newBlock(f, "retain.private");
+    b.CreateCondBr(shared, atomic, plain);
+    b.SetInsertPoint(atomic);
+    b.CreateAtomicRMW(llvm::AtomicRMWInst::Add, count, b.getInt32(1), llvm::MaybeAlign(4),
+                      llvm::AtomicOrdering::Monotonic);
+    b.CreateBr(done);
+    b.SetInsertPoint(plain);
     b.CreateStore(b.CreateAdd(refs, b.getInt32(1)), count);
     b.CreateBr(done);
   } else {
-    llvm::BasicBlock* last = newBlock(f, "last");
+    llvm::BasicBlock* slow = newBlock(f, "last");
     llvm::BasicBlock* more = newBlock(f, "more");
-    b.CreateCondBr(b.CreateICmpEQ(refs, b.getInt32(1)), last, more);
-    b.SetInsertPoint(last);
+    b.CreateCondBr(b.CreateOr(b.CreateICmpEQ(refs, b.getInt32(1)), shared), slow, more);
+    b.SetInsertPoint(slow);
     b.CreateCall(t_.releaseLastType, helper(f, b, kReleaseLast), {f.vm, b.getInt32(type), v});
     b.CreateBr(done);
     b.SetInsertPoint(more);

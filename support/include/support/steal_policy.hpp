@@ -16,7 +16,7 @@ struct StealPolicy {
   // Rebalances come at least this far apart, and this many times their own cost apart, so that
   // they take a small share of the run even when the nodes that move carry many facts.
   static constexpr std::int64_t kRebalanceNanos = 500'000;
-  static constexpr std::int64_t kRebalanceGap = 20;
+  static constexpr std::int64_t kRebalanceGap = 5;
   // How long after a rebalance that took `cost` ns the next one may start.
   static std::int64_t nextRebalanceAfter(double cost) {
     return std::max(kRebalanceNanos, std::int64_t(cost * double(kRebalanceGap) + 0.5));

@@ -53,7 +53,10 @@ Machine::Machine(const Program& program, MachineOptions options)
   persistentArgs_.reserve(1024);
 }
 
-Machine::~Machine() {
+Machine::~Machine() { releaseAll(); }
+
+void Machine::releaseAll() {
+  if (!db_) return;  // released already
   // The databases go first (they hold references into the heap), then what the machine owns.
   for (std::size_t i = persistentHead_; i < persistentQueue_.size(); ++i)
     if (!persistentQueue_[i].cancelled)
@@ -176,8 +179,10 @@ void Machine::run() {
   start();
   while (!stop_ && runNext()) {
   }
-  if (!stop_) collectGarbageNodes();
-  else if (!shard_ && !host_) storeUndeliveredLinear();
+  if (!stop_)
+    collectGarbageNodes();
+  else if (!shard_ && !host_)
+    storeUndeliveredLinear();
 }
 
 // §6.13: after stop-program the established VM's dump shows the linear facts sent to nodes that

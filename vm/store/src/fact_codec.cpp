@@ -13,12 +13,7 @@ void put(std::vector<std::uint8_t>& out, T v) {
   out.insert(out.end(), b, b + sizeof(T));
 }
 
-// A list in a sharing batch (the format in fact_codec.hpp at encodeFact).
-void encodeSharedList(std::vector<std::uint8_t>& out, const TypeTable& types, TypeId t, Value v,
-                      ListEncoderShare& share);
-
-void encodeValue(std::vector<std::uint8_t>& out, const TypeTable& types, TypeId t, Value v,
-                 ListEncoderShare* share) {
+void encodeValue(std::vector<std::uint8_t>& out, const TypeTable& types, TypeId t, Value v) {
   switch (types.kind(t)) {
     case TypeKind::Int:
       put<std::int32_t>(out, v.asInt());
@@ -40,57 +35,34 @@ void encodeValue(std::vector<std::uint8_t>& out, const TypeTable& types, TypeId 
       break;
     }
     case TypeKind::List: {
-      if (share) {
-        encodeSharedList(out, types, t, v, *share);
-        break;
-      }
       std::uint32_t n = 0;
       for (Value l = v; !l.isNil(); l = listTail(l)) ++n;
       put<std::uint32_t>(out, n);
-      for (Value l = v; !l.isNil(); l = listTail(l))
-        encodeValue(out, types, types.element(t), listHead(l), share);
+      for (Value l = v; !l.isNil(); l = listTail(l)) encodeValue(out, types, types.element(t), listHead(l));
       break;
     }
     case TypeKind::Struct: {
       const auto items = tupleItems(v);
       const auto fields = types.fields(t);
-      for (std::size_t i = 0; i < items.size(); ++i) encodeValue(out, types, fields[i], items[i], share);
+      for (std::size_t i = 0; i < items.size(); ++i) encodeValue(out, types, fields[i], items[i]);
       break;
     }
     case TypeKind::Array:
     case TypeKind::Set: {
       const auto items = tupleItems(v);
       put<std::uint32_t>(out, std::uint32_t(items.size()));
-      for (Value x : items) encodeValue(out, types, types.element(t), x, share);
+      for (Value x : items) encodeValue(out, types, types.element(t), x);
       break;
     }
   }
-}
-
-void encodeSharedList(std::vector<std::uint8_t>& out, const TypeTable& types, TypeId t, Value v,
-                      ListEncoderShare& share) {
-  std::uint32_t cells = 0, rest = 0;
-  for (Value l = v; !l.isNil(); l = listTail(l), ++cells)
-    if (const std::uint32_t number = share.numberOf(l.asObject()); number != ListEncoderShare::kNotSent) {
-      rest = number + 1;
-      break;
-    }
-  put<std::uint32_t>(out, cells);
-  Value l = v;
-  for (std::uint32_t i = 0; i < cells; ++i, l = listTail(l))
-    encodeValue(out, types, types.element(t), listHead(l), &share);
-  put<std::uint32_t>(out, rest);
-  l = v;
-  for (std::uint32_t i = 0; i < cells; ++i, l = listTail(l)) share.sent(t, l);
 }
 
 // Decoded items of lists, structs, arrays and sets wait on one stack (the caller's reusable
 // vector), so decoding allocates nothing but the values themselves once the stack has grown.
 class Reader {
  public:
-  Reader(const std::uint8_t* d, std::size_t n, const TypeTable& types, Heap& heap, std::vector<Value>& stack,
-         ListDecoderShare* share)
-      : d_(d), n_(n), types_(types), heap_(heap), stack_(stack), share_(share) {}
+  Reader(const std::uint8_t* d, std::size_t n, const TypeTable& types, Heap& heap, std::vector<Value>& stack)
+      : d_(d), n_(n), types_(types), heap_(heap), stack_(stack) {}
   template <class T>
   T get() {
     if (n_ - at_ < sizeof(T)) throw FactCodecError("truncated fact message");
@@ -106,12 +78,6 @@ class Reader {
   }
   Value value(TypeId t);  // an owned reference
   bool done() const { return at_ == n_; }
-  // The rest of a list in a sharing batch: 0 the end, else 1 + the number of a cell built before.
-  Value sharedTail(std::uint32_t ref) const {
-    if (ref == 0) return Value::nil();
-    if (ref > share_->cells()) throw FactCodecError("bad list reference in fact message");
-    return share_->cell(ref - 1);
-  }
 
  private:
   // Decodes `count` items onto the stack, builds the object with `make`, releases the items.
@@ -146,7 +112,6 @@ class Reader {
   const TypeTable& types_;
   Heap& heap_;
   std::vector<Value>& stack_;
-  ListDecoderShare* share_;
 };
 
 Value Reader::value(TypeId t) {
@@ -169,16 +134,6 @@ Value Reader::value(TypeId t) {
     }
     case TypeKind::List: {
       const TypeId e = types_.element(t);
-      if (share_) {
-        const std::uint32_t cells = count();
-        return items(
-            cells, [e](std::uint32_t) { return e; },
-            [&](std::span<const Value> v) {
-              const Value list = heap_.makeList(t, v, sharedTail(get<std::uint32_t>()));
-              share_->built(t, list, cells);
-              return list;
-            });
-      }
       return items(
           count(), [e](std::uint32_t) { return e; },
           [&](std::span<const Value> v) { return heap_.makeList(t, v); });
@@ -203,16 +158,16 @@ Value Reader::value(TypeId t) {
 }  // namespace
 
 void encodeFact(std::vector<std::uint8_t>& out, const PredicateTable& preds, PredId p, const Value* args,
-                bool negative, ListEncoderShare* share) {
+                bool negative) {
   put<std::uint16_t>(out, std::uint16_t(p));
   put<std::uint8_t>(out, negative ? 1 : 0);
   const PredicateDesc& d = preds[p];
-  for (std::uint32_t i = 0; i < d.arity(); ++i) encodeValue(out, preds.types(), d.fields[i], args[i], share);
+  for (std::uint32_t i = 0; i < d.arity(); ++i) encodeValue(out, preds.types(), d.fields[i], args[i]);
 }
 
 void decodeFact(const std::uint8_t* data, std::size_t size, const PredicateTable& preds, Heap& heap,
-                DecodedFact& fact, ListDecoderShare* share) {
-  Reader r(data, size, preds.types(), heap, fact.stack, share);
+                DecodedFact& fact) {
+  Reader r(data, size, preds.types(), heap, fact.stack);
   fact.pred = r.get<std::uint16_t>();
   if (fact.pred >= preds.size()) throw FactCodecError("unknown predicate in fact message");
   const std::uint8_t flags = r.get<std::uint8_t>();

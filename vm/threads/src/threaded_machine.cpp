@@ -14,9 +14,6 @@ ThreadedMachine::ThreadedMachine(const Program& program, MachineOptions options,
     : program_(program) {
   if (threads == 0) throw std::invalid_argument("a threaded run needs at least one thread");
   if (options.host) throw std::invalid_argument("a threaded run drives its own nodes (no host)");
-  if (program.predicates.size() > 0xFFFF)  // fact_codec.hpp numbers predicates in 16 bits
-    throw RuntimeError("a threaded run handles at most 65535 predicates; this program has " +
-                       std::to_string(program.predicates.size()));
   const NodeId graph = std::max<NodeId>(NodeId(program.nodeSourceIds.size()), options.nodes);
   const ProgramTables tables(program);
   directory_ = std::make_unique<threads::NodeDirectory>(graph, threads, tables.hasThreads);
@@ -28,6 +25,8 @@ ThreadedMachine::ThreadedMachine(const Program& program, MachineOptions options,
 
 ThreadedMachine::~ThreadedMachine() {
   for (auto& w : workers_) w->join();
+  // The shards hold references to each other's heap objects: all let go before any heap goes.
+  for (auto& w : workers_) w->machine().releaseAll();
 }
 
 void ThreadedMachine::run() {

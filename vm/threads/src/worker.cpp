@@ -40,13 +40,10 @@ Worker::Worker(const Program& program, MachineOptions options, ThreadId self, No
   options.placement = {self, directory.threads(), directory.firstOwned(self), directory.endOwned(self)};
   machine_ = std::make_unique<Machine>(program, std::move(options));
   outgoing_.resize(directory.threads());
-  sharing_.reserve(directory.threads());
-  for (ThreadId t = 0; t < directory.threads(); ++t) sharing_.emplace_back(machine_->heap());
 }
 
 Worker::~Worker() {
   join();
-  sharing_.clear();  // their references are in the machine's heap
   machine_.reset();  // before the output it writes to
 }
 
@@ -128,7 +125,7 @@ void Worker::decode(const Bytes& in) {
 void Worker::sendRemote(ThreadId to, NodeId dest, PredId p, const Value* args, bool negative) {
   Bytes& out = outgoing_[to];
   const std::size_t before = out.size();
-  mail_.putFact(out, sharing_[to], dest, p, args, negative);
+  mail_.putFact(out, machine_->heap(), dest, p, args, negative);
   outgoingBytes_ += out.size() - before;
   stats_.bytesOut += out.size() - before;
   ++stats_.factsOut;
@@ -146,7 +143,6 @@ void Worker::flush() {
   for (ThreadId to = 0; to < shared_.threads; ++to) {
     Bytes& w = outgoing_[to];
     if (w.empty()) continue;
-    mail_.endBatch(w, sharing_[to]);
     shared_.active.fetch_add(1);  // before the batch can be taken
     shared_.channel(self_, to).push(w);
     shared_.wake(to);
@@ -300,7 +296,7 @@ void Worker::requestMove(NodeId n, ThreadId to) {
 void Worker::giveNode(ThreadId to, NodeId n, bool moved) {
   Bytes& out = outgoing_[to];
   const std::size_t before = out.size();
-  mail_.putNode(out, sharing_[to], *machine_, n, moved);
+  mail_.putNode(out, *machine_, n, moved);
   directory_.moveNode(n, to);
   ++stats_.nodesGiven;
   stats_.bytesMoved += out.size() - before;

@@ -82,8 +82,7 @@ class Worker final : public ShardLink {
   std::unique_ptr<LineOutput> lineOutput_;
   std::unique_ptr<std::ostream> output_;
   std::unique_ptr<Machine> machine_;
-  std::vector<Bytes> outgoing_;            // per destination thread
-  std::vector<ListEncoderShare> sharing_;  // per destination: the lists its batch has sent
+  std::vector<Bytes> outgoing_;  // per destination thread
   std::size_t outgoingBytes_ = 0;
   unsigned runsSinceFlush_ = 0;
   Bytes incoming_;

@@ -9,9 +9,43 @@
 
 namespace meldvm {
 
+namespace {
+
+// Calls visit(type, value) for each item of o (a list cell's head, a tuple's items) and returns
+// its rest (a list cell's tail, else null): destroy() and share() walk lists along it iteratively.
+template <class Visit>
+Object* visitItems(const TypeTable& types, Object* o, Visit&& visit) {
+  const TypeId t = o->type;
+  switch (types.kind(t)) {
+    case TypeKind::List: {
+      auto* c = static_cast<ConsCell*>(o);
+      visit(types.element(t), c->head);
+      return c->tail;
+    }
+    case TypeKind::Struct: {
+      auto* tu = static_cast<TupleObject*>(o);
+      const auto fieldTypes = types.fields(t);
+      for (std::uint32_t i = 0; i < tu->size; ++i) visit(fieldTypes[i], tu->items()[i]);
+      return nullptr;
+    }
+    case TypeKind::Array:
+    case TypeKind::Set: {
+      auto* tu = static_cast<TupleObject*>(o);
+      for (std::uint32_t i = 0; i < tu->size; ++i) visit(types.element(t), tu->items()[i]);
+      return nullptr;
+    }
+    default:
+      return nullptr;
+  }
+}
+
+}  // namespace
+
 Heap::~Heap() {
-  // Objects still referenced die with the heap: their memory is the slabs themselves.
-  for (void* p : slabs_) ::operator delete(p);
+  // Objects still referenced die with the heap: their memory is the slabs themselves. (Heaps
+  // that shared objects with each other go together, after every reference is released:
+  // threads/README.md.)
+  for (void* p : slabs_) ::operator delete(p, std::align_val_t(kSlabBytes));
   for (void* p : large_) ::operator delete(p);
 }
 
@@ -31,23 +65,30 @@ void* Heap::allocate(std::size_t bytes) {
   const std::size_t cls = classOf(bytes);
   const std::size_t size = classBytes(cls);
   void* p;
+  if (!free_[cls] && remote_.load(std::memory_order_relaxed)) drainRemote();
   if (FreeBlock* f = free_[cls]) {
     free_[cls] = f->next;
     p = f;
   } else if (cls < kSmallClasses) {
     if (std::size_t(bumpEnd_ - bump_) < size) {
-      // The unused end of the previous slab is abandoned; at most kSmallMax bytes per slab.
-      bump_ = static_cast<char*>(::operator new(kSlabBytes));
-      bumpEnd_ = bump_ + kSlabBytes;
-      slabs_.push_back(bump_);
+      // The unused end of the previous slab is abandoned; at most kSmallMax bytes per slab. A
+      // slab is aligned to its size and starts with its owner, so a block's owner is found from
+      // its address alone.
+      char* slab = static_cast<char*>(::operator new(kSlabBytes, std::align_val_t(kSlabBytes)));
+      *reinterpret_cast<Heap**>(slab) = this;
+      bump_ = slab + kOwnerBytes;
+      bumpEnd_ = slab + kSlabBytes;
+      slabs_.push_back(slab);
       bytesReserved_ += kSlabBytes;
     }
     p = bump_;
     bump_ += size;
   } else {
-    p = ::operator new(size);
-    large_.push_back(p);
-    bytesReserved_ += size;
+    char* block = static_cast<char*>(::operator new(size + kOwnerBytes));
+    *reinterpret_cast<Heap**>(block) = this;
+    large_.push_back(block);
+    p = block + kOwnerBytes;
+    bytesReserved_ += size + kOwnerBytes;
   }
   ++live_;
   bytesInUse_ += size;
@@ -60,6 +101,52 @@ void Heap::deallocate(Object* o, std::size_t bytes) {
   bytesInUse_ -= classBytes(cls);
   auto* f = new (static_cast<void*>(o)) FreeBlock{free_[cls]};
   free_[cls] = f;
+}
+
+void Heap::recycle(Object* o) {
+  const std::size_t bytes = objectBytes(o);
+  if (isShared(o)) {  // freed by whichever thread dropped the last reference
+    if (Heap* owner = ownerOf(o, bytes); owner != this) return owner->pushRemote(o, classOf(bytes));
+  }
+  deallocate(o, bytes);
+}
+
+Heap* Heap::ownerOf(const Object* o, std::size_t bytes) const {
+  const char* at =
+      bytes <= kSmallMax
+          ? reinterpret_cast<const char*>(reinterpret_cast<std::uintptr_t>(o) & ~(kSlabBytes - 1))
+          : reinterpret_cast<const char*>(o) - kOwnerBytes;
+  return *reinterpret_cast<Heap* const*>(at);
+}
+
+void Heap::pushRemote(Object* o, std::size_t cls) {
+  static_assert(sizeof(RemoteBlock) <= 16, "the smallest block holds a RemoteBlock");
+  auto* r = new (static_cast<void*>(o)) RemoteBlock{remote_.load(std::memory_order_relaxed), cls};
+  while (!remote_.compare_exchange_weak(r->next, r, std::memory_order_release, std::memory_order_relaxed)) {
+  }
+}
+
+void Heap::drainRemote() {
+  for (RemoteBlock* r = remote_.exchange(nullptr, std::memory_order_acquire); r;) {
+    RemoteBlock* next = r->next;
+    const std::size_t cls = r->cls;
+    --live_;
+    bytesInUse_ -= classBytes(cls);
+    free_[cls] = new (static_cast<void*>(r)) FreeBlock{free_[cls]};
+    r = next;
+  }
+}
+
+void Heap::share(TypeId t, Value v) {
+  if (types_.boxed(t) && !v.isNil()) shareObject(v.asObject());
+}
+
+void Heap::shareObject(Object* o) {
+  // What is shared already reaches only shared objects: the walk stops there.
+  while (o && !isShared(o)) {
+    o->refs |= Object::kShared;
+    o = visitItems(types_, o, [&](TypeId t, Value v) { share(t, v); });
+  }
 }
 
 std::size_t Heap::objectBytes(const Object* o) const {
@@ -144,32 +231,9 @@ Value Heap::makeTuple(TypeId type, std::span<const Value> items) {
 void Heap::destroy(Object* o) {
   // Iterative along list tails, so that releasing a long list cannot overflow the stack.
   while (o) {
-    Object* next = nullptr;
-    const TypeId t = o->type;
-    switch (types_.kind(t)) {
-      case TypeKind::List: {
-        auto* c = static_cast<ConsCell*>(o);
-        release(types_.element(t), c->head);
-        if (c->tail && --c->tail->refs == 0) next = c->tail;
-        break;
-      }
-      case TypeKind::Struct: {
-        auto* tu = static_cast<TupleObject*>(o);
-        const auto fieldTypes = types_.fields(t);
-        for (std::uint32_t i = 0; i < tu->size; ++i) release(fieldTypes[i], tu->items()[i]);
-        break;
-      }
-      case TypeKind::Array:
-      case TypeKind::Set: {
-        auto* tu = static_cast<TupleObject*>(o);
-        for (std::uint32_t i = 0; i < tu->size; ++i) release(types_.element(t), tu->items()[i]);
-        break;
-      }
-      default:
-        break;
-    }
-    deallocate(o, objectBytes(o));
-    o = next;
+    Object* rest = visitItems(types_, o, [&](TypeId t, Value v) { release(t, v); });
+    recycle(o);
+    o = rest && dropReference(rest) ? rest : nullptr;
   }
 }
 

@@ -21,7 +21,7 @@ extern "C" {
 #endif
 
 /* Bumped whenever a helper, its meaning or the block signature changes. */
-#define MELD_NATIVE_ABI_VERSION 4u
+#define MELD_NATIVE_ABI_VERSION 5u
 
 typedef struct meld_native_vm meld_native_vm;       /* the interpreter running the block */
 typedef struct meld_native_frame meld_native_frame; /* its frame (registers, loop slots) */
@@ -84,8 +84,9 @@ struct meld_native_helpers {
   const uint64_t* (*slot_args)(meld_native_vm* vm, meld_native_frame* f, uint32_t slot);
   /* FIRE: counts the rule (after its consumption). */
   void (*rule_fired)(meld_native_vm* vm);
-  /* Drops the last reference to a boxed value of type `type` (native code counts references
-   * itself: a boxed value points at its 32-bit count; this is for when it would reach zero). */
+  /* Drops a reference to a boxed value of type `type` the slow way (native code counts references
+   * itself: a boxed value points at its 32-bit count; this is for when it would reach zero, or
+   * when the count's top bit says the value is shared between threads and changes atomically). */
   void (*release_last)(meld_native_vm* vm, uint32_t type, uint64_t value);
   /* ITER or ITER_KEY at pc: binds its slot's predicate and node, counts the loop and fills `out`;
    * native code then binds each fact to slots[slot].fact and runs the body itself. */

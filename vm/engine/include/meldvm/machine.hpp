@@ -117,6 +117,10 @@ class Machine : private SchedulerView {
  public:
   Machine(const Program& program, MachineOptions options = {});
   ~Machine() override;
+  // Drops every reference the machine holds (its facts, messages, globals): the end of the
+  // machine but for its heap. Shards that handed values to each other all do this before any of
+  // their heaps goes (threads/README.md).
+  void releaseAll();
   Machine(const Machine&) = delete;
   Machine& operator=(const Machine&) = delete;
 
@@ -246,7 +250,7 @@ class Machine : private SchedulerView {
   void runOnce(NodeId n);  // one run of node n (runNode repeats it while the node sent itself facts)
   void markThreadCandidates(NodeId n);  // §6.12: at the start of a normal node's run
   void storeUndeliveredLinear();        // after stop-program (§6.13)
-  void storeDerivedLinear();  // the linear facts derived for the host, appended in order (§6.4.4)
+  void storeDerivedLinear();            // the linear facts derived for the host, appended in order (§6.4.4)
   void deliverIncoming(NodeId n);
   void processPersistent();  // the queue's entries name their own nodes
   // Inline: most derivations change nothing visible (a copy more, an aggregate input that does not

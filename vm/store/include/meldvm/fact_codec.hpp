@@ -1,6 +1,6 @@
 // Facts as bytes, for the messages between simulated blocks (a fact for a neighbour travels over
-// the link, and its size decides the transmission time) and between the worker threads of
-// `meld -j N` (a fact leaves the sender's heap and is rebuilt in the receiver's). Layout, little-endian:
+// the link, and its size decides the transmission time). (The worker threads of `meld -j N` hand
+// values over instead: meldvm/shard_mail.hpp.) Layout, little-endian:
 // predicate id (u16), flags (u8: 1 = retraction), then the arguments by type: int i32, float f64,
 // bool u8, node/thread u32, string u32 length + bytes, list u32 count + items, struct its fields,
 // array/set u32 count + items.
@@ -11,7 +11,6 @@
 #include <vector>
 
 #include "meldvm/heap.hpp"
-#include "meldvm/list_sharing.hpp"
 #include "meldvm/predicate.hpp"
 
 namespace meldvm {
@@ -21,11 +20,9 @@ class FactCodecError : public std::runtime_error {
   using std::runtime_error::runtime_error;
 };
 
-// Appends the encoding of one fact to `out`. With `share` (list_sharing.hpp), a list goes as u32
-// count of the cells not yet sent in the batch, their items, then u32 0 for the end of the list
-// or 1 + the number of the cell the rest starts with.
+// Appends the encoding of one fact to `out`.
 void encodeFact(std::vector<std::uint8_t>& out, const PredicateTable& preds, PredId p, const Value* args,
-                bool negative, ListEncoderShare* share = nullptr);
+                bool negative);
 
 struct DecodedFact {
   PredId pred = 0;
@@ -35,9 +32,7 @@ struct DecodedFact {
 };
 
 // Decodes one fact; throws FactCodecError on malformed input. `fact`'s vectors are reused.
-// `share`: the fact was encoded with a ListEncoderShare (the same batch's earlier facts decoded
-// with this one).
 void decodeFact(const std::uint8_t* data, std::size_t size, const PredicateTable& preds, Heap& heap,
-                DecodedFact& fact, ListDecoderShare* share = nullptr);
+                DecodedFact& fact);
 
 }  // namespace meldvm

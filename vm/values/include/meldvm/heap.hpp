@@ -7,10 +7,18 @@
 // frees memory at once when the last fact holding it is consumed. Objects come from size-class free
 // lists carved out of 64 KiB slabs, so in the steady state an object is recycled, never malloc'd.
 // Every object records its own TypeId, so releasing one needs no outside type information.
-// Counts are not atomic: one Heap serves one thread (the serial VM; the threaded VM will need one
-// heap per thread plus a hand-over rule for values that cross threads).
+//
+// One Heap serves one thread. A value that goes to another thread (`meld -j N`: a fact for
+// another shard's node, a node that moves) is handed over, not copied: share() marks it and all it
+// reaches *shared* (the top bit of its count), and from then on its count changes atomically.
+// Shared objects never become private again and point only at shared objects, so a private
+// object is reachable from its own thread alone and keeps its plain, non-atomic count (the serial
+// VM never shares anything). The thread that drops a shared object's last reference destroys it;
+// its block goes back to the heap that allocated it (found from the block's address) through that
+// heap's remote-free stack, which the owner drains when it allocates.
 #pragma once
 
+#include <atomic>
 #include <cstddef>
 #include <cstdint>
 #include <span>
@@ -23,8 +31,9 @@
 namespace meldvm {
 
 struct Object {
-  std::uint32_t refs;
+  std::uint32_t refs;  // the count; kShared: shared between threads (changed atomically)
   TypeId type;
+  static constexpr std::uint32_t kShared = 0x80000000u;
 };
 
 // A list is a chain of cons cells; the empty list is the nil value (null pointer).
@@ -78,14 +87,23 @@ class Heap {
 
   // No-ops for unboxed types and for nil.
   void retain(TypeId t, Value v) {
-    if (types_.boxed(t) && !v.isNil()) ++v.asObject()->refs;
+    if (types_.boxed(t) && !v.isNil()) retainObject(v.asObject());
   }
   void release(TypeId t, Value v) {
-    if (types_.boxed(t) && !v.isNil() && --v.asObject()->refs == 0) destroy(v.asObject());
+    if (types_.boxed(t) && !v.isNil() && dropReference(v.asObject())) destroy(v.asObject());
   }
+  // Marks v and everything it reaches shared, before v is handed to another thread.
+  void share(TypeId t, Value v);
 
-  std::size_t liveObjects() const { return live_; }
-  std::size_t bytesInUse() const { return bytesInUse_; }
+  // Objects and bytes of this heap's blocks (the blocks other threads freed count once drained).
+  std::size_t liveObjects() {
+    drainRemote();
+    return live_;
+  }
+  std::size_t bytesInUse() {
+    drainRemote();
+    return bytesInUse_;
+  }
   std::size_t bytesReserved() const { return bytesReserved_; }
 
  private:
@@ -97,14 +115,44 @@ class Heap {
   struct FreeBlock {
     FreeBlock* next;
   };
+  struct RemoteBlock {  // a block another thread freed, on its owner's remote-free stack
+    RemoteBlock* next;
+    std::uint64_t cls;
+  };
+  // Where the owning Heap's address sits: the start of a small block's (aligned) slab, the
+  // header in front of a large block.
+  static constexpr std::size_t kOwnerBytes = 16;
+
+  // Another thread may be changing a shared object's count: its bit is read atomically.
+  static bool isShared(Object* o) {
+    return std::atomic_ref<std::uint32_t>(o->refs).load(std::memory_order_relaxed) & Object::kShared;
+  }
+  static void retainObject(Object* o) {
+    if (std::atomic_ref<std::uint32_t> refs(o->refs); refs.load(std::memory_order_relaxed) & Object::kShared)
+      refs.fetch_add(1, std::memory_order_relaxed);
+    else
+      ++o->refs;
+  }
+  // Drops one reference; true if it was the last.
+  static bool dropReference(Object* o) {
+    std::atomic_ref<std::uint32_t> refs(o->refs);
+    if (refs.load(std::memory_order_relaxed) & Object::kShared)
+      return refs.fetch_sub(1, std::memory_order_acq_rel) == (Object::kShared | 1);
+    return --o->refs == 0;
+  }
 
   static std::size_t classOf(std::size_t bytes);
   static std::size_t classBytes(std::size_t cls);
   void* allocate(std::size_t bytes);  // raw block; the builder constructs the object
   ConsCell* newCell(TypeId listType);
   void deallocate(Object* o, std::size_t bytes);
+  void recycle(Object* o);  // o's block goes back to the heap that allocated it
+  Heap* ownerOf(const Object* o, std::size_t bytes) const;
+  void pushRemote(Object* o, std::size_t cls);
+  void drainRemote();
   std::size_t objectBytes(const Object* o) const;
   void destroy(Object* o);  // count reached zero: release children, recycle the block
+  void shareObject(Object* o);
 
   const TypeTable& types_;
   FreeBlock* free_[kSmallClasses + kLargeClasses] = {};
@@ -113,6 +161,7 @@ class Heap {
   char* bump_ = nullptr;
   char* bumpEnd_ = nullptr;
   std::size_t live_ = 0, bytesInUse_ = 0, bytesReserved_ = 0;
+  std::atomic<RemoteBlock*> remote_{nullptr};
 };
 
 }  // namespace meldvm

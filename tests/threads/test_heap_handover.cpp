@@ -1,0 +1,105 @@
+// Values handed from one thread's heap to another's (meldvm/heap.hpp: Heap::share): counted
+// atomically once shared, freed by whichever thread drops the last reference, their blocks back
+// in the heap that allocated them. ThreadSanitizer runs this file (label threads).
+#define BOOST_TEST_MODULE threads_heap_handover
+#include <boost/test/unit_test.hpp>
+#include <string>
+#include <thread>
+#include <vector>
+
+#include "meldvm/heap.hpp"
+
+using meldvm::Heap;
+using meldvm::TypeId;
+using meldvm::TypeTable;
+using meldvm::Value;
+
+namespace {
+
+Value intList(Heap& heap, TypeId listType, int from, int count, Value tail = Value::nil()) {
+  std::vector<Value> items;
+  for (int i = 0; i < count; ++i) items.push_back(Value::fromInt(from + i));
+  return heap.makeList(listType, items, tail);
+}
+
+}  // namespace
+
+BOOST_AUTO_TEST_CASE(a_shared_list_freed_by_another_heap_goes_back_to_its_own) {
+  TypeTable types;
+  const TypeId li = types.list(TypeTable::kInt);
+  Heap a(types), b(types);
+  const Value list = intList(a, li, 0, 100);
+  BOOST_TEST(a.liveObjects() == 100u);
+  a.share(li, list);
+  b.retain(li, list);   // b's reference
+  a.release(li, list);  // a lets go: the cells live on for b
+  BOOST_TEST(a.liveObjects() == 100u);
+  // b conses onto the shared tail: its new cell is b's own, private, and points into a's heap.
+  const Value longer = b.cons(li, Value::fromInt(-1), list);
+  b.release(li, list);
+  BOOST_TEST(b.liveObjects() == 1u);
+  b.release(li, longer);  // frees b's cell, then a's 100 through a's remote-free stack
+  BOOST_TEST(b.liveObjects() == 0u);
+  BOOST_TEST(a.liveObjects() == 0u);
+  // The blocks are a's again: a new list reuses them instead of growing the heap.
+  const std::size_t reserved = a.bytesReserved();
+  const Value again = intList(a, li, 0, 100);
+  BOOST_TEST(a.bytesReserved() == reserved);
+  a.release(li, again);
+}
+
+BOOST_AUTO_TEST_CASE(sharing_marks_what_a_value_reaches_and_stops_at_what_is_shared) {
+  TypeTable types;
+  const TypeId ls = types.list(TypeTable::kString);
+  const TypeId fields[] = {ls, TypeTable::kString};
+  const TypeId st = types.structOf(fields);
+  Heap a(types), b(types);
+  const Value big = a.makeString(std::string(2000, 'x'));  // a large block (own header)
+  const Value small = a.makeString("y");
+  const Value items[] = {small, big};
+  const Value strings = a.makeList(ls, items);
+  const Value pair[] = {strings, big};
+  const Value s = a.makeTuple(st, pair);
+  a.release(TypeTable::kString, big);
+  a.release(TypeTable::kString, small);
+  a.release(ls, strings);
+  a.share(st, s);
+  a.share(st, s);  // already shared: nothing more to do
+  b.retain(st, s);
+  a.release(st, s);
+  BOOST_TEST(a.liveObjects() == 5u);  // the struct, 2 cells, 2 strings
+  b.release(st, s);
+  BOOST_TEST(a.liveObjects() == 0u);
+  BOOST_TEST(a.bytesInUse() == 0u);
+}
+
+// Two threads take and drop references to the same shared lists at once, and each frees some of
+// them last: the counts stay exact (every block comes back once, no object is freed twice).
+BOOST_AUTO_TEST_CASE(two_threads_count_shared_lists_exactly) {
+  TypeTable types;
+  const TypeId li = types.list(TypeTable::kInt);
+  Heap a(types), b(types);
+  constexpr int kLists = 200, kRounds = 200;
+  std::vector<Value> lists;
+  const Value tail = intList(a, li, 0, 50);
+  for (int i = 0; i < kLists; ++i) lists.push_back(a.cons(li, Value::fromInt(i), tail));
+  a.release(li, tail);
+  for (Value l : lists) a.share(li, l);
+  for (Value l : lists) b.retain(li, l);  // one reference each for a and b
+  auto churn = [&](Heap& heap, int parity) {
+    for (int r = 0; r < kRounds; ++r)
+      for (Value l : lists) {
+        heap.retain(li, l);
+        heap.release(li, l);
+      }
+    for (int i = 0; i < kLists; ++i)
+      if (i % 2 == parity) heap.release(li, lists[std::size_t(i)]);
+  };
+  std::thread other([&] { churn(b, 1); });
+  churn(a, 0);
+  other.join();
+  // Half the lists still have a's reference, half b's.
+  for (int i = 0; i < kLists; ++i) (i % 2 == 0 ? b : a).release(li, lists[std::size_t(i)]);
+  BOOST_TEST(b.liveObjects() == 0u);
+  BOOST_TEST(a.liveObjects() == 0u);
+}
