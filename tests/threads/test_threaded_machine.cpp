@@ -215,26 +215,37 @@ BOOST_AUTO_TEST_CASE(per_thread_statistics_add_up) {
   BOOST_TEST(out >= 3u);  // the token crosses from each thread's range to the next at least once
 }
 
-BOOST_AUTO_TEST_CASE(an_idle_thread_steals_queued_nodes_and_the_dump_is_unchanged) {
-  // 64 nodes; the 32 of thread 0's range (the literals seen last get the low ids, §6.1) count
-  // down from 100000 in their first run, the others have nothing to do: thread 1 runs out of
-  // work at once and takes nodes waiting in thread 0's queue, facts, messages and all.
+// 64 nodes; the 32 of thread 0's range (the literals seen last get the low ids, §6.1) count
+// down from 100000 in their first run, the others have nothing to do.
+std::string countdownProgram() {
   std::string s = "type linear w(node, int).\ntype route edge(node, node).\ntype linear got(node, int).\n";
   for (int i = 0; i < 64; ++i) {
     s += "w(@" + std::to_string(i) + ", " + (i >= 32 ? "100000" : "1") + ").\n";
     s += "!edge(@" + std::to_string(i) + ", @" + std::to_string((i + 1) % 64) + ").\n";
   }
-  s += "w(A, N), N > 0 -o w(A, N - 1).\n"
-       "w(A, 0), !edge(A, B) -o got(B, 1).\n";
-  const auto p = compile(s);
+  return s +
+         "w(A, N), N > 0 -o w(A, N - 1).\n"
+         "w(A, 0), !edge(A, B) -o got(B, 1).\n";
+}
+
+BOOST_AUTO_TEST_CASE(an_idle_thread_steals_queued_nodes_even_from_a_long_node_run) {
+  // One thread's nodes count down, 100000 rules per node run; the other runs out of work at once
+  // and takes nodes waiting in the first one's queue, facts, messages and all. It asks while the
+  // first is in the middle of a run: that thread joins the rebalance between two rules (it does
+  // not wait for the run's end), gives waiting nodes but never the running one, and the run goes
+  // on where it was. The dump is the serial one.
+  const auto p = compile(countdownProgram());
   const std::string serial = serialDump(*p);
   meldvm::ThreadedMachine m(*p, {}, 2);
   m.run();
   BOOST_TEST(m.dump() == serial);
-  std::uint64_t taken = 0, given = 0;
-  for (const auto& t : m.threadStats()) taken += t.nodesTaken, given += t.nodesGiven;
+  std::uint64_t taken = 0, given = 0, rebalances = 0, midRun = 0;
+  for (const auto& t : m.threadStats())
+    taken += t.nodesTaken, given += t.nodesGiven, rebalances += t.rebalances, midRun += t.midRunRebalances;
   BOOST_TEST(taken > 0u);
   BOOST_TEST(taken == given);
+  BOOST_TEST(midRun > 0u);
+  BOOST_TEST(midRun < rebalances);  // the thread that asked was between runs
 }
 
 BOOST_AUTO_TEST_CASE(set_cpu_moves_nodes_to_another_thread_where_they_get_just_moved) {

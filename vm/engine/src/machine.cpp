@@ -30,6 +30,7 @@ Machine::Machine(const Program& program, MachineOptions options)
   host_ = options_.host;
   shard_ = options_.shard;
   stopFlag_ = options_.stopFlag;
+  safePointFlag_ = options_.shard ? options_.safePointFlag : nullptr;
   placement_ = options_.placement;
   if (shard_ && host_) throw std::invalid_argument("a Machine is either a shard or driven by a host");
   stepsLeft_ = options_.maxSteps ? options_.maxSteps + 1 : UINT64_MAX;
@@ -283,6 +284,10 @@ void Machine::runOnce(NodeId n) {
     ownerCand[rule / 64] &= ~(std::uint64_t(1) << (rule % 64));
     runRule(n, rule);
     finishRuleRun();
+    // A long node run would hold up a rebalance until it ends: between two rules, the runtime may
+    // deliver facts and move this shard's other nodes (never this one: movableNow).
+    if (safePointFlag_ && safePointFlag_->load(std::memory_order_relaxed)) [[unlikely]]
+      shard_->safePoint();
     cand = candidates_.data() + std::size_t(n) * tables_.ruleWords;  // exists may have grown the array
   }
   inRun_ = false;
@@ -601,7 +606,7 @@ NodeId Machine::addHostNode() {
 // multiply the facts that cross threads.
 std::vector<NodeId> Machine::pickNodesToGive(std::size_t max, bool highestIds) {
   constexpr std::size_t kBandSlack = 2;
-  auto movable = [&](NodeId n) { return n < initialNodes_ && n != threadNode_; };
+  auto movable = [&](NodeId n) { return n < initialNodes_ && n != threadNode_ && movableNow(n); };
   std::vector<NodeId> nodes;
   sched_.queuedForSteal(nodes, movable);
   if (nodes.empty() || max == 0) return {};
@@ -633,7 +638,7 @@ std::vector<NodeId> Machine::pickNodesToGive(std::size_t max, bool highestIds) {
 }
 
 bool Machine::unqueueToGive(NodeId n) {
-  if (n >= initialNodes_ || !ownedHere(n)) return false;
+  if (n >= initialNodes_ || !ownedHere(n) || !movableNow(n)) return false;
   sched_.unqueue(n);
   return true;
 }

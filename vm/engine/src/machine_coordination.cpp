@@ -27,7 +27,12 @@ void Machine::priorityRequest(NodeId n, double p) {
 }
 
 void Machine::applyPriorityRequests() {
-  for (const auto& [n, p] : priorityRequests_) sched_.setPriority(NodeId(n), p);
+  for (const auto& [n, p] : priorityRequests_) {
+    if (shard_ && !ownedHere(NodeId(n))) [[unlikely]]  // it moved during the run (a safe point)
+      shard_->coordinateRemote(shard_->ownerOf(NodeId(n)), Opcode::SET_PRIORITY, NodeId(n), p);
+    else
+      sched_.setPriority(NodeId(n), p);
+  }
   priorityRequests_.clear();
 }
 

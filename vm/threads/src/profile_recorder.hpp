@@ -53,14 +53,17 @@ class ProfileRecorder {
     return std::chrono::duration_cast<std::chrono::nanoseconds>(std::chrono::steady_clock::now() - origin_)
         .count();
   }
+  // With no node run ended since the last span, nothing is recorded and the facts counted so far
+  // stay for the next span: a rebalance joined from a safe point comes in the middle of a run.
   void closeRun(std::int64_t now, std::uint64_t derived, std::uint64_t factsIn, std::size_t waiting) {
-    if (runs_ != 0)
+    if (runs_ != 0) {
       spans_.push_back(
           {Kind::Run, spanBegin_, now, runs_, derived - derivedAt_, factsIn - factsInAt_, waiting});
+      derivedAt_ = derived;
+      factsInAt_ = factsIn;
+    }
     runs_ = 0;
     sinceClock_ = 0;
-    derivedAt_ = derived;
-    factsInAt_ = factsIn;
     spanBegin_ = now;
   }
 

@@ -98,6 +98,7 @@ struct SharedState {
     std::atomic<std::int32_t> staticNodes{0};
     std::atomic<std::uint32_t> queued{0};  // nodes waiting to run, as of the thread's last node run
     std::atomic<float> idleShare{0};       // of the time since the last rebalance (set in one)
+    std::atomic<bool> midRun{false};       // in a rebalance from a safe point of a node run
   };
   std::unique_ptr<PerThread[]> perThread;
 

@@ -37,6 +37,7 @@ Worker::Worker(const Program& program, MachineOptions options, ThreadId self, No
   }
   options.shard = this;
   options.stopFlag = &shared.stop;
+  options.safePointFlag = &shared.rebalanceWanted;
   options.placement = {self, directory.threads(), directory.firstOwned(self), directory.endOwned(self)};
   machine_ = std::make_unique<Machine>(program, std::move(options));
   outgoing_.resize(directory.threads());
@@ -69,7 +70,15 @@ void Worker::loop() {
       }
       if (shared_.rebalanceWanted.load(std::memory_order_relaxed)) rebalance();
       takeMail();
+      // What waits behind the node about to run, for a thread that runs out meanwhile (it may
+      // ask for a rebalance, which this thread joins from a safe point of the run).
+      if (const auto waiting = std::uint32_t(machine_->waitingNodes()); waiting > 1)
+        shared_.perThread[self_].queued.store(waiting - 1, std::memory_order_relaxed);
       if (machine_->runNext()) {
+        if (!deferredMoves_.empty()) [[unlikely]] {  // set-cpu of a node that was running then
+          for (const auto& [n, to] : deferredMoves_) requestMove(n, to);
+          deferredMoves_.clear();
+        }
         const auto queued = std::uint32_t(machine_->waitingNodes());
         shared_.perThread[self_].queued.store(queued, std::memory_order_relaxed);
         if (queued >= kStealableQueue && shared_.idleThreads.load(std::memory_order_relaxed) != 0)
@@ -218,9 +227,17 @@ void Worker::offerWork() {
   shared_.askForRebalance();
 }
 
-void Worker::rebalance() {
+// A node run that is long (thousands of rules) would keep every other thread waiting in the
+// rebalance's first barrier: it joins from between two of its rules instead, gives nodes if it
+// has the most, but takes none (its node's run goes on afterwards).
+void Worker::safePoint() {
+  if (shared_.rebalanceWanted.load(std::memory_order_relaxed)) rebalance(true);
+}
+
+void Worker::rebalance(bool midRun) {
   const Clock::time_point start = Clock::now();
   ++stats_.rebalances;
+  stats_.midRunRebalances += midRun;
   if (profile_) profile_->pauseBegin(machine_->stats().factsDerived, stats_.factsIn);
   const std::uint64_t takenBefore = stats_.nodesTaken;
   struct EndSpan {  // the steal span ends however the rebalance does
@@ -236,25 +253,10 @@ void Worker::rebalance() {
   if (self_ == 0) shared_.rebalanceWanted.store(false);
   takeMail();
   shared_.perThread[self_].queued.store(std::uint32_t(machine_->waitingNodes()));
+  shared_.perThread[self_].midRun.store(midRun);
   publishIdleShare(start, allThere);
   if (!shared_.arriveAndWait()) return;  // 2
-  // The same plan on every thread: the i-th most loaded thread gives to the i-th least loaded.
-  std::vector<ThreadId> order(shared_.threads);
-  std::vector<std::uint32_t> load(shared_.threads);
-  std::vector<double> idle(shared_.threads);
-  for (ThreadId t = 0; t < shared_.threads; ++t) {
-    order[t] = t, load[t] = shared_.perThread[t].queued.load();
-    idle[t] = shared_.perThread[t].idleShare.load();
-  }
-  std::stable_sort(order.begin(), order.end(), [&](ThreadId a, ThreadId b) { return load[a] > load[b]; });
-  // set-cpu / set-affinity first (every thread reads the list; thread 0 clears it in phase 4).
-  for (const auto& [n, to] : shared_.moves)
-    if (to != self_ && directory_.ownerOf(n) == self_ && machine_->unqueueToGive(n)) giveNode(to, n, true);
-  for (std::size_t i = 0; stealing_ && i < order.size() / 2; ++i) {
-    const ThreadId giver = order[i], taker = order[order.size() - 1 - i];
-    if (giver == self_)
-      giveNodes(taker, support::StealPolicy::nodesToGive(load[giver], load[taker], idle[giver], idle[taker]));
-  }
+  planMoves(midRun);
   flush();
   if (!shared_.arriveAndWait()) return;  // 3
   takeMail();
@@ -270,6 +272,42 @@ void Worker::rebalance() {
     const double cost = secondsSince(allThere) * 1e9;
     shared_.nextRebalanceNs.store(nowNanos() + support::StealPolicy::nextRebalanceAfter(cost));
   }
+}
+
+// Phase 3 of a rebalance: the same plan on every thread. set-cpu / set-affinity first (every
+// thread reads the list; a node that is running now moves at the next rebalance); then the i-th
+// most loaded thread gives to the i-th least loaded that is not in the middle of a node run.
+void Worker::planMoves(bool midRun) {
+  std::vector<ThreadId> order(shared_.threads);
+  std::vector<std::uint32_t> load(shared_.threads);
+  std::vector<double> idle(shared_.threads);
+  std::vector<bool> busy(shared_.threads);
+  for (ThreadId t = 0; t < shared_.threads; ++t) {
+    order[t] = t, load[t] = shared_.perThread[t].queued.load();
+    idle[t] = shared_.perThread[t].idleShare.load();
+    busy[t] = shared_.perThread[t].midRun.load();
+  }
+  std::stable_sort(order.begin(), order.end(), [&](ThreadId a, ThreadId b) { return load[a] > load[b]; });
+  std::vector<std::pair<NodeId, ThreadId>> later;  // running now: asked again after its run
+  for (const auto& [n, to] : shared_.moves) {
+    if (to == self_ || directory_.ownerOf(n) != self_) continue;
+    if (machine_->unqueueToGive(n))
+      giveNode(to, n, true);
+    else if (midRun && !machine_->movableNow(n))
+      later.emplace_back(n, to);
+  }
+  for (std::size_t giver = 0, taker = order.size(); stealing_ && giver + 1 < taker;) {
+    if (busy[order[taker - 1]]) {
+      --taker;
+      continue;
+    }
+    if (order[giver] == self_)
+      giveNodes(order[taker - 1],
+                support::StealPolicy::nodesToGive(load[order[giver]], load[order[taker - 1]],
+                                                  idle[order[giver]], idle[order[taker - 1]]));
+    ++giver, --taker;
+  }
+  deferredMoves_.insert(deferredMoves_.end(), later.begin(), later.end());
 }
 
 // The share of the time since the last rebalance this thread had nothing to run: its idle spans

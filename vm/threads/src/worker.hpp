@@ -48,6 +48,7 @@ class Worker final : public ShardLink {
     return directory_.allocateBlock(self, count);
   }
   void stopAll() override { shared_.stopAll(); }
+  void safePoint() override;
   void requestMove(NodeId n, ThreadId to) override;
   void staticChanged(ThreadId t, int delta) override { shared_.perThread[t].staticNodes.fetch_add(delta); }
   std::int32_t staticNodes(ThreadId t) const override {
@@ -68,7 +69,8 @@ class Worker final : public ShardLink {
   // has a long queue; take part in one.
   bool requestRebalance();
   void offerWork();
-  void rebalance();
+  void rebalance(bool midRun = false);  // midRun: from a safe point of a node run
+  void planMoves(bool midRun);
   void publishIdleShare(std::chrono::steady_clock::time_point arrived,
                         std::chrono::steady_clock::time_point allThere);
   void giveNodes(ThreadId to, std::size_t count);
@@ -88,6 +90,7 @@ class Worker final : public ShardLink {
   Bytes incoming_;
   const bool stealing_;  // not with `priority @static`
   ShardMail mail_;
+  std::vector<std::pair<NodeId, ThreadId>> deferredMoves_;  // set-cpu of the node running at a safe point
   ThreadStats stats_;
   // Since the last rebalance (or the start): the idle share a rebalance weighs.
   std::chrono::steady_clock::time_point windowStart_;

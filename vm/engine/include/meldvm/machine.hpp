@@ -67,6 +67,9 @@ struct MachineOptions {
   // Set by another thread to end the run (stop-program elsewhere, an error): read between rule
   // runs, so that a node run that would never end on its own still stops.
   const std::atomic<bool>* stopFlag = nullptr;
+  // Set by the threaded runtime when it wants every thread at a safe point (a rebalance): read
+  // between rule runs, where the machine then calls shard->safePoint().
+  const std::atomic<bool>* safePointFlag = nullptr;
   // Native entry points of the program's blocks (meld --jit, a native .so); they must outlive the
   // machine. nullptr: everything runs in the interpreter.
   const NativeCode* native = nullptr;
@@ -170,7 +173,8 @@ class Machine : private SchedulerView {
   // The heap of this Machine's values (facts from other threads are rebuilt in it).
   Heap& heap() { return heap_; }
 
-  // Work stealing: nodes move between the shards of a threaded run, between node runs. The
+  // Work stealing: nodes move between the shards of a threaded run, between node runs or at a
+  // safe point of one (ShardLink::safePoint), where every node may move but the running one. The
   // thread giving nodes away picks `max` of its queued nodes and the idle ones among them, a band
   // of its ids at the end that faces the taker (highestIds: the taker's range lies above this
   // shard's); graph nodes only, not static ones. It hands over each one's scheduling state, facts
@@ -178,8 +182,9 @@ class Machine : private SchedulerView {
   // posts the messages, and queues the node if it has work.
   std::vector<NodeId> pickNodesToGive(std::size_t max, bool highestIds);
   // A node set-cpu sends to another thread: out of the queue, to be given away (false: it is
-  // no longer here, or not a node of the graph).
+  // no longer here, not a node of the graph, or running now).
   bool unqueueToGive(NodeId n);
+  bool movableNow(NodeId n) const { return !(nodeRunning_ && n == running_); }
   // The taker's side of set-cpu: the node is pinned and just-moved is added (§5.7).
   void settleMovedNode(NodeId n);
   using StoredFactVisitor = std::function<void(PredId, const Value*, std::uint32_t copies)>;
@@ -337,6 +342,7 @@ class Machine : private SchedulerView {
   MachineHost* host_ = nullptr;
   ShardLink* shard_ = nullptr;
   const std::atomic<bool>* stopFlag_ = nullptr;
+  const std::atomic<bool>* safePointFlag_ = nullptr;
   ShardPlacement placement_;
   NodeId nextCreated_ = 0, createdEnd_ = 0;  // a shard's block of ids for created nodes
   void postOrRoute(const PendingFact& e, const Value* args);

@@ -6,8 +6,8 @@
 // Why shards rather than one shared store: the fact tables, their hash tables and the heap's
 // reference counts are shared by all nodes of a store, so two threads writing one store would need
 // a lock or an atomic on every fact. A shard touches only its own store; facts for another
-// thread's nodes travel through per-pair channels, copied (boxed values included) into the
-// receiver's heap.
+// thread's nodes travel through per-pair channels, their boxed values handed over (heap.hpp,
+// Heap::share).
 #pragma once
 
 #include <cstdint>
@@ -48,6 +48,9 @@ class ShardLink {
   // set-static / set-moving changed how many nodes of thread t are static (cpu-static, §5.7).
   virtual void staticChanged(ThreadId t, int delta) = 0;
   virtual std::int32_t staticNodes(ThreadId t) const = 0;
+  // Between two rules of a node run, when MachineOptions::safePointFlag is set: the runtime may
+  // deliver facts to this shard and move its other nodes away (Machine::movableNow).
+  virtual void safePoint() {}
 };
 
 }  // namespace meldvm

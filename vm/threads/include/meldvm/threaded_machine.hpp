@@ -31,10 +31,11 @@ struct SharedState;
 struct ThreadStats {
   std::uint64_t nodeRuns = 0, rulesFired = 0, factsDerived = 0, factsTried = 0;
   std::uint64_t factsOut = 0, factsIn = 0;  // facts sent to / received from other threads
-  std::uint64_t bytesOut = 0;               // the records of the facts sent (fact_codec's bytes)
+  std::uint64_t bytesOut = 0;               // the records of the facts sent (shard_mail.hpp)
   std::uint64_t batchesOut = 0;             // channel pushes (each one or more facts)
   std::uint64_t waits = 0;                  // times the thread ran out of work
   std::uint64_t rebalances = 0;             // work-stealing rounds it took part in
+  std::uint64_t midRunRebalances = 0;       // of those, joined from a safe point of a node run
   std::uint64_t nodesTaken = 0, nodesGiven = 0;
   std::uint64_t bytesMoved = 0;  // the records of the nodes it gave (their facts and messages)
   double busySeconds = 0, idleSeconds = 0, rebalanceSeconds = 0;
