@@ -54,25 +54,26 @@ void printStats(const meldvm::MachineStats& s, double loadSeconds, double wall, 
 
 void printThreadTable(const std::vector<meldvm::ThreadStats>& threads) {
   std::fprintf(
-      stderr, "threads: %zu\n%-6s %7s %10s %12s %13s %11s %11s %9s %7s %8s %8s %8s %10s %12s %12s %12s %8s\n",
+      stderr,
+      "threads: %zu\n%-6s %7s %10s %12s %13s %11s %11s %9s %7s %8s %8s %8s %10s %12s %12s %12s %8s %8s\n",
       threads.size(), "thread", "busy %", "node runs", "rules fired", "facts derived", "facts out",
       "facts in", "batches", "waits", "stolen", "given", "steal %", "rebalances", "bytes out", "facts tried",
-      "bytes moved", "move ms");
+      "bytes moved", "move ms", "mid-run");
   for (std::size_t t = 0; t < threads.size(); ++t) {
     const meldvm::ThreadStats& s = threads[t];
     const double total = s.busySeconds + s.idleSeconds;
-    std::fprintf(stderr,
-                 "%-6zu %7.1f %10llu %12llu %13llu %11llu %11llu %9llu %7llu %8llu %8llu %8.1f %10llu %12llu "
-                 "%12llu %12llu "
-                 "%8.1f\n",
-                 t, total > 0 ? 100.0 * (s.busySeconds - s.rebalanceSeconds) / total : 0.0,
-                 (unsigned long long)s.nodeRuns, (unsigned long long)s.rulesFired,
-                 (unsigned long long)s.factsDerived, (unsigned long long)s.factsOut,
-                 (unsigned long long)s.factsIn, (unsigned long long)s.batchesOut, (unsigned long long)s.waits,
-                 (unsigned long long)s.nodesTaken, (unsigned long long)s.nodesGiven,
-                 total > 0 ? 100.0 * s.rebalanceSeconds / total : 0.0, (unsigned long long)s.rebalances,
-                 (unsigned long long)s.bytesOut, (unsigned long long)s.factsTried,
-                 (unsigned long long)s.bytesMoved, 1e3 * s.rebalanceWorkSeconds);
+    std::fprintf(
+        stderr,
+        "%-6zu %7.1f %10llu %12llu %13llu %11llu %11llu %9llu %7llu %8llu %8llu %8.1f %10llu %12llu "
+        "%12llu %12llu "
+        "%8.1f %8llu\n",
+        t, total > 0 ? 100.0 * (s.busySeconds - s.rebalanceSeconds) / total : 0.0,
+        (unsigned long long)s.nodeRuns, (unsigned long long)s.rulesFired, (unsigned long long)s.factsDerived,
+        (unsigned long long)s.factsOut, (unsigned long long)s.factsIn, (unsigned long long)s.batchesOut,
+        (unsigned long long)s.waits, (unsigned long long)s.nodesTaken, (unsigned long long)s.nodesGiven,
+        total > 0 ? 100.0 * s.rebalanceSeconds / total : 0.0, (unsigned long long)s.rebalances,
+        (unsigned long long)s.bytesOut, (unsigned long long)s.factsTried, (unsigned long long)s.bytesMoved,
+        1e3 * s.rebalanceWorkSeconds, (unsigned long long)s.midRunRebalances);
   }
 }
 
