@@ -1,6 +1,6 @@
 // Facts from one thread to another: one channel per ordered pair of threads, so a channel has one
 // writer and one reader and facts keep their sending order. The sender appends whole batches of
-// records (worker.cpp; facts encoded by meldvm/fact_codec.hpp) under the channel's lock; the receiver swaps
+// records (worker.cpp; meldvm/shard_mail.hpp) under the channel's lock; the receiver swaps
 // the buffer out under the same lock. Nobody else ever takes that lock, and it is taken once per batch, not
 // per fact. The two buffers trade places, so their capacity is reused: no allocation in the steady state.
 #pragma once

@@ -256,7 +256,7 @@ void Worker::rebalance(bool midRun) {
   shared_.perThread[self_].midRun.store(midRun);
   publishIdleShare(start, allThere);
   if (!shared_.arriveAndWait()) return;  // 2
-  planMoves(midRun);
+  planMoves();
   flush();
   if (!shared_.arriveAndWait()) return;  // 3
   takeMail();
@@ -277,7 +277,7 @@ void Worker::rebalance(bool midRun) {
 // Phase 3 of a rebalance: the same plan on every thread. set-cpu / set-affinity first (every
 // thread reads the list; a node that is running now moves at the next rebalance); then the i-th
 // most loaded thread gives to the i-th least loaded that is not in the middle of a node run.
-void Worker::planMoves(bool midRun) {
+void Worker::planMoves() {
   std::vector<ThreadId> order(shared_.threads);
   std::vector<std::uint32_t> load(shared_.threads);
   std::vector<double> idle(shared_.threads);
@@ -288,13 +288,12 @@ void Worker::planMoves(bool midRun) {
     busy[t] = shared_.perThread[t].midRun.load();
   }
   std::stable_sort(order.begin(), order.end(), [&](ThreadId a, ThreadId b) { return load[a] > load[b]; });
-  std::vector<std::pair<NodeId, ThreadId>> later;  // running now: asked again after its run
   for (const auto& [n, to] : shared_.moves) {
     if (to == self_ || directory_.ownerOf(n) != self_) continue;
     if (machine_->unqueueToGive(n))
       giveNode(to, n, true);
-    else if (midRun && !machine_->movableNow(n))
-      later.emplace_back(n, to);
+    else if (!machine_->movableNow(n))  // running now (a safe point): asked again after its run
+      deferredMoves_.emplace_back(n, to);
   }
   for (std::size_t giver = 0, taker = order.size(); stealing_ && giver + 1 < taker;) {
     if (busy[order[taker - 1]]) {
@@ -307,7 +306,6 @@ void Worker::planMoves(bool midRun) {
                                                   idle[order[giver]], idle[order[taker - 1]]));
     ++giver, --taker;
   }
-  deferredMoves_.insert(deferredMoves_.end(), later.begin(), later.end());
 }
 
 // The share of the time since the last rebalance this thread had nothing to run: its idle spans

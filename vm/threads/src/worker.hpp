@@ -70,7 +70,7 @@ class Worker final : public ShardLink {
   bool requestRebalance();
   void offerWork();
   void rebalance(bool midRun = false);  // midRun: from a safe point of a node run
-  void planMoves(bool midRun);
+  void planMoves();                     // phase 3 of a rebalance
   void publishIdleShare(std::chrono::steady_clock::time_point arrived,
                         std::chrono::steady_clock::time_point allThere);
   void giveNodes(ThreadId to, std::size_t count);
