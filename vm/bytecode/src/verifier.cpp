@@ -1,7 +1,9 @@
 // verifyProgram: everything the interpreter relies on without checking at run time. The tables must
 // refer to existing entries, and every code block must decode, use registers of the types its
 // instructions expect, jump only to instruction boundaries of its own loop, and nest its loops.
+#include <functional>
 #include <optional>
+#include <type_traits>
 
 #include "meldvm/builtin_signatures.hpp"
 #include "meldvm/bytecode.hpp"
@@ -25,7 +27,8 @@ std::string titled(std::string head, const std::string& label) {
 
 class BlockVerifier {
  public:
-  BlockVerifier(const Program& p, const CodeBlock& b, BlockKind kind, std::string title)
+  // `title` names the block in messages; it is called only when one is needed.
+  BlockVerifier(const Program& p, const CodeBlock& b, BlockKind kind, std::function<std::string()> title)
       : p_(p), b_(b), code_(b.code), kind_(kind), title_(std::move(title)) {}
 
   const Function* function = nullptr;
@@ -46,17 +49,28 @@ class BlockVerifier {
   };
   static constexpr std::size_t kTop = SIZE_MAX;  // region of code outside every loop
 
-  [[noreturn]] void blockFail(const std::string& why) const { fail(title_ + ": " + why); }
+  [[noreturn]] void blockFail(const std::string& why) const { fail(title_() + ": " + why); }
   [[noreturn]] void bad(const std::string& why) const {
-    fail(title_ + ": word " + n2s(at_) + ": " + opcodeInfo(Opcode(code_[at_])).name + ": " + why);
+    fail(title_() + ": word " + n2s(at_) + ": " + opcodeInfo(Opcode(code_[at_])).name + ": " + why);
   }
 
   std::string regText(std::uint32_t r) const { return "register " + n2s(r); }
   TypeId reg(std::uint32_t r, char letter) const;
-  void sameType(std::uint32_t r, TypeId want, const std::string& what) const {
-    if (b_.registerTypes[r] != want)
+  // What a check is about: text, or a function making it, called only when the check fails (the
+  // loader checks millions of operands: building every description up front cost more than the
+  // checks themselves).
+  template <class What>
+  static std::string describe(const What& what) {
+    if constexpr (std::is_invocable_v<const What&>)
+      return what();
+    else
+      return std::string(what);
+  }
+  template <class What>
+  void sameType(std::uint32_t r, TypeId want, const What& what) const {
+    if (b_.registerTypes[r] != want) [[unlikely]]
       bad(regText(r) + " has type " + typeName(p_.types, b_.registerTypes[r]) + ", expected " +
-          typeName(p_.types, want) + " (" + what + ")");
+          typeName(p_.types, want) + " (" + describe(what) + ")");
   }
   std::string predText(PredId pred) const {
     return p_.predicates[pred].name + "/" + n2s(p_.predicates[pred].arity());
@@ -77,11 +91,12 @@ class BlockVerifier {
       bad("field " + n2s(field) + " out of range for " + predText(pred));
   }
   // The registers of a '*' operand against a list of expected types.
-  void args(std::span<const TypeId> want, const std::string& what) const {
+  template <class What>
+  void args(std::span<const TypeId> want, const What& what) const {
     if (count_ != want.size())
-      bad(n2s(count_) + " registers for " + what + " of " + n2s(want.size()) + " arguments");
+      bad(n2s(count_) + " registers for " + describe(what) + " of " + n2s(want.size()) + " arguments");
     for (std::size_t i = 0; i < want.size(); ++i)
-      sameType(code_[list_ + i], want[i], "argument " + n2s(i) + " of " + what);
+      sameType(code_[list_ + i], want[i], [&] { return "argument " + n2s(i) + " of " + describe(what); });
   }
 
   void operands();
@@ -92,16 +107,17 @@ class BlockVerifier {
   const CodeBlock& b_;
   std::span<const std::uint32_t> code_;
   BlockKind kind_;
-  std::string title_;
+  std::function<std::string()> title_;
 
-  std::size_t at_ = 0;               // offset of the instruction being checked
-  std::uint32_t v_[8] = {};          // its operand values by position in the letters ('*': the count)
-  std::size_t list_ = 0;             // offset of the first register of the '*' operand
-  std::uint32_t count_ = 0;          // and their number
-  std::vector<Loop> loops_;          // open loops, innermost last
-  std::vector<PredId> slotPred_;     // per slot: the predicate of the open loop binding it, or kNoPred
-  std::vector<bool> start_;          // instruction boundaries
-  std::vector<std::size_t> region_;  // per instruction start: the loop (ITER offset) it belongs to
+  std::size_t at_ = 0;                 // offset of the instruction being checked
+  std::uint32_t v_[8] = {};            // its operand values by position in the letters ('*': the count)
+  std::size_t list_ = 0;               // offset of the first register of the '*' operand
+  std::uint32_t count_ = 0;            // and their number
+  std::vector<Loop> loops_;            // open loops, innermost last
+  std::vector<PredId> slotPred_;       // per slot: the predicate of the open loop binding it, or kNoPred
+  std::vector<bool> start_;            // instruction boundaries
+  std::vector<std::uint32_t> starts_;  // the same, in order (passes 2 and 3 walk them)
+  std::vector<std::size_t> region_;    // per instruction start: the loop (ITER offset) it belongs to
   std::vector<Jump> jumps_;
 };
 
@@ -228,7 +244,8 @@ void BlockVerifier::semantics() {
       if (bound(slot)) bad("slot " + n2s(slot) + " is already bound by an enclosing loop");
       if (op != Opcode::ITER) fieldInRange(pred, v_[3]);
       if (op == Opcode::ITER_KEY)
-        sameType(v_[4], p_.predicates[pred].fields[v_[3]], "field " + n2s(v_[3]) + " of " + predText(pred));
+        sameType(v_[4], p_.predicates[pred].fields[v_[3]],
+                 [&] { return "field " + n2s(v_[3]) + " of " + predText(pred); });
       const std::size_t exit = v_[op == Opcode::ITER ? 3 : op == Opcode::ITER_KEY ? 5 : 4];
       if (exit <= at_) bad("loop exit " + n2s(exit) + " is not after the loop");
       loops_.push_back({at_, exit, slot, pred});
@@ -253,7 +270,8 @@ void BlockVerifier::semantics() {
     case Opcode::TEST: {
       const PredId pred = needBound(v_[0]);
       fieldInRange(pred, v_[1]);
-      sameType(v_[2], p_.predicates[pred].fields[v_[1]], "field " + n2s(v_[1]) + " of " + predText(pred));
+      sameType(v_[2], p_.predicates[pred].fields[v_[1]],
+               [&] { return "field " + n2s(v_[1]) + " of " + predText(pred); });
       break;
     }
     case Opcode::MOV:
@@ -272,11 +290,11 @@ void BlockVerifier::semantics() {
       sameType(v_[0], TypeTable::kString, "a string constant");
       break;
     case Opcode::GLOBAL:
-      sameType(v_[0], p_.globals[v_[1]].type, "global " + p_.globals[v_[1]].name);
+      sameType(v_[0], p_.globals[v_[1]].type, [&] { return "global " + p_.globals[v_[1]].name; });
       break;
     case Opcode::SETGLOBAL:
       if (kind_ != BlockKind::Globals) bad("outside the globals initialiser");
-      sameType(v_[1], p_.globals[v_[0]].type, "global " + p_.globals[v_[0]].name);
+      sameType(v_[1], p_.globals[v_[0]].type, [&] { return "global " + p_.globals[v_[0]].name; });
       break;
     case Opcode::THREAD:
       sameType(v_[0], TypeTable::kThread, "@thread");
@@ -307,13 +325,13 @@ void BlockVerifier::semantics() {
       if (types.kind(v_[1]) != TypeKind::Struct)
         bad("type " + typeName(types, v_[1]) + " is not a struct type");
       sameType(v_[0], v_[1], "the struct type");
-      args(types.fields(v_[1]), typeName(types, v_[1]));
+      args(types.fields(v_[1]), [&] { return typeName(types, v_[1]); });
       break;
     case Opcode::FIELD: {
       const auto fields = types.fields(rt[v_[1]]);
       if (v_[2] >= fields.size())
         bad("field " + n2s(v_[2]) + " out of range for " + typeName(types, rt[v_[1]]));
-      sameType(v_[0], fields[v_[2]], "field " + n2s(v_[2]));
+      sameType(v_[0], fields[v_[2]], [&] { return "field " + n2s(v_[2]); });
       break;
     }
     case Opcode::CALL: {
@@ -327,14 +345,14 @@ void BlockVerifier::semantics() {
     }
     case Opcode::CALLF: {
       const Function& f = p_.functions[v_[1]];
-      sameType(v_[0], f.result, "the result of " + f.name);
-      args(f.params, "function " + f.name);
+      sameType(v_[0], f.result, [&] { return "the result of " + f.name; });
+      args(f.params, [&] { return "function " + f.name; });
       break;
     }
     case Opcode::CALLX: {
       const Extern& e = p_.externs[v_[1]];
-      sameType(v_[0], e.result, "the result of " + e.name);
-      args(e.params, "extern " + e.name);
+      sameType(v_[0], e.result, [&] { return "the result of " + e.name; });
+      args(e.params, [&] { return "extern " + e.name; });
       break;
     }
     case Opcode::ACTION:
@@ -345,7 +363,7 @@ void BlockVerifier::semantics() {
     case Opcode::SEND_DELAY:
       // Facts of thread predicates live at a thread node: only SEND_THREAD derives them.
       if (p_.predicates[v_[0]].thread) bad(predText(v_[0]) + " is a thread predicate");
-      args(p_.predicates[v_[0]].fields, predText(v_[0]));
+      args(p_.predicates[v_[0]].fields, [&] { return predText(v_[0]); });
       break;
     case Opcode::SEND_THREAD:
       if (!p_.predicates[v_[0]].thread) bad(predText(v_[0]) + " is not a thread predicate");
@@ -353,13 +371,13 @@ void BlockVerifier::semantics() {
         bad(predText(v_[0]) + " is an action: a thread has no robot to act on");
       if (p_.types.kind(b_.registerTypes[v_[1]]) != TypeKind::Thread)
         bad("register " + n2s(v_[1]) + " is not a thread");
-      args(p_.predicates[v_[0]].fields, predText(v_[0]));
+      args(p_.predicates[v_[0]].fields, [&] { return predText(v_[0]); });
       break;
     case Opcode::UPDATE: {
       if (v_[1] & ~std::uint32_t(kUpdateMoveToBack)) bad("unknown flag bits " + n2s(v_[1]));
       const PredId pred = needBound(v_[0]);
       if (!p_.predicates[pred].linear) bad(predText(pred) + " is not linear");
-      args(p_.predicates[pred].fields, predText(pred));
+      args(p_.predicates[pred].fields, [&] { return predText(pred); });
       break;
     }
     case Opcode::AXIOMS:
@@ -393,11 +411,13 @@ void BlockVerifier::run() {
   // Pass 1: instruction boundaries, so that pass 2 can check jump targets in either direction.
   start_.assign(code_.size(), false);
   std::size_t last = 0;
+  starts_.clear();
+  std::string why;
   for (std::size_t pos = 0; pos < code_.size();) {
-    std::string why;
     const std::size_t len = detail::instructionLength(code_, pos, why);
-    if (len == 0) fail(title_ + ": word " + n2s(pos) + ": " + why);
+    if (len == 0) fail(title_() + ": word " + n2s(pos) + ": " + why);
     start_[pos] = true;
+    starts_.push_back(std::uint32_t(pos));
     last = pos;
     pos += len;
   }
@@ -406,8 +426,8 @@ void BlockVerifier::run() {
   // Pass 2: operands, types, loop structure.
   region_.assign(code_.size(), kTop);
   slotPred_.assign(b_.slots, Program::kNoPred);
-  std::string unused;
-  for (at_ = 0; at_ < code_.size(); at_ += detail::instructionLength(code_, at_, unused)) {
+  for (const std::uint32_t at : starts_) {
+    at_ = at;
     operands();
     // An ITER belongs to the region around its loop, the NEXT to the loop it closes.
     region_[at_] = loops_.empty() ? kTop : loops_.back().at;
@@ -454,8 +474,8 @@ void BlockVerifier::definiteAssignment() {
     }
   };
   bool live = true;
-  std::string unused;
-  for (at_ = 0; at_ < code_.size(); at_ += detail::instructionLength(code_, at_, unused)) {
+  for (const std::uint32_t at : starts_) {
+    at_ = at;
     if (!pending[at_].empty()) {
       if (live)
         for (std::size_t r = 0; r < nregs; ++r) cur[r] = cur[r] && pending[at_][r];
@@ -573,28 +593,31 @@ void verifyProgram(const Program& p) {
            n2s(p.predicates[ix.predicate].arity()) + " fields");
   }
 
-  BlockVerifier(p, p.globalsInit, BlockKind::Globals, "globals").run();
+  BlockVerifier(p, p.globalsInit, BlockKind::Globals, [] { return std::string("globals"); }).run();
   for (std::size_t i = 0; i < p.functions.size(); ++i) {
     BlockVerifier v(p, p.functions[i].block, BlockKind::Function,
-                    "function " + n2s(i) + " (" + p.functions[i].name + ")");
+                    [&, i] { return "function " + n2s(i) + " (" + p.functions[i].name + ")"; });
     v.function = &p.functions[i];
     v.run();
   }
   for (std::size_t i = 0; i < p.rules.size(); ++i) {
-    BlockVerifier v(p, p.rules[i].block, BlockKind::Rule, titled("rule " + n2s(i), p.rules[i].block.label));
+    BlockVerifier v(p, p.rules[i].block, BlockKind::Rule,
+                    [&, i] { return titled("rule " + n2s(i), p.rules[i].block.label); });
     v.isRule0 = i == 0;
     v.run();
   }
   for (std::size_t i = 0; i < p.processes.size(); ++i) {
     const Process& pr = p.processes[i];
-    BlockVerifier v(p, pr.block, BlockKind::Process,
-                    titled("process " + n2s(i) + " on " + p.predicates[pr.trigger].name, pr.block.label));
+    BlockVerifier v(p, pr.block, BlockKind::Process, [&, i] {
+      return titled("process " + n2s(i) + " on " + p.predicates[pr.trigger].name, pr.block.label);
+    });
     v.process = &pr;
     v.run();
   }
   for (std::size_t i = 0; i < p.axiomBlocks.size(); ++i)
-    BlockVerifier(p, p.axiomBlocks[i], BlockKind::Axioms, titled("axioms " + n2s(i), p.axiomBlocks[i].label))
-        .run();
+    BlockVerifier(p, p.axiomBlocks[i], BlockKind::Axioms, [&, i] {
+      return titled("axioms " + n2s(i), p.axiomBlocks[i].label);
+    }).run();
 }
 
 }  // namespace meldvm
