@@ -16,7 +16,7 @@
 
 struct Instr {
   meldvm::Opcode op;
-  std::vector<std::uint32_t> operands;  // as in the code ('*': the count, then the registers)
+  std::vector<std::uint32_t> operands;  // as in the code ('*', 'W': the count, then the registers or words)
   std::uint32_t at;                     // word offset
 };
 
@@ -28,7 +28,7 @@ inline std::vector<Instr> decode(const meldvm::CodeBlock& block) {
     const std::string letters = meldvm::opcodeInfo(ins.op).operands;
     ++pc;
     for (char c : letters) {
-      const std::size_t n = c == 'D' ? 2 : c == '*' ? 1 + code.at(pc) : 1;
+      const std::size_t n = c == 'D' ? 2 : c == '*' || c == 'W' ? 1 + code.at(pc) : 1;
       for (std::size_t k = 0; k < n; ++k) ins.operands.push_back(code.at(pc++));
     }
     out.push_back(std::move(ins));

@@ -63,11 +63,23 @@ BOOST_AUTO_TEST_CASE(constant_axioms_in_spec_order) {
   BOOST_REQUIRE_EQUAL(l.p().axiomBlocks.size(), 1u);
   BOOST_TEST(l.p().nodeAxioms.at(0) == 0u);
   const CodeBlock& b = l.p().axiomBlocks[0];
+  // The evaluated ones by DERIVE, the literal ones as AXIOM_FACTS data (one int field: a word each).
   std::vector<PredId> derived;
-  for (const Instr& i : only(b, Opcode::DERIVE)) derived.push_back(i.operands.at(0));
+  std::vector<std::int32_t> data;
+  for (const Instr& i : decode(b)) {
+    if (i.op == Opcode::DERIVE) derived.push_back(i.operands.at(0));
+    if (i.op != Opcode::AXIOM_FACTS) continue;
+    BOOST_TEST(i.operands.at(1) == i.operands.size() - 2);
+    for (std::size_t k = 2; k < i.operands.size(); ++k) {
+      derived.push_back(i.operands.at(0));
+      data.push_back(std::int32_t(i.operands[k]));
+    }
+  }
   const PredId a = l.pred("a"), bb = l.pred("b");
   BOOST_TEST(derived == (std::vector<PredId>{a, a, a, a, bb}));
-  BOOST_TEST(movi(b) == (std::vector<std::int32_t>{9, 0, 8, 7, 0, 1, 3, 5}));
+  BOOST_TEST(movi(b) == (std::vector<std::int32_t>{9, 0, 8, 7, 0}));
+  BOOST_TEST(data == (std::vector<std::int32_t>{1, 3, 5}));
+  BOOST_TEST(opNames(b).ends_with("CALL DERIVE AXIOM_FACTS AXIOM_FACTS RET"), opNames(b));
   BOOST_TEST(only(b, Opcode::CALL).size() == 2u);
 }
 
@@ -88,8 +100,10 @@ BOOST_AUTO_TEST_CASE(axioms_of_literal_homes_go_to_their_node) {
   BOOST_REQUIRE_EQUAL(l.p().axiomBlocks.size(), 2u);
   for (std::uint32_t n = 0; n < 2; ++n) {
     const CodeBlock& b = l.p().axiomBlocks.at(l.p().nodeAxioms.at(n));
-    BOOST_TEST(opNames(b) == "MOVN DERIVE RET");
-    BOOST_TEST(only(b, Opcode::MOVN).at(0).operands.at(1) == 1u - n);  // the other node
+    BOOST_TEST(opNames(b) == "AXIOM_FACTS RET");
+    // One fact of one node field: predicate, count 1, the other node.
+    BOOST_TEST(only(b, Opcode::AXIOM_FACTS).at(0).operands ==
+               (std::vector<std::uint32_t>{l.pred("e"), 1, 1u - n}));
   }
 }
 
@@ -98,9 +112,11 @@ BOOST_AUTO_TEST_CASE(literals_get_the_type_of_their_place) {
       "type linear f(node, float).\ntype linear g(node, float).\nf(@0, 2).\n"
       "f(A, X) -o g(A, X * 0.85 + 1).\n");
   BOOST_REQUIRE_MESSAGE(l.ok(), l.errors());
-  const auto axioms = only(l.p().axiomBlocks.at(0), Opcode::MOVF);
+  const auto axioms = only(l.p().axiomBlocks.at(0), Opcode::AXIOM_FACTS);
   BOOST_REQUIRE_EQUAL(axioms.size(), 1u);
-  BOOST_TEST(movf(axioms[0]) == 2.0);
+  BOOST_REQUIRE_EQUAL(axioms[0].operands.size(), 4u);  // predicate, count 2, the double's two words
+  BOOST_TEST(std::bit_cast<double>(std::uint64_t(axioms[0].operands[2]) | std::uint64_t(axioms[0].operands[3])
+                                                                              << 32) == 2.0);
   const auto floats = only(l.rule(1), Opcode::MOVF);
   BOOST_REQUIRE_EQUAL(floats.size(), 2u);
   BOOST_TEST(movf(floats[0]) == double(0.85f));  // single precision, §1.4

@@ -201,6 +201,9 @@ inline std::unique_ptr<Program> fullProgram() {
   emit(ax, Opcode::DERIVE, {c, 2, 0, 1});
   emit(ax, Opcode::MOVN, {2, 1});
   emit(ax, Opcode::DERIVE, {edge, 1, 2});
+  // Two facts of c (int, float) and one of edge as data (version 4).
+  emit(ax, Opcode::AXIOM_FACTS, {c, 6, std::uint32_t(-7), lo(-0.5), hi(-0.5), 2, lo(1e10), hi(1e10)});
+  emit(ax, Opcode::AXIOM_FACTS, {edge, 1, 3});
   emit(ax, Opcode::RET);
   p->axiomBlocks.push_back(std::move(ax));
   p->nodeSourceIds = {0, 7, -3, std::int64_t(1) << 40};
@@ -214,9 +217,9 @@ inline std::unique_ptr<Program> fullProgram() {
   p->scheduling.staticNodes = true;
   p->indexes = {{c, 1}};
   p->highestArg = 1;
-  // Where the axioms and rule 1 came from (version 3).
+  // Where the axioms and rule 1 came from (version 3); each fact of AXIOM_FACTS from its first word.
   p->sourceFiles = {"full.meld", "lib/include.meld"};
-  p->axiomBlocks[0].lines = {{0, 0, 3}, {7, 1, 12}};
+  p->axiomBlocks[0].lines = {{0, 0, 3}, {7, 1, 12}, {19, 1, 13}, {25, 1, 14}, {28, 0, 15}};
   p->rules[1].block.lines = {{0, 0, 9}};
   return p;
 }
@@ -227,7 +230,7 @@ inline std::size_t findOp(const CodeBlock& b, Opcode op) {
   while (at < b.code.size() && b.code[at] != std::uint32_t(op)) {
     std::size_t len = 1;
     for (const char* l = opcodeInfo(Opcode(b.code[at])).operands; *l; ++l)
-      len += *l == 'D' ? 2 : *l == '*' ? 1 + b.code[at + len] : 1;
+      len += *l == 'D' ? 2 : *l == '*' || *l == 'W' ? 1 + b.code[at + len] : 1;
     at += len;
   }
   return at;

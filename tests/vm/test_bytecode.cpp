@@ -143,19 +143,23 @@ BOOST_AUTO_TEST_CASE(header_errors) {
   BOOST_TEST(contains(readError(bytes), "magic"));
 
   bytes = good;
-  put(bytes, 4, 4);
+  put(bytes, 4, 5);
   const std::string version = readError(bytes);
-  BOOST_TEST(contains(version, "version 4"), version);
-  BOOST_TEST(contains(version, "this VM reads versions 1 to 3"), version);
-  // Version 1 and 2 files, without the additions of the later versions, still load.
+  BOOST_TEST(contains(version, "version 5"), version);
+  BOOST_TEST(contains(version, "this VM reads versions 1 to 4"), version);
+  // Version 1 and 2 files, without the additions of the later versions, still load (the small
+  // program has no AXIOM_FACTS, which came with version 4).
   for (std::uint32_t v : {1u, 2u}) {
-    bytes = asVersion(writeBytecode(*fullProgram()), v);
+    bytes = asVersion(writeBytecode(*smallProgram()), v);
     const auto p = readBytecode(bytes.data(), bytes.size());
     BOOST_TEST(p->sourceFiles.empty());
     BOOST_TEST(p->rules[1].block.lines.empty());
   }
   bytes = good;
-  put(bytes, 8, 12);  // a version 3 file needs its sources section
+  put(bytes, 4, 3);  // so do version 3 files
+  BOOST_TEST(readBytecode(bytes.data(), bytes.size())->rules.size() == smallProgram()->rules.size());
+  bytes = good;
+  put(bytes, 8, 12);  // a version 3 or 4 file needs its sources section
   BOOST_TEST(contains(readError(bytes), "section count 12 (expected 13)"));
 
   bytes = good;
@@ -195,6 +199,11 @@ BOOST_AUTO_TEST_CASE(source_lines_round_trip_and_are_checked) {
   BOOST_TEST(l->line == 12u);
   BOOST_TEST(q->sourceFiles[l->file] == "lib/include.meld");
   BOOST_TEST(q->rules[0].block.lineAt(0) == nullptr);
+  // Each fact of AXIOM_FACTS has the line in force at its first data word.
+  for (const auto& [word, line] : {std::pair{22u, 13u}, {25u, 14u}, {31u, 15u}}) {
+    BOOST_REQUIRE(q->axiomBlocks[0].lineAt(word));
+    BOOST_TEST(q->axiomBlocks[0].lineAt(word)->line == line);
+  }
 
   auto bad = fullProgram();
   bad->rules[1].block.lines = {{0, 2, 9}};  // no file 2
@@ -235,7 +244,7 @@ BOOST_AUTO_TEST_CASE(fuzz_corpus_is_current) {
 }
 
 BOOST_AUTO_TEST_CASE(disassembly_golden) {
-  const std::string expected = R"(; Meld bytecode version 3
+  const std::string expected = R"(; Meld bytecode version 4
 
 types:
   0  int
@@ -294,6 +303,8 @@ BOOST_AUTO_TEST_CASE(disassembly_names_operands) {
         "g=limit", "MOVF      r2 0.1", "flags=move-to-back", "t=<:(int, float)> (r0, r1)",
         "process on c: !c(X, Y) -> total(X)", "axioms 0 of nodes 0 2", "3 -> @1099511627776",
         "scheduling: asc, initial -1.5, default 1e-300, static", "index: c(2) field 1",
-        "7  total(int) persistent aggregate sum field 0", "MOVI      r2 -3"})
+        "7  total(int) persistent aggregate sum field 0", "MOVI      r2 -3",
+        "AXIOM_FACTS p=c(2) 2 facts\n                 (-7, -0.5)\n                 (2, 1e+10)\n",
+        "AXIOM_FACTS p=edge(1) 1 facts\n                 (@3)\n"})
     BOOST_TEST(contains(text, part), part);
 }

@@ -204,12 +204,52 @@ BOOST_AUTO_TEST_CASE(placement_rules) {
   BOOST_TEST(verifyError(*f) == "function 0 (inc): register 1 does not have the result type");
 }
 
+// AXIOM_FACTS: whole facts of a predicate of int, float, bool and node fields, valid bools and
+// nodes, in axiom blocks only (the interpreter decodes the words without a check).
+BOOST_AUTO_TEST_CASE(axiom_facts_data) {
+  const auto withFacts = [](std::vector<std::uint32_t> instr) {
+    auto p = fullProgram();
+    std::vector<std::uint32_t>& code = p->axiomBlocks[0].code;
+    code.insert(code.begin(), instr.begin(), instr.end());
+    return verifyError(*p);
+  };
+  const PredId c = fullProgram()->predicates.find("c"), edge = fullProgram()->predicates.find("edge");
+  const PredId d = fullProgram()->predicates.find("d"), act = fullProgram()->predicates.find("act");
+  const auto op = std::uint32_t(Opcode::AXIOM_FACTS);
+  BOOST_TEST(withFacts({op, edge, 2, 0, 3}) == "");
+  BOOST_TEST(withFacts({op, c, 0}) == "");      // no fact at all
+  std::string e = withFacts({op, c, 2, 1, 0});  // c takes 3 words a fact
+  BOOST_TEST(e == "axioms 0: word 0: AXIOM_FACTS: 2 data words for facts of 3 words each", e);
+  e = withFacts({op, edge, 2, 3, 4});
+  BOOST_TEST(e == "axioms 0: word 0: AXIOM_FACTS: node @4 at word 4 is not one of the program's 4 nodes", e);
+  e = withFacts({op, d, 1, 0});
+  BOOST_TEST(has(e, "d/2 has a field that is not an int, float, bool or node"), e);
+  e = withFacts({op, act, 1, 0});
+  BOOST_TEST(has(e, "act/1 is a thread or action predicate"), e);
+  e = withFacts({op, edge, 1000, 0});  // the count runs past the block
+  BOOST_TEST(has(e, "data word count 1000 runs past the end of the block"), e);
+  // A bool field takes 0 or 1 only.
+  for (const std::uint32_t value : {1u, 2u}) {
+    auto b = fullProgram();
+    const PredId flag = pred(*b, "flag", {TypeTable::kBool}, false);
+    b->axiomBlocks[0].code.insert(b->axiomBlocks[0].code.begin(), {op, flag, 1, value});
+    e = verifyError(*b);
+    BOOST_TEST(e == (value == 1 ? "" : "axioms 0: word 0: AXIOM_FACTS: bool 2 at word 3 is not 0 or 1"), e);
+  }
+  // Outside axiom blocks.
+  auto q = fullProgram();
+  q->globalsInit.code.insert(q->globalsInit.code.begin(), {op, edge, 1, 0});
+  e = verifyError(*q);
+  BOOST_TEST(e == "globals: word 0: AXIOM_FACTS: outside an axiom block", e);
+}
+
 BOOST_AUTO_TEST_CASE(unknown_builtin) {
   auto p = fullProgram();
   std::vector<std::uint32_t>& k = p->rules[2].block.code;
   const std::size_t call = findOp(p->rules[2].block, Opcode::CALL);
   k[call + 2] = meldvm::kBuiltinIdCount;  // the first id past the table (user externs go by EXTERN)
-  BOOST_TEST(has(verifyError(*p), "CALL: unknown built-in " + std::to_string(meldvm::kBuiltinIdCount)), verifyError(*p));
+  BOOST_TEST(has(verifyError(*p), "CALL: unknown built-in " + std::to_string(meldvm::kBuiltinIdCount)),
+             verifyError(*p));
 }
 
 BOOST_AUTO_TEST_CASE(table_references) {

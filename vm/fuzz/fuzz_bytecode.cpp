@@ -25,8 +25,9 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
     const std::size_t sources = 8 + 4 + 4 * meldvm::detail::codeBlockCount(*program);
     if (again.size() != size + sources) __builtin_trap();
     again.resize(size);
-    std::copy(data + 4, data + 12, again.begin() + 4);
   }
+  if (version < meldvm::kBytecodeVersion && again.size() == size)
+    std::copy(data + 4, data + 12, again.begin() + 4);
   if (again.size() != size || !std::equal(again.begin(), again.end(), data)) __builtin_trap();
   std::ostringstream text;
   meldvm::disassemble(*program, text);

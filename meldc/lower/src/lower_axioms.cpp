@@ -3,14 +3,16 @@
 // axioms`: the variable axioms of thread predicates, §6.12) and one axiom block per initial node
 // holding its constant axioms: those needing evaluation in reverse source order, then the purely
 // literal facts grouped by predicate (groups in order of first occurrence, source order within a
-// group).
+// group; a group's ground facts of int, float, bool and node fields as one AXIOM_FACTS).
 #include <algorithm>
+#include <bit>
 #include <functional>
 #include <map>
 #include <optional>
 #include <set>
 
 #include "lower_rule.hpp"
+#include "meldvm/bytecode_internal.hpp"
 
 namespace meldc {
 
@@ -262,6 +264,93 @@ void groundAxiom(Lowering& L, CodeBuilder& cb, const GroundFact& f, const PredIn
   cb.op(Opcode::DERIVE).w(p.id).regs(regs);
 }
 
+// One scalar field of AXIOM_FACTS (bytecode_internal.hpp's axiomFactWords) from a constant of the
+// field's kind (an int may stand for a float); false for anything else.
+bool packField(meldvm::TypeId field, const Folded& v, std::vector<std::uint32_t>& out) {
+  switch (field) {
+    case meldvm::TypeTable::kFloat: {
+      if (v.kind != Folded::Float && v.kind != Folded::Int) return false;
+      const auto bits = std::bit_cast<std::uint64_t>(v.kind == Folded::Int ? double(v.i) : v.f);
+      out.push_back(std::uint32_t(bits));
+      out.push_back(std::uint32_t(bits >> 32));
+      return true;
+    }
+    case meldvm::TypeTable::kInt:
+      if (v.kind != Folded::Int) return false;
+      out.push_back(std::uint32_t(std::int32_t(v.i)));
+      return true;
+    case meldvm::TypeTable::kBool:
+      if (v.kind != Folded::Bool) return false;
+      out.push_back(v.b ? 1u : 0u);
+      return true;
+    case meldvm::TypeTable::kNode:
+      if (v.kind != Folded::Node) return false;
+      out.push_back(std::uint32_t(v.i));
+      return true;
+    default:
+      return false;
+  }
+}
+
+// The data words of a literal axiom as one of AXIOM_FACTS' facts, or nothing when it cannot be one.
+// A ground fact and the same fact written as a statement (meldc's plain path) give the same words,
+// so that the compact path of ground facts stays invisible in the bytecode.
+std::optional<std::vector<std::uint32_t>> packedFact(Lowering& L, const Axiom& a, const PredInfo* p) {
+  if (!p || p->id == meldvm::Program::kNoPred || p->instruction != Instruction::None) return std::nullopt;
+  const meldvm::PredicateDesc& desc = L.desc(*p);
+  if (desc.action || desc.thread || meldvm::detail::axiomFactWords(desc.fields) == 0) return std::nullopt;
+  std::vector<std::uint32_t> words;
+  if (a.ground) {
+    const GroundFacts& facts = L.ast.groundFacts;
+    if (a.ground->argCount != desc.fields.size() + 1) return std::nullopt;
+    for (std::size_t i = 1; i < a.ground->argCount; ++i) {
+      const GroundArg& g = facts.arg(*a.ground, i);
+      Folded v;
+      switch (g.kind) {
+        case GroundArg::Kind::Int:
+          v.kind = Folded::Int, v.i = g.i;
+          break;
+        case GroundArg::Kind::Float:
+          v.kind = Folded::Float, v.f = g.f;
+          break;
+        case GroundArg::Kind::Node:
+          v.kind = Folded::Node, v.i = g.i;
+          break;
+        case GroundArg::Kind::Bool:
+          v.kind = Folded::Bool, v.b = g.i != 0;
+          break;
+        case GroundArg::Kind::String:
+          return std::nullopt;
+      }
+      if (!packField(desc.fields[i - 1], v, words)) return std::nullopt;
+    }
+    return words;
+  }
+  if (!conditions(*a.statement).empty() || a.fact->args.size() != desc.fields.size() + 1) return std::nullopt;
+  for (std::size_t i = 1; i < a.fact->args.size(); ++i) {
+    if (!literal(L, a.fact->args[i])) return std::nullopt;  // as nodeAxiomOrder decides
+    const std::optional<Folded> v = foldConstant(L, a.fact->args[i]);
+    if (!v || !packField(desc.fields[i - 1], *v, words)) return std::nullopt;
+  }
+  return words;
+}
+
+// Literal facts of one predicate in a row, as one AXIOM_FACTS: a data file's facts take a few words
+// each instead of a DERIVE and a register per field, and load without an instruction per field.
+// Each fact's source line is in force from its first data word.
+void packedAxioms(Lowering& L, CodeBuilder& cb, meldvm::PredId pred,
+                  const std::vector<std::pair<SourceLoc, std::vector<std::uint32_t>>>& run) {
+  L.at(cb, run.front().first);
+  cb.op(Opcode::AXIOM_FACTS).w(pred);
+  const std::size_t countAt = cb.size();
+  cb.w(0);
+  for (const auto& [loc, words] : run) {
+    L.at(cb, loc);
+    for (const std::uint32_t w : words) cb.w(w);
+  }
+  cb.patch(countAt, std::uint32_t(cb.size() - countAt - 1));
+}
+
 // The axioms of one node: those needing evaluation in reverse source order, then the literal
 // facts grouped by predicate (groups in order of first occurrence, source order within a group).
 std::vector<Axiom> nodeAxiomOrder(Lowering& L, const std::vector<Axiom>& axioms,
@@ -351,7 +440,26 @@ void nodeAxiomBlock(Lowering& L, std::int64_t node, const std::vector<Axiom>& ax
                     const std::vector<Symbol>& groundNames, const std::vector<const PredInfo*>& groundPreds) {
   CodeBuilder block;
   try {
-    for (const Axiom& a : nodeAxiomOrder(L, axioms, groundNames)) {
+    const std::vector<Axiom> order = nodeAxiomOrder(L, axioms, groundNames);
+    const auto predOf = [&](const Axiom& a) {
+      return a.ground ? groundPreds[a.ground->name] : L.pred(a.fact->sym);
+    };
+    std::vector<std::pair<SourceLoc, std::vector<std::uint32_t>>> run;
+    for (std::size_t k = 0; k < order.size(); ++k) {
+      const Axiom& a = order[k];
+      const PredInfo* p = predOf(a);
+      if (std::optional<std::vector<std::uint32_t>> words = packedFact(L, a, p)) {
+        run.clear();
+        run.emplace_back(a.ground ? a.ground->loc : a.statement->loc, std::move(*words));
+        for (; k + 1 < order.size() && predOf(order[k + 1]) == p; ++k) {
+          std::optional<std::vector<std::uint32_t>> next = packedFact(L, order[k + 1], p);
+          if (!next) break;
+          const Axiom& b = order[k + 1];
+          run.emplace_back(b.ground ? b.ground->loc : b.statement->loc, std::move(*next));
+        }
+        packedAxioms(L, block, p->id, run);
+        continue;
+      }
       if (a.ground) {
         L.at(block, a.ground->loc);
         groundAxiom(L, block, *a.ground, *groundPreds[a.ground->name]);

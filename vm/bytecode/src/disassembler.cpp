@@ -74,6 +74,7 @@ class Lister {
   std::string predFlags(const PredicateDesc& d) const;
   std::string iterFlags(std::uint32_t f) const;
   std::string operand(Opcode op, char letter, std::span<const std::uint32_t> code, std::size_t w) const;
+  std::string axiomFacts(PredId pred, std::span<const std::uint32_t> data) const;
 
   const Program& p_;
   std::ostream& out_;
@@ -90,6 +91,38 @@ std::string Lister::predFlags(const PredicateDesc& d) const {
   if (d.aggregated() && std::size_t(d.aggregate) < std::size(kAgg))
     s += std::string(" aggregate ") + kAgg[std::size_t(d.aggregate)] + " field " +
          std::to_string(d.aggregateField);
+  return s;
+}
+
+// The facts of AXIOM_FACTS, one per line; the raw words where they do not decode.
+std::string Lister::axiomFacts(PredId pred, std::span<const std::uint32_t> data) const {
+  const std::size_t per =
+      pred < p_.predicates.size() ? detail::axiomFactWords(p_.predicates[pred].fields) : 0;
+  std::string s = " ";
+  s.append(std::to_string(per ? data.size() / per : 0)).append(" facts");
+  if (per == 0 || data.size() % per != 0) {
+    s += ", data words";
+    for (const std::uint32_t w : data) s.append(" ").append(std::to_string(w));
+    return s;
+  }
+  for (const std::uint32_t* w = data.data(); w != data.data() + data.size();) {
+    s += "\n                 (";
+    bool first = true;
+    for (const TypeId t : p_.predicates[pred].fields) {
+      const Value v = detail::axiomField(t, w);
+      s += first ? "" : ", ";
+      first = false;
+      if (t == TypeTable::kFloat)
+        s += number(v.asFloat());
+      else if (t == TypeTable::kNode)
+        s.append("@").append(std::to_string(v.asNode()));
+      else if (t == TypeTable::kBool)
+        s += v.asBool() ? "true" : "false";
+      else
+        s += std::to_string(v.asInt());
+    }
+    s += ")";
+  }
   return s;
 }
 
@@ -177,6 +210,10 @@ void Lister::block(const std::string& title, const CodeBlock& b) {
     std::string line = "  " + word4(pos) + "  " + name;
     std::size_t w = pos + 1;
     for (const char* l = info.operands; *l; ++l) {
+      if (*l == 'W') {
+        line += axiomFacts(code[pos + 1], code.subspan(w + 1, code[w]));
+        break;
+      }
       if (*l == '*') {
         line += " (";
         for (std::uint32_t i = 0; i < code[w]; ++i)

@@ -21,8 +21,8 @@ static_assert(std::size(kTable) == kOpcodeCount);
 // in opcodes.def must not compile.
 constexpr bool wellFormed(std::string_view ops) {
   for (std::size_t i = 0; i < ops.size(); ++i) {
-    if (std::string_view("rifbnlsSPTKGIDFXBUEJ*").find(ops[i]) == std::string_view::npos) return false;
-    if (ops[i] == '*' && i + 1 != ops.size()) return false;
+    if (std::string_view("rifbnlsSPTKGIDFXBUEJ*W").find(ops[i]) == std::string_view::npos) return false;
+    if ((ops[i] == '*' || ops[i] == 'W') && i + 1 != ops.size()) return false;
   }
   return true;
 }
@@ -31,7 +31,7 @@ constexpr bool allWellFormed() {
     if (!wellFormed(info.operands)) return false;
   return true;
 }
-static_assert(allWellFormed(), "opcodes.def: unknown operand letter or '*' not last");
+static_assert(allWellFormed(), "opcodes.def: unknown operand letter, or '*' or 'W' not last");
 
 // Returned for values outside the table, so that printing a bad opcode is not undefined.
 constexpr OpcodeInfo kInvalid{"?", "", "not an opcode"};
@@ -97,10 +97,11 @@ std::size_t instructionLength(std::span<const std::uint32_t> code, std::size_t p
       why = "operands run past the end of the block";
       return 0;
     }
-    if (letter == '*') {
+    if (letter == '*' || letter == 'W') {
       const std::uint32_t count = code[p++];
       if (count > code.size() - p) {
-        why = "register count " + std::to_string(count) + " runs past the end of the block";
+        why = (letter == '*' ? "register count " : "data word count ") + std::to_string(count) +
+              " runs past the end of the block";
         return 0;
       }
       p += count;

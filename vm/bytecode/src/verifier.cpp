@@ -101,6 +101,7 @@ class BlockVerifier {
 
   void operands();
   void semantics();
+  void axiomFacts();
   void definiteAssignment();
 
   const Program& p_;
@@ -209,6 +210,10 @@ void BlockVerifier::operands() {
         list_ = w + 1;
         count_ = v;
         for (std::uint32_t i = 0; i < v; ++i) reg(code_[list_ + i], 'r');
+        break;
+      case 'W':  // data words: checked by opcode
+        list_ = w + 1;
+        count_ = v;
         break;
       default:  // I, F, X: checked by opcode; D: any bits
         break;
@@ -383,9 +388,33 @@ void BlockVerifier::semantics() {
     case Opcode::AXIOMS:
       if (!isRule0) bad("outside rule 0");
       break;
+    case Opcode::AXIOM_FACTS:
+      axiomFacts();
+      break;
     default:
       break;
   }
+}
+
+// The data words of AXIOM_FACTS: whole facts of a predicate whose fields all fit in them, with
+// valid bools and nodes (the interpreter decodes them without a check).
+void BlockVerifier::axiomFacts() {
+  if (kind_ != BlockKind::Axioms) bad("outside an axiom block");
+  const PredicateDesc& d = p_.predicates[v_[0]];
+  if (d.thread || d.action) bad(predText(v_[0]) + " is a thread or action predicate");
+  const std::size_t per = detail::axiomFactWords(d.fields);
+  if (per == 0) bad(predText(v_[0]) + " has a field that is not an int, float, bool or node");
+  if (count_ % per != 0) bad(n2s(count_) + " data words for facts of " + n2s(per) + " words each");
+  const std::size_t nodes = p_.nodeSourceIds.size();
+  for (std::size_t w = list_, end = list_ + count_; w < end;)
+    for (const TypeId t : d.fields) {
+      const std::uint32_t v = code_[w];
+      if (t == TypeTable::kBool && v > 1) bad("bool " + n2s(v) + " at word " + n2s(w) + " is not 0 or 1");
+      if (t == TypeTable::kNode && v >= nodes)
+        bad("node @" + n2s(v) + " at word " + n2s(w) + " is not one of the program's " + n2s(nodes) +
+            " nodes");
+      w += t == TypeTable::kFloat ? 2 : 1;
+    }
 }
 
 void BlockVerifier::run() {

@@ -24,9 +24,10 @@ namespace meldvm {
 
 // Version 2 added RET_IF_UPDATED (a merged rule stops after an in-place update) and the
 // scheduling flag of `priority @no_priority`; version 3 the sources section (file:line of rules
-// and axioms, for derivation trees). Every change so far only adds: the reader also takes version
-// 1 and 2 files, and an older VM refuses a newer file by its version.
-inline constexpr std::uint32_t kBytecodeVersion = 3;
+// and axioms, for derivation trees); version 4 AXIOM_FACTS (constant axioms as data words).
+// Every change so far only adds: the reader also takes version 1 to 3 files, and an older VM
+// refuses a newer file by its version.
+inline constexpr std::uint32_t kBytecodeVersion = 4;
 inline constexpr std::uint32_t kOldestBytecodeVersion = 1;
 
 class BytecodeError : public std::runtime_error {

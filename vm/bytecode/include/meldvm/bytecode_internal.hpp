@@ -1,6 +1,7 @@
 // Pieces shared by the bytecode writer, reader, verifier and disassembler; not part of the API.
 #pragma once
 
+#include <bit>
 #include <cstddef>
 #include <cstdint>
 #include <span>
@@ -62,6 +63,38 @@ inline constexpr std::uint32_t kSchedFlagsAll = 31;
 // Length in words of the instruction at `pos` of `code`, or 0 when it is malformed (unknown opcode,
 // operands running past the end); then `why` says what is wrong.
 std::size_t instructionLength(std::span<const std::uint32_t> code, std::size_t pos, std::string& why);
+
+// AXIOM_FACTS: the data words of one fact of a predicate with these fields (one per int, bool or
+// node field, two per float field), or 0 when a field has another type or there is none (such
+// facts are derived with DERIVE).
+inline std::size_t axiomFactWords(std::span<const TypeId> fields) {
+  std::size_t n = 0;
+  for (const TypeId t : fields) {
+    if (t == TypeTable::kFloat)
+      n += 2;
+    else if (t == TypeTable::kInt || t == TypeTable::kBool || t == TypeTable::kNode)
+      n += 1;
+    else
+      return 0;
+  }
+  return n;
+}
+// The field of type t (one axiomFactWords accepts) whose data words start at w; `w` moves past them.
+inline Value axiomField(TypeId t, const std::uint32_t*& w) {
+  switch (t) {
+    case TypeTable::kFloat: {
+      const std::uint64_t bits = std::uint64_t(w[0]) | std::uint64_t(w[1]) << 32;
+      w += 2;
+      return Value::fromFloat(std::bit_cast<double>(bits));
+    }
+    case TypeTable::kInt:
+      return Value::fromInt(std::int32_t(*w++));
+    case TypeTable::kBool:
+      return Value::fromBool(*w++ != 0);
+    default:
+      return Value::fromNode(*w++);
+  }
+}
 
 // Calls f(pos) for every instruction of verified code, in order (for the run-time summaries the
 // Machine and the interpreter draw from a block once).
