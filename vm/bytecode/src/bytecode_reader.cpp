@@ -295,6 +295,7 @@ void readSection(Cursor& c, std::uint32_t tag, Program& p) {
       // Checked here, not by the verifier: a wrong line only misleads a message, but it is refused.
       forEachCodeBlock(p, [&](CodeBlock& b) {
         const std::uint32_t n = c.count("source line", 12);
+        b.lines.reserve(n);
         for (std::uint32_t i = 0; i < n; ++i) {
           SourceLine l;
           l.pc = c.word("source line pc");

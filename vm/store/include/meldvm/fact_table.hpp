@@ -154,7 +154,7 @@ class FactTable {
   mutable Value memoKey_[kHashMemo] = {};
   mutable std::uint64_t memoHash_ = 0;
   std::uint32_t stride_ = 0, argOffset_ = 0;
-  LargeVector<Value> words_;
+  LargeBuffer<Value> words_;
   const Value* slotArray_ = nullptr;  // words_.data(), refreshed whenever words_ reallocates
   FactRef freeList_ = kNoFact;
   std::uint32_t live_ = 0;

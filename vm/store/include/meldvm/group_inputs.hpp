@@ -98,7 +98,7 @@ class GroupInputs {
   std::vector<std::uint32_t> boxedFields_;  // positions to retain/release
   bool integerKeys_ = true;                 // every field compares by its bits
   std::uint32_t stride_;
-  LargeVector<Value> words_;
+  LargeBuffer<Value> words_;
   std::vector<std::uint32_t> freeRuns_;  // per size class: the first word of a free run, or kNone
   std::vector<Run> runs_;
   std::vector<Value> scratch_;  // an appended input's arguments while its run moves

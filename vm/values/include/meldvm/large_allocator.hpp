@@ -2,10 +2,12 @@
 #pragma once
 
 #include "support/large_allocator.hpp"
+#include "support/large_buffer.hpp"
 
 namespace meldvm {
 
 using support::LargeAllocator;
+using support::LargeBuffer;
 using support::LargeVector;
 
 }  // namespace meldvm
