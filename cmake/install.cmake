@@ -15,6 +15,8 @@ set(MELD_CMAKE_DIR ${CMAKE_INSTALL_LIBDIR}/cmake/MeldToolchain)
 install(TARGETS meldc meld vsim RUNTIME DESTINATION ${CMAKE_INSTALL_BINDIR})
 # The JIT (meld --jit, vsim --jit) as a module, where both look for it: <bin>/../lib/meld.
 install(TARGETS meld_jit LIBRARY DESTINATION lib/meld)
+# So does meld's front end for .meld files (libmeld_frontend.so).
+install(TARGETS meld_frontend LIBRARY DESTINATION lib/meld)
 if(TARGET vsim-ide)
   install(TARGETS vsim-ide RUNTIME DESTINATION ${CMAKE_INSTALL_BINDIR})
 endif()

@@ -4,10 +4,8 @@
 
 #include <iostream>
 
-#include "meldc/compile.hpp"
 #include "meldc/compile_progress_line.hpp"
-#include "meldc/diagnostics.hpp"
-#include "meldc/source.hpp"
+#include "meldc/frontend_loader.hpp"
 #include "meldvm/bytecode.hpp"
 
 namespace meldapp {
@@ -20,16 +18,18 @@ bool endsWith(const std::string& s, const char* suffix) {
 }
 
 std::unique_ptr<meldvm::Program> compileSource(const Options& options, int& status) {
-  meldc::SourceManager sources;
-  meldc::Diagnostics diag(sources, std::cerr);
   try {
     auto program =
-        meldc::compileProgram({options.program, options.includeDirs, options.defines}, sources, diag);
+        meldc::compileThroughModule(options.program, options.includeDirs, options.defines, std::cerr);
     if (!program) status = kExitCompileErrors;
     return program;
-  } catch (const meldc::InternalCompilerError& e) {
+  } catch (const meldc::FrontEndInternalError& e) {
     std::cerr << "meld: internal compiler error: " << e.what() << "\n";
     status = 70;
+    return nullptr;
+  } catch (const meldc::FrontEndModuleError& e) {
+    std::cerr << "meld: error: " << e.what() << "\n";
+    status = kExitCompileErrors;
     return nullptr;
   }
 }

@@ -27,7 +27,7 @@ R="$WORK/root"
 U="$R/usr"
 dpkg-deb -x "$DEB" "$R" || fail "dpkg-deb -x"
 expect_files "$R" usr/bin/meldc usr/bin/meld usr/bin/vsim usr/bin/vsim-ide usr/share/meld/stdlib/common.meld \
-         usr/lib/meld/blockcodes/color_flood.so usr/lib/meld/libmeld_jit.so usr/include/simcore/blockcode.h \
+         usr/lib/meld/blockcodes/color_flood.so usr/lib/meld/libmeld_jit.so usr/lib/meld/libmeld_frontend.so usr/include/simcore/blockcode.h \
          usr/lib/cmake/MeldToolchain/MeldToolchainConfig.cmake usr/lib/pkgconfig/meld-blockcode.pc \
          usr/share/man/man1/vsim.1 usr/share/meld/examples/worlds/color-flood.xml
 unset MELD_STDLIB VSIM_CODE_PATH

@@ -13,7 +13,7 @@ rm -rf "$WORK" && mkdir -p "$WORK"
 run_or_fail "$WORK/install.log" "cmake --install" "$CMAKE" --install "$BUILD" --prefix "$P"
 expect_files "$P" bin/meldc bin/meld bin/vsim include/simcore/blockcode.h include/simcore/blockcode_polling.h \
          share/meld/stdlib/common.meld share/meld/stdlib/smartblocks.meld lib/meld/blockcodes/color_flood.so \
-         lib/meld/libmeld_jit.so share/meld/examples/worlds/color-flood.xml share/meld/examples/meld/gradient-tap.meld \
+         lib/meld/libmeld_jit.so lib/meld/libmeld_frontend.so share/meld/examples/worlds/color-flood.xml share/meld/examples/meld/gradient-tap.meld \
          share/man/man1/meldc.1 share/man/man1/meld.1 share/man/man1/vsim.1 \
          share/doc/meld-toolchain/meld-language.md share/doc/meld-toolchain/images/vsim-ide.png
 ls "$P"/lib*/libblockcode_polling.a >/dev/null 2>&1 || fail "the polling library was not installed"
@@ -32,6 +32,8 @@ LD_DEBUG=files "$P/bin/meld" "$WORK/count.meld" --dump --jit >"$WORK/jit" 2>"$WO
   { cat "$WORK/jit.err"; fail "the installed meld --jit failed"; }
 grep -q 'a(3)' "$WORK/jit" || fail "the installed meld --jit gave another dump"
 grep -q "file=$P/lib/meld/libmeld_jit.so" "$WORK/jit.err" || fail "the installed meld --jit did not load the installed module"
+grep -q "file=$P/lib/meld/libmeld_frontend.so" "$WORK/jit.err" ||
+  fail "the installed meld did not compile the source with the installed front end module"
 # The installed IDE draws the installed Meld example (a picture under Xvfb, as the IDE tests do).
 if [ -x "$P/bin/vsim-ide" ]; then
   command -v xvfb-run >/dev/null || fail "xvfb-run is missing (scripts/install-packages.sh installs it)"

@@ -201,6 +201,34 @@ case_jit_module() {
   unset MELD_JIT_MODULE
 }
 
+case_frontend_module() {
+  # Meld source goes through the front end module (meldc/frontend_loader.hpp): meld does not
+  # link the ANTLR runtime, runs bytecode without loading it, and says what is wrong with a
+  # missing or foreign module (status 1, as for a program that does not compile).
+  command -v ldd >/dev/null && ldd "$MELD" | grep -q libantlr4 && fail "meld links the ANTLR runtime"
+  "$MELDC" "$WORK/reach.meld" -o "$WORK/reach.mbc" || fail "meldc failed on reach.meld"
+  LD_DEBUG=files "$MELD" "$WORK/reach.mbc" --dump >"$OUT" 2>"$ERR" || fail "a bytecode run failed"
+  grep -q 'libantlr4\|libmeld_frontend' "$ERR" && fail "a bytecode run loaded the front end"
+  cp "$OUT" "$WORK/bytecode"
+  LD_DEBUG=files "$MELD" "$WORK/reach.meld" --dump >"$OUT" 2>"$ERR" || fail "a source run failed"
+  grep -q 'libmeld_frontend.so' "$ERR" || fail "a source run did not load libmeld_frontend.so"
+  cmp -s "$OUT" "$WORK/bytecode" || fail "the source run gave another dump than its bytecode"
+  printf 'type linear a(node, int).\na(@0, 1) oops\n' >"$WORK/bad.meld"
+  run 1 "$WORK/bad.meld"
+  has "$ERR" "bad.meld:2:10: error: unexpected name 'oops'"
+  export MELD_FRONTEND_MODULE="$WORK/none.so"
+  run 0 "$WORK/reach.mbc" --dump
+  run 1 "$WORK/reach.meld"
+  has "$ERR" "MELD_FRONTEND_MODULE names $WORK/none.so, which does not exist"
+  printf 'not an object' >"$WORK/none.so"
+  run 1 "$WORK/reach.meld"
+  has "$ERR" "cannot load the Meld front end module $WORK/none.so"
+  export MELD_FRONTEND_MODULE="$BLOCKCODE"
+  run 1 "$WORK/reach.meld"
+  has "$ERR" "is not a Meld front end module of this toolchain"
+  unset MELD_FRONTEND_MODULE
+}
+
 case_native() {
   # meldc --emit=native, then meld FILE.so: the bytecode's dump. Files that are not native Meld
   # programs, or were built for another version, are refused with exit status 3.

@@ -1,0 +1,78 @@
+#include "meldc/frontend_loader.hpp"
+
+#include <dlfcn.h>
+
+#include <cstdlib>
+#include <filesystem>
+#include <ostream>
+
+#include "meldc/frontend_module.h"
+#include "support/program_dir.hpp"
+
+namespace meldc {
+
+namespace {
+
+// The module stays loaded for the rest of the process; a second dlopen of the same file returns
+// the same handle.
+meld_frontend_compile_fn openModule(const std::string& path) {
+  void* handle = dlopen(path.c_str(), RTLD_NOW | RTLD_LOCAL);
+  if (!handle) throw FrontEndModuleError("cannot load the Meld front end module " + path + ": " + dlerror());
+  const auto version = reinterpret_cast<meld_frontend_version_fn>(dlsym(handle, "meld_frontend_version"));
+  const auto compile = reinterpret_cast<meld_frontend_compile_fn>(dlsym(handle, "meld_frontend_compile"));
+  if (!version || !compile)
+    throw FrontEndModuleError(path + " is not a Meld front end module of this toolchain");
+  if (version() != MELD_FRONTEND_MODULE_VERSION)
+    throw FrontEndModuleError(path + " is a Meld front end module of another version of this toolchain");
+  return compile;
+}
+
+meld_frontend_compile_fn loadModule() {
+  if (const char* named = std::getenv("MELD_FRONTEND_MODULE"); named && *named) {
+    if (!std::filesystem::exists(named))
+      throw FrontEndModuleError(std::string("MELD_FRONTEND_MODULE names ") + named +
+                                ", which does not exist");
+    return openModule(named);
+  }
+  std::vector<std::string> places;
+  if (const std::filesystem::path bin = support::runningProgramDir(); !bin.empty())
+    places.push_back((bin.parent_path() / "lib" / "meld" / "libmeld_frontend.so").string());
+#ifdef MELD_FRONTEND_MODULE_BUILD_PATH
+  places.push_back(MELD_FRONTEND_MODULE_BUILD_PATH);
+#endif
+  std::string tried;
+  for (const std::string& place : places) {
+    if (std::filesystem::exists(place)) return openModule(place);
+    tried += "\n  " + place;
+  }
+  throw FrontEndModuleError("the Meld front end module libmeld_frontend.so is not installed (looked for" +
+                            tried + "); compile the program with meldc and run the .mbc");
+}
+
+}  // namespace
+
+std::unique_ptr<meldvm::Program> compileThroughModule(
+    const std::string& path, const std::vector<std::string>& includeDirs,
+    const std::vector<std::pair<std::string, std::string>>& defines, std::ostream& diagnostics) {
+  const meld_frontend_compile_fn compile = loadModule();
+  std::vector<const char*> dirs, names, values;
+  for (const std::string& d : includeDirs) dirs.push_back(d.c_str());
+  for (const auto& [name, value] : defines) {
+    names.push_back(name.c_str());
+    values.push_back(value.c_str());
+  }
+  const auto report = [](const char* text, size_t size, void* context) {
+    static_cast<std::ostream*>(context)->write(text, std::streamsize(size));
+  };
+  void* program = nullptr;
+  char error[2048] = "";
+  const int status = compile(path.c_str(), dirs.data(), dirs.size(), names.data(), values.data(),
+                             names.size(), +report, &diagnostics, &program, error, sizeof error);
+  if (status == MELD_FRONTEND_INTERNAL_ERROR) throw FrontEndInternalError(error);
+  // The module built the Program from the same sources with the same compiler: it is this
+  // process's type, and ours to delete.
+  return std::unique_ptr<meldvm::Program>(
+      status == MELD_FRONTEND_COMPILED ? static_cast<meldvm::Program*>(program) : nullptr);
+}
+
+}  // namespace meldc
