@@ -343,8 +343,7 @@ void Machine::storeDerivedLinear() {
   countSteps(linearOut_.size());  // a run that doubles the node's facts is bounded too
   for (const PendingFact& e : linearOut_) {
     const Value* args = linearOutArgs_.data() + e.args;
-    db_->addLinear(e.node, e.pred, args);
-    releaseArgs(e.pred, args);
+    db_->addLinear(e.node, e.pred, args, /*adopt=*/true);  // the buffer's references go to the fact
     factAdded(e.node, e.pred);
   }
   linearOut_.clear();

@@ -6,8 +6,8 @@
 
 namespace meldvm {
 
-void Machine::post(NodeId dest, PredId p, const Value* args, bool negative) {
-  if (tables_.boxedField[p]) retainArgs(p, args);
+void Machine::post(NodeId dest, PredId p, const Value* args, bool negative, bool adopt) {
+  if (!adopt && tables_.boxedField[p]) retainArgs(p, args);
   linearPosted_ |= tables_.isLinear[p];
   mail_->post(dest, p, negative, args);
   // The thread node is served apart (runNext), never from the queue.
@@ -18,10 +18,11 @@ void Machine::postOrRoute(const PendingFact& e, const Value* args) {
   if (shard_) [[unlikely]] {
     if (const ThreadId owner = shard_->ownerOf(e.node); owner != placement_.self) {
       shard_->sendRemote(owner, e.node, e.pred, args, e.negative);
+      releaseArgs(e.pred, args);
       return;
     }
   }
-  post(e.node, e.pred, args, e.negative);
+  post(e.node, e.pred, args, e.negative, /*adopt=*/true);  // the buffer's references go to the mailbox
 }
 
 void Machine::flushOutgoing() {
@@ -59,9 +60,7 @@ void Machine::postAll(const std::vector<PendingFact>& facts, const std::vector<s
   for (std::size_t i = 0; i < n; ++i) {
     if (i + kTailAhead < n && at(i + kTailAhead).node < nodes) mail_->prefetchTail(at(i + kTailAhead).node);
     const PendingFact& e = at(i);
-    const Value* args = sentArgs_.data() + e.args;
-    postOrRoute(e, args);
-    releaseArgs(e.pred, args);
+    postOrRoute(e, sentArgs_.data() + e.args);  // takes the buffer's references
   }
 }
 
@@ -80,8 +79,7 @@ void Machine::deliverIncoming(NodeId n) {
           return tables_.isLinear[p] != 0;
         },
         [&](PredId p, bool, const Value* args) {
-          db_->addLinear(n, p, args);
-          releaseArgs(p, args);
+          db_->addLinear(n, p, args, /*adopt=*/true);  // the mailbox's references go to the fact
           factAdded(n, p);
         });
   if (persistent)

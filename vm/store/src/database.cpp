@@ -100,11 +100,11 @@ std::uint32_t Database::requestIndex(PredId p, std::uint32_t field) {
   return t.addIndex({field, 1});
 }
 
-FactRef Database::addLinear(NodeId n, PredId p, const Value* args) {
+FactRef Database::addLinear(NodeId n, PredId p, const Value* args, bool adopt) {
   storedPredicate(p, true);
   checkNode(n);
   clearScratch();
-  return tables_[p].insert(head(n, p), n, args, 1);
+  return tables_[p].insert(head(n, p), n, args, 1, kNoFact, adopt);
 }
 
 void Database::consume(NodeId n, PredId p, FactRef f) {

@@ -154,9 +154,10 @@ void FactTable::unlinkIndexes(FactRef f) {
 }
 
 // Takes a slot, stores the fact and links it into the node's list (not into the hash tables).
-FactRef FactTable::place(ListHead& list, NodeId n, const Value* a, std::uint32_t cnt, FactRef after) {
+FactRef FactTable::place(ListHead& list, NodeId n, const Value* a, std::uint32_t cnt, FactRef after,
+                         bool adopt) {
   if (cnt == 0) throw std::invalid_argument("meldvm: a stored fact has a count of at least 1");
-  retainArgs(a);
+  if (!adopt) retainArgs(a);
   FactRef f;
   if (freeList_ != kNoFact) {
     f = freeList_;
@@ -195,8 +196,9 @@ FactRef FactTable::place(ListHead& list, NodeId n, const Value* a, std::uint32_t
   return f;
 }
 
-FactRef FactTable::insert(ListHead& list, NodeId n, const Value* a, std::uint32_t cnt, FactRef after) {
-  const FactRef f = place(list, n, a, cnt, after);
+FactRef FactTable::insert(ListHead& list, NodeId n, const Value* a, std::uint32_t cnt, FactRef after,
+                          bool adopt) {
+  const FactRef f = place(list, n, a, cnt, after, adopt);
   linkIndexes(f);
   if (dedup_) facts_.insert(dedupHash(n, args(f)), f);
   return f;

@@ -284,7 +284,8 @@ class Machine : private SchedulerView {
   [[noreturn]] void fail(const std::exception& e, NodeId n, const std::string& where) const;
 
   // A fact for another node: into its mailbox (arguments retained), waking it up.
-  void post(NodeId dest, PredId p, const Value* args, bool negative);
+  // adopt: the caller's references to the boxed arguments go to the mailbox (no retain).
+  void post(NodeId dest, PredId p, const Value* args, bool negative, bool adopt = false);
 
   struct PendingFact {  // a queued persistent derivation/retraction, or a buffered linear fact
     NodeId node;
@@ -344,8 +345,8 @@ class Machine : private SchedulerView {
   const std::atomic<bool>* stopFlag_ = nullptr;
   const std::atomic<bool>* safePointFlag_ = nullptr;
   ShardPlacement placement_;
-  NodeId nextCreated_ = 0, createdEnd_ = 0;  // a shard's block of ids for created nodes
-  void postOrRoute(const PendingFact& e, const Value* args);
+  NodeId nextCreated_ = 0, createdEnd_ = 0;                   // a shard's block of ids for created nodes
+  void postOrRoute(const PendingFact& e, const Value* args);  // takes over the references of args
   NodeId running_ = 0;
   bool inRun_ = false;
   bool nodeRunning_ = false;  // within runNode (its repeated runs included)

@@ -88,7 +88,8 @@ class Database {
   void reserve(PredId p, std::size_t facts) { tables_[p].reserve(facts); }
 
   // Linear predicates.
-  FactRef addLinear(NodeId n, PredId p, const Value* args);
+  // adopt: the caller's references to the boxed arguments go to the stored fact (no retain).
+  FactRef addLinear(NodeId n, PredId p, const Value* args, bool adopt = false);
   void consume(NodeId n, PredId p, FactRef f);  // read next(p, f) first when iterating
   // A consumed fact stays linked until the rule run ends (so that loops can step past it); the
   // mark (a count of 0) tells iterations to skip it. consume() unlinks it later.

@@ -52,8 +52,9 @@ class FactTable {
 
   // Adds a fact to the node's list (at the end, or right after `after`) and at the end of its index
   // chains; the boxed arguments are retained.
-  FactRef insert(ListHead& list, NodeId node, const Value* args, std::uint32_t count,
-                 FactRef after = kNoFact);
+  // adopt: the caller hands its references to the boxed arguments over (no retain).
+  FactRef insert(ListHead& list, NodeId node, const Value* args, std::uint32_t count, FactRef after = kNoFact,
+                 bool adopt = false);
   // Adds a fact right after the last fact of the node with the same index-0 key (at the end of
   // the list when there is none): persistent facts grouped by their first field. One hash look-up
   // finds the group and links the index.
@@ -137,7 +138,8 @@ class FactTable {
   void linkIndexes(FactRef f, std::uint32_t fromIndex = 0);
   void linkIndex(FactRef f, std::uint32_t x, FactRef head, std::uint64_t hash);
   void growForOneMore();  // room for one more slot, growing by a quarter when full
-  FactRef place(ListHead& list, NodeId n, const Value* a, std::uint32_t cnt, FactRef after);
+  FactRef place(ListHead& list, NodeId n, const Value* a, std::uint32_t cnt, FactRef after,
+                bool adopt = false);
   void unlinkIndexes(FactRef f);
   void retainArgs(const Value* args);
   void releaseArgs(FactRef f);
