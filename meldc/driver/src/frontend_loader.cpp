@@ -3,21 +3,33 @@
 #include <dlfcn.h>
 
 #include <cstdlib>
-#include <filesystem>
 #include <ostream>
 
 #include "meldc/frontend_module.h"
-#include "support/program_dir.hpp"
+#include "support/toolchain_module.hpp"
 
 namespace meldc {
 
 namespace {
 
-// The module stays loaded for the rest of the process; a second dlopen of the same file returns
-// the same handle.
-meld_frontend_compile_fn openModule(const std::string& path) {
-  void* handle = dlopen(path.c_str(), RTLD_NOW | RTLD_LOCAL);
-  if (!handle) throw FrontEndModuleError("cannot load the Meld front end module " + path + ": " + dlerror());
+// The module stays loaded for the rest of the process.
+meld_frontend_compile_fn loadModule() {
+  static const std::string kWhat = "Meld front end module";
+#ifdef MELD_FRONTEND_MODULE_BUILD_PATH
+  const char* build = MELD_FRONTEND_MODULE_BUILD_PATH;
+#else
+  const char* build = nullptr;
+#endif
+  std::string path;
+  void* handle = nullptr;
+  try {
+    path = support::findToolchainModule("MELD_FRONTEND_MODULE", "libmeld_frontend.so", build, kWhat);
+    handle = support::openToolchainModule(path, kWhat);
+  } catch (const std::runtime_error& e) {
+    throw FrontEndModuleError(
+        std::string(e.what()) +
+        (std::getenv("MELD_FRONTEND_MODULE") ? "" : "; compile the program with meldc and run the .mbc"));
+  }
   const auto version = reinterpret_cast<meld_frontend_version_fn>(dlsym(handle, "meld_frontend_version"));
   const auto compile = reinterpret_cast<meld_frontend_compile_fn>(dlsym(handle, "meld_frontend_compile"));
   if (!version || !compile)
@@ -25,28 +37,6 @@ meld_frontend_compile_fn openModule(const std::string& path) {
   if (version() != MELD_FRONTEND_MODULE_VERSION)
     throw FrontEndModuleError(path + " is a Meld front end module of another version of this toolchain");
   return compile;
-}
-
-meld_frontend_compile_fn loadModule() {
-  if (const char* named = std::getenv("MELD_FRONTEND_MODULE"); named && *named) {
-    if (!std::filesystem::exists(named))
-      throw FrontEndModuleError(std::string("MELD_FRONTEND_MODULE names ") + named +
-                                ", which does not exist");
-    return openModule(named);
-  }
-  std::vector<std::string> places;
-  if (const std::filesystem::path bin = support::runningProgramDir(); !bin.empty())
-    places.push_back((bin.parent_path() / "lib" / "meld" / "libmeld_frontend.so").string());
-#ifdef MELD_FRONTEND_MODULE_BUILD_PATH
-  places.push_back(MELD_FRONTEND_MODULE_BUILD_PATH);
-#endif
-  std::string tried;
-  for (const std::string& place : places) {
-    if (std::filesystem::exists(place)) return openModule(place);
-    tried += "\n  " + place;
-  }
-  throw FrontEndModuleError("the Meld front end module libmeld_frontend.so is not installed (looked for" +
-                            tried + "); compile the program with meldc and run the .mbc");
 }
 
 }  // namespace

@@ -2,21 +2,15 @@
 // loads it only for .meld files (frontend_loader.cpp). Only the functions below are exported.
 #include "meldc/frontend_module.h"
 
-#include <cstring>
 #include <exception>
 #include <sstream>
 
 #include "meldc/compile.hpp"
+#include "support/toolchain_module.hpp"
 
 #define MELD_FRONTEND_EXPORT extern "C" __attribute__((visibility("default")))
 
-namespace {
-void copyMessage(const char* what, char* error, size_t size) {
-  if (size == 0) return;
-  std::strncpy(error, what, size - 1);
-  error[size - 1] = '\0';
-}
-}  // namespace
+using support::copyModuleMessage;
 
 MELD_FRONTEND_EXPORT int meld_frontend_version() { return MELD_FRONTEND_MODULE_VERSION; }
 
@@ -39,10 +33,10 @@ MELD_FRONTEND_EXPORT int meld_frontend_compile(const char* path, const char* con
       status = MELD_FRONTEND_COMPILED;
     }
   } catch (const meldc::InternalCompilerError& e) {
-    copyMessage(e.what(), error, error_size);
+    copyModuleMessage(e.what(), error, error_size);
     status = MELD_FRONTEND_INTERNAL_ERROR;
   } catch (const std::exception& e) {
-    copyMessage(e.what(), error, error_size);
+    copyModuleMessage(e.what(), error, error_size);
     status = MELD_FRONTEND_INTERNAL_ERROR;
   }
   const std::string diagnostics = text.str();

@@ -2,11 +2,9 @@
 
 #include <dlfcn.h>
 
-#include <cstdlib>
-#include <filesystem>
 #include <string>
 
-#include "support/program_dir.hpp"
+#include "support/toolchain_module.hpp"
 
 namespace meldc::native {
 
@@ -22,39 +20,30 @@ Fn symbol(void* handle, const char* name) {
   return reinterpret_cast<Fn>(dlsym(handle, name));
 }
 
-// The module stays loaded for the rest of the process (LLVM does not take well to unloading); a
-// second dlopen of the same file returns the same handle.
-Module openModule(const std::string& path) {
-  void* handle = dlopen(path.c_str(), RTLD_NOW | RTLD_LOCAL);
-  if (!handle) throw NativeError("cannot load the native code module " + path + ": " + dlerror());
-  auto version = symbol<meld_jit_version_fn>(handle, "meld_jit_version");
-  Module m{symbol<meld_jit_compile_fn>(handle, "meld_jit_compile"),
-           symbol<meld_jit_release_fn>(handle, "meld_jit_release")};
-  if (!version || !m.compile || !m.release)
-    throw NativeError(path + " is not a native code module of this toolchain");
-  if (version() != MELD_JIT_MODULE_VERSION)
-    throw NativeError(path + " is a native code module of another version of this toolchain");
-  return m;
-}
-
+// The module stays loaded for the rest of the process (LLVM does not take well to unloading).
 Module loadModule() {
-  if (const char* named = std::getenv("MELD_JIT_MODULE"); named && *named) {
-    if (!std::filesystem::exists(named))
-      throw NativeError(std::string("MELD_JIT_MODULE names ") + named + ", which does not exist");
-    return openModule(named);
-  }
-  std::vector<std::string> places;
-  if (const std::filesystem::path bin = support::runningProgramDir(); !bin.empty())
-    places.push_back((bin.parent_path() / "lib" / "meld" / "libmeld_jit.so").string());
+  static const std::string kWhat = "native code module";
 #ifdef MELD_JIT_MODULE_BUILD_PATH
-  places.push_back(MELD_JIT_MODULE_BUILD_PATH);
+  const char* build = MELD_JIT_MODULE_BUILD_PATH;
+#else
+  const char* build = nullptr;
 #endif
-  std::string tried;
-  for (const std::string& place : places) {
-    if (std::filesystem::exists(place)) return openModule(place);
-    tried += "\n  " + place;
+  try {
+    const std::string path = support::findToolchainModule("MELD_JIT_MODULE", "libmeld_jit.so", build, kWhat);
+    void* handle = support::openToolchainModule(path, kWhat);
+    auto version = symbol<meld_jit_version_fn>(handle, "meld_jit_version");
+    Module m{symbol<meld_jit_compile_fn>(handle, "meld_jit_compile"),
+             symbol<meld_jit_release_fn>(handle, "meld_jit_release")};
+    if (!version || !m.compile || !m.release)
+      throw NativeError(path + " is not a native code module of this toolchain");
+    if (version() != MELD_JIT_MODULE_VERSION)
+      throw NativeError(path + " is a native code module of another version of this toolchain");
+    return m;
+  } catch (const NativeError&) {
+    throw;
+  } catch (const std::runtime_error& e) {
+    throw NativeError(e.what());
   }
-  throw NativeError("the native code module libmeld_jit.so is not installed (looked for" + tried + ")");
 }
 
 }  // namespace

@@ -1,20 +1,15 @@
 // libmeld_jit.so: the LLVM backend's JIT behind the C seam of jit_module.h, for the programs that
 // load it on demand (jit_loader.cpp). Only the functions below are exported.
-#include <cstring>
+#include "meldc/jit_module.h"
+
 #include <exception>
 
-#include "meldc/jit_module.h"
 #include "meldc/native.hpp"
+#include "support/toolchain_module.hpp"
 
 #define MELD_JIT_EXPORT extern "C" __attribute__((visibility("default")))
 
-namespace {
-void copyMessage(const char* what, char* error, size_t size) {
-  if (size == 0) return;
-  std::strncpy(error, what, size - 1);
-  error[size - 1] = '\0';
-}
-}  // namespace
+using support::copyModuleMessage;
 
 MELD_JIT_EXPORT int meld_jit_version() { return MELD_JIT_MODULE_VERSION; }
 
@@ -29,9 +24,9 @@ MELD_JIT_EXPORT int meld_jit_compile(const void* program, meld_jit_progress prog
     result->owner = jit.release();
     return 0;
   } catch (const std::exception& e) {
-    copyMessage(e.what(), error, error_size);
+    copyModuleMessage(e.what(), error, error_size);
   } catch (...) {
-    copyMessage("unknown error", error, error_size);
+    copyModuleMessage("unknown error", error, error_size);
   }
   return 1;
 }
