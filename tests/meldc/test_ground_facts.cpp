@@ -90,6 +90,26 @@ BOOST_AUTO_TEST_CASE(literal_facts_take_the_compact_path_with_the_same_bytecode)
   BOOST_TEST(c.asmText.find("DERIVE") != std::string::npos);
 }
 
+BOOST_AUTO_TEST_CASE(literal_facts_pack_into_axiom_facts_the_same_way_on_both_paths) {
+  // AXIOM_FACTS runs: ground facts and statements that fold to literals (a const) in one run,
+  // ints for a float field, negative ints, bools. A computed fact (2 + k) comes first by DERIVE
+  // (§6.2: evaluated axioms, then the literal ones by predicate), and the string-field facts after
+  // the run, by DERIVE; facts of other nodes go to their own blocks.
+  Compiled c = same(R"(type linear m(node, int, float, bool, node).
+type linear s(node, string).
+const k = 2.
+m(@1, -7, 2, true, @2). m(@1, k, 0.5, false, @1). m(@1, 3, -1.25, true, @3).
+s(@1, "cut").
+m(@1, 4, 1.0, false, @1). m(@1, 2 + k, 1.0, false, @1). m(@1, 5, 1.0, false, @1).
+m(@2, 6, 6.5, true, @1). s(@2, "x"). m(@3, 2147483647, -0.0, false, @3).
+)");
+  BOOST_TEST(c.messages.empty());
+  BOOST_TEST(c.asmText.find("DERIVE    p=m(4) (r2, r3, r4, r5)\n  0027  AXIOM_FACTS p=m(4) 5 facts\n"
+                            "                 (-7, 2, true, @") != std::string::npos,
+             c.asmText);
+  BOOST_TEST(c.asmText.find("(2147483647, -0, false, @") != std::string::npos, c.asmText);
+}
+
 BOOST_AUTO_TEST_CASE(facts_between_rules_keep_their_place) {
   // Node numbering (§6.1) and the order of axioms depend on where every literal stands.
   Compiled c = same(R"(type route edge(node, node).
