@@ -1,7 +1,5 @@
 #include "meldc/frontend_loader.hpp"
 
-#include <dlfcn.h>
-
 #include <cstdlib>
 #include <ostream>
 
@@ -14,29 +12,23 @@ namespace {
 
 // The module stays loaded for the rest of the process.
 meld_frontend_compile_fn loadModule() {
-  static const std::string kWhat = "Meld front end module";
-#ifdef MELD_FRONTEND_MODULE_BUILD_PATH
-  const char* build = MELD_FRONTEND_MODULE_BUILD_PATH;
-#else
-  const char* build = nullptr;
-#endif
+  const std::string what = "Meld front end module";
   std::string path;
-  void* handle = nullptr;
   try {
-    path = support::findToolchainModule("MELD_FRONTEND_MODULE", "libmeld_frontend.so", build, kWhat);
-    handle = support::openToolchainModule(path, kWhat);
+    path = support::findToolchainModule("MELD_FRONTEND_MODULE", "libmeld_frontend.so",
+                                        MELD_FRONTEND_MODULE_BUILD_PATH, what);
   } catch (const std::runtime_error& e) {
     throw FrontEndModuleError(
         std::string(e.what()) +
         (std::getenv("MELD_FRONTEND_MODULE") ? "" : "; compile the program with meldc and run the .mbc"));
   }
-  const auto version = reinterpret_cast<meld_frontend_version_fn>(dlsym(handle, "meld_frontend_version"));
-  const auto compile = reinterpret_cast<meld_frontend_compile_fn>(dlsym(handle, "meld_frontend_compile"));
-  if (!version || !compile)
-    throw FrontEndModuleError(path + " is not a Meld front end module of this toolchain");
-  if (version() != MELD_FRONTEND_MODULE_VERSION)
-    throw FrontEndModuleError(path + " is a Meld front end module of another version of this toolchain");
-  return compile;
+  try {
+    void* handle = support::openToolchainModule(path, what, "meld_frontend_version",
+                                                MELD_FRONTEND_MODULE_VERSION, {"meld_frontend_compile"});
+    return support::moduleFunction<meld_frontend_compile_fn>(handle, "meld_frontend_compile");
+  } catch (const std::runtime_error& e) {
+    throw FrontEndModuleError(e.what());
+  }
 }
 
 }  // namespace

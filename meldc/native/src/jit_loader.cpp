@@ -1,7 +1,5 @@
 #include "meldc/jit_loader.hpp"
 
-#include <dlfcn.h>
-
 #include <string>
 
 #include "support/toolchain_module.hpp"
@@ -15,32 +13,16 @@ struct Module {
   meld_jit_release_fn release = nullptr;
 };
 
-template <class Fn>
-Fn symbol(void* handle, const char* name) {
-  return reinterpret_cast<Fn>(dlsym(handle, name));
-}
-
 // The module stays loaded for the rest of the process (LLVM does not take well to unloading).
 Module loadModule() {
-  static const std::string kWhat = "native code module";
-#ifdef MELD_JIT_MODULE_BUILD_PATH
-  const char* build = MELD_JIT_MODULE_BUILD_PATH;
-#else
-  const char* build = nullptr;
-#endif
+  const std::string what = "native code module";
   try {
-    const std::string path = support::findToolchainModule("MELD_JIT_MODULE", "libmeld_jit.so", build, kWhat);
-    void* handle = support::openToolchainModule(path, kWhat);
-    auto version = symbol<meld_jit_version_fn>(handle, "meld_jit_version");
-    Module m{symbol<meld_jit_compile_fn>(handle, "meld_jit_compile"),
-             symbol<meld_jit_release_fn>(handle, "meld_jit_release")};
-    if (!version || !m.compile || !m.release)
-      throw NativeError(path + " is not a native code module of this toolchain");
-    if (version() != MELD_JIT_MODULE_VERSION)
-      throw NativeError(path + " is a native code module of another version of this toolchain");
-    return m;
-  } catch (const NativeError&) {
-    throw;
+    const std::string path =
+        support::findToolchainModule("MELD_JIT_MODULE", "libmeld_jit.so", MELD_JIT_MODULE_BUILD_PATH, what);
+    void* handle = support::openToolchainModule(path, what, "meld_jit_version", MELD_JIT_MODULE_VERSION,
+                                                {"meld_jit_compile", "meld_jit_release"});
+    return {support::moduleFunction<meld_jit_compile_fn>(handle, "meld_jit_compile"),
+            support::moduleFunction<meld_jit_release_fn>(handle, "meld_jit_release")};
   } catch (const std::runtime_error& e) {
     throw NativeError(e.what());
   }

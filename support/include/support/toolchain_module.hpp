@@ -9,6 +9,7 @@
 #include <cstdlib>
 #include <cstring>
 #include <filesystem>
+#include <initializer_list>
 #include <stdexcept>
 #include <string>
 #include <vector>
@@ -39,11 +40,26 @@ inline std::string findToolchainModule(const char* envVariable, const char* file
   throw std::runtime_error("the " + what + " " + file + " is not installed (looked for" + tried + ")");
 }
 
-// Opens it for good (RTLD_NOW | RTLD_LOCAL; a second open of the same file gives the same handle).
-inline void* openToolchainModule(const std::string& path, const std::string& what) {
+// Opens it for good (RTLD_NOW | RTLD_LOCAL; a second open of the same file gives the same handle)
+// and checks that it is a module of this toolchain and build: it has every one of `symbols`, and
+// the function `versionSymbol` returns `version`. Throws std::runtime_error naming `what`.
+inline void* openToolchainModule(const std::string& path, const std::string& what, const char* versionSymbol,
+                                 int version, std::initializer_list<const char*> symbols) {
   void* handle = dlopen(path.c_str(), RTLD_NOW | RTLD_LOCAL);
   if (!handle) throw std::runtime_error("cannot load the " + what + " " + path + ": " + dlerror());
+  const auto versionOf = reinterpret_cast<int (*)()>(dlsym(handle, versionSymbol));
+  bool complete = versionOf != nullptr;
+  for (const char* name : symbols) complete = complete && dlsym(handle, name) != nullptr;
+  if (!complete) throw std::runtime_error(path + " is not a " + what + " of this toolchain");
+  if (versionOf() != version)
+    throw std::runtime_error(path + " is a " + what + " of another version of this toolchain");
   return handle;
+}
+
+// A function of an opened module (openToolchainModule checked that it is there).
+template <class Fn>
+Fn moduleFunction(void* handle, const char* name) {
+  return reinterpret_cast<Fn>(dlsym(handle, name));
 }
 
 // A message into a C seam's error buffer of `size` bytes: cut to fit, NUL-terminated.
