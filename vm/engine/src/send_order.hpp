@@ -37,7 +37,7 @@ class SendOrder {
     dests_.clear();
     groups_.clear();
     next_.resize(n);
-    startLookup(n);
+    startLookup();
     for (std::uint32_t i = 0; i < n; ++i) {
       const std::uint32_t d = destinationOf(nodeOf(i));
       const std::uint64_t pred = predOf(i);
@@ -89,24 +89,37 @@ class SendOrder {
     std::uint32_t stamp, dest;
   };
 
-  void startLookup(std::size_t n) {
-    std::size_t want = 16;
-    while (want < 2 * n) want *= 2;
-    if (++stamp_ == 0 || table_.size() < want) {
-      table_.assign(std::max(want, table_.size()), Slot{0, 0, 0});
+  // A fresh lookup for this run: no slot carries the new stamp. The table keeps its size.
+  void startLookup() {
+    if (table_.empty()) table_.assign(16, Slot{0, 0, 0});
+    if (++stamp_ == 0) {  // wrapped around: old stamps could match again
+      std::fill(table_.begin(), table_.end(), Slot{0, 0, 0});
       stamp_ = 1;
     }
   }
   std::uint32_t destinationOf(std::uint64_t node) {
-    const std::size_t mask = table_.size() - 1;
-    for (std::size_t k = std::size_t((node * 0x9E3779B97F4A7C15ull) >> 32) & mask;; k = (k + 1) & mask) {
+    for (std::size_t k = home(node);; k = (k + 1) & (table_.size() - 1)) {
       Slot& s = table_[k];
       if (s.stamp != stamp_) {
         s = Slot{node, stamp_, std::uint32_t(dests_.size())};
         dests_.push_back({node, kNone, kNone});
-        return s.dest;
+        // At most half full, sized by the destinations, not by the facts sent.
+        if (dests_.size() * 2 > table_.size()) grow();
+        return std::uint32_t(dests_.size() - 1);
       }
       if (s.node == node) return s.dest;
+    }
+  }
+  std::size_t home(std::uint64_t node) const {
+    return std::size_t((node * 0x9E3779B97F4A7C15ull) >> 32) & (table_.size() - 1);
+  }
+  void grow() {  // twice the slots, this run's destinations placed again (dests_ is unsorted yet)
+    table_.assign(table_.size() * 2, Slot{0, 0, 0});
+    stamp_ = 1;
+    for (std::uint32_t d = 0; d < dests_.size(); ++d) {
+      std::size_t k = home(dests_[d].node);
+      while (table_[k].stamp == stamp_) k = (k + 1) & (table_.size() - 1);
+      table_[k] = Slot{dests_[d].node, stamp_, d};
     }
   }
 
