@@ -42,8 +42,6 @@ class CodeBuilder {
   void emit(meldvm::Opcode o, std::initializer_list<std::uint32_t> words);
 
   std::size_t size() const { return block_.code.size(); }
-  // Rewrites the word at `at` (a count known only after the words it counts).
-  void patch(std::size_t at, std::uint32_t word) { block_.code.at(at) = word; }
   // The instructions emitted from now on come from this line of the program's source file `file`
   // (an index into meldvm::Program::sourceFiles).
   void at(std::uint32_t file, std::uint32_t line);

@@ -264,6 +264,28 @@ void groundAxiom(Lowering& L, CodeBuilder& cb, const GroundFact& f, const PredIn
   cb.op(Opcode::DERIVE).w(p.id).regs(regs);
 }
 
+// A ground fact's literal as a folded constant (nothing for strings, which AXIOM_FACTS cannot hold).
+std::optional<Folded> foldedLiteral(const GroundArg& g) {
+  Folded v;
+  switch (g.kind) {
+    case GroundArg::Kind::Int:
+      v.kind = Folded::Int, v.i = g.i;
+      return v;
+    case GroundArg::Kind::Float:
+      v.kind = Folded::Float, v.f = g.f;
+      return v;
+    case GroundArg::Kind::Node:
+      v.kind = Folded::Node, v.i = g.i;
+      return v;
+    case GroundArg::Kind::Bool:
+      v.kind = Folded::Bool, v.b = g.i != 0;
+      return v;
+    case GroundArg::Kind::String:
+      break;
+  }
+  return std::nullopt;
+}
+
 // One scalar field of AXIOM_FACTS (bytecode_internal.hpp's axiomFactWords) from a constant of the
 // field's kind (an int may stand for a float); false for anything else.
 bool packField(meldvm::TypeId field, const Folded& v, std::vector<std::uint32_t>& out) {
@@ -292,63 +314,46 @@ bool packField(meldvm::TypeId field, const Folded& v, std::vector<std::uint32_t>
   }
 }
 
-// The data words of a literal axiom as one of AXIOM_FACTS' facts, or nothing when it cannot be one.
-// A ground fact and the same fact written as a statement (meldc's plain path) give the same words,
-// so that the compact path of ground facts stays invisible in the bytecode.
-std::optional<std::vector<std::uint32_t>> packedFact(Lowering& L, const Axiom& a, const PredInfo* p) {
-  if (!p || p->id == meldvm::Program::kNoPred || p->instruction != Instruction::None) return std::nullopt;
+// Appends the data words of a literal axiom as one of AXIOM_FACTS' facts to `out`; false, and
+// `out` as it was, when it cannot be one. A ground fact and the same fact written as a statement
+// (meldc's plain path) give the same words, so that the compact path of ground facts stays
+// invisible in the bytecode.
+bool packFact(Lowering& L, const Axiom& a, const PredInfo* p, std::vector<std::uint32_t>& out) {
+  if (!p || p->id == meldvm::Program::kNoPred || p->instruction != Instruction::None) return false;
   const meldvm::PredicateDesc& desc = L.desc(*p);
-  if (desc.action || desc.thread || meldvm::detail::axiomFactWords(desc.fields) == 0) return std::nullopt;
-  std::vector<std::uint32_t> words;
+  if (desc.action || desc.thread || meldvm::detail::axiomFactWords(desc.fields) == 0) return false;
+  const std::size_t mark = out.size();
+  const auto field = [&](std::size_t i, const std::optional<Folded>& v) {
+    return v && packField(desc.fields[i - 1], *v, out);
+  };
+  bool packed = true;
   if (a.ground) {
     const GroundFacts& facts = L.ast.groundFacts;
-    if (a.ground->argCount != desc.fields.size() + 1) return std::nullopt;
-    for (std::size_t i = 1; i < a.ground->argCount; ++i) {
-      const GroundArg& g = facts.arg(*a.ground, i);
-      Folded v;
-      switch (g.kind) {
-        case GroundArg::Kind::Int:
-          v.kind = Folded::Int, v.i = g.i;
-          break;
-        case GroundArg::Kind::Float:
-          v.kind = Folded::Float, v.f = g.f;
-          break;
-        case GroundArg::Kind::Node:
-          v.kind = Folded::Node, v.i = g.i;
-          break;
-        case GroundArg::Kind::Bool:
-          v.kind = Folded::Bool, v.b = g.i != 0;
-          break;
-        case GroundArg::Kind::String:
-          return std::nullopt;
-      }
-      if (!packField(desc.fields[i - 1], v, words)) return std::nullopt;
-    }
-    return words;
+    packed = a.ground->argCount == desc.fields.size() + 1;
+    for (std::size_t i = 1; packed && i < a.ground->argCount; ++i)
+      packed = field(i, foldedLiteral(facts.arg(*a.ground, i)));
+  } else {
+    packed = conditions(*a.statement).empty() && a.fact->args.size() == desc.fields.size() + 1;
+    for (std::size_t i = 1; packed && i < a.fact->args.size(); ++i)  // literal(): as nodeAxiomOrder decides
+      packed = literal(L, a.fact->args[i]) && field(i, foldConstant(L, a.fact->args[i]));
   }
-  if (!conditions(*a.statement).empty() || a.fact->args.size() != desc.fields.size() + 1) return std::nullopt;
-  for (std::size_t i = 1; i < a.fact->args.size(); ++i) {
-    if (!literal(L, a.fact->args[i])) return std::nullopt;  // as nodeAxiomOrder decides
-    const std::optional<Folded> v = foldConstant(L, a.fact->args[i]);
-    if (!v || !packField(desc.fields[i - 1], *v, words)) return std::nullopt;
-  }
-  return words;
+  if (!packed) out.resize(mark);
+  return packed;
 }
 
 // Literal facts of one predicate in a row, as one AXIOM_FACTS: a data file's facts take a few words
 // each instead of a DERIVE and a register per field, and load without an instruction per field.
-// Each fact's source line is in force from its first data word.
-void packedAxioms(Lowering& L, CodeBuilder& cb, meldvm::PredId pred,
-                  const std::vector<std::pair<SourceLoc, std::vector<std::uint32_t>>>& run) {
-  L.at(cb, run.front().first);
-  cb.op(Opcode::AXIOM_FACTS).w(pred);
-  const std::size_t countAt = cb.size();
-  cb.w(0);
-  for (const auto& [loc, words] : run) {
-    L.at(cb, loc);
-    for (const std::uint32_t w : words) cb.w(w);
+// `words` holds the facts' words, the same number each; each fact's source line is in force from
+// its first data word.
+void packedAxioms(Lowering& L, CodeBuilder& cb, meldvm::PredId pred, const std::vector<SourceLoc>& locs,
+                  const std::vector<std::uint32_t>& words) {
+  const std::size_t per = words.size() / locs.size();
+  L.at(cb, locs.front());
+  cb.op(Opcode::AXIOM_FACTS).w(pred).w(std::uint32_t(words.size()));
+  for (std::size_t i = 0; i < locs.size(); ++i) {
+    L.at(cb, locs[i]);
+    for (std::size_t k = i * per; k < (i + 1) * per; ++k) cb.w(words[k]);
   }
-  cb.patch(countAt, std::uint32_t(cb.size() - countAt - 1));
 }
 
 // The axioms of one node: those needing evaluation in reverse source order, then the literal
@@ -444,20 +449,19 @@ void nodeAxiomBlock(Lowering& L, std::int64_t node, const std::vector<Axiom>& ax
     const auto predOf = [&](const Axiom& a) {
       return a.ground ? groundPreds[a.ground->name] : L.pred(a.fact->sym);
     };
-    std::vector<std::pair<SourceLoc, std::vector<std::uint32_t>>> run;
+    std::vector<SourceLoc> runLocs;
+    std::vector<std::uint32_t> runWords;
     for (std::size_t k = 0; k < order.size(); ++k) {
       const Axiom& a = order[k];
       const PredInfo* p = predOf(a);
-      if (std::optional<std::vector<std::uint32_t>> words = packedFact(L, a, p)) {
-        run.clear();
-        run.emplace_back(a.ground ? a.ground->loc : a.statement->loc, std::move(*words));
-        for (; k + 1 < order.size() && predOf(order[k + 1]) == p; ++k) {
-          std::optional<std::vector<std::uint32_t>> next = packedFact(L, order[k + 1], p);
-          if (!next) break;
-          const Axiom& b = order[k + 1];
-          run.emplace_back(b.ground ? b.ground->loc : b.statement->loc, std::move(*next));
-        }
-        packedAxioms(L, block, p->id, run);
+      runLocs.clear();
+      runWords.clear();
+      for (std::size_t j = k; j < order.size() && predOf(order[j]) == p && packFact(L, order[j], p, runWords);
+           ++j)
+        runLocs.push_back(order[j].ground ? order[j].ground->loc : order[j].statement->loc);
+      if (!runLocs.empty()) {
+        packedAxioms(L, block, p->id, runLocs, runWords);
+        k += runLocs.size() - 1;
         continue;
       }
       if (a.ground) {
