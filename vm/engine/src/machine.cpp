@@ -21,12 +21,13 @@ const Value kNoArgs[1] = {};  // arguments of _init and just-moved (home only)
 Machine::Machine(const Program& program, MachineOptions options)
     : program_(program),
       options_(std::move(options)),
-      heap_(program.types),
+      tables_(program),
+      recycling_(tables_.createsNodes && !options_.shard && !options_.host),
+      heap_(program.types, recycling_.references()),
       db_(std::make_unique<Database>(program.predicates, heap_)),
       builtinCtx_(heap_),
       rng_(Rng::forThread(options_.placement.self)),
-      sched_(program.scheduling),
-      tables_(program) {
+      sched_(program.scheduling) {
   host_ = options_.host;
   shard_ = options_.shard;
   stopFlag_ = options_.stopFlag;
@@ -103,6 +104,7 @@ void Machine::start() {
   candidates_.assign(std::size_t(all) * tables_.ruleWords, 0);
   mail_->addNodes(all);
   created_.assign(all, 0);
+  recycling_.grow(all);
   if (!program_.globalsInit.code.empty()) {
     try {
       interp_->run(program_.globalsInit, 0);
@@ -237,6 +239,8 @@ std::uint64_t Machine::runNode(NodeId n) {
   while (!host_ && n != threadNode_ && !stopRequested() && hasWork(n));
   nodeRunning_ = false;
   if (!host_ && n != threadNode_) sched_.finished(n, hasWork(n));
+  if (recycling_.counting() && unusedCreatedNode(n)) [[unlikely]]
+    deleteCreatedNode(n);
   return stats_.rulesFired - firedBefore;
 }
 
@@ -293,6 +297,8 @@ void Machine::runOnce(NodeId n) {
   inRun_ = false;
   flushOutgoing();
   applyPriorityRequests();
+  if (recycling_.counting()) [[unlikely]]
+    freeDroppedNodes();
 }
 
 // §6.12: while a normal node runs, its thread's facts are visible. The rules over node and thread
@@ -396,13 +402,13 @@ void Machine::factRemoved(NodeId n, PredId p) {
 
 void Machine::retainArgs(PredId p, const Value* args) {
   const PredicateDesc& d = program_.predicates[p];
-  for (std::uint32_t i = 0; i < d.arity(); ++i) heap_.retain(d.fields[i], args[i]);
+  for (std::uint32_t i = 0; i < d.arity(); ++i) heap_.retainStored(d.fields[i], args[i]);
 }
 
 void Machine::releaseArgs(PredId p, const Value* args) {
   if (!tables_.boxedField[p]) return;
   const PredicateDesc& d = program_.predicates[p];
-  for (std::uint32_t i = 0; i < d.arity(); ++i) heap_.release(d.fields[i], args[i]);
+  for (std::uint32_t i = 0; i < d.arity(); ++i) heap_.releaseStored(d.fields[i], args[i]);
 }
 
 void Machine::derive(NodeId host, PredId p, const Value* args, bool negative) {
@@ -565,6 +571,7 @@ void Machine::growNodes(NodeId end) {
   candidates_.resize(std::size_t(end) * tables_.ruleWords, 0);
   mail_->addNodes(count);
   created_.resize(end, 0);
+  recycling_.grow(end);
   for (NodeId i = 0; i < count; ++i) sched_.addNode();
 }
 
@@ -583,10 +590,16 @@ NodeId Machine::newNode() {
     id = nextCreated_++;
     created_[id] = 1;
     initNode(id);
+  } else if (recycling_.reuse(id)) {
+    db_->reviveNode(id);
+    sched_.renewNode(id);
+    created_[id] = 1;
+    initNode(id);
   } else {
     id = appendNode(true);
   }
-  sched_.wake(id);
+  // Not queued: a new node runs when it first receives work (§5.3.5), as in the established VM,
+  // whose FIFO then holds it behind the nodes woken earlier in the same run.
   return id;
 }
 
@@ -681,54 +694,6 @@ void Machine::takeStoredFact(NodeId n, PredId p, const Value* args, std::uint32_
 
 void Machine::takeNodeDone(NodeId n) {
   if (hasWork(n) || hasCandidate(n)) sched_.wake(n);
-}
-
-// ---- end of the run ----
-
-void Machine::collectGarbageNodes() {
-  // §6.10: a created node with no facts that no fact refers to is deleted.
-  const std::vector<NodeId> empty = emptyCreatedNodes();
-  if (empty.empty()) return;
-  std::vector<std::uint8_t> referenced;
-  markReferencedNodes(referenced);
-  for (NodeId n : empty)
-    if (n >= referenced.size() || !referenced[n]) db_->removeNode(n);
-}
-
-std::vector<NodeId> Machine::emptyCreatedNodes() const {
-  std::vector<NodeId> empty;
-  for (NodeId n = initialNodes_; n < db_->nodeCount(); ++n) {
-    if (!created_[n] || !db_->alive(n)) continue;
-    bool hasFacts = false;
-    for (PredId p = 0; p < program_.predicates.size() && !hasFacts; ++p) hasFacts = db_->factCount(n, p) != 0;
-    if (!hasFacts) empty.push_back(n);
-  }
-  return empty;
-}
-
-void Machine::markReferencedNodes(std::vector<std::uint8_t>& referenced) const {
-  auto mark = [&](NodeId r) {
-    if (r >= referenced.size()) referenced.resize(std::size_t(r) + 1, 0);
-    referenced[r] = 1;
-  };
-  for (NodeId n = 0; n < db_->nodeCount(); ++n) {
-    if (!db_->alive(n)) continue;
-    for (PredId p = 0; p < program_.predicates.size(); ++p) {
-      const PredicateDesc& d = program_.predicates[p];
-      for (FactRef f = db_->first(n, p); f != kNoFact; f = db_->next(p, f)) {
-        const Value* a = db_->args(p, f);
-        for (std::uint32_t i = 0; i < d.arity(); ++i) {
-          const TypeId t = d.fields[i];
-          if (program_.types.kind(t) == TypeKind::Node) {
-            mark(a[i].asNode());
-          } else if (program_.types.kind(t) == TypeKind::List &&
-                     program_.types.kind(program_.types.element(t)) == TypeKind::Node) {
-            for (Value l = a[i]; !l.isNil(); l = listTail(l)) mark(listHead(l).asNode());
-          }
-        }
-      }
-    }
-  }
 }
 
 void Machine::dump(std::ostream& out) const { dumpDatabase(out, *db_); }

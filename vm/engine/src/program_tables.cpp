@@ -20,9 +20,11 @@ void perPredicate(ProgramTables& t, const Program& program) {
     const PredicateDesc& d = program.predicates[p];
     t.maxArity = std::max(t.maxArity, d.arity());
     t.queuedPersistent.push_back(!d.linear && (!t.processesOf[p].empty() || d.aggregated()));
-    bool boxed = false;
-    for (TypeId type : d.fields) boxed = boxed || program.types.boxed(type);
-    t.boxedField.push_back(boxed);
+    bool refs = false;
+    for (TypeId type : d.fields)
+      refs =
+          refs || program.types.boxed(type) || (t.createsNodes && program.types.kind(type) == TypeKind::Node);
+    t.boxedField.push_back(refs);
     t.isLinear.push_back(d.linear);
     t.arity.push_back(d.arity());
     t.isThreadPred.push_back(d.thread);
@@ -49,6 +51,7 @@ void scanCode(ProgramTables& t, const Program& program) {
     detail::forEachInstruction(b.code, [&](std::size_t pc) {
       const auto op = Opcode(b.code[pc]);
       if (op == Opcode::ITER_KEY) t.keyLookups.emplace_back(b.code[pc + 1], b.code[pc + 4]);
+      if (op == Opcode::NEWNODE) t.createsNodes = true;
       if ((op == Opcode::CALL && (b.code[pc + 2] == 1 || b.code[pc + 2] == 32)) ||
           (op == Opcode::ITER_SORTED && (b.code[pc + 3] & kIterRandom)))
         t.usesRandom = true;
@@ -62,8 +65,8 @@ void scanCode(ProgramTables& t, const Program& program) {
 }  // namespace
 
 ProgramTables::ProgramTables(const Program& program) {
+  scanCode(*this, program);  // first: createsNodes decides boxedField
   perPredicate(*this, program);
-  scanCode(*this, program);
   for (std::uint32_t r = 0; r < program.rules.size(); ++r) {
     bool node = false, thread = false;
     for (PredId p : program.rules[r].bodyPredicates) (isThreadPred[p] ? thread : node) = true;

@@ -111,7 +111,7 @@ Change Database::aggregateChange(NodeId n, PredId p, const Value* args, std::uin
   // Our own reference to the input: `args` may point into a fact that this change erases.
   setValues(input_, args, d.arity());
   if (boxedPred_[p]) {
-    for (std::size_t i = 0; i < input_.size(); ++i) heap_.retain(d.fields[i], input_[i]);
+    for (std::size_t i = 0; i < input_.size(); ++i) heap_.retainStored(d.fields[i], input_[i]);
     inputPred_ = p;
     holdsInput_ = true;
   }

@@ -36,7 +36,7 @@ Database::Database(const PredicateTable& preds, Heap& heap) : preds_(preds), hea
   for (PredId p = 0; p < preds.size(); ++p) {
     const PredicateDesc& d = preds[p];
     bool boxed = false;
-    for (TypeId t : d.fields) boxed = boxed || types.boxed(t);
+    for (TypeId t : d.fields) boxed = boxed || heap_.holdsReferences(t);
     boxedPred_.push_back(boxed);
     intMinMax_.push_back(d.aggregated() && d.aggregateField == 0 && d.arity() == 1 &&
                          (d.aggregate == AggregateKind::Min || d.aggregate == AggregateKind::Max) &&
@@ -81,6 +81,12 @@ void Database::removeNode(NodeId n) {
   ++removedNodes_;
 }
 
+void Database::reviveNode(NodeId n) {
+  if (n >= alive_.size() || alive_[n]) throw std::logic_error("meldvm: revived a node that is not removed");
+  alive_[n] = 1;
+  --removedNodes_;
+}
+
 void Database::clearNode(NodeId n) {
   checkNode(n);
   clearScratch();
@@ -123,17 +129,17 @@ void Database::updateLinear(NodeId n, PredId p, FactRef f, const Value* args, bo
 void Database::releaseScratch() {
   if (holdsRemoved_) {
     const auto& fields = preds_[removedPred_].fields;
-    for (std::size_t i = 0; i < removed_.size(); ++i) heap_.release(fields[i], removed_[i]);
+    for (std::size_t i = 0; i < removed_.size(); ++i) heap_.releaseStored(fields[i], removed_[i]);
     holdsRemoved_ = false;
   }
   if (holdsInput_) {
     const auto& fields = preds_[inputPred_].fields;
-    for (std::size_t i = 0; i < input_.size(); ++i) heap_.release(fields[i], input_[i]);
+    for (std::size_t i = 0; i < input_.size(); ++i) heap_.releaseStored(fields[i], input_[i]);
     holdsInput_ = false;
   }
   if (!sumList_.isNil()) {
     // Only `sum list float` builds values; its field type is a list of floats.
-    heap_.release(sumList_.asObject()->type, sumList_);
+    heap_.releaseStored(sumList_.asObject()->type, sumList_);
     sumList_ = Value::nil();
   }
 }
@@ -141,7 +147,7 @@ void Database::releaseScratch() {
 void Database::keepRemoved(PredId p, FactRef f) {
   setValues(removed_, tables_[p].args(f), preds_[p].arity());
   if (!boxedPred_[p]) return;
-  for (std::size_t i = 0; i < removed_.size(); ++i) heap_.retain(preds_[p].fields[i], removed_[i]);
+  for (std::size_t i = 0; i < removed_.size(); ++i) heap_.retainStored(preds_[p].fields[i], removed_[i]);
   removedPred_ = p;
   holdsRemoved_ = true;
 }

@@ -11,7 +11,8 @@ namespace meldvm {
 FactTable::FactTable(const TypeTable& types, Heap& heap, std::vector<TypeId> fields, bool dedup)
     : types_(types), heap_(heap), fields_(std::move(fields)), dedup_(dedup) {
   for (std::uint32_t i = 0; i < fields_.size(); ++i)
-    if (types_.boxed(fields_[i])) boxedFields_.push_back(i);
+    if (heap_.holdsReferences(fields_[i])) boxedFields_.push_back(i);
+  for (TypeId t : fields_) allUnboxed_ = allUnboxed_ && !types_.boxed(t);
   argOffset_ = 2;
   stride_ = argOffset_ + arity();
 }
@@ -65,7 +66,7 @@ void FactTable::growForOneMore() {
 std::uint64_t FactTable::dedupHash(NodeId n, const Value* key) const {
   // Only unboxed keys: a boxed value's bits are a pointer, which may be reused for another value.
   const std::uint32_t k = arity();
-  const bool memo = k <= kHashMemo && boxedFields_.empty();
+  const bool memo = k <= kHashMemo && allUnboxed_;
   if (memo && n == memoNode_) {
     bool same = true;
     for (std::uint32_t i = 0; i < k && same; ++i) same = key[i].bits() == memoKey_[i].bits();
@@ -92,12 +93,12 @@ FactRef FactTable::firstWithKey(NodeId n, std::uint32_t index, const Value* key)
 }
 
 void FactTable::retainArgs(const Value* a) {
-  for (std::uint32_t i : boxedFields_) heap_.retain(fields_[i], a[i]);
+  for (std::uint32_t i : boxedFields_) heap_.retainStored(fields_[i], a[i]);
 }
 
 void FactTable::releaseArgs(FactRef f) {
   const Value* a = args(f);
-  for (std::uint32_t i : boxedFields_) heap_.release(fields_[i], a[i]);
+  for (std::uint32_t i : boxedFields_) heap_.releaseStored(fields_[i], a[i]);
 }
 
 // The first fact of f's chain in index x (kNoFact if none), and the key's hash in `hash`.

@@ -10,7 +10,7 @@ namespace meldvm {
 GroupInputs::GroupInputs(const TypeTable& types, Heap& heap, std::vector<TypeId> fields)
     : types_(types), heap_(heap), fields_(std::move(fields)) {
   for (std::uint32_t i = 0; i < fields_.size(); ++i) {
-    if (types_.boxed(fields_[i])) boxedFields_.push_back(i);
+    if (heap_.holdsReferences(fields_[i])) boxedFields_.push_back(i);
     integerKeys_ = integerKeys_ && integerLike(types_, fields_[i]);
   }
   stride_ = 1 + std::uint32_t(fields_.size());
@@ -21,7 +21,7 @@ GroupInputs::~GroupInputs() {
   if (boxedFields_.empty()) return;
   for (NodeId n = 0; n < runs_.size(); ++n)
     for (std::uint32_t i = 0; i < runs_[n].size; ++i)
-      for (std::uint32_t f : boxedFields_) heap_.release(fields_[f], args(n, i)[f]);
+      for (std::uint32_t f : boxedFields_) heap_.releaseStored(fields_[f], args(n, i)[f]);
 }
 
 std::uint32_t GroupInputs::findAny(NodeId n, const Value* a) const {
@@ -58,7 +58,7 @@ void GroupInputs::free(std::uint32_t offset, std::uint32_t sizeClass) {
 }
 
 void GroupInputs::append(NodeId n, const Value* a, std::uint32_t count) {
-  for (std::uint32_t f : boxedFields_) heap_.retain(fields_[f], a[f]);
+  for (std::uint32_t f : boxedFields_) heap_.retainStored(fields_[f], a[f]);
   Run& r = runs_[n];
   if (r.sizeClass == kNone || r.size == (std::uint32_t(2) << r.sizeClass)) {
     // `a` may point into words_, which allocate() may move: copy it first.
@@ -102,7 +102,7 @@ void GroupInputs::eraseUnordered(NodeId n, std::uint32_t i) {
 
 Value* GroupInputs::releaseRecord(const Run& r, std::uint32_t i) {
   Value* rec = words_.data() + r.offset + std::size_t(i) * stride_;
-  for (std::uint32_t f : boxedFields_) heap_.release(fields_[f], rec[1 + f]);
+  for (std::uint32_t f : boxedFields_) heap_.releaseStored(fields_[f], rec[1 + f]);
   return rec;
 }
 

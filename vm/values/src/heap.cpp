@@ -178,7 +178,7 @@ ConsCell* Heap::newCell(TypeId listType) {
 }
 
 Value Heap::cons(TypeId listType, Value head, Value tail) {
-  retain(types_.element(listType), head);
+  retainStored(types_.element(listType), head);
   retain(listType, tail);
   auto* c = newCell(listType);
   c->head = head;
@@ -192,7 +192,7 @@ Value Heap::makeList(TypeId listType, std::span<const Value> items, Value tail) 
   auto* list = static_cast<ConsCell*>(
       tail.asObject());  // built from the back; each new cell takes over the reference to the rest
   for (std::size_t i = items.size(); i-- > 0;) {
-    retain(elem, items[i]);
+    retainStored(elem, items[i]);
     auto* c = newCell(listType);
     c->head = items[i];
     c->tail = list;
@@ -219,7 +219,7 @@ Value Heap::makeTuple(TypeId type, std::span<const Value> items) {
       for (std::uint32_t j = 0; j < n && !seen; ++j) seen = valuesEqual(types_, it, out[j], items[i]);
       if (seen) continue;
     }
-    retain(it, items[i]);
+    retainStored(it, items[i]);
     new (out + n++) Value(items[i]);
   }
   for (std::uint32_t j = n; j < items.size(); ++j) new (out + j) Value();  // dropped set duplicates
@@ -231,7 +231,7 @@ Value Heap::makeTuple(TypeId type, std::span<const Value> items) {
 void Heap::destroy(Object* o) {
   // Iterative along list tails, so that releasing a long list cannot overflow the stack.
   while (o) {
-    Object* rest = visitItems(types_, o, [&](TypeId t, Value v) { release(t, v); });
+    Object* rest = visitItems(types_, o, [&](TypeId t, Value v) { releaseStored(t, v); });
     recycle(o);
     o = rest && dropReference(rest) ? rest : nullptr;
   }

@@ -22,6 +22,7 @@
 #include "meldvm/database.hpp"
 #include "meldvm/heap.hpp"
 #include "meldvm/large_allocator.hpp"
+#include "meldvm/node_recycling.hpp"
 #include "meldvm/program.hpp"
 #include "meldvm/program_tables.hpp"
 #include "meldvm/serial_scheduler.hpp"
@@ -281,6 +282,11 @@ class Machine : private SchedulerView {
   void sendThread(NodeId host, ThreadId t, PredId p, const Value* args, bool negative);
   void factRemoved(NodeId n, PredId p);  // after the store lost a fact of p
   void collectGarbageNodes();
+  // The established VM's deletions during the run (node_recycling.hpp): the nodes whose last
+  // reference went in this run, and the node that ran.
+  void freeDroppedNodes();
+  bool unusedCreatedNode(NodeId n) const;
+  void deleteCreatedNode(NodeId n);
   [[noreturn]] void fail(const std::exception& e, NodeId n, const std::string& where) const;
 
   // A fact for another node: into its mailbox (arguments retained), waking it up.
@@ -315,6 +321,8 @@ class Machine : private SchedulerView {
 
   const Program& program_;
   MachineOptions options_;
+  const ProgramTables tables_;  // per predicate and per rule, from the program
+  NodeRecycling recycling_;     // before heap_, which counts node references in it
   Heap heap_;
   std::unique_ptr<Database> db_;
   std::unique_ptr<Interpreter> interp_;
@@ -333,7 +341,6 @@ class Machine : private SchedulerView {
   }
   [[noreturn, gnu::cold, gnu::noinline]] void stepLimitReached() const;
   SerialScheduler sched_;
-  const ProgramTables tables_;  // per predicate and per rule, from the program
   MachineStats stats_;
   bool stop_ = false;
   DerivationLog* derivations_ = nullptr;  // why a fact exists: off unless asked

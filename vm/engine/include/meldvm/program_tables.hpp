@@ -17,7 +17,9 @@ struct ProgramTables {
   std::vector<std::vector<std::uint32_t>> rulesOf;      // the rules with it in their body
   std::vector<std::vector<std::uint32_t>> processesOf;  // its processes (persistent rules, §6.5)
   std::vector<std::uint8_t> queuedPersistent;           // has processes or an aggregate: derive via the queue
-  std::vector<std::uint8_t> boxedField;                 // some field is boxed
+  // Some field holds references (retained and released as it is copied): a boxed value, or a node
+  // when the program creates nodes (node_references.hpp).
+  std::vector<std::uint8_t> boxedField;
   std::vector<std::uint8_t> isLinear;
   std::vector<std::uint8_t> isThreadPred;
   std::vector<std::uint32_t> arity;  // home excluded
@@ -32,6 +34,7 @@ struct ProgramTables {
   std::vector<std::uint32_t> threadRules;
   bool hasThreads = false;
   bool usesRandom = false;      // randint, degeneratevector or a [:random] selector
+  bool createsNodes = false;    // some code runs NEWNODE (exists)
   std::uint32_t ruleWords = 1;  // 64-bit words of a node's candidate-rule bitset
   PredId justMoved = Program::kNoPred;
   // (predicate, field) pairs looked up by key: `index p/N` directives and ITER_KEY loops.

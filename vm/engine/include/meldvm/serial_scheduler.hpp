@@ -23,6 +23,12 @@ class SerialScheduler {
   void start(NodeId nodes, NodeId first, NodeId end);
   // A node created at run time (exists): it starts with no priority.
   void addNode();
+  // A deleted created node's id is used again: the node starts afresh (it waits nowhere).
+  void renewNode(NodeId n) {
+    nodes_[n].prio = noPriority_;
+    nodes_[n].defaultPrio = default_;
+    nodes_[n].isStatic = 0;
+  }
 
   // The next node to run (heap first, then FIFO), or false when none is waiting.
   bool pop(NodeId& node);

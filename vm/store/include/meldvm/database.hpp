@@ -50,6 +50,8 @@ class Database {
   bool alive(NodeId n) const { return removedNodes_ == 0 || alive_[n] != 0; }
   // Drops every fact of the node (created nodes collected by the GC, §6.10); the dump skips it.
   void removeNode(NodeId n);
+  // A removed node comes back, with no facts (a created node's id used again).
+  void reviveNode(NodeId n);
   // Drops every fact of the node, which stays alive (a node that moved to another store).
   void clearNode(NodeId n);
   // What the node stores, as the facts to store again elsewhere to rebuild it: linear facts in
@@ -222,7 +224,7 @@ class Database {
   std::vector<std::uint32_t> inputTable_;   // per predicate: its keyed aggregate input table, or kNoTable
   std::vector<GroupInputs> nodeInputs_;     // the inputs of the aggregates grouped by the node alone
   std::vector<std::uint32_t> groupInputs_;  // per predicate: its entry in nodeInputs_, or kNoTable
-  std::vector<std::uint8_t> boxedPred_;     // per predicate: some field is boxed
+  std::vector<std::uint8_t> boxedPred_;     // per predicate: some field holds references (Heap)
   std::vector<std::uint8_t> intMinMax_;     // per predicate: `p(node, min int)` or max (intMinMaxChange)
   NodeHeads heads_{0};                      // set up once tableCount_ is known
   std::vector<std::uint8_t> alive_;

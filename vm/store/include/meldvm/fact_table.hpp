@@ -147,7 +147,8 @@ class FactTable {
   const TypeTable& types_;
   Heap& heap_;
   std::vector<TypeId> fields_;
-  std::vector<std::uint32_t> boxedFields_;  // positions to retain/release
+  std::vector<std::uint32_t> boxedFields_;  // positions to retain/release (boxed, counted nodes)
+  bool allUnboxed_ = true;                  // no field is a pointer
   std::vector<Index> indexes_;
   bool dedup_;
   SlotHash facts_;                               // de-duplication: node + all arguments

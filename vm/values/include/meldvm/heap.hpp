@@ -25,6 +25,7 @@
 #include <string_view>
 #include <vector>
 
+#include "meldvm/node_references.hpp"
 #include "meldvm/types.hpp"
 #include "meldvm/value.hpp"
 
@@ -70,7 +71,8 @@ inline std::span<const Value> tupleItems(Value v) {
 
 class Heap {
  public:
-  explicit Heap(const TypeTable& types) : types_(types) {}
+  // nodes: where the node references of stored values are counted (node_references.hpp), if any.
+  explicit Heap(const TypeTable& types, NodeReferences* nodes = nullptr) : types_(types), nodes_(nodes) {}
   ~Heap();
   Heap(const Heap&) = delete;
   Heap& operator=(const Heap&) = delete;
@@ -91,6 +93,25 @@ class Heap {
   }
   void release(TypeId t, Value v) {
     if (types_.boxed(t) && !v.isNil() && dropReference(v.asObject())) destroy(v.asObject());
+  }
+  // A reference that a stored value holds (a fact, a message, an aggregate input, an item of a heap
+  // object; not a register): as retain/release, and a node counts in the NodeReferences, if any.
+  bool holdsReferences(TypeId t) const {
+    return types_.boxed(t) || (nodes_ && types_.kind(t) == TypeKind::Node);
+  }
+  void retainStored(TypeId t, Value v) {
+    if (types_.boxed(t)) {
+      if (!v.isNil()) retainObject(v.asObject());
+    } else if (nodes_ && types_.kind(t) == TypeKind::Node) {
+      nodes_->add(v.asNode());
+    }
+  }
+  void releaseStored(TypeId t, Value v) {
+    if (types_.boxed(t)) {
+      if (!v.isNil() && dropReference(v.asObject())) destroy(v.asObject());
+    } else if (nodes_ && types_.kind(t) == TypeKind::Node) {
+      nodes_->drop(v.asNode());
+    }
   }
   // Marks v and everything it reaches shared, before v is handed to another thread.
   void share(TypeId t, Value v);
@@ -155,6 +176,7 @@ class Heap {
   void shareObject(Object* o);
 
   const TypeTable& types_;
+  NodeReferences* nodes_;
   FreeBlock* free_[kSmallClasses + kLargeClasses] = {};
   std::vector<void*> slabs_;
   std::vector<void*> large_;
