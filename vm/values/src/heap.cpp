@@ -2,6 +2,7 @@
 
 #include <bit>
 #include <cstring>
+#include <memory>
 #include <new>
 #include <stdexcept>
 
@@ -211,6 +212,12 @@ Value Heap::makeTuple(TypeId type, std::span<const Value> items) {
   t->refs = 1;
   t->type = type;
   auto* out = reinterpret_cast<Value*>(t + 1);
+  t->capacity = std::uint32_t(items.size());
+  if (k != TypeKind::Set && plainItems(type)) {  // the float structs of belief propagation
+    std::uninitialized_copy(items.begin(), items.end(), out);
+    t->size = std::uint32_t(items.size());
+    return Value::fromObject(t);
+  }
   std::uint32_t n = 0;
   for (std::size_t i = 0; i < items.size(); ++i) {
     const TypeId it = k == TypeKind::Struct ? types_.fields(type)[i] : types_.element(type);
@@ -224,14 +231,27 @@ Value Heap::makeTuple(TypeId type, std::span<const Value> items) {
   }
   for (std::uint32_t j = n; j < items.size(); ++j) new (out + j) Value();  // dropped set duplicates
   t->size = n;
-  t->capacity = std::uint32_t(items.size());
   return Value::fromObject(t);
+}
+
+bool Heap::computePlainItems(TypeId t) {
+  if (plain_.size() < types_.size()) plain_.resize(types_.size(), kUnknown);
+  bool plain = true;
+  if (types_.kind(t) == TypeKind::Struct) {
+    for (TypeId f : types_.fields(t)) plain = plain && !holdsReferences(f);
+  } else {
+    plain = !holdsReferences(types_.element(t));
+  }
+  plain_[t] = plain ? kPlain : kHolds;
+  return plain;
 }
 
 void Heap::destroy(Object* o) {
   // Iterative along list tails, so that releasing a long list cannot overflow the stack.
   while (o) {
-    Object* rest = visitItems(types_, o, [&](TypeId t, Value v) { releaseStored(t, v); });
+    Object* rest = nullptr;
+    if (types_.kind(o->type) == TypeKind::List || !plainItems(o->type))
+      rest = visitItems(types_, o, [&](TypeId t, Value v) { releaseStored(t, v); });
     recycle(o);
     o = rest && dropReference(rest) ? rest : nullptr;
   }

@@ -173,10 +173,18 @@ class Heap {
   void drainRemote();
   std::size_t objectBytes(const Object* o) const;
   void destroy(Object* o);  // count reached zero: release children, recycle the block
+  // Whether the items of a struct, array or set type hold no references (nothing to retain or
+  // release: they copy as plain words). Worked out once per type.
+  bool plainItems(TypeId t) {
+    return t < plain_.size() && plain_[t] != kUnknown ? plain_[t] == kPlain : computePlainItems(t);
+  }
+  bool computePlainItems(TypeId t);
+  static constexpr std::uint8_t kUnknown = 0, kPlain = 1, kHolds = 2;
   void shareObject(Object* o);
 
   const TypeTable& types_;
   NodeReferences* nodes_;
+  std::vector<std::uint8_t> plain_;  // per type: plainItems, once known
   FreeBlock* free_[kSmallClasses + kLargeClasses] = {};
   std::vector<void*> slabs_;
   std::vector<void*> large_;
