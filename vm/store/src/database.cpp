@@ -122,8 +122,8 @@ void Database::consume(NodeId n, PredId p, FactRef f) {
 void Database::updateLinear(NodeId n, PredId p, FactRef f, const Value* args, bool moveToBack) {
   storedPredicate(p, true);
   clearScratch();
-  tables_[p].replaceArgs(f, args);
   if (moveToBack) tables_[p].moveToBack(head(n, p), f);
+  tables_[p].replaceArgs(head(n, p), f, args);
 }
 
 void Database::releaseScratch() {

@@ -26,6 +26,7 @@ FactTable::~FactTable() {
 std::uint32_t FactTable::addIndex(KeySpec key) {
   if (!words_.empty()) throw std::logic_error("meldvm: index added to a table that already holds facts");
   if (key.first + key.count > arity()) throw std::out_of_range("meldvm: index key beyond the arity");
+  if (indexCount() == kMaxIndexes) throw std::length_error("meldvm: too many indexes on one predicate");
   indexes_.push_back(Index{key, {}});
   argOffset_ = indexLinkWord(indexCount());  // the arguments follow the index links
   stride_ = argOffset_ + arity();
@@ -135,23 +136,48 @@ void FactTable::linkIndex(FactRef f, std::uint32_t x, FactRef head, std::uint64_
 }
 
 void FactTable::unlinkIndexes(FactRef f) {
-  for (std::uint32_t x = 0; x < indexCount(); ++x) {
-    const std::size_t w = linkWord(f, x);
-    std::uint64_t h;
-    const FactRef head = chainHead(f, x, h);
-    const FactRef p = lo(w), nx = hi(w);
-    if (head == f) {
-      if (nx == kNoFact) {
-        indexes_[x].heads.erase(h, f);
-      } else {
-        setLo(linkWord(nx, x), p);  // the new head points at the tail
-        indexes_[x].heads.replace(h, f, nx);
-      }
+  for (std::uint32_t x = 0; x < indexCount(); ++x) unlinkIndex(f, x);
+}
+
+void FactTable::unlinkIndex(FactRef f, std::uint32_t x) {
+  const std::size_t w = linkWord(f, x);
+  std::uint64_t h;
+  const FactRef head = chainHead(f, x, h);
+  const FactRef p = lo(w), nx = hi(w);
+  if (head == f) {
+    if (nx == kNoFact) {
+      indexes_[x].heads.erase(h, f);
     } else {
-      setHi(linkWord(p, x), nx);
-      setLo(linkWord(nx == kNoFact ? head : nx, x), p);
+      setLo(linkWord(nx, x), p);  // the new head points at the tail
+      indexes_[x].heads.replace(h, f, nx);
     }
+  } else {
+    setHi(linkWord(p, x), nx);
+    setLo(linkWord(nx == kNoFact ? head : nx, x), p);
   }
+}
+
+void FactTable::linkInListOrder(const ListHead& list, FactRef f, std::uint32_t x) {
+  std::uint64_t h;
+  const FactRef head = chainHead(f, x, h);
+  // The first fact after f in the list with f's key: f goes in front of it in the chain.
+  FactRef g = kNoFact;
+  if (head != kNoFact && list.last != f) {
+    const KeySpec spec = indexes_[x].key;
+    const Value* key = args(f) + spec.first;
+    for (FactRef c = next(f); c != kNoFact && g == kNoFact; c = next(c))
+      if (keyEqual(c, key, spec)) g = c;
+  }
+  if (g == kNoFact) return linkIndex(f, x, head, h);
+  const std::size_t w = linkWord(f, x), gw = linkWord(g, x);
+  const FactRef p = lo(gw);  // g's predecessor, or the tail when g is the head
+  setLo(w, p);
+  setHi(w, g);
+  if (g == head)
+    indexes_[x].heads.replace(h, g, f);
+  else
+    setHi(linkWord(p, x), f);
+  setLo(gw, f);
 }
 
 // Takes a slot, stores the fact and links it into the node's list (not into the hash tables).
@@ -252,13 +278,24 @@ void FactTable::moveToBack(ListHead& list, FactRef f) {
   list.last = f;
 }
 
-void FactTable::replaceArgs(FactRef f, const Value* a) {
-  unlinkIndexes(f);
+void FactTable::replaceArgs(const ListHead& list, FactRef f, const Value* a) {
+  // Each chain keeps the list's order, as the established VM scans the list (an index only skips
+  // the facts with other keys): a chain whose key is unchanged keeps the fact where it is, unless
+  // the fact just moved to the end of the list; the others take it at its place in list order.
+  std::uint64_t relink = 0;
+  const bool last = list.last == f;
+  for (std::uint32_t x = 0; x < indexCount(); ++x) {
+    const KeySpec spec = indexes_[x].key;
+    if (keyEqual(f, a + spec.first, spec) && (!last || hi(linkWord(f, x)) == kNoFact)) continue;
+    unlinkIndex(f, x);
+    relink |= std::uint64_t(1) << x;
+  }
   if (dedup_) facts_.erase(dedupHash(node(f), args(f)), f);
   retainArgs(a);  // before releasing: the new values may be the old ones
   releaseArgs(f);
   for (std::uint32_t i = 0; i < arity(); ++i) words_[base(f) + argOffset_ + i] = a[i];
-  linkIndexes(f);
+  for (std::uint32_t x = 0; x < indexCount(); ++x)
+    if (relink >> x & 1) linkInListOrder(list, f, x);
   if (dedup_) facts_.insert(dedupHash(node(f), args(f)), f);
 }
 

@@ -62,8 +62,9 @@ class FactTable {
   // Removes a fact; its boxed arguments are released. Read next(f) before erasing f.
   void erase(ListHead& list, FactRef f);
   void moveToBack(ListHead& list, FactRef f);
-  // New arguments for a stored fact (in-place update); it moves to the end of its index chains.
-  void replaceArgs(FactRef f, const Value* args);
+  // New arguments for a stored fact (in-place update), after any move in the list: its index
+  // chains keep the list's order.
+  void replaceArgs(const ListHead& list, FactRef f, const Value* args);
   void setCount(FactRef f, std::uint32_t count) { setHi(base(f) + 1, count); }
 
   // De-duplicating tables only: the fact of this node with exactly these arguments, or kNoFact.
@@ -141,6 +142,10 @@ class FactTable {
   FactRef place(ListHead& list, NodeId n, const Value* a, std::uint32_t cnt, FactRef after,
                 bool adopt = false);
   void unlinkIndexes(FactRef f);
+  void unlinkIndex(FactRef f, std::uint32_t x);
+  // Links f into chain x in front of the next fact of the list with its key (at the end if none).
+  void linkInListOrder(const ListHead& list, FactRef f, std::uint32_t x);
+  static constexpr std::uint32_t kMaxIndexes = 64;  // replaceArgs keeps one bit per index
   void retainArgs(const Value* args);
   void releaseArgs(FactRef f);
 
