@@ -9,7 +9,9 @@
 #pragma once
 
 #include <cstddef>
+#include <cstdint>
 #include <cstdlib>
+#include <cstring>
 #include <new>
 #include <vector>
 
@@ -21,23 +23,61 @@ namespace support {
 
 inline constexpr std::size_t kHugePage = std::size_t(2) << 20;
 
+inline std::size_t hugePages(std::size_t bytes) { return (bytes + kHugePage - 1) & ~(kHugePage - 1); }
+
+#if defined(__linux__)
+// Large blocks are mappings of their own (2 MiB-aligned: the unaligned ends of a larger mapping
+// are given back), so that growLarge can move their pages instead of copying their bytes.
 inline void* allocateLarge(std::size_t bytes) {
   if (bytes < kHugePage) return ::operator new(bytes);
-  const std::size_t rounded = (bytes + kHugePage - 1) & ~(kHugePage - 1);
-  void* p = std::aligned_alloc(kHugePage, rounded);
-  if (!p) throw std::bad_alloc();
-#if defined(__linux__) && defined(MADV_HUGEPAGE)
-  (void)madvise(p, rounded, MADV_HUGEPAGE);  // a hint: failure only means small pages
+  const std::size_t rounded = hugePages(bytes);
+  void* raw = mmap(nullptr, rounded + kHugePage, PROT_READ | PROT_WRITE, MAP_PRIVATE | MAP_ANONYMOUS, -1, 0);
+  if (raw == MAP_FAILED) throw std::bad_alloc();
+  char* start = static_cast<char*>(raw);
+  char* aligned =
+      reinterpret_cast<char*>((reinterpret_cast<std::uintptr_t>(start) + kHugePage - 1) & ~(kHugePage - 1));
+  if (aligned != start) munmap(start, std::size_t(aligned - start));
+  if (char* end = aligned + rounded; end != start + rounded + kHugePage)
+    munmap(end, std::size_t(start + rounded + kHugePage - end));
+#if defined(MADV_HUGEPAGE)
+  (void)madvise(aligned, rounded, MADV_HUGEPAGE);  // a hint: failure only means small pages
 #endif
-  return p;
+  return aligned;
 }
 
 inline void freeLarge(void* p, std::size_t bytes) noexcept {
   if (bytes < kHugePage)
     ::operator delete(p);
   else
-    std::free(p);
+    munmap(p, hugePages(bytes));
 }
+
+// A block of allocateLarge(oldBytes) as one of newBytes (more), its first usedBytes kept. Between
+// large blocks the kernel moves the pages (mremap): no copying, however often a table grows.
+inline void* growLarge(void* p, std::size_t oldBytes, std::size_t newBytes, std::size_t usedBytes) {
+  if (oldBytes >= kHugePage) {
+    void* q = mremap(p, hugePages(oldBytes), hugePages(newBytes), MREMAP_MAYMOVE);
+    if (q == MAP_FAILED) throw std::bad_alloc();
+#if defined(MADV_HUGEPAGE)
+    (void)madvise(q, hugePages(newBytes), MADV_HUGEPAGE);
+#endif
+    return q;
+  }
+  void* q = allocateLarge(newBytes);
+  if (usedBytes) std::memcpy(q, p, usedBytes);
+  if (p) freeLarge(p, oldBytes);
+  return q;
+}
+#else
+inline void* allocateLarge(std::size_t bytes) { return ::operator new(bytes); }
+inline void freeLarge(void* p, std::size_t) noexcept { ::operator delete(p); }
+inline void* growLarge(void* p, std::size_t oldBytes, std::size_t newBytes, std::size_t usedBytes) {
+  void* q = allocateLarge(newBytes);
+  if (usedBytes) std::memcpy(q, p, usedBytes);
+  if (p) freeLarge(p, oldBytes);
+  return q;
+}
+#endif
 
 template <class T>
 struct LargeAllocator {
