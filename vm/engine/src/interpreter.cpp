@@ -42,12 +42,15 @@ Interpreter::~Interpreter() = default;
 
 // Per register whether it is boxed, then whether any register is (leave() skips the release loop
 // otherwise), then whether any loop consumes its fact (fire() has nothing to do otherwise).
-void Interpreter::blockFlags(const CodeBlock& b, std::vector<std::uint8_t>& v, bool scanLoops) const {
+void Interpreter::blockFlags(const CodeBlock& b, BlockInfo& info, bool scanLoops) const {
   const std::size_t regs = b.registerTypes.size();
+  std::vector<std::uint8_t>& v = info.boxed;
   v.assign(regs + 2, 0);
+  info.boxedRegs.clear();
   for (std::size_t r = 0; r < regs; ++r) {
     v[r] = program_.types.boxed(b.registerTypes[r]);
     v[regs] |= v[r];
+    if (v[r]) info.boxedRegs.push_back(std::uint32_t(r));
   }
   if (scanLoops)
     detail::forEachInstruction(b.code, [&](std::size_t pc) {
@@ -62,13 +65,13 @@ const Interpreter::BlockInfo& Interpreter::infoOf(const CodeBlock& b) {
     // An axiom block runs once: no cache entry (a big program has millions of them), and no
     // native code. Axiom blocks are straight-line code (no loops) and never nest, so one scratch
     // serves them all.
-    blockFlags(b, axiomInfo_.boxed, false);
+    blockFlags(b, axiomInfo_, false);
     return axiomInfo_;
   }
   auto it = blocks_.find(&b);
   if (it == blocks_.end()) {
     BlockInfo info;
-    blockFlags(b, info.boxed, true);
+    blockFlags(b, info, true);
     if (native_) info.native = native_->find(b);
     it = blocks_.emplace(&b, std::move(info)).first;
   }
@@ -98,11 +101,8 @@ Interpreter::Alloc Interpreter::enter(const CodeBlock& b) {
   return a;
 }
 
-void Interpreter::leave(const Frame& f, const Alloc& a) {
-  const std::size_t regs = f.block->registerTypes.size();
-  if (f.boxed[regs])
-    for (std::size_t r = 0; r < regs; ++r)
-      if (f.boxed[r]) heap_.release(f.block->registerTypes[r], f.regs[r]);
+void Interpreter::leave(const Frame& f, const Alloc& a, const BlockInfo& info) {
+  for (std::uint32_t r : info.boxedRegs) heap_.releaseObject(f.regs[r]);
   regChunk_ = a.regMark / kRegChunk;
   regUsed_ = a.regMark % kRegChunk;
   slotChunk_ = a.slotMark / kSlotChunk;
@@ -118,10 +118,10 @@ void Interpreter::run(const CodeBlock& block, NodeId host, bool negative, PredId
   try {
     start(f, info.native);
   } catch (...) {
-    leave(f, a);
+    leave(f, a, info);
     throw;
   }
-  leave(f, a);
+  leave(f, a, info);
 }
 
 Value Interpreter::retained(const Frame& f, std::uint32_t r) const {
@@ -452,13 +452,13 @@ Value Interpreter::callFunction(std::uint32_t fn, const Value* args, NodeId host
   try {
     start(f, info.native);
   } catch (...) {
-    leave(f, a);
+    leave(f, a, info);
     --depth_;
     throw;
   }
   const Value result = f.regs[n];
   f.regs[n] = Value();  // ownership moves to the caller
-  leave(f, a);
+  leave(f, a, info);
   --depth_;
   return result;
 }

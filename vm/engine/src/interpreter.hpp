@@ -125,14 +125,15 @@ class Interpreter {
     Slot* slots;
     std::size_t regMark, slotMark;
   };
-  Alloc enter(const CodeBlock& b);
-  void leave(const Frame& f, const Alloc& a);
   struct BlockInfo {
-    std::vector<std::uint8_t> boxed;  // blockFlags
+    std::vector<std::uint8_t> boxed;       // blockFlags
+    std::vector<std::uint32_t> boxedRegs;  // the boxed registers, which leave() releases
     meld_native_block native = nullptr;
   };
+  Alloc enter(const CodeBlock& b);
+  void leave(const Frame& f, const Alloc& a, const BlockInfo& info);
   const BlockInfo& infoOf(const CodeBlock& b);
-  void blockFlags(const CodeBlock& b, std::vector<std::uint8_t>& v, bool scanLoops) const;
+  void blockFlags(const CodeBlock& b, BlockInfo& info, bool scanLoops) const;
 
   Machine& machine_;
   const Program& program_;

@@ -189,7 +189,7 @@ void FactTable::linkInListOrder(const ListHead& list, FactRef f, std::uint32_t x
 FactRef FactTable::place(ListHead& list, NodeId n, const Value* a, std::uint32_t cnt, FactRef after,
                          bool adopt) {
   if (cnt == 0) throw std::invalid_argument("meldvm: a stored fact has a count of at least 1");
-  if (!adopt) retainArgs(a);
+  if (!adopt && !boxedFields_.empty()) retainArgs(a);
   FactRef f;
   if (freeList_ != kNoFact) {
     f = freeList_;
@@ -231,7 +231,7 @@ FactRef FactTable::place(ListHead& list, NodeId n, const Value* a, std::uint32_t
 FactRef FactTable::insert(ListHead& list, NodeId n, const Value* a, std::uint32_t cnt, FactRef after,
                           bool adopt) {
   const FactRef f = place(list, n, a, cnt, after, adopt);
-  linkIndexes(f);
+  if (!indexes_.empty()) linkIndexes(f);  // (most tables have none: no call)
   if (dedup_) facts_.insert(dedupHash(n, args(f)), f);
   return f;
 }
@@ -250,7 +250,7 @@ FactRef FactTable::insertGrouped(ListHead& list, NodeId n, const Value* a, std::
 }
 
 void FactTable::erase(ListHead& list, FactRef f) {
-  unlinkIndexes(f);
+  if (!indexes_.empty()) unlinkIndexes(f);
   if (dedup_) facts_.erase(dedupHash(node(f), args(f)), f);
   const FactRef p = prevOf(f), nx = next(f);
   if (p == kNoFact)
@@ -262,7 +262,7 @@ void FactTable::erase(ListHead& list, FactRef f) {
   else
     setLo(base(nx), p);
   --list.size;
-  releaseArgs(f);
+  if (!boxedFields_.empty()) releaseArgs(f);
   words_[base(f) + 1] = Value::fromBits(0);  // count 0 marks the slot free
   setHi(base(f), freeList_);
   freeList_ = f;

@@ -94,6 +94,10 @@ class Heap {
   void release(TypeId t, Value v) {
     if (types_.boxed(t) && !v.isNil() && dropReference(v.asObject())) destroy(v.asObject());
   }
+  // release() of a value whose type is boxed (a register known to hold one).
+  void releaseObject(Value v) {
+    if (!v.isNil() && dropReference(v.asObject())) destroy(v.asObject());
+  }
   // A reference that a stored value holds (a fact, a message, an aggregate input, an item of a heap
   // object; not a register): as retain/release, and a node counts in the NodeReferences, if any.
   bool holdsReferences(TypeId t) const {
