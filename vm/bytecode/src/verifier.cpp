@@ -25,11 +25,47 @@ std::string titled(std::string head, const std::string& label) {
   return label.empty() ? head : head + " (" + label + ")";
 }
 
+struct Loop {
+  std::size_t at;      // word offset of the ITER
+  std::size_t exit;    // its J operand
+  std::uint32_t slot;  // S operand
+  PredId pred;
+};
+struct Jump {
+  std::size_t from, target;
+};
+
+// The per-block working arrays, kept from one block to the next: a program may have hundreds of
+// thousands of blocks (one per node's axioms), and allocating them per block was a third of the
+// verifier's time.
+struct VerifierScratch {
+  std::vector<Loop> loops;            // open loops, innermost last
+  std::vector<PredId> slotPred;       // per slot: the predicate of the open loop binding it, or kNoPred
+  std::vector<bool> start;            // instruction boundaries
+  std::vector<std::uint32_t> starts;  // the same, in order (passes 2 and 3 walk them)
+  std::vector<std::size_t> region;    // per instruction start: the loop (ITER offset) it belongs to
+  std::vector<Jump> jumps;
+};
+
 class BlockVerifier {
  public:
   // `title` names the block in messages; it is called only when one is needed.
-  BlockVerifier(const Program& p, const CodeBlock& b, BlockKind kind, std::function<std::string()> title)
-      : p_(p), b_(b), code_(b.code), kind_(kind), title_(std::move(title)) {}
+  BlockVerifier(const Program& p, const CodeBlock& b, BlockKind kind, std::function<std::string()> title,
+                VerifierScratch& scratch)
+      : p_(p),
+        b_(b),
+        code_(b.code),
+        kind_(kind),
+        title_(std::move(title)),
+        loops_(scratch.loops),
+        slotPred_(scratch.slotPred),
+        start_(scratch.start),
+        starts_(scratch.starts),
+        region_(scratch.region),
+        jumps_(scratch.jumps) {
+    loops_.clear();
+    jumps_.clear();
+  }
 
   const Function* function = nullptr;
   const Process* process = nullptr;
@@ -38,15 +74,6 @@ class BlockVerifier {
   void run();
 
  private:
-  struct Loop {
-    std::size_t at;      // word offset of the ITER
-    std::size_t exit;    // its J operand
-    std::uint32_t slot;  // S operand
-    PredId pred;
-  };
-  struct Jump {
-    std::size_t from, target;
-  };
   static constexpr std::size_t kTop = SIZE_MAX;  // region of code outside every loop
 
   [[noreturn]] void blockFail(const std::string& why) const { fail(title_() + ": " + why); }
@@ -110,16 +137,16 @@ class BlockVerifier {
   BlockKind kind_;
   std::function<std::string()> title_;
 
-  std::size_t at_ = 0;                 // offset of the instruction being checked
-  std::uint32_t v_[8] = {};            // its operand values by position in the letters ('*': the count)
-  std::size_t list_ = 0;               // offset of the first register of the '*' operand
-  std::uint32_t count_ = 0;            // and their number
-  std::vector<Loop> loops_;            // open loops, innermost last
-  std::vector<PredId> slotPred_;       // per slot: the predicate of the open loop binding it, or kNoPred
-  std::vector<bool> start_;            // instruction boundaries
-  std::vector<std::uint32_t> starts_;  // the same, in order (passes 2 and 3 walk them)
-  std::vector<std::size_t> region_;    // per instruction start: the loop (ITER offset) it belongs to
-  std::vector<Jump> jumps_;
+  std::size_t at_ = 0;        // offset of the instruction being checked
+  std::uint32_t v_[8] = {};   // its operand values by position in the letters ('*': the count)
+  std::size_t list_ = 0;      // offset of the first register of the '*' operand
+  std::uint32_t count_ = 0;   // and their number
+  std::vector<Loop>& loops_;  // VerifierScratch's
+  std::vector<PredId>& slotPred_;
+  std::vector<bool>& start_;
+  std::vector<std::uint32_t>& starts_;
+  std::vector<std::size_t>& region_;
+  std::vector<Jump>& jumps_;
 };
 
 TypeId BlockVerifier::reg(std::uint32_t r, char letter) const {
@@ -622,31 +649,40 @@ void verifyProgram(const Program& p) {
            n2s(p.predicates[ix.predicate].arity()) + " fields");
   }
 
-  BlockVerifier(p, p.globalsInit, BlockKind::Globals, [] { return std::string("globals"); }).run();
+  VerifierScratch scratch;
+  BlockVerifier(
+      p, p.globalsInit, BlockKind::Globals, [] { return std::string("globals"); }, scratch)
+      .run();
   for (std::size_t i = 0; i < p.functions.size(); ++i) {
-    BlockVerifier v(p, p.functions[i].block, BlockKind::Function,
-                    [&, i] { return "function " + n2s(i) + " (" + p.functions[i].name + ")"; });
+    BlockVerifier v(
+        p, p.functions[i].block, BlockKind::Function,
+        [&, i] { return "function " + n2s(i) + " (" + p.functions[i].name + ")"; }, scratch);
     v.function = &p.functions[i];
     v.run();
   }
   for (std::size_t i = 0; i < p.rules.size(); ++i) {
-    BlockVerifier v(p, p.rules[i].block, BlockKind::Rule,
-                    [&, i] { return titled("rule " + n2s(i), p.rules[i].block.label); });
+    BlockVerifier v(
+        p, p.rules[i].block, BlockKind::Rule,
+        [&, i] { return titled("rule " + n2s(i), p.rules[i].block.label); }, scratch);
     v.isRule0 = i == 0;
     v.run();
   }
   for (std::size_t i = 0; i < p.processes.size(); ++i) {
     const Process& pr = p.processes[i];
-    BlockVerifier v(p, pr.block, BlockKind::Process, [&, i] {
-      return titled("process " + n2s(i) + " on " + p.predicates[pr.trigger].name, pr.block.label);
-    });
+    BlockVerifier v(
+        p, pr.block, BlockKind::Process,
+        [&, i] {
+          return titled("process " + n2s(i) + " on " + p.predicates[pr.trigger].name, pr.block.label);
+        },
+        scratch);
     v.process = &pr;
     v.run();
   }
   for (std::size_t i = 0; i < p.axiomBlocks.size(); ++i)
-    BlockVerifier(p, p.axiomBlocks[i], BlockKind::Axioms, [&, i] {
-      return titled("axioms " + n2s(i), p.axiomBlocks[i].label);
-    }).run();
+    BlockVerifier(
+        p, p.axiomBlocks[i], BlockKind::Axioms,
+        [&, i] { return titled("axioms " + n2s(i), p.axiomBlocks[i].label); }, scratch)
+        .run();
 }
 
 }  // namespace meldvm
