@@ -1,6 +1,7 @@
 // An allocator for the big arrays of the kernel (blocks, grid, faces, event buckets) and of the VM
-// (fact slots, hash tables, mailbox slabs, per-node records): blocks of 2 MiB and more are aligned
-// to 2 MiB and marked for transparent huge pages; smaller ones use operator new.
+// (fact slots, hash tables, mailbox slabs, per-node records): blocks of 2 MiB and more are
+// mappings of their own, aligned to 2 MiB and marked for transparent huge pages (a block that
+// growLarge moved may lose the alignment); smaller ones use operator new.
 //
 // Why: a large run touches these arrays at random (a message goes to any block or node), so with
 // 4 KiB pages nearly every access also misses the TLB. Where the kernel gives huge pages only on
@@ -24,6 +25,17 @@ namespace support {
 inline constexpr std::size_t kHugePage = std::size_t(2) << 20;
 
 inline std::size_t hugePages(std::size_t bytes) { return (bytes + kHugePage - 1) & ~(kHugePage - 1); }
+
+inline void* allocateLarge(std::size_t bytes);
+inline void freeLarge(void* p, std::size_t bytes) noexcept;
+
+// growLarge's way where pages cannot move: a new block, the used bytes copied, the old one freed.
+inline void* copyToLarger(void* p, std::size_t oldBytes, std::size_t newBytes, std::size_t usedBytes) {
+  void* q = allocateLarge(newBytes);
+  if (usedBytes) std::memcpy(q, p, usedBytes);
+  if (p) freeLarge(p, oldBytes);
+  return q;
+}
 
 #if defined(__linux__)
 // Large blocks are mappings of their own (2 MiB-aligned: the unaligned ends of a larger mapping
@@ -63,19 +75,13 @@ inline void* growLarge(void* p, std::size_t oldBytes, std::size_t newBytes, std:
 #endif
     return q;
   }
-  void* q = allocateLarge(newBytes);
-  if (usedBytes) std::memcpy(q, p, usedBytes);
-  if (p) freeLarge(p, oldBytes);
-  return q;
+  return copyToLarger(p, oldBytes, newBytes, usedBytes);
 }
 #else
 inline void* allocateLarge(std::size_t bytes) { return ::operator new(bytes); }
 inline void freeLarge(void* p, std::size_t) noexcept { ::operator delete(p); }
 inline void* growLarge(void* p, std::size_t oldBytes, std::size_t newBytes, std::size_t usedBytes) {
-  void* q = allocateLarge(newBytes);
-  if (usedBytes) std::memcpy(q, p, usedBytes);
-  if (p) freeLarge(p, oldBytes);
-  return q;
+  return copyToLarger(p, oldBytes, newBytes, usedBytes);
 }
 #endif
 

@@ -40,21 +40,20 @@ Interpreter::Interpreter(Machine& machine, const Program& program, Database& db,
 
 Interpreter::~Interpreter() = default;
 
-// Per register whether it is boxed, then whether any register is (leave() skips the release loop
-// otherwise), then whether any loop consumes its fact (fire() has nothing to do otherwise).
+// Per register whether it is boxed, then whether any loop consumes its fact (fire() has nothing
+// to do otherwise); and the boxed registers in a list, which leave() releases.
 void Interpreter::blockFlags(const CodeBlock& b, BlockInfo& info, bool scanLoops) const {
   const std::size_t regs = b.registerTypes.size();
   std::vector<std::uint8_t>& v = info.boxed;
-  v.assign(regs + 2, 0);
+  v.assign(regs + 1, 0);
   info.boxedRegs.clear();
   for (std::size_t r = 0; r < regs; ++r) {
     v[r] = program_.types.boxed(b.registerTypes[r]);
-    v[regs] |= v[r];
     if (v[r]) info.boxedRegs.push_back(std::uint32_t(r));
   }
   if (scanLoops)
     detail::forEachInstruction(b.code, [&](std::size_t pc) {
-      if (detail::isLoop(b.code[pc]) && (b.code[pc + 3] & kIterConsume)) v[regs + 1] = 1;
+      if (detail::isLoop(b.code[pc]) && (b.code[pc + 3] & kIterConsume)) v[regs] = 1;
     });
 }
 
@@ -397,7 +396,7 @@ struct NativeHelpers {
     return F(vm(v).ctx_, {reinterpret_cast<const Value*>(args), count}, TypeId(result)).bits();
   }
   static constexpr meld_native_builtin kBuiltins[] = {
-      // builtins.def's ids are dense, in order
+  // builtins.def's ids are dense, in order
 #define BUILTIN(id, name, impl, signature, typeArg) &builtin<&builtins::impl>,
 #include "meldvm/builtins.def"
 #undef BUILTIN

@@ -50,7 +50,7 @@ class Interpreter {
     const std::uint32_t* code;
     Value* regs;
     Slot* slots;
-    const std::uint8_t* boxed;  // per register, then "any boxed", then "some loop consumes"
+    const std::uint8_t* boxed;  // per register, then "some loop consumes"
     NodeId host;
     bool negative;
     bool updated = false;  // an UPDATE ran in this block (RET_IF_UPDATED)
@@ -81,7 +81,7 @@ class Interpreter {
   // The rule fired: consume the linear facts bound from firstSlot on (inline: a persistent rule's
   // firing consumes nothing and should cost next to nothing).
   [[gnu::always_inline]] void fire(Frame& f, std::uint32_t firstSlot) {
-    if (!f.boxed[f.block->registerTypes.size() + 1]) return;  // no loop of the block consumes
+    if (!f.boxed[f.block->registerTypes.size()]) return;  // no loop of the block consumes
     for (std::uint32_t s = firstSlot; s < f.block->slots; ++s)
       if (consumable(f.slots[s])) consumeSlot(f.slots[s]);
   }

@@ -406,7 +406,7 @@ void Machine::retainArgs(PredId p, const Value* args) {
 }
 
 void Machine::releaseArgs(PredId p, const Value* args) {
-  if (!tables_.boxedField[p]) return;
+  if (!db_->holdsReferences(p)) return;
   const PredicateDesc& d = program_.predicates[p];
   for (std::uint32_t i = 0; i < d.arity(); ++i) heap_.releaseStored(d.fields[i], args[i]);
 }

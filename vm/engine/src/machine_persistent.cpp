@@ -65,7 +65,7 @@ void Machine::publishChange(NodeId n, PredId p, const Change& c) {
   // Own copies: the processes change the store, whose scratch the Change points into.
   triggerRemoved_.assign(c.removedArgs.begin(), c.removedArgs.end());
   triggerAdded_.assign(c.addedArgs.begin(), c.addedArgs.end());
-  if (tables_.boxedField[p]) {
+  if (db_->holdsReferences(p)) {
     if (c.removed) retainArgs(p, triggerRemoved_.data());
     if (c.added) retainArgs(p, triggerAdded_.data());
   }

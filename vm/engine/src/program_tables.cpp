@@ -20,11 +20,6 @@ void perPredicate(ProgramTables& t, const Program& program) {
     const PredicateDesc& d = program.predicates[p];
     t.maxArity = std::max(t.maxArity, d.arity());
     t.queuedPersistent.push_back(!d.linear && (!t.processesOf[p].empty() || d.aggregated()));
-    bool refs = false;
-    for (TypeId type : d.fields)
-      refs =
-          refs || program.types.boxed(type) || (t.createsNodes && program.types.kind(type) == TypeKind::Node);
-    t.boxedField.push_back(refs);
     t.isLinear.push_back(d.linear);
     t.arity.push_back(d.arity());
     t.isThreadPred.push_back(d.thread);
@@ -65,8 +60,8 @@ void scanCode(ProgramTables& t, const Program& program) {
 }  // namespace
 
 ProgramTables::ProgramTables(const Program& program) {
-  scanCode(*this, program);  // first: createsNodes decides boxedField
   perPredicate(*this, program);
+  scanCode(*this, program);
   for (std::uint32_t r = 0; r < program.rules.size(); ++r) {
     bool node = false, thread = false;
     for (PredId p : program.rules[r].bodyPredicates) (isThreadPred[p] ? thread : node) = true;

@@ -165,7 +165,9 @@ void FactTable::unlinkIndex(FactRef f, std::uint32_t x) {
 void FactTable::linkInListOrder(const ListHead& list, FactRef f, std::uint32_t x) {
   std::uint64_t h;
   const FactRef head = chainHead(f, x, h);
-  // The first fact after f in the list with f's key: f goes in front of it in the chain.
+  // The first fact after f in the list with f's key: f goes in front of it in the chain. (A walk
+  // of the list after f, only when an update changes a key: no longer than the scan of the list
+  // that the established VM makes for every match.)
   FactRef g = kNoFact;
   if (head != kNoFact && list.last != f) {
     const KeySpec spec = indexes_[x].key;

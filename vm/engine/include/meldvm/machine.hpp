@@ -263,7 +263,7 @@ class Machine : private SchedulerView {
   // win), and then this is all there is to do.
   void applyPersistent(NodeId n, PredId p, const Value* args, bool negative) {
     const Change c = db_->changePersistent(n, p, args, !negative);
-    if (tables_.boxedField[p]) releaseArgs(p, args);  // the references of the queue entry or message
+    if (db_->holdsReferences(p)) releaseArgs(p, args);  // the references of the queue entry or message
     if (c.removed || c.added) publishChange(n, p, c);
   }
   // Runs the processes of the visible fact that disappeared (negative mode) and of the one that
@@ -310,7 +310,7 @@ class Machine : private SchedulerView {
   // Owned copies of argument lists (boxed values retained).
   // Appends the arguments to `to` (boxed values retained); returns their offset.
   std::uint32_t pushArgs(ValueBuffer& to, PredId p, const Value* args) {
-    if (tables_.boxedField[p]) retainArgs(p, args);
+    if (db_->holdsReferences(p)) retainArgs(p, args);
     return to.append(args, tables_.arity[p]);
   }
   [[gnu::noinline]] void retainArgs(PredId p, const Value* args);

@@ -17,9 +17,6 @@ struct ProgramTables {
   std::vector<std::vector<std::uint32_t>> rulesOf;      // the rules with it in their body
   std::vector<std::vector<std::uint32_t>> processesOf;  // its processes (persistent rules, §6.5)
   std::vector<std::uint8_t> queuedPersistent;           // has processes or an aggregate: derive via the queue
-  // Some field holds references (retained and released as it is copied): a boxed value, or a node
-  // when the program creates nodes (node_references.hpp).
-  std::vector<std::uint8_t> boxedField;
   std::vector<std::uint8_t> isLinear;
   std::vector<std::uint8_t> isThreadPred;
   std::vector<std::uint32_t> arity;  // home excluded

@@ -50,6 +50,9 @@ class Database {
   bool alive(NodeId n) const { return removedNodes_ == 0 || alive_[n] != 0; }
   // Drops every fact of the node (created nodes collected by the GC, §6.10); the dump skips it.
   void removeNode(NodeId n);
+  // Whether p's facts hold references (a boxed field, or a node the Heap counts): copies of its
+  // arguments are retained and released (Heap::retainStored).
+  bool holdsReferences(PredId p) const { return boxedPred_[p] != 0; }
   // A removed node comes back, with no facts (a created node's id used again).
   void reviveNode(NodeId n);
   // Drops every fact of the node, which stays alive (a node that moved to another store).
