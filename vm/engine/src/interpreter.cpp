@@ -124,7 +124,7 @@ void Interpreter::run(const CodeBlock& block, NodeId host, bool negative, PredId
 }
 
 Value Interpreter::retained(const Frame& f, std::uint32_t r) const {
-  heap_.retain(f.block->registerTypes[r], f.regs[r]);
+  if (f.boxed[r]) heap_.retainObjectValue(f.regs[r]);
   return f.regs[r];
 }
 

@@ -99,7 +99,7 @@ class Interpreter {
     return sl.fixed ? sl.fixed : db_.args(sl.pred, sl.fact);
   }
   [[gnu::always_inline]] void setReg(Frame& f, std::uint32_t r, Value v) {  // takes ownership of v
-    if (f.boxed[r]) heap_.release(f.block->registerTypes[r], f.regs[r]);
+    if (f.boxed[r]) heap_.releaseObject(f.regs[r]);  // f.boxed: the register's type is boxed
     f.regs[r] = v;
   }
   Value retained(const Frame& f, std::uint32_t r) const;

@@ -337,7 +337,7 @@ void Machine::runRule(NodeId n, std::uint32_t rule) {
 
 void Machine::finishRuleRun() {
   for (const Consumed& c : consumed_) {
-    db_->consume(c.node, c.pred, c.fact);
+    db_->consumeTrusted(c.node, c.pred, c.fact);
     factRemoved(c.node, c.pred);
   }
   consumed_.clear();
@@ -349,7 +349,7 @@ void Machine::storeDerivedLinear() {
   countSteps(linearOut_.size());  // a run that doubles the node's facts is bounded too
   for (const PendingFact& e : linearOut_) {
     const Value* args = linearOutArgs_.data() + e.args;
-    db_->addLinear(e.node, e.pred, args, /*adopt=*/true);  // the buffer's references go to the fact
+    db_->addLinearTrusted(e.node, e.pred, args);  // the buffer's references go to the fact
     factAdded(e.node, e.pred);
   }
   linearOut_.clear();
@@ -400,16 +400,9 @@ void Machine::factRemoved(NodeId n, PredId p) {
 
 // ---- what the interpreter calls ----
 
-void Machine::retainArgs(PredId p, const Value* args) {
-  const PredicateDesc& d = program_.predicates[p];
-  for (std::uint32_t i = 0; i < d.arity(); ++i) heap_.retainStored(d.fields[i], args[i]);
-}
+void Machine::retainArgs(PredId p, const Value* args) { db_->referenceFields(p).retain(heap_, args); }
 
-void Machine::releaseArgs(PredId p, const Value* args) {
-  if (!db_->holdsReferences(p)) return;
-  const PredicateDesc& d = program_.predicates[p];
-  for (std::uint32_t i = 0; i < d.arity(); ++i) heap_.releaseStored(d.fields[i], args[i]);
-}
+void Machine::releaseArgs(PredId p, const Value* args) { db_->referenceFields(p).release(heap_, args); }
 
 void Machine::derive(NodeId host, PredId p, const Value* args, bool negative) {
   const PredicateDesc& d = program_.predicates[p];

@@ -79,7 +79,7 @@ void Machine::deliverIncoming(NodeId n) {
           return tables_.isLinear[p] != 0;
         },
         [&](PredId p, bool, const Value* args) {
-          db_->addLinear(n, p, args, /*adopt=*/true);  // the mailbox's references go to the fact
+          db_->addLinearTrusted(n, p, args);  // the mailbox's references go to the fact
           factAdded(n, p);
         });
   if (persistent)

@@ -110,8 +110,8 @@ Change Database::aggregateChange(NodeId n, PredId p, const Value* args, std::uin
   const PredicateDesc& d = preds_[p];
   // Our own reference to the input: `args` may point into a fact that this change erases.
   setValues(input_, args, d.arity());
-  if (boxedPred_[p]) {
-    for (std::size_t i = 0; i < input_.size(); ++i) heap_.retainStored(d.fields[i], input_[i]);
+  if (!references_[p].empty()) {
+    references_[p].retain(heap_, input_.data());
     inputPred_ = p;
     holdsInput_ = true;
   }

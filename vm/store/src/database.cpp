@@ -35,9 +35,7 @@ Database::Database(const PredicateTable& preds, Heap& heap) : preds_(preds), hea
   }
   for (PredId p = 0; p < preds.size(); ++p) {
     const PredicateDesc& d = preds[p];
-    bool boxed = false;
-    for (TypeId t : d.fields) boxed = boxed || heap_.holdsReferences(t);
-    boxedPred_.push_back(boxed);
+    references_.emplace_back(heap_, d.fields);
     intMinMax_.push_back(d.aggregated() && d.aggregateField == 0 && d.arity() == 1 &&
                          (d.aggregate == AggregateKind::Min || d.aggregate == AggregateKind::Max) &&
                          types.kind(d.fields[0]) == TypeKind::Int);
@@ -128,13 +126,11 @@ void Database::updateLinear(NodeId n, PredId p, FactRef f, const Value* args, bo
 
 void Database::releaseScratch() {
   if (holdsRemoved_) {
-    const auto& fields = preds_[removedPred_].fields;
-    for (std::size_t i = 0; i < removed_.size(); ++i) heap_.releaseStored(fields[i], removed_[i]);
+    references_[removedPred_].release(heap_, removed_.data());
     holdsRemoved_ = false;
   }
   if (holdsInput_) {
-    const auto& fields = preds_[inputPred_].fields;
-    for (std::size_t i = 0; i < input_.size(); ++i) heap_.releaseStored(fields[i], input_[i]);
+    references_[inputPred_].release(heap_, input_.data());
     holdsInput_ = false;
   }
   if (!sumList_.isNil()) {
@@ -146,8 +142,8 @@ void Database::releaseScratch() {
 
 void Database::keepRemoved(PredId p, FactRef f) {
   setValues(removed_, tables_[p].args(f), preds_[p].arity());
-  if (!boxedPred_[p]) return;
-  for (std::size_t i = 0; i < removed_.size(); ++i) heap_.retainStored(preds_[p].fields[i], removed_[i]);
+  if (references_[p].empty()) return;
+  references_[p].retain(heap_, removed_.data());
   removedPred_ = p;
   holdsRemoved_ = true;
 }

@@ -9,16 +9,15 @@
 namespace meldvm {
 
 FactTable::FactTable(const TypeTable& types, Heap& heap, std::vector<TypeId> fields, bool dedup)
-    : types_(types), heap_(heap), fields_(std::move(fields)), dedup_(dedup) {
-  for (std::uint32_t i = 0; i < fields_.size(); ++i)
-    if (heap_.holdsReferences(fields_[i])) boxedFields_.push_back(i);
+    : types_(types), heap_(heap), fields_(std::move(fields)), references_(heap_, fields_), dedup_(dedup) {
   for (TypeId t : fields_) allUnboxed_ = allUnboxed_ && !types_.boxed(t);
   argOffset_ = 2;
   stride_ = argOffset_ + arity();
+  plain_ = !dedup_;
 }
 
 FactTable::~FactTable() {
-  if (boxedFields_.empty()) return;
+  if (references_.empty()) return;
   for (FactRef f = 0; std::size_t(f) * stride_ < words_.size(); ++f)
     if (count(f) != 0) releaseArgs(f);
 }
@@ -28,6 +27,7 @@ std::uint32_t FactTable::addIndex(KeySpec key) {
   if (key.first + key.count > arity()) throw std::out_of_range("meldvm: index key beyond the arity");
   if (indexCount() == kMaxIndexes) throw std::length_error("meldvm: too many indexes on one predicate");
   indexes_.push_back(Index{key, {}});
+  plain_ = false;
   argOffset_ = indexLinkWord(indexCount());  // the arguments follow the index links
   stride_ = argOffset_ + arity();
   return indexCount() - 1;
@@ -96,15 +96,6 @@ FactRef FactTable::firstWithKey(NodeId n, std::uint32_t index, const Value* key)
   const KeySpec spec = indexes_[index].key;
   return indexes_[index].heads.find(hashKey(n, key, spec),
                                     [&](std::uint32_t f) { return node(f) == n && keyEqual(f, key, spec); });
-}
-
-void FactTable::retainArgs(const Value* a) {
-  for (std::uint32_t i : boxedFields_) heap_.retainStored(fields_[i], a[i]);
-}
-
-void FactTable::releaseArgs(FactRef f) {
-  const Value* a = args(f);
-  for (std::uint32_t i : boxedFields_) heap_.releaseStored(fields_[i], a[i]);
 }
 
 // The first fact of f's chain in index x (kNoFact if none), and the key's hash in `hash`.
@@ -191,7 +182,7 @@ void FactTable::linkInListOrder(const ListHead& list, FactRef f, std::uint32_t x
 FactRef FactTable::place(ListHead& list, NodeId n, const Value* a, std::uint32_t cnt, FactRef after,
                          bool adopt) {
   if (cnt == 0) throw std::invalid_argument("meldvm: a stored fact has a count of at least 1");
-  if (!adopt && !boxedFields_.empty()) retainArgs(a);
+  if (!adopt && !references_.empty()) retainArgs(a);
   FactRef f;
   if (freeList_ != kNoFact) {
     f = freeList_;
@@ -264,7 +255,7 @@ void FactTable::erase(ListHead& list, FactRef f) {
   else
     setLo(base(nx), p);
   --list.size;
-  if (!boxedFields_.empty()) releaseArgs(f);
+  if (!references_.empty()) releaseArgs(f);
   words_[base(f) + 1] = Value::fromBits(0);  // count 0 marks the slot free
   setHi(base(f), freeList_);
   freeList_ = f;

@@ -8,20 +8,17 @@
 namespace meldvm {
 
 GroupInputs::GroupInputs(const TypeTable& types, Heap& heap, std::vector<TypeId> fields)
-    : types_(types), heap_(heap), fields_(std::move(fields)) {
-  for (std::uint32_t i = 0; i < fields_.size(); ++i) {
-    if (heap_.holdsReferences(fields_[i])) boxedFields_.push_back(i);
+    : types_(types), heap_(heap), fields_(std::move(fields)), references_(heap_, fields_) {
+  for (std::uint32_t i = 0; i < fields_.size(); ++i)
     integerKeys_ = integerKeys_ && integerLike(types_, fields_[i]);
-  }
   stride_ = 1 + std::uint32_t(fields_.size());
   scratch_.reserve(fields_.size());
 }
 
 GroupInputs::~GroupInputs() {
-  if (boxedFields_.empty()) return;
+  if (references_.empty()) return;
   for (NodeId n = 0; n < runs_.size(); ++n)
-    for (std::uint32_t i = 0; i < runs_[n].size; ++i)
-      for (std::uint32_t f : boxedFields_) heap_.releaseStored(fields_[f], args(n, i)[f]);
+    for (std::uint32_t i = 0; i < runs_[n].size; ++i) references_.release(heap_, args(n, i));
 }
 
 std::uint32_t GroupInputs::findAny(NodeId n, const Value* a) const {
@@ -58,7 +55,7 @@ void GroupInputs::free(std::uint32_t offset, std::uint32_t sizeClass) {
 }
 
 void GroupInputs::append(NodeId n, const Value* a, std::uint32_t count) {
-  for (std::uint32_t f : boxedFields_) heap_.retainStored(fields_[f], a[f]);
+  references_.retain(heap_, a);
   Run& r = runs_[n];
   if (r.sizeClass == kNone || r.size == (std::uint32_t(2) << r.sizeClass)) {
     // `a` may point into words_, which allocate() may move: copy it first.
@@ -102,7 +99,7 @@ void GroupInputs::eraseUnordered(NodeId n, std::uint32_t i) {
 
 Value* GroupInputs::releaseRecord(const Run& r, std::uint32_t i) {
   Value* rec = words_.data() + r.offset + std::size_t(i) * stride_;
-  for (std::uint32_t f : boxedFields_) heap_.releaseStored(fields_[f], rec[1 + f]);
+  references_.release(heap_, rec + 1);
   return rec;
 }
 

@@ -18,6 +18,7 @@
 
 #include "meldvm/heap.hpp"
 #include "meldvm/large_allocator.hpp"
+#include "meldvm/reference_fields.hpp"
 #include "meldvm/slot_hash.hpp"
 #include "meldvm/types.hpp"
 #include "meldvm/value.hpp"
@@ -55,6 +56,29 @@ class FactTable {
   // adopt: the caller hands its references to the boxed arguments over (no retain).
   FactRef insert(ListHead& list, NodeId node, const Value* args, std::uint32_t count, FactRef after = kNoFact,
                  bool adopt = false);
+  // insert(list, node, args, 1, kNoFact, /*adopt=*/true), inline where it is simplest: a table
+  // with no index and no de-duplication (a linear predicate's) that has a free slot to reuse,
+  // which is every insertion of the steady state.
+  FactRef insertAdopted(ListHead& list, NodeId node, const Value* args) {
+    if (!plain_ || freeList_ == kNoFact) [[unlikely]]
+      return insert(list, node, args, 1, kNoFact, true);
+    const FactRef f = freeList_;
+    Value* w = words_.data() + base(f);
+    freeList_ = std::uint32_t(w[0].bits() >> 32);
+    const std::uint32_t n = arity();
+    for (std::uint32_t i = 0; i < n; ++i) w[argOffset_ + i] = args[i];
+    w[1] = Value::fromBits((std::uint64_t(1) << 32) | node);
+    const FactRef last = list.last;
+    w[0] = Value::fromBits((std::uint64_t(kNoFact) << 32) | last);
+    if (last == kNoFact)
+      list.first = f;
+    else
+      setHi(base(last), f);
+    list.last = f;
+    ++list.size;
+    ++live_;
+    return f;
+  }
   // Adds a fact right after the last fact of the node with the same index-0 key (at the end of
   // the list when there is none): persistent facts grouped by their first field. One hash look-up
   // finds the group and links the index.
@@ -146,16 +170,17 @@ class FactTable {
   // Links f into chain x in front of the next fact of the list with its key (at the end if none).
   void linkInListOrder(const ListHead& list, FactRef f, std::uint32_t x);
   static constexpr std::uint32_t kMaxIndexes = 64;  // replaceArgs keeps one bit per index
-  void retainArgs(const Value* args);
-  void releaseArgs(FactRef f);
+  void retainArgs(const Value* args) { references_.retain(heap_, args); }
+  void releaseArgs(FactRef f) { references_.release(heap_, args(f)); }
 
   const TypeTable& types_;
   Heap& heap_;
   std::vector<TypeId> fields_;
-  std::vector<std::uint32_t> boxedFields_;  // positions to retain/release (boxed, counted nodes)
-  bool allUnboxed_ = true;                  // no field is a pointer
+  ReferenceFields references_;  // the fields to retain/release (boxed, counted nodes)
+  bool allUnboxed_ = true;      // no field is a pointer
   std::vector<Index> indexes_;
   bool dedup_;
+  bool plain_ = false;                           // no index and no de-duplication (insertAdopted's fast case)
   SlotHash facts_;                               // de-duplication: node + all arguments
   static constexpr std::uint32_t kHashMemo = 4;  // arities up to this use the memo
   mutable NodeId memoNode_ = 0xFFFFFFFFu;

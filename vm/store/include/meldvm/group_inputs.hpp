@@ -18,6 +18,7 @@
 
 #include "meldvm/heap.hpp"
 #include "meldvm/large_allocator.hpp"
+#include "meldvm/reference_fields.hpp"
 #include "meldvm/types.hpp"
 #include "meldvm/value.hpp"
 
@@ -95,8 +96,8 @@ class GroupInputs {
   const TypeTable& types_;
   Heap& heap_;
   std::vector<TypeId> fields_;
-  std::vector<std::uint32_t> boxedFields_;  // positions to retain/release
-  bool integerKeys_ = true;                 // every field compares by its bits
+  ReferenceFields references_;  // the fields to retain/release
+  bool integerKeys_ = true;     // every field compares by its bits
   std::uint32_t stride_;
   LargeBuffer<Value> words_;
   std::vector<std::uint32_t> freeRuns_;  // per size class: the first word of a free run, or kNone

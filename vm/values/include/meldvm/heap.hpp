@@ -98,6 +98,13 @@ class Heap {
   void releaseObject(Value v) {
     if (!v.isNil() && dropReference(v.asObject())) destroy(v.asObject());
   }
+  // retainStored / releaseStored of a value known to be a heap object (or nil), or a node this
+  // Heap counts (ReferenceFields sorts the fields once).
+  void retainObjectValue(Value v) {
+    if (!v.isNil()) retainObject(v.asObject());
+  }
+  void retainNode(Value v) { nodes_->add(v.asNode()); }
+  void releaseNode(Value v) { nodes_->drop(v.asNode()); }
   // A reference that a stored value holds (a fact, a message, an aggregate input, an item of a heap
   // object; not a register): as retain/release, and a node counts in the NodeReferences, if any.
   bool holdsReferences(TypeId t) const {
