@@ -15,6 +15,8 @@
 
 namespace meldvm {
 
+inline void Interpreter::consumeSlot(const Slot& sl) { machine_.consumed(sl.node, sl.pred, sl.fact); }
+
 namespace {
 constexpr std::size_t kRegChunk = 1 << 16;
 constexpr std::size_t kSlotChunk = 1 << 12;
@@ -128,8 +130,6 @@ Value Interpreter::retained(const Frame& f, std::uint32_t r) const {
   return f.regs[r];
 }
 
-void Interpreter::consumeSlot(const Slot& sl) { machine_.consumed(sl.node, sl.pred, sl.fact); }
-
 void Interpreter::noteDerivation(const Frame& f, std::uint32_t pc, NodeId node, PredId p, const Value* args) {
   Derivation d;
   const CodeBlock* b = f.block;
@@ -155,9 +155,8 @@ void Interpreter::noteDerivation(const Frame& f, std::uint32_t pc, NodeId node, 
   log.record(node, std::move(text), std::move(d));
 }
 
-bool Interpreter::skipFact(const Frame& f, std::uint32_t slot, PredId p, FactRef fact) const {
-  if (db_.consumedMark(p, fact)) return true;
-  for (std::uint32_t s = 0; s < slot; ++s)  // §6.4.3: a fact bound by an enclosing loop
+bool Interpreter::boundOutside(const Frame& f, std::uint32_t slot, PredId p, FactRef fact) const {
+  for (std::uint32_t s = 0; s < slot; ++s)
     if (f.slots[s].fact == fact && f.slots[s].pred == p && !f.slots[s].fixed) return true;
   return false;
 }

@@ -77,7 +77,11 @@ class Interpreter {
   Status start(Frame& f, meld_native_block native);
   friend struct NativeHelpers;  // native_abi.h's helpers (interpreter.cpp): this class's code
   void ruleFired();             // a FIRE: the machine's count of rules fired
-  bool skipFact(const Frame& f, std::uint32_t slot, PredId p, FactRef fact) const;
+  // Whether a linear loop passes over a fact: consumed, or bound by an enclosing loop (§6.4.3).
+  [[gnu::always_inline]] bool skipFact(const Frame& f, std::uint32_t slot, PredId p, FactRef fact) const {
+    return db_.consumedMark(p, fact) || (slot != 0 && boundOutside(f, slot, p, fact));
+  }
+  bool boundOutside(const Frame& f, std::uint32_t slot, PredId p, FactRef fact) const;
   // The rule fired: consume the linear facts bound from firstSlot on (inline: a persistent rule's
   // firing consumes nothing and should cost next to nothing).
   [[gnu::always_inline]] void fire(Frame& f, std::uint32_t firstSlot) {
@@ -90,7 +94,7 @@ class Interpreter {
     return (sl.flags & kIterConsume) && sl.fact != kNoFact && !sl.fixed &&
            !db_.consumedMark(sl.pred, sl.fact);
   }
-  void consumeSlot(const Slot& sl);
+  void consumeSlot(const Slot& sl);  // inline, in interpreter.cpp (where Machine is complete)
   // Why a fact exists (DerivationLog): the rule's line and the facts its slots hold.
   [[gnu::noinline]] void noteDerivation(const Frame& f, std::uint32_t pc, NodeId node, PredId p,
                                         const Value* args);

@@ -375,27 +375,15 @@ bool Machine::hasCandidate(NodeId n) const {
   return false;
 }
 
-void Machine::factAdded(NodeId n, PredId p) {
-  // A thread fact makes the thread node's own rules candidates, and the rules mixing node and
-  // thread facts of the node that is running (others check them when they start a run).
-  // A rule that is a candidate already needs no look at its other predicates (most adds).
+// A thread fact makes the thread node's own rules candidates (factAdded), and the rules mixing
+// node and thread facts of the node that is running (others check them when they start a run).
+void Machine::threadFactAdded(PredId p) {
   auto isCandidate = [](const std::uint64_t* c, std::uint32_t r) { return c[r / 64] >> (r % 64) & 1; };
-  std::uint64_t* cand = candidates_.data() + std::size_t(n) * tables_.ruleWords;
-  const ListHead* heads = db_->listHeads(n);
-  for (std::uint32_t r : tables_.rulesOf[p])
-    if (!isCandidate(cand, r) && allPresent(heads, r)) cand[r / 64] |= std::uint64_t(1) << (r % 64);
-  if (n != threadNode_ || !inRun_ || running_ == threadNode_) return;
   std::uint64_t* runningCand = candidates_.data() + std::size_t(running_) * tables_.ruleWords;
   const ListHead* runningHeads = db_->listHeads(running_);
   for (std::uint32_t r : tables_.rulesOf[p])
     if (tables_.isMixedRule[r] && !isCandidate(runningCand, r) && allPresent(runningHeads, r))
       runningCand[r / 64] |= std::uint64_t(1) << (r % 64);
-}
-
-void Machine::factRemoved(NodeId n, PredId p) {
-  if (db_->factCount(n, p) != 0) return;
-  std::uint64_t* cand = candidates_.data() + std::size_t(n) * tables_.ruleWords;
-  for (std::uint32_t r : tables_.rulesOf[p]) cand[r / 64] &= ~(std::uint64_t(1) << (r % 64));
 }
 
 // ---- what the interpreter calls ----
@@ -534,13 +522,6 @@ void Machine::action(NodeId from, NodeId dest, PredId p, const Value* args) {
   const PredicateDesc& d = program_.predicates[p];
   if (d.name == "write-string" && options_.output && d.arity() == 1)
     *options_.output << stringOf(args[0]) << '\n';
-}
-
-void Machine::consumed(NodeId n, PredId p, FactRef f) {
-  db_->markConsumed(p, f);
-  consumed_.push_back({n, p, f});
-  ++stats_.factsConsumed;
-  ++runConsumed_;
 }
 
 void Machine::updated(NodeId host, PredId p, FactRef f, const Value* args, bool moveToBack) {

@@ -242,24 +242,9 @@ FactRef FactTable::insertGrouped(ListHead& list, NodeId n, const Value* a, std::
   return f;
 }
 
-void FactTable::erase(ListHead& list, FactRef f) {
+void FactTable::unhash(FactRef f) {
   if (!indexes_.empty()) unlinkIndexes(f);
   if (dedup_) facts_.erase(dedupHash(node(f), args(f)), f);
-  const FactRef p = prevOf(f), nx = next(f);
-  if (p == kNoFact)
-    list.first = nx;
-  else
-    setHi(base(p), nx);
-  if (nx == kNoFact)
-    list.last = p;
-  else
-    setLo(base(nx), p);
-  --list.size;
-  if (!references_.empty()) releaseArgs(f);
-  words_[base(f) + 1] = Value::fromBits(0);  // count 0 marks the slot free
-  setHi(base(f), freeList_);
-  freeList_ = f;
-  --live_;
 }
 
 void FactTable::moveToBack(ListHead& list, FactRef f) {

@@ -230,7 +230,13 @@ class Machine : private SchedulerView {
   void derive(NodeId host, PredId p, const Value* args, bool negative);
   void send(NodeId host, NodeId dest, PredId p, const Value* args, bool negative, std::uint32_t delayMs = 0);
   void action(NodeId from, NodeId dest, PredId p, const Value* args);
-  void consumed(NodeId host, PredId p, FactRef f);
+  // A rule consumed the fact: marked now, unlinked when the rule run ends (finishRuleRun).
+  void consumed(NodeId host, PredId p, FactRef f) {
+    db_->markConsumed(p, f);
+    consumed_.push_back({host, p, f});
+    ++stats_.factsConsumed;
+    ++runConsumed_;
+  }
   void updated(NodeId host, PredId p, FactRef f, const Value* args, bool moveToBack);
   NodeId newNode();
   NodeId appendNode(bool created);
@@ -272,7 +278,18 @@ class Machine : private SchedulerView {
   void runProcesses(NodeId n, PredId p, const Value* args, bool negative);
   void flushOutgoing();
   void applyPriorityRequests();
-  void factAdded(NodeId n, PredId p);  // candidate rules (§6.4.2)
+  // Candidate rules (§6.4.2). A rule that is a candidate already needs no look at its other
+  // predicates (most adds). Inline: called for every fact stored.
+  void factAdded(NodeId n, PredId p) {
+    std::uint64_t* cand = candidates_.data() + std::size_t(n) * tables_.ruleWords;
+    const ListHead* heads = db_->listHeads(n);
+    for (std::uint32_t r : tables_.rulesOf[p])
+      if (!(cand[r / 64] >> (r % 64) & 1) && allPresent(heads, r))
+        cand[r / 64] |= std::uint64_t(1) << (r % 64);
+    if (n == threadNode_ && inRun_ && running_ != threadNode_) [[unlikely]]
+      threadFactAdded(p);
+  }
+  void threadFactAdded(PredId p);
   // Every body predicate has a fact at the node whose list heads are given (thread predicates:
   // at the thread node).
   bool allPresent(const ListHead* heads, std::uint32_t rule) const;
@@ -280,7 +297,11 @@ class Machine : private SchedulerView {
   void reserveForAxioms();
   void startThreadNode();  // _init_thread and the special thread facts (§6.12)
   void sendThread(NodeId host, ThreadId t, PredId p, const Value* args, bool negative);
-  void factRemoved(NodeId n, PredId p);  // after the store lost a fact of p
+  void factRemoved(NodeId n, PredId p) {  // after the store lost a fact of p (inline: every consumption)
+    if (db_->factCount(n, p) != 0) return;
+    std::uint64_t* cand = candidates_.data() + std::size_t(n) * tables_.ruleWords;
+    for (std::uint32_t r : tables_.rulesOf[p]) cand[r / 64] &= ~(std::uint64_t(1) << (r % 64));
+  }
   void collectGarbageNodes();
   // The established VM's deletions during the run (node_recycling.hpp): the nodes whose last
   // reference went in this run, and the node that ran.

@@ -83,8 +83,27 @@ class FactTable {
   // the list when there is none): persistent facts grouped by their first field. One hash look-up
   // finds the group and links the index.
   FactRef insertGrouped(ListHead& list, NodeId node, const Value* args, std::uint32_t count);
-  // Removes a fact; its boxed arguments are released. Read next(f) before erasing f.
-  void erase(ListHead& list, FactRef f);
+  // Removes a fact; its boxed arguments are released. Read next(f) before erasing f. (Inline:
+  // the rule engine consumes a fact for nearly every fact it derives.)
+  void erase(ListHead& list, FactRef f) {
+    if (!plain_) unhash(f);
+    Value* w = words_.data() + base(f);
+    const FactRef p = std::uint32_t(w[0].bits()), nx = std::uint32_t(w[0].bits() >> 32);
+    if (p == kNoFact)
+      list.first = nx;
+    else
+      setHi(base(p), nx);
+    if (nx == kNoFact)
+      list.last = p;
+    else
+      setLo(base(nx), p);
+    --list.size;
+    if (!references_.empty()) references_.release(heap_, w + argOffset_);
+    w[1] = Value::fromBits(0);  // count 0 marks the slot free
+    w[0] = Value::fromBits((std::uint64_t(freeList_) << 32) | p);
+    freeList_ = f;
+    --live_;
+  }
   void moveToBack(ListHead& list, FactRef f);
   // New arguments for a stored fact (in-place update), after any move in the list: its index
   // chains keep the list's order.
@@ -166,6 +185,7 @@ class FactTable {
   FactRef place(ListHead& list, NodeId n, const Value* a, std::uint32_t cnt, FactRef after,
                 bool adopt = false);
   void unlinkIndexes(FactRef f);
+  void unhash(FactRef f);  // out of its index chains and the de-duplication table
   void unlinkIndex(FactRef f, std::uint32_t x);
   // Links f into chain x in front of the next fact of the list with its key (at the end if none).
   void linkInListOrder(const ListHead& list, FactRef f, std::uint32_t x);
