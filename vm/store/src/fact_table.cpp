@@ -207,15 +207,8 @@ FactRef FactTable::place(ListHead& list, NodeId n, const Value* a, std::uint32_t
   words_[b + 1] = Value::fromBits((std::uint64_t(cnt) << 32) | n);
   const FactRef p = after == kNoFact ? list.last : after;
   const FactRef nx = after == kNoFact ? kNoFact : next(after);
-  words_[b] = Value::fromBits((std::uint64_t(nx) << 32) | p);
-  if (p == kNoFact)
-    list.first = f;
-  else
-    setHi(base(p), f);
-  if (nx == kNoFact)
-    list.last = f;
-  else
-    setLo(base(nx), f);
+  connect(list, p, f);
+  connect(list, f, nx);
   ++list.size;
   ++live_;
   return f;
@@ -249,16 +242,10 @@ void FactTable::unhash(FactRef f) {
 
 void FactTable::moveToBack(ListHead& list, FactRef f) {
   if (list.last == f) return;
-  const FactRef p = prevOf(f), nx = next(f);
-  if (p == kNoFact)
-    list.first = nx;
-  else
-    setHi(base(p), nx);
-  setLo(base(nx), p);
-  setLo(base(f), list.last);
-  setHi(base(f), kNoFact);
-  setHi(base(list.last), f);
-  list.last = f;
+  connect(list, prevOf(f), next(f));  // f is not the last: list.last stays
+  const FactRef last = list.last;
+  connect(list, last, f);
+  connect(list, f, kNoFact);
 }
 
 void FactTable::replaceArgs(const ListHead& list, FactRef f, const Value* a) {

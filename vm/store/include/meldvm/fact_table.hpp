@@ -69,12 +69,8 @@ class FactTable {
     for (std::uint32_t i = 0; i < n; ++i) w[argOffset_ + i] = args[i];
     w[1] = Value::fromBits((std::uint64_t(1) << 32) | node);
     const FactRef last = list.last;
-    w[0] = Value::fromBits((std::uint64_t(kNoFact) << 32) | last);
-    if (last == kNoFact)
-      list.first = f;
-    else
-      setHi(base(last), f);
-    list.last = f;
+    connect(list, last, f);
+    connect(list, f, kNoFact);
     ++list.size;
     ++live_;
     return f;
@@ -89,14 +85,7 @@ class FactTable {
     if (!plain_) unhash(f);
     Value* w = words_.data() + base(f);
     const FactRef p = std::uint32_t(w[0].bits()), nx = std::uint32_t(w[0].bits() >> 32);
-    if (p == kNoFact)
-      list.first = nx;
-    else
-      setHi(base(p), nx);
-    if (nx == kNoFact)
-      list.last = p;
-    else
-      setLo(base(nx), p);
+    connect(list, p, nx);
     --list.size;
     if (!references_.empty()) references_.release(heap_, w + argOffset_);
     w[1] = Value::fromBits(0);  // count 0 marks the slot free
@@ -173,6 +162,18 @@ class FactTable {
     words_[w] = Value::fromBits((words_[w].bits() & 0xFFFFFFFFull) | (std::uint64_t(v) << 32));
   }
   FactRef prevOf(FactRef f) const { return lo(base(f)); }
+  // p and nx become neighbours in the list (kNoFact: that end of the list): linking a fact f in
+  // between is connect(p, f) and connect(f, nx); taking it out, connect(p, nx).
+  void connect(ListHead& list, FactRef p, FactRef nx) {
+    if (p == kNoFact)
+      list.first = nx;
+    else
+      setHi(base(p), nx);
+    if (nx == kNoFact)
+      list.last = p;
+    else
+      setLo(base(nx), p);
+  }
 
   FactRef chainHead(FactRef f, std::uint32_t x, std::uint64_t& hash) const;
   // Hash of a node and all arguments, for the de-duplication table. A derivation hashes the same
