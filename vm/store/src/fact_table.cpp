@@ -202,15 +202,9 @@ FactRef FactTable::place(ListHead& list, NodeId n, const Value* a, std::uint32_t
       words_.resize(words_.size() + stride_);
     }
   }
-  const std::size_t b = base(f);
-  for (std::uint32_t i = 0; i < arity(); ++i) words_[b + argOffset_ + i] = a[i];
-  words_[b + 1] = Value::fromBits((std::uint64_t(cnt) << 32) | n);
   const FactRef p = after == kNoFact ? list.last : after;
   const FactRef nx = after == kNoFact ? kNoFact : next(after);
-  connect(list, p, f);
-  connect(list, f, nx);
-  ++list.size;
-  ++live_;
+  fill(list, f, n, a, cnt, p, nx);
   return f;
 }
 

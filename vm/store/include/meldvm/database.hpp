@@ -52,7 +52,7 @@ class Database {
   // Drops every fact of the node (created nodes collected by the GC, §6.10); the dump skips it.
   void removeNode(NodeId n);
   // Whether p's facts hold references (a boxed field, or a node the Heap counts): copies of its
-  // arguments are retained and released (Heap::retainStored).
+  // arguments are retained and released (referenceFields).
   bool holdsReferences(PredId p) const { return !references_[p].empty(); }
   // Those fields, to retain or release a copy of p's arguments held elsewhere (a message).
   const ReferenceFields& referenceFields(PredId p) const { return references_[p]; }

@@ -63,16 +63,8 @@ class FactTable {
     if (!plain_ || freeList_ == kNoFact) [[unlikely]]
       return insert(list, node, args, 1, kNoFact, true);
     const FactRef f = freeList_;
-    Value* w = words_.data() + base(f);
-    freeList_ = std::uint32_t(w[0].bits() >> 32);
-    const std::uint32_t n = arity();
-    for (std::uint32_t i = 0; i < n; ++i) w[argOffset_ + i] = args[i];
-    w[1] = Value::fromBits((std::uint64_t(1) << 32) | node);
-    const FactRef last = list.last;
-    connect(list, last, f);
-    connect(list, f, kNoFact);
-    ++list.size;
-    ++live_;
+    freeList_ = next(f);
+    fill(list, f, node, args, 1, list.last, kNoFact);
     return f;
   }
   // Adds a fact right after the last fact of the node with the same index-0 key (at the end of
@@ -162,6 +154,17 @@ class FactTable {
     words_[w] = Value::fromBits((words_[w].bits() & 0xFFFFFFFFull) | (std::uint64_t(v) << 32));
   }
   FactRef prevOf(FactRef f) const { return lo(base(f)); }
+  // Stores a fact in the taken slot f and links it into the list between p and nx.
+  void fill(ListHead& list, FactRef f, NodeId n, const Value* args, std::uint32_t count, FactRef p,
+            FactRef nx) {
+    Value* w = words_.data() + base(f);
+    for (std::uint32_t i = 0, k = arity(); i < k; ++i) w[argOffset_ + i] = args[i];
+    w[1] = Value::fromBits((std::uint64_t(count) << 32) | n);
+    connect(list, p, f);
+    connect(list, f, nx);
+    ++list.size;
+    ++live_;
+  }
   // p and nx become neighbours in the list (kNoFact: that end of the list): linking a fact f in
   // between is connect(p, f) and connect(f, nx); taking it out, connect(p, nx).
   void connect(ListHead& list, FactRef p, FactRef nx) {

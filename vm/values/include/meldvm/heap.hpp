@@ -89,10 +89,10 @@ class Heap {
 
   // No-ops for unboxed types and for nil.
   void retain(TypeId t, Value v) {
-    if (types_.boxed(t) && !v.isNil()) retainObject(v.asObject());
+    if (types_.boxed(t)) retainObjectValue(v);
   }
   void release(TypeId t, Value v) {
-    if (types_.boxed(t) && !v.isNil() && dropReference(v.asObject())) destroy(v.asObject());
+    if (types_.boxed(t)) releaseObject(v);
   }
   // release() of a value whose type is boxed (a register known to hold one).
   void releaseObject(Value v) {
@@ -111,18 +111,16 @@ class Heap {
     return types_.boxed(t) || (nodes_ && types_.kind(t) == TypeKind::Node);
   }
   void retainStored(TypeId t, Value v) {
-    if (types_.boxed(t)) {
-      if (!v.isNil()) retainObject(v.asObject());
-    } else if (nodes_ && types_.kind(t) == TypeKind::Node) {
-      nodes_->add(v.asNode());
-    }
+    if (types_.boxed(t))
+      retainObjectValue(v);
+    else if (nodes_ && types_.kind(t) == TypeKind::Node)
+      retainNode(v);
   }
   void releaseStored(TypeId t, Value v) {
-    if (types_.boxed(t)) {
-      if (!v.isNil() && dropReference(v.asObject())) destroy(v.asObject());
-    } else if (nodes_ && types_.kind(t) == TypeKind::Node) {
-      nodes_->drop(v.asNode());
-    }
+    if (types_.boxed(t))
+      releaseObject(v);
+    else if (nodes_ && types_.kind(t) == TypeKind::Node)
+      releaseNode(v);
   }
   // Marks v and everything it reaches shared, before v is handed to another thread.
   void share(TypeId t, Value v);
