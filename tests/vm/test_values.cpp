@@ -154,6 +154,31 @@ BOOST_AUTO_TEST_CASE(equality_hash_and_order) {
   BOOST_TEST(e.heap.liveObjects() == 0u);
 }
 
+// A struct of unboxed items built in place equals the one makeTuple copies; a type whose items hold
+// references, a set or a wrong field count is refused before anything is allocated.
+BOOST_AUTO_TEST_CASE(plain_tuples_are_built_in_place) {
+  Env e;
+  const TypeId floats[] = {TypeTable::kFloat, TypeTable::kFloat, TypeTable::kFloat};
+  const TypeId st = e.types.structOf(floats);
+  Value built;
+  Value* items = e.heap.makePlainTuple(st, 3, built);
+  for (int i = 0; i < 3; ++i) items[i] = Value::fromFloat(0.5 * i - 1);
+  const Value copied = e.heap.makeTuple(
+      st, std::vector<Value>{Value::fromFloat(-1), Value::fromFloat(-0.5), Value::fromFloat(0)});
+  BOOST_TEST(valuesEqual(e.types, st, built, copied));
+  BOOST_TEST(e.text(st, built) == ":(-1, -0.5, 0)");
+  BOOST_TEST(e.heap.liveObjects() == 2u);
+
+  Value unused;
+  const TypeId mixed[] = {TypeTable::kInt, TypeTable::kString};
+  BOOST_CHECK_THROW(e.heap.makePlainTuple(e.types.structOf(mixed), 2, unused), std::invalid_argument);
+  BOOST_CHECK_THROW(e.heap.makePlainTuple(st, 2, unused), std::invalid_argument);
+  BOOST_CHECK_THROW(e.heap.makePlainTuple(e.types.set(TypeTable::kInt), 2, unused), std::invalid_argument);
+  BOOST_TEST(e.heap.liveObjects() == 2u);
+  for (Value v : {built, copied}) e.heap.release(st, v);
+  BOOST_TEST(e.heap.liveObjects() == 0u);
+}
+
 // §8 table: float like printf("%.5g").
 BOOST_AUTO_TEST_CASE(floats_print_like_percent_5g) {
   BOOST_TEST(floatText(2.5) == "2.5");

@@ -35,49 +35,54 @@ template <class Op>
 Value zipStructs(BuiltinContext& ctx, std::string_view fn, Value a, Value b, Op op) {
   const auto x = tupleItems(a), y = tupleItems(b);
   if (x.size() != y.size()) throw error(fn, "structs of different sizes");
-  ctx.scratch.clear();
-  for (std::size_t i = 0; i < x.size(); ++i)
-    ctx.scratch.push_back(Value::fromFloat(op(x[i].asFloat(), y[i].asFloat())));
-  return ctx.heap.makeTuple(objectType(a), ctx.scratch);
+  Value result;
+  Value* out = ctx.heap.makePlainTuple(objectType(a), std::uint32_t(x.size()), result);
+  for (std::size_t i = 0; i < x.size(); ++i) out[i] = Value::fromFloat(op(x[i].asFloat(), y[i].asFloat()));
+  return result;
 }
 
-// xi - max - log(sum exp(xj - max)), in place.
-void normalizeInPlace(std::span<double> xs) {
+// The helpers take float lists copied into doubles (ctx.numbers) and float structs' items in place.
+double toDouble(double x) { return x; }
+double toDouble(Value v) { return v.asFloat(); }
+
+// write(i, x_i - max - log(sum_j exp(x_j - max))); x_i is read before write(i, ...).
+template <class T, class Write>
+void normalizeEach(std::span<const T> xs, Write&& write) {
   if (xs.empty()) return;
-  const double mx = *std::max_element(xs.begin(), xs.end());
+  double mx = toDouble(xs[0]);
+  for (const T& x : xs) mx = std::max(mx, toDouble(x));
   double sum = 0;
-  for (double x : xs) sum += std::exp(x - mx);
+  for (const T& x : xs) sum += std::exp(toDouble(x) - mx);
   const double lsum = std::log(sum);
-  for (double& x : xs) x = x - mx - lsum;
+  for (std::size_t i = 0; i < xs.size(); ++i) write(i, toDouble(xs[i]) - mx - lsum);
 }
 
 double dampOne(double a, double b, double f) { return std::log(f * std::exp(b) + (1.0 - f) * std::exp(a)); }
 
-// out_i = log sum_j exp(M[i*n + j] + v_j), n = |v|, M has n*n entries; pushed onto `out`.
-void convolveInto(std::string_view fn, std::span<const double> m, std::span<const double> v,
-                  std::vector<Value>& out) {
+void checkConvolution(std::string_view fn, std::size_t matrix, std::size_t vector) {
+  if (matrix != vector * vector)
+    throw error(
+        fn, "matrix has " + std::to_string(matrix) + " entries, expected " + std::to_string(vector * vector));
+}
+
+// out_i = log sum_j exp(M[i*n + j] + v_j), n = |v| = |out|, M has n*n entries (checkConvolution).
+template <class T>
+void convolveInto(std::span<const T> m, std::span<const T> v, Value* out) {
   const std::size_t n = v.size();
-  if (m.size() != n * n)
-    throw error(fn, "matrix has " + std::to_string(m.size()) + " entries, expected " + std::to_string(n * n));
-  out.clear();
   for (std::size_t i = 0; i < n; ++i) {
     double sum = 0;
-    for (std::size_t j = 0; j < n; ++j) sum += std::exp(m[i * n + j] + v[j]);
-    out.push_back(Value::fromFloat(std::log(sum)));
+    for (std::size_t j = 0; j < n; ++j) sum += std::exp(toDouble(m[i * n + j]) + toDouble(v[j]));
+    out[i] = Value::fromFloat(std::log(sum));
   }
 }
 
-double residualOf(std::span<const double> a, std::span<const double> b) {
+template <class T>
+double residualOf(std::span<const T> a, std::span<const T> b) {
   const std::size_t n = std::min(a.size(), b.size());
   if (n == 0) return 0.0;
   double sum = 0;
-  for (std::size_t i = 0; i < n; ++i) sum += std::fabs(std::exp(a[i]) - std::exp(b[i]));
+  for (std::size_t i = 0; i < n; ++i) sum += std::fabs(std::exp(toDouble(a[i])) - std::exp(toDouble(b[i])));
   return sum / double(n);
-}
-
-void structFloats(Value s, std::vector<double>& out) {
-  out.clear();
-  for (Value v : tupleItems(s)) out.push_back(v.asFloat());
 }
 
 }  // namespace
@@ -95,8 +100,9 @@ Value randint(BuiltinContext& ctx, std::span<const Value> a, TypeId) {
 
 Value normalize(BuiltinContext& ctx, std::span<const Value> a, TypeId result) {
   readFloats(a[0], ctx.numbers);
-  normalizeInPlace(ctx.numbers);
-  return floatList(ctx, result, ctx.numbers);
+  std::vector<double>& xs = ctx.numbers;
+  normalizeEach(std::span<const double>(xs), [&](std::size_t i, double x) { xs[i] = x; });
+  return floatList(ctx, result, xs);
 }
 
 Value damp(BuiltinContext& ctx, std::span<const Value> a, TypeId result) {
@@ -118,7 +124,9 @@ Value convolve(BuiltinContext& ctx, std::span<const Value> a, TypeId result) {
   const std::size_t mn = buf.size();
   for (Value l = a[1]; !l.isNil(); l = listTail(l)) buf.push_back(listHead(l).asFloat());
   const std::span<const double> all(buf);
-  convolveInto("convolve", all.first(mn), all.subspan(mn), ctx.scratch);
+  checkConvolution("convolve", mn, all.size() - mn);
+  ctx.scratch.resize(all.size() - mn);
+  convolveInto(all.first(mn), all.subspan(mn), ctx.scratch.data());
   return ctx.heap.makeList(result, ctx.scratch);
 }
 
@@ -170,34 +178,28 @@ Value dampstruct(BuiltinContext& ctx, std::span<const Value> a, TypeId) {
 }
 
 Value normalizestruct(BuiltinContext& ctx, std::span<const Value> a, TypeId) {
-  structFloats(a[0], ctx.numbers);
-  normalizeInPlace(ctx.numbers);
-  ctx.scratch.clear();
-  for (double x : ctx.numbers) ctx.scratch.push_back(Value::fromFloat(x));
-  return ctx.heap.makeTuple(objectType(a[0]), ctx.scratch);
+  const auto xs = tupleItems(a[0]);
+  Value result;
+  Value* out = ctx.heap.makePlainTuple(objectType(a[0]), std::uint32_t(xs.size()), result);
+  normalizeEach(xs, [&](std::size_t i, double x) { out[i] = Value::fromFloat(x); });
+  return result;
 }
 
-Value residualstruct(BuiltinContext& ctx, std::span<const Value> a, TypeId) {
+Value residualstruct(BuiltinContext&, std::span<const Value> a, TypeId) {
   const auto x = tupleItems(a[0]), y = tupleItems(a[1]);
   if (x.size() != y.size()) throw error("residualstruct", "structs of different sizes");
-  ctx.numbers.clear();
-  for (Value v : x) ctx.numbers.push_back(v.asFloat());
-  for (Value v : y) ctx.numbers.push_back(v.asFloat());
-  const std::span<const double> all(ctx.numbers);
-  return Value::fromFloat(residualOf(all.first(x.size()), all.subspan(x.size())));
+  return Value::fromFloat(residualOf(x, y));
 }
 
 Value convolvestruct(BuiltinContext& ctx, std::span<const Value> a, TypeId) {
   // M: a struct of n*n floats (25 in the belief-propagation programs), v: a struct of n floats;
   // the result has v's struct type.
-  std::vector<double>& buf = ctx.numbers;
-  buf.clear();
-  for (Value v : tupleItems(a[0])) buf.push_back(v.asFloat());
-  const std::size_t mn = buf.size();
-  for (Value v : tupleItems(a[1])) buf.push_back(v.asFloat());
-  const std::span<const double> all(buf);
-  convolveInto("convolvestruct", all.first(mn), all.subspan(mn), ctx.scratch);
-  return ctx.heap.makeTuple(objectType(a[1]), ctx.scratch);
+  const auto m = tupleItems(a[0]), v = tupleItems(a[1]);
+  checkConvolution("convolvestruct", m.size(), v.size());
+  Value result;
+  Value* out = ctx.heap.makePlainTuple(objectType(a[1]), std::uint32_t(v.size()), result);
+  convolveInto(m, v, out);
+  return result;
 }
 
 }  // namespace meldvm::builtins

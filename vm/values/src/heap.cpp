@@ -5,6 +5,7 @@
 #include <memory>
 #include <new>
 #include <stdexcept>
+#include <type_traits>
 
 #include "meldvm/value_ops.hpp"
 
@@ -58,11 +59,20 @@ std::size_t Heap::classOf(std::size_t bytes) {
   return cls;
 }
 
-std::size_t Heap::classBytes(std::size_t cls) {
-  return cls < kSmallClasses ? (cls + 1) * 8 : std::size_t(1) << (cls - kSmallClasses + 10);
+[[gnu::always_inline]] inline void* Heap::allocate(std::size_t bytes) {
+  if (bytes <= kSmallMax) {
+    const std::size_t cls = smallClassOf(bytes);
+    if (FreeBlock* f = free_[cls]) {
+      free_[cls] = f->next;
+      ++live_;
+      bytesInUse_ += classBytes(cls);
+      return f;
+    }
+  }
+  return allocateSlow(bytes);
 }
 
-void* Heap::allocate(std::size_t bytes) {
+void* Heap::allocateSlow(std::size_t bytes) {
   const std::size_t cls = classOf(bytes);
   const std::size_t size = classBytes(cls);
   void* p;
@@ -96,20 +106,14 @@ void* Heap::allocate(std::size_t bytes) {
   return p;
 }
 
-void Heap::deallocate(Object* o, std::size_t bytes) {
-  const std::size_t cls = classOf(bytes);
+[[gnu::always_inline]] inline void Heap::recycle(Object* o, std::size_t bytes) {
+  const std::size_t cls = bytes <= kSmallMax ? smallClassOf(bytes) : classOf(bytes);
+  if (isShared(o)) {  // freed by whichever thread dropped the last reference
+    if (Heap* owner = ownerOf(o, bytes); owner != this) return owner->pushRemote(o, cls);
+  }
   --live_;
   bytesInUse_ -= classBytes(cls);
-  auto* f = new (static_cast<void*>(o)) FreeBlock{free_[cls]};
-  free_[cls] = f;
-}
-
-void Heap::recycle(Object* o) {
-  const std::size_t bytes = objectBytes(o);
-  if (isShared(o)) {  // freed by whichever thread dropped the last reference
-    if (Heap* owner = ownerOf(o, bytes); owner != this) return owner->pushRemote(o, classOf(bytes));
-  }
-  deallocate(o, bytes);
+  free_[cls] = new (static_cast<void*>(o)) FreeBlock{free_[cls]};
 }
 
 Heap* Heap::ownerOf(const Object* o, std::size_t bytes) const {
@@ -150,8 +154,8 @@ void Heap::shareObject(Object* o) {
   }
 }
 
-std::size_t Heap::objectBytes(const Object* o) const {
-  switch (types_.kind(o->type)) {
+inline std::size_t Heap::objectBytes(TypeKind k, const Object* o) {
+  switch (k) {
     case TypeKind::String:
       return sizeof(StringObject) + static_cast<const StringObject*>(o)->length;
     case TypeKind::List:
@@ -214,7 +218,8 @@ Value Heap::makeTuple(TypeId type, std::span<const Value> items) {
   auto* out = reinterpret_cast<Value*>(t + 1);
   t->capacity = std::uint32_t(items.size());
   if (k != TypeKind::Set && plainItems(type)) {  // the float structs of belief propagation
-    std::uninitialized_copy(items.begin(), items.end(), out);
+    static_assert(std::is_trivially_copyable_v<Value>);
+    if (!items.empty()) std::memcpy(static_cast<void*>(out), items.data(), sizeof(Value) * items.size());
     t->size = std::uint32_t(items.size());
     return Value::fromObject(t);
   }
@@ -234,6 +239,20 @@ Value Heap::makeTuple(TypeId type, std::span<const Value> items) {
   return Value::fromObject(t);
 }
 
+Value* Heap::makePlainTuple(TypeId type, std::uint32_t size, Value& result) {
+  const TypeKind k = types_.kind(type);
+  if ((k != TypeKind::Struct && k != TypeKind::Array) || !plainItems(type))
+    throw std::invalid_argument("meldvm: makePlainTuple needs a struct or array of unboxed items");
+  if (k == TypeKind::Struct && size != types_.fields(type).size())
+    throw std::invalid_argument("meldvm: struct " + types_.name(type) + " built with a wrong field count");
+  auto* t = new (allocate(sizeof(TupleObject) + sizeof(Value) * size)) TupleObject;
+  t->refs = 1;
+  t->type = type;
+  t->size = t->capacity = size;
+  result = Value::fromObject(t);
+  return reinterpret_cast<Value*>(t + 1);
+}
+
 bool Heap::computePlainItems(TypeId t) {
   if (plain_.size() < types_.size()) plain_.resize(types_.size(), kUnknown);
   bool plain = true;
@@ -249,10 +268,11 @@ bool Heap::computePlainItems(TypeId t) {
 void Heap::destroy(Object* o) {
   // Iterative along list tails, so that releasing a long list cannot overflow the stack.
   while (o) {
+    const TypeKind k = types_.kind(o->type);
     Object* rest = nullptr;
-    if (types_.kind(o->type) == TypeKind::List || !plainItems(o->type))
+    if (k == TypeKind::List || (k != TypeKind::String && !plainItems(o->type)))
       rest = visitItems(types_, o, [&](TypeId t, Value v) { releaseStored(t, v); });
-    recycle(o);
+    recycle(o, objectBytes(k, o));
     o = rest && dropReference(rest) ? rest : nullptr;
   }
 }

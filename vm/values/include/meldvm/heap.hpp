@@ -86,6 +86,11 @@ class Heap {
   Value makeList(TypeId listType, std::span<const Value> items, Value tail = Value::nil());  // items ++ tail
   // Struct, array or set (`type` says which); a set keeps the first copy of equal items.
   Value makeTuple(TypeId type, std::span<const Value> items);
+  // A struct or array of `size` items that hold no references (the float structs of belief
+  // propagation), built in place: result gets the new object (a reference the caller owns), the
+  // items are returned for the caller to write, every one, before anything can read or release
+  // the object (they start as whatever the block held).
+  Value* makePlainTuple(TypeId type, std::uint32_t size, Value& result);
 
   // No-ops for unboxed types and for nil.
   void retain(TypeId t, Value v) {
@@ -172,15 +177,22 @@ class Heap {
   }
 
   static std::size_t classOf(std::size_t bytes);
-  static std::size_t classBytes(std::size_t cls);
-  void* allocate(std::size_t bytes);  // raw block; the builder constructs the object
+  static constexpr std::size_t smallClassOf(std::size_t bytes) { return (bytes + 7) / 8 - 1; }
+  static constexpr std::size_t classBytes(std::size_t cls) {
+    return cls < kSmallClasses ? (cls + 1) * 8 : std::size_t(1) << (cls - kSmallClasses + 10);
+  }
+  // A raw block (the builder constructs the object): a small one from its class's free list in a
+  // few instructions when the list has one (lists and the float structs of belief propagation
+  // are made and dropped millions of times), else allocateSlow.
+  void* allocate(std::size_t bytes);
+  void* allocateSlow(std::size_t bytes);
   ConsCell* newCell(TypeId listType);
-  void deallocate(Object* o, std::size_t bytes);
-  void recycle(Object* o);  // o's block goes back to the heap that allocated it
+  // o's block (of `bytes`) goes back to the heap that allocated it.
+  void recycle(Object* o, std::size_t bytes);
   Heap* ownerOf(const Object* o, std::size_t bytes) const;
   void pushRemote(Object* o, std::size_t cls);
   void drainRemote();
-  std::size_t objectBytes(const Object* o) const;
+  static std::size_t objectBytes(TypeKind k, const Object* o);  // k: the kind of o's type
   void destroy(Object* o);  // count reached zero: release children, recycle the block
   // Whether the items of a struct, array or set type hold no references (nothing to retain or
   // release: they copy as plain words). Worked out once per type.
