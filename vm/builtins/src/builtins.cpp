@@ -5,19 +5,6 @@
 
 namespace meldvm {
 
-namespace {
-
-constexpr BuiltinFn kFunctions[] = {
-#define BUILTIN(ID, NAME, IMPL, SIG, TYPE_ARG) builtins::IMPL,
-#include "meldvm/builtins.def"
-#undef BUILTIN
-};
-static_assert(std::size(kFunctions) == kBuiltinIdCount);
-
-}  // namespace
-
-BuiltinFn builtinFunction(std::uint16_t id) { return id < kBuiltinIdCount ? kFunctions[id] : nullptr; }
-
 Value callBuiltin(BuiltinContext& ctx, std::string_view name, std::span<const Value> args, TypeId result) {
   const BuiltinInfo* b = findBuiltin(name);
   if (!b) throw RuntimeError("unknown built-in function '" + std::string(name) + "'");

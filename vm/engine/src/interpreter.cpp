@@ -53,10 +53,31 @@ void Interpreter::blockFlags(const CodeBlock& b, BlockInfo& info, bool scanLoops
     v[r] = program_.types.boxed(b.registerTypes[r]);
     if (v[r]) info.boxedRegs.push_back(std::uint32_t(r));
   }
-  if (scanLoops)
-    detail::forEachInstruction(b.code, [&](std::size_t pc) {
-      if (detail::isLoop(b.code[pc]) && (b.code[pc + 3] & kIterConsume)) v[regs] = 1;
-    });
+  info.aliased.assign(b.slots, 0);
+  if (!scanLoops) return;
+  detail::forEachInstruction(b.code, [&](std::size_t pc) {
+    if (detail::isLoop(b.code[pc]) && (b.code[pc + 3] & kIterConsume)) v[regs] = 1;
+  });
+  aliasedSlots(b, info);
+}
+
+// A slot is aliased when an earlier slot may hold a fact of its predicate: both bound by loops of
+// the same predicate, or either bound by loops of several predicates, or by a persistent process's
+// trigger (slot 0, any predicate). Only an aliased slot's loop looks for its fact in the others.
+void Interpreter::aliasedSlots(const CodeBlock& b, BlockInfo& info) const {
+  constexpr std::int64_t kUnbound = -2, kAny = -1;
+  std::vector<std::int64_t> pred(b.slots, kUnbound);
+  detail::forEachInstruction(b.code, [&](std::size_t pc) {
+    if (!detail::isLoop(b.code[pc])) return;
+    std::int64_t& p = pred[b.code[pc + 2]];
+    p = p == kUnbound || p == b.code[pc + 1] ? std::int64_t(b.code[pc + 1]) : kAny;
+  });
+  for (const Process& process : program_.processes)
+    if (&process.block == &b && b.slots > 0) pred[0] = kAny;
+  for (std::size_t s = 0; s < b.slots; ++s)
+    for (std::size_t outer = 0; outer < s && !info.aliased[s]; ++outer)
+      info.aliased[s] =
+          pred[outer] != kUnbound && (pred[outer] == kAny || pred[s] == kAny || pred[outer] == pred[s]);
 }
 
 const Interpreter::BlockInfo& Interpreter::infoOf(const CodeBlock& b) {
@@ -114,7 +135,7 @@ void Interpreter::run(const CodeBlock& block, NodeId host, bool negative, PredId
                       const Value* trigger) {
   const Alloc a = enter(block);
   const BlockInfo& info = infoOf(block);
-  Frame f{&block, block.code.data(), a.regs, a.slots, info.boxed.data(), host, negative};
+  Frame f{&block, block.code.data(), a.regs, a.slots, info.boxed.data(), info.aliased.data(), host, negative};
   if (trigger) f.slots[0] = Slot{triggerPred, host, kNoFact, 0, trigger};
   try {
     start(f, info.native);
@@ -395,7 +416,7 @@ struct NativeHelpers {
     return F(vm(v).ctx_, {reinterpret_cast<const Value*>(args), count}, TypeId(result)).bits();
   }
   static constexpr meld_native_builtin kBuiltins[] = {
-      // builtins.def's ids are dense, in order
+  // builtins.def's ids are dense, in order
 #define BUILTIN(id, name, impl, signature, typeArg) &builtin<&builtins::impl>,
 #include "meldvm/builtins.def"
 #undef BUILTIN
@@ -441,7 +462,8 @@ Value Interpreter::callFunction(std::uint32_t fn, const Value* args, NodeId host
   ++depth_;
   const Alloc a = enter(func.block);
   const BlockInfo& info = infoOf(func.block);
-  Frame f{&func.block, func.block.code.data(), a.regs, a.slots, info.boxed.data(), host, false};
+  Frame f{&func.block,       func.block.code.data(), a.regs, a.slots,
+          info.boxed.data(), info.aliased.data(),    host,   false};
   const std::size_t n = func.params.size();
   for (std::size_t i = 0; i < n; ++i) {
     heap_.retain(func.params[i], args[i]);

@@ -50,7 +50,8 @@ class Interpreter {
     const std::uint32_t* code;
     Value* regs;
     Slot* slots;
-    const std::uint8_t* boxed;  // per register, then "some loop consumes"
+    const std::uint8_t* boxed;    // per register, then "some loop consumes"
+    const std::uint8_t* aliased;  // per slot: an earlier slot may hold a fact of its predicate
     NodeId host;
     bool negative;
     bool updated = false;  // an UPDATE ran in this block (RET_IF_UPDATED)
@@ -77,9 +78,10 @@ class Interpreter {
   Status start(Frame& f, meld_native_block native);
   friend struct NativeHelpers;  // native_abi.h's helpers (interpreter.cpp): this class's code
   void ruleFired();             // a FIRE: the machine's count of rules fired
-  // Whether a linear loop passes over a fact: consumed, or bound by an enclosing loop (§6.4.3).
+  // Whether a linear loop passes over a fact: consumed, or bound by an enclosing loop (§6.4.3;
+  // only a slot that may hold a fact of the same predicate can).
   [[gnu::always_inline]] bool skipFact(const Frame& f, std::uint32_t slot, PredId p, FactRef fact) const {
-    return db_.consumedMark(p, fact) || (slot != 0 && boundOutside(f, slot, p, fact));
+    return db_.consumedMark(p, fact) || (f.aliased[slot] && boundOutside(f, slot, p, fact));
   }
   bool boundOutside(const Frame& f, std::uint32_t slot, PredId p, FactRef fact) const;
   // The rule fired: consume the linear facts bound from firstSlot on (inline: a persistent rule's
@@ -131,6 +133,7 @@ class Interpreter {
   };
   struct BlockInfo {
     std::vector<std::uint8_t> boxed;       // blockFlags
+    std::vector<std::uint8_t> aliased;     // Frame::aliased (blockFlags)
     std::vector<std::uint32_t> boxedRegs;  // the boxed registers, which leave() releases
     meld_native_block native = nullptr;
   };
@@ -138,6 +141,7 @@ class Interpreter {
   void leave(const Frame& f, const Alloc& a, const BlockInfo& info);
   const BlockInfo& infoOf(const CodeBlock& b);
   void blockFlags(const CodeBlock& b, BlockInfo& info, bool scanLoops) const;
+  void aliasedSlots(const CodeBlock& b, BlockInfo& info) const;
 
   Machine& machine_;
   const Program& program_;

@@ -175,7 +175,7 @@ Value Heap::makeString(std::string_view s) {
   return Value::fromObject(str);
 }
 
-ConsCell* Heap::newCell(TypeId listType) {
+[[gnu::always_inline]] inline ConsCell* Heap::newCell(TypeId listType) {
   auto* c = new (allocate(sizeof(ConsCell))) ConsCell;
   c->refs = 1;
   c->type = listType;

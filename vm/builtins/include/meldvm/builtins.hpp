@@ -68,9 +68,6 @@ struct BuiltinContext {
 
 using BuiltinFn = Value (*)(BuiltinContext& ctx, std::span<const Value> args, TypeId result);
 
-// The implementation of the built-in with this id (builtins.def), or nullptr when there is none.
-BuiltinFn builtinFunction(std::uint16_t id);
-
 // Convenience for tests and the interpreter: look up by name and call.
 Value callBuiltin(BuiltinContext& ctx, std::string_view name, std::span<const Value> args, TypeId result);
 
@@ -82,5 +79,17 @@ namespace builtins {
 #include "meldvm/builtins.def"
 #undef BUILTIN
 }  // namespace builtins
+
+inline constexpr BuiltinFn kBuiltinFunctions[] = {
+#define BUILTIN(ID, NAME, IMPL, SIG, TYPE_ARG) builtins::IMPL,
+#include "meldvm/builtins.def"
+#undef BUILTIN
+};
+static_assert(std::size(kBuiltinFunctions) == kBuiltinIdCount);
+
+// The implementation of the built-in with this id (builtins.def), or nullptr when there is none.
+inline BuiltinFn builtinFunction(std::uint16_t id) {
+  return id < kBuiltinIdCount ? kBuiltinFunctions[id] : nullptr;
+}
 
 }  // namespace meldvm
