@@ -84,9 +84,7 @@ MemoryUse Machine::memoryUse() const {
   return m;
 }
 
-// Messages to take in, or rules the linear facts stored at once by other nodes' runs (or its own,
-// sent to itself) made candidates.
-bool Machine::hasWork(NodeId n) const { return !mail_->empty(n) || hasCandidate(n); }
+bool Machine::hasWork(NodeId n) const { return !mail_->empty(n); }
 
 // ---- set-up and the scheduler loop ----
 
@@ -213,7 +211,7 @@ bool Machine::runNext() {
     runNode(node);
     return true;
   }
-  if (threadNode_ != kNoNode && hasWork(threadNode_)) {
+  if (threadNode_ != kNoNode && (hasWork(threadNode_) || hasCandidate(threadNode_))) {
     runNode(threadNode_);
     return true;
   }
@@ -447,13 +445,8 @@ void Machine::send(NodeId host, NodeId dest, PredId p, const Value* args, bool n
     }
   }
   if (dest >= db_->nodeCount()) noSuchNode(p, dest);
-  if (!host_) {  // stored or posted when the run ends (flushOutgoing): fetch what that will touch
-    if (program_.predicates[p].linear && dest != threadNode_) {
-      db_->prefetchHead(dest, p);
-      __builtin_prefetch(candidates_.data() + std::size_t(dest) * tables_.ruleWords, 1);
-    } else {
-      mail_->prefetchBox(dest);
-    }
+  if (!host_) {  // posted when the run ends (flushOutgoing): fetch what the post will touch
+    mail_->prefetchBox(dest);
     sched_.prefetch(dest);
   }
   if (!db_->alive(dest)) noSuchNode(p, dest);
@@ -674,7 +667,7 @@ void Machine::takeStoredFact(NodeId n, PredId p, const Value* args, std::uint32_
 }
 
 void Machine::takeNodeDone(NodeId n) {
-  if (hasWork(n)) sched_.wake(n);
+  if (hasWork(n) || hasCandidate(n)) sched_.wake(n);
 }
 
 void Machine::dump(std::ostream& out) const { dumpDatabase(out, *db_); }

@@ -22,15 +22,6 @@ void Machine::postOrRoute(const PendingFact& e, const Value* args) {
       return;
     }
   }
-  if (placedAtOnce(e)) {
-    // Stored in the receiver as it arrives, as the established VM does: it is the fact's place in
-    // the receiver's list either way (the receiver does not run before it would have taken the
-    // fact in), and a mailbox would only hold it until then.
-    db_->addLinearTrusted(e.node, e.pred, args);  // the buffer's references go to the fact
-    factAdded(e.node, e.pred);
-    if (!(nodeRunning_ && e.node == running_)) sched_.wake(e.node);
-    return;
-  }
   post(e.node, e.pred, args, e.negative, /*adopt=*/true);  // the buffer's references go to the mailbox
 }
 
@@ -64,16 +55,10 @@ void Machine::postAll(const std::vector<PendingFact>& facts, const std::vector<s
   // (A shard's facts may name nodes of other threads beyond its own arrays: no prefetch there.)
   const NodeId nodes = shard_ ? db_->nodeCount() : ~NodeId(0);
   auto at = [&](std::size_t i) -> const PendingFact& { return facts[order ? (*order)[i] : i]; };
-  auto prefetch = [&](const PendingFact& e) {
-    if (e.node >= nodes) return;
-    if (placedAtOnce(e))
-      db_->prefetchHead(e.node, e.pred);
-    else
-      mail_->prefetchTail(e.node);
-  };
-  for (std::size_t i = 0; i < n && i < kTailAhead; ++i) prefetch(at(i));
+  for (std::size_t i = 0; i < n && i < kTailAhead; ++i)
+    if (at(i).node < nodes) mail_->prefetchTail(at(i).node);
   for (std::size_t i = 0; i < n; ++i) {
-    if (i + kTailAhead < n) prefetch(at(i + kTailAhead));
+    if (i + kTailAhead < n && at(i + kTailAhead).node < nodes) mail_->prefetchTail(at(i + kTailAhead).node);
     const PendingFact& e = at(i);
     postOrRoute(e, sentArgs_.data() + e.args);  // takes the buffer's references
   }

@@ -375,10 +375,6 @@ class Machine : private SchedulerView {
   ShardPlacement placement_;
   NodeId nextCreated_ = 0, createdEnd_ = 0;                   // a shard's block of ids for created nodes
   void postOrRoute(const PendingFact& e, const Value* args);  // takes over the references of args
-  // A linear fact sent to a node of this store goes into the receiver's store when the run ends
-  // (flushOutgoing), not through its mailbox; one for the thread node waits in its mailbox until
-  // the thread node runs (its facts are visible to every node's rules).
-  bool placedAtOnce(const PendingFact& e) const { return tables_.isLinear[e.pred] && e.node != threadNode_; }
   NodeId running_ = 0;
   bool inRun_ = false;
   bool nodeRunning_ = false;  // within runNode (its repeated runs included)

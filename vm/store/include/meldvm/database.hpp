@@ -162,10 +162,6 @@ class Database {
     for (std::size_t off = 0; off < bytes; off += 64) __builtin_prefetch(p + off);
     for (const GroupInputs& g : nodeInputs_) g.prefetchRun(n);
   }
-  // A hint that a linear fact of p is stored at node n soon: fetch its list head.
-  [[gnu::always_inline]] void prefetchHead(NodeId n, PredId p) const {
-    __builtin_prefetch(&heads_.of(n)[p], 1);
-  }
   // A hint that derive/retract(n, p, args) comes soon: fetch the hash buckets it will look at.
   [[gnu::always_inline]] void prefetchDerive(NodeId n, PredId p, const Value* args) const {
     if (const std::uint32_t g = groupInputs_[p]; g != kNoTable) {
