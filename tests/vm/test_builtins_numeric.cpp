@@ -63,6 +63,8 @@ BOOST_AUTO_TEST_CASE(convolve_is_a_log_space_matrix_vector_product) {
   BOOST_CHECK_EQUAL(show("convolve", {floats({0}), floats({0})}, tLF), "[0]");
   BOOST_CHECK_EQUAL(show("convolve", {Value::nil(), Value::nil()}, tLF), "[]");
   BOOST_CHECK_THROW(call("convolve", {floats({1, 2, 3}), floats({0, 1})}, tLF), RuntimeError);
+  // Every e^(M + v) underflows: the sum counts as the smallest normal double (log = -708.4), not 0.
+  BOOST_CHECK_EQUAL(show("convolve", {floats({-800}), floats({-100})}, tLF), "[-708.4]");
 }
 
 BOOST_AUTO_TEST_CASE(residual_is_the_mean_absolute_difference_of_exponentials) {
@@ -114,6 +116,8 @@ BOOST_AUTO_TEST_CASE(float_struct_variants) {
   const TypeId s5 = floatStruct(5);
   BOOST_CHECK_EQUAL(show("convolvestruct", {mat, fstruct({0, 0, 0, 0, 0})}, s5),
                     ":(1.6094, 1.6094, 1.6094, 1.6094, 1.6094)");  // log 5
+  BOOST_CHECK_EQUAL(show("convolvestruct", {fstruct({-800, -800, -800, -800}), fstruct({-100, 0})}, s2),
+                    ":(-708.4, -708.4)");  // underflow: log of the smallest normal double
   BOOST_CHECK_THROW(call("addfloatstructs", {fstruct({1, 2}), fstruct({1})}, s2), RuntimeError);
   BOOST_CHECK_THROW(call("convolvestruct", {fstruct({1, 2, 3}), fstruct({0, 1})}, s2), RuntimeError);
 }

@@ -66,12 +66,15 @@ void checkConvolution(std::string_view fn, std::size_t matrix, std::size_t vecto
 }
 
 // out_i = log sum_j exp(M[i*n + j] + v_j), n = |v| = |out|, M has n*n entries (checkConvolution).
+// A sum that underflows to 0 counts as the smallest normal double, as in the established VM: a
+// very unlikely row gives about -708, not -inf.
 template <class T>
 void convolveInto(std::span<const T> m, std::span<const T> v, Value* out) {
   const std::size_t n = v.size();
   for (std::size_t i = 0; i < n; ++i) {
     double sum = 0;
     for (std::size_t j = 0; j < n; ++j) sum += std::exp(toDouble(m[i * n + j]) + toDouble(v[j]));
+    if (sum == 0) sum = std::numeric_limits<double>::min();
     out[i] = Value::fromFloat(std::log(sum));
   }
 }
