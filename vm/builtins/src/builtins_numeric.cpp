@@ -79,15 +79,6 @@ void convolveInto(std::span<const T> m, std::span<const T> v, Value* out) {
   }
 }
 
-template <class T>
-double residualOf(std::span<const T> a, std::span<const T> b) {
-  const std::size_t n = std::min(a.size(), b.size());
-  if (n == 0) return 0.0;
-  double sum = 0;
-  for (std::size_t i = 0; i < n; ++i) sum += std::fabs(std::exp(toDouble(a[i])) - std::exp(toDouble(b[i])));
-  return sum / double(n);
-}
-
 }  // namespace
 
 Value sigmoid(BuiltinContext&, std::span<const Value> a, TypeId) {
@@ -191,7 +182,11 @@ Value normalizestruct(BuiltinContext& ctx, std::span<const Value> a, TypeId) {
 Value residualstruct(BuiltinContext&, std::span<const Value> a, TypeId) {
   const auto x = tupleItems(a[0]), y = tupleItems(a[1]);
   if (x.size() != y.size()) throw error("residualstruct", "structs of different sizes");
-  return Value::fromFloat(residualOf(x, y));
+  if (x.empty()) return Value::fromFloat(0.0);
+  double sum = 0;
+  for (std::size_t i = 0; i < x.size(); ++i)
+    sum += std::fabs(std::exp(x[i].asFloat()) - std::exp(y[i].asFloat()));
+  return Value::fromFloat(sum / double(x.size()));
 }
 
 Value convolvestruct(BuiltinContext& ctx, std::span<const Value> a, TypeId) {

@@ -52,8 +52,7 @@ Heap::~Heap() {
 }
 
 std::size_t Heap::classOf(std::size_t bytes) {
-  bytes = (bytes + 7) & ~std::size_t(7);
-  if (bytes <= kSmallMax) return bytes / 8 - 1;
+  if (bytes <= kSmallMax) return smallClassOf(bytes);
   const std::size_t cls = kSmallClasses + std::size_t(std::bit_width(bytes - 1)) - 10;
   if (cls >= kSmallClasses + kLargeClasses) throw std::length_error("meldvm: object too large");
   return cls;
@@ -206,21 +205,25 @@ Value Heap::makeList(TypeId listType, std::span<const Value> items, Value tail) 
   return Value::fromObject(list);
 }
 
+[[gnu::always_inline]] inline TupleObject* Heap::newTuple(TypeId type, TypeKind k, std::size_t size) {
+  if (k == TypeKind::Struct && size != types_.fields(type).size())
+    throw std::invalid_argument("meldvm: struct " + types_.name(type) + " built with a wrong field count");
+  auto* t = new (allocate(sizeof(TupleObject) + sizeof(Value) * size)) TupleObject;
+  t->refs = 1;
+  t->type = type;
+  t->size = t->capacity = std::uint32_t(size);
+  return t;
+}
+
 Value Heap::makeTuple(TypeId type, std::span<const Value> items) {
   const TypeKind k = types_.kind(type);
   if (k != TypeKind::Struct && k != TypeKind::Array && k != TypeKind::Set)
     throw std::invalid_argument("meldvm: makeTuple needs a struct, array or set type");
-  if (k == TypeKind::Struct && items.size() != types_.fields(type).size())
-    throw std::invalid_argument("meldvm: struct " + types_.name(type) + " built with a wrong field count");
-  auto* t = new (allocate(sizeof(TupleObject) + sizeof(Value) * items.size())) TupleObject;
-  t->refs = 1;
-  t->type = type;
+  TupleObject* t = newTuple(type, k, items.size());
   auto* out = reinterpret_cast<Value*>(t + 1);
-  t->capacity = std::uint32_t(items.size());
-  if (k != TypeKind::Set && plainItems(type)) {  // the float structs of belief propagation
+  if (k != TypeKind::Set && plainItems(type)) {  // plain words: nothing to retain
     static_assert(std::is_trivially_copyable_v<Value>);
     if (!items.empty()) std::memcpy(static_cast<void*>(out), items.data(), sizeof(Value) * items.size());
-    t->size = std::uint32_t(items.size());
     return Value::fromObject(t);
   }
   std::uint32_t n = 0;
@@ -243,12 +246,7 @@ Value* Heap::makePlainTuple(TypeId type, std::uint32_t size, Value& result) {
   const TypeKind k = types_.kind(type);
   if ((k != TypeKind::Struct && k != TypeKind::Array) || !plainItems(type))
     throw std::invalid_argument("meldvm: makePlainTuple needs a struct or array of unboxed items");
-  if (k == TypeKind::Struct && size != types_.fields(type).size())
-    throw std::invalid_argument("meldvm: struct " + types_.name(type) + " built with a wrong field count");
-  auto* t = new (allocate(sizeof(TupleObject) + sizeof(Value) * size)) TupleObject;
-  t->refs = 1;
-  t->type = type;
-  t->size = t->capacity = size;
+  TupleObject* t = newTuple(type, k, size);
   result = Value::fromObject(t);
   return reinterpret_cast<Value*>(t + 1);
 }

@@ -187,6 +187,9 @@ class Heap {
   void* allocate(std::size_t bytes);
   void* allocateSlow(std::size_t bytes);
   ConsCell* newCell(TypeId listType);
+  // A struct, array or set object (kind k) with room for `size` items, counted once; the builder
+  // writes the items (a struct's field count is checked here).
+  TupleObject* newTuple(TypeId type, TypeKind k, std::size_t size);
   // o's block (of `bytes`) goes back to the heap that allocated it.
   void recycle(Object* o, std::size_t bytes);
   Heap* ownerOf(const Object* o, std::size_t bytes) const;
