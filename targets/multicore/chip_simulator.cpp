@@ -167,7 +167,6 @@ bool ChipSimulator::someoneCanGive(unsigned except) const {
 void ChipSimulator::requestRebalance(simcore::SimTime now, bool forced) {
   if (barrier_ || (!forced && now < nextRebalance_)) return;
   barrier_ = true;
-  barrierAsked_ = now;
   inBarrier_ = 0;
   // Idle cores are in the barrier at once; busy ones arrive when their run ends.
   for (unsigned c = 0; c < chip_.cores; ++c) {
@@ -216,7 +215,7 @@ void ChipSimulator::completeBarrier(simcore::SimTime now) {
     wake(c, resume);  // a core with nothing to do goes idle again at once
   }
   barrier_ = false;
-  nextRebalance_ = resume + StealPolicy::nextRebalanceAfter(double(resume - barrierAsked_));
+  nextRebalance_ = resume + StealPolicy::nextRebalanceAfter(cost);
   windowStart_ = resume;
   for (unsigned c = 0; c < chip_.cores; ++c) idleAtWindow_[c] = stats_[c].idleNs;
 }

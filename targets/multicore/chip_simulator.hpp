@@ -121,7 +121,6 @@ class ChipSimulator {
   std::vector<Batch> outgoing_;
   unsigned idleCores_ = 0, inBarrier_ = 0;
   bool barrier_ = false;
-  simcore::SimTime barrierAsked_ = 0;  // when the rebalance in progress was asked for
   simcore::SimTime nextRebalance_ = 0, end_ = 0;
   simcore::SimTime windowStart_ = 0;        // the last rebalance's end: the idle shares are since then
   std::vector<std::int64_t> idleAtWindow_;  // per core

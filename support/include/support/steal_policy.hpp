@@ -14,12 +14,10 @@ struct StealPolicy {
   // A worker with this many nodes waiting has one to spare for an idle one.
   static constexpr std::size_t kStealableQueue = 2;
   // Rebalances come at least this far apart, and this many times their own cost apart, so that
-  // they take a small share of the run even when the nodes that move carry many facts. The cost
-  // runs from the request to the end: the wait for the workers still in a node run (a delivery
-  // of thousands of messages has no safe point) is paid by every worker already there.
+  // they take a small share of the run even when the nodes that move carry many facts.
   static constexpr std::int64_t kRebalanceNanos = 500'000;
   static constexpr std::int64_t kRebalanceGap = 5;
-  // How long after a rebalance that took `cost` ns, from its request, the next one may start.
+  // How long after a rebalance that took `cost` ns the next one may start.
   static std::int64_t nextRebalanceAfter(double cost) {
     return std::max(kRebalanceNanos, std::int64_t(cost * double(kRebalanceGap) + 0.5));
   }

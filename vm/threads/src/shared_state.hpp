@@ -3,7 +3,6 @@
 #pragma once
 
 #include <atomic>
-#include <chrono>
 #include <cstdint>
 #include <exception>
 #include <memory>
@@ -39,16 +38,7 @@ struct SharedState {
   // Every thread joins a rebalance between two node runs (worker.cpp).
   void askForRebalance() {
     bool expected = false;
-    if (rebalanceWanted.compare_exchange_strong(expected, true)) {
-      // Read by thread 0 after the rebalance's first barrier, which the asker reaches after this.
-      rebalanceAskedNs.store(nowNanos(), std::memory_order_relaxed);
-      wakeAll();
-    }
-  }
-  static std::int64_t nowNanos() {
-    return std::chrono::duration_cast<std::chrono::nanoseconds>(
-               std::chrono::steady_clock::now().time_since_epoch())
-        .count();
+    if (rebalanceWanted.compare_exchange_strong(expected, true)) wakeAll();
   }
   void finish() {
     done.store(true);
@@ -96,7 +86,7 @@ struct SharedState {
   // node runs (worker.cpp); support::StealPolicy says when the next may come.
   std::atomic<bool> rebalanceWanted{false};
   std::atomic<std::uint32_t> idleThreads{0};  // threads in waitForWork: a busy one with a queue asks for them
-  std::atomic<std::int64_t> nextRebalanceNs{0}, rebalanceAskedNs{0};
+  std::atomic<std::int64_t> nextRebalanceNs{0};
   std::atomic<std::uint32_t> barrierArrived{0}, barrierGeneration{0};
   // set-cpu / set-affinity requests, carried out at the next rebalance.
   std::mutex movesLock;

@@ -16,7 +16,9 @@ inline void cpuRelax() {
 
 using Clock = std::chrono::steady_clock;
 double secondsSince(Clock::time_point t) { return std::chrono::duration<double>(Clock::now() - t).count(); }
-std::int64_t nowNanos() { return SharedState::nowNanos(); }
+std::int64_t nowNanos() {
+  return std::chrono::duration_cast<std::chrono::nanoseconds>(Clock::now().time_since_epoch()).count();
+}
 
 }  // namespace
 
@@ -247,9 +249,7 @@ void Worker::rebalance(bool midRun) {
   } endSpan{*this, takenBefore};
   flush();
   if (!shared_.arriveAndWait()) return;             // 1
-  const Clock::time_point allThere = Clock::now();  // its work starts here, its cost at the request
-  // Read before the flag goes down: a request after that is the next rebalance's.
-  const std::int64_t asked = shared_.rebalanceAskedNs.load(std::memory_order_relaxed);
+  const Clock::time_point allThere = Clock::now();  // the cost of a rebalance starts here
   if (self_ == 0) shared_.rebalanceWanted.store(false);
   takeMail();
   shared_.perThread[self_].queued.store(std::uint32_t(machine_->waitingNodes()));
@@ -269,8 +269,8 @@ void Worker::rebalance(bool midRun) {
   windowStart_ = Clock::now();
   idleAtWindowStart_ = stats_.idleSeconds;
   if (self_ == 0) {
-    const std::int64_t now = nowNanos();
-    shared_.nextRebalanceNs.store(now + support::StealPolicy::nextRebalanceAfter(double(now - asked)));
+    const double cost = secondsSince(allThere) * 1e9;
+    shared_.nextRebalanceNs.store(nowNanos() + support::StealPolicy::nextRebalanceAfter(cost));
   }
 }
 
