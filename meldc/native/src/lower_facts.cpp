@@ -92,6 +92,9 @@ void RegionLowering::lowerNativeLoop(Function& f, llvm::IRBuilder<>& b, std::uin
   b.CreateCondBr(b.CreateICmpEQ(fact, b.getInt32(MELD_NATIVE_NO_FACT)), exit, visit);
   b.SetInsertPoint(visit);
   b.CreateStore(b.CreateAdd(b.CreateLoad(i64, triedVar), b.getInt64(1)), triedVar);
+  if (meldvm::detail::loopReadsLists(program_, code_, pc))
+    fetchListsAhead(f, b, loop, fact, nextWord,
+                    std::uint32_t(meldvm::detail::firstListField(program_, pred)));
   if (flags & meldvm::kIterLinear) {  // skipFact: consumed, or bound by an enclosing loop (§6.4.3)
     llvm::BasicBlock* live = newBlock(f, "live");
     b.CreateCondBr(b.CreateICmpEQ(factCount(b, loop, fact), b.getInt32(0)), advance, live);
@@ -124,6 +127,40 @@ void RegionLowering::lowerNativeLoop(Function& f, llvm::IRBuilder<>& b, std::uin
   b.CreateCall(t_.loopEndType, helper(f, b, kLoopEnd),
                {f.vm, f.frame, b.getInt32(pc), b.CreateLoad(i64, triedVar)});
   endLoop(f, b, pc, b.CreateLoad(b.getInt1Ty(), firedVar), stopping());
+}
+
+void RegionLowering::fetchListsAhead(Function& f, llvm::IRBuilder<>& b, const LoopView& loop,
+                                     llvm::Value* fact, llvm::Value* nextWord, std::uint32_t field) {
+  using meldvm::detail::kListFetchAhead;
+  llvm::Type* i64 = b.getInt64Ty();
+  llvm::BasicBlock* done = newBlock(f, "fetched");
+  llvm::Value* ahead = fact;
+  for (int k = 1; k <= kListFetchAhead; ++k) {
+    ahead = highHalf(b, ahead, loop, nextWord);
+    llvm::BasicBlock* there = newBlock(f, "ahead");
+    llvm::BasicBlock* live = newBlock(f, "ahead.live");
+    llvm::BasicBlock* next = newBlock(f, "ahead.next");
+    b.CreateCondBr(b.CreateICmpEQ(ahead, b.getInt32(MELD_NATIVE_NO_FACT)), done, there);
+    b.SetInsertPoint(there);
+    b.CreateCondBr(b.CreateICmpEQ(factCount(b, loop, ahead), b.getInt32(0)), next, live);  // consumed
+    b.SetInsertPoint(live);
+    llvm::Value* cell =
+        b.CreateLoad(i64, factWord(b, loop, ahead, b.CreateAdd(loop.argOffset, b.getInt64(field))));
+    for (int depth = kListFetchAhead - k; depth > 0; --depth) {
+      llvm::BasicBlock* more = newBlock(f, "ahead.cell");
+      b.CreateCondBr(b.CreateICmpEQ(cell, b.getInt64(0)), next, more);
+      b.SetInsertPoint(more);
+      cell = b.CreateLoad(i64, b.CreateConstInBoundsGEP1_64(i64, b.CreateIntToPtr(cell, b.getPtrTy()),
+                                                            MELD_NATIVE_LIST_TAIL_WORD));
+    }
+    // read, high locality, data (a prefetch of address 0 is harmless)
+    b.CreateIntrinsic(llvm::Intrinsic::prefetch, {b.getPtrTy()},
+                      {b.CreateIntToPtr(cell, b.getPtrTy()), b.getInt32(0), b.getInt32(3), b.getInt32(1)});
+    b.CreateBr(next);
+    b.SetInsertPoint(next);
+  }
+  b.CreateBr(done);
+  b.SetInsertPoint(done);
 }
 
 void RegionLowering::adjustCount(Function& f, llvm::IRBuilder<>& b, llvm::Value* v, bool retain,

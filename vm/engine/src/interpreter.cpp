@@ -53,12 +53,13 @@ void Interpreter::blockFlags(const CodeBlock& b, BlockInfo& info, bool scanLoops
     v[r] = program_.types.boxed(b.registerTypes[r]);
     if (v[r]) info.boxedRegs.push_back(std::uint32_t(r));
   }
-  info.aliased.assign(b.slots, 0);
+  info.slotFlags.assign(b.slots, 0);
   if (!scanLoops) return;
   detail::forEachInstruction(b.code, [&](std::size_t pc) {
     if (detail::isLoop(b.code[pc]) && (b.code[pc + 3] & kIterConsume)) v[regs] = 1;
   });
   aliasedSlots(b, info);
+  listReadingLoops(b, info);
 }
 
 // A slot is aliased when an earlier slot may hold a fact of its predicate: both bound by loops of
@@ -75,9 +76,19 @@ void Interpreter::aliasedSlots(const CodeBlock& b, BlockInfo& info) const {
   for (const Process& process : program_.processes)
     if (&process.block == &b && b.slots > 0) pred[0] = kAny;
   for (std::size_t s = 0; s < b.slots; ++s)
-    for (std::size_t outer = 0; outer < s && !info.aliased[s]; ++outer)
-      info.aliased[s] =
-          pred[outer] != kUnbound && (pred[outer] == kAny || pred[s] == kAny || pred[outer] == pred[s]);
+    for (std::size_t outer = 0; outer < s; ++outer)
+      if (pred[outer] != kUnbound && (pred[outer] == kAny || pred[s] == kAny || pred[outer] == pred[s])) {
+        info.slotFlags[s] |= kSlotAliased;
+        break;
+      }
+}
+
+// The loops that fetch the lists of the facts ahead (fetchListsAhead, detail::loopReadsLists).
+void Interpreter::listReadingLoops(const CodeBlock& b, BlockInfo& info) const {
+  detail::forEachInstruction(b.code, [&](std::size_t pc) {
+    if (detail::loopReadsLists(program_, b.code, pc) && b.code[pc + 2] < b.slots)
+      info.slotFlags[b.code[pc + 2]] |= kSlotReadsLists;
+  });
 }
 
 const Interpreter::BlockInfo& Interpreter::infoOf(const CodeBlock& b) {
@@ -135,7 +146,8 @@ void Interpreter::run(const CodeBlock& block, NodeId host, bool negative, PredId
                       const Value* trigger) {
   const Alloc a = enter(block);
   const BlockInfo& info = infoOf(block);
-  Frame f{&block, block.code.data(), a.regs, a.slots, info.boxed.data(), info.aliased.data(), host, negative};
+  Frame f{&block, block.code.data(), a.regs, a.slots, info.boxed.data(), info.slotFlags.data(),
+          host,   negative};
   if (trigger) f.slots[0] = Slot{triggerPred, host, kNoFact, 0, trigger};
   try {
     start(f, info.native);
@@ -204,6 +216,22 @@ inline Interpreter::LoopHead Interpreter::beginLoop(Frame& f, std::uint32_t pc) 
   return h;
 }
 
+// Before visiting a fact, a loop that reads its facts' lists fetches the list of the fact
+// kListFetchAhead facts on, and the next cell of each list it fetched in the visits before
+// (bytecode_internal.hpp): walking the lists of 8queens-12 (queens_violation) took a third of its
+// run, waiting for one cell after another. Consumed facts are passed over: their lists may be on
+// their way out.
+void Interpreter::fetchListsAhead(PredId p, FactRef fact, std::uint32_t listField) const {
+  for (int k = 1; k <= detail::kListFetchAhead; ++k) {
+    fact = db_.next(p, fact);
+    if (fact == kNoFact) return;
+    if (db_.consumedMark(p, fact)) continue;
+    const auto* cell = static_cast<const ConsCell*>(db_.args(p, fact)[listField].asObject());
+    for (int depth = detail::kListFetchAhead - k; depth > 0 && cell; --depth) cell = cell->tail;
+    if (cell) __builtin_prefetch(cell);
+  }
+}
+
 template <class RunBody>
 bool Interpreter::loop(Frame& f, std::uint32_t pc, RunBody&& runBody) {
   const LoopHead h = beginLoop(f, pc);
@@ -239,7 +267,9 @@ bool Interpreter::loop(Frame& f, std::uint32_t pc, RunBody&& runBody) {
       fact = db_.nextWithKey(p, ix, fact);
     }
   } else if (op != Opcode::ITER_SORTED) {
+    const bool readsLists = f.slotFlags[s] & kSlotReadsLists;
     for (FactRef fact = db_.first(at, p); fact != kNoFact;) {
+      if (readsLists) fetchListsAhead(p, fact, std::uint32_t(machine_.tables_.listField[p]));
       if (!visit(fact)) break;
       fact = db_.next(p, fact);
     }
@@ -343,6 +373,9 @@ struct NativeHelpers {
                 offsetof(Slot, fact) == offsetof(meld_native_slot, fact) &&
                 offsetof(Slot, flags) == offsetof(meld_native_slot, flags) &&
                 offsetof(Slot, fixed) == offsetof(meld_native_slot, fixed) && kNoFact == MELD_NATIVE_NO_FACT);
+  // A cell is its header, its head, then its tail (offsetof is not defined on a derived struct).
+  static_assert(sizeof(Object) + sizeof(Value) == 8 * MELD_NATIVE_LIST_TAIL_WORD &&
+                sizeof(ConsCell) == 8 * (MELD_NATIVE_LIST_TAIL_WORD + 1));
   static_assert(sizeof(bool) == 1 && sizeof(std::atomic<bool>) == 1 && std::atomic<bool>::is_always_lock_free,
                 "native code reads the stop flags as bytes");
   static Interpreter& vm(meld_native_vm* v) { return *reinterpret_cast<Interpreter*>(v); }
@@ -463,7 +496,7 @@ Value Interpreter::callFunction(std::uint32_t fn, const Value* args, NodeId host
   const Alloc a = enter(func.block);
   const BlockInfo& info = infoOf(func.block);
   Frame f{&func.block,       func.block.code.data(), a.regs, a.slots,
-          info.boxed.data(), info.aliased.data(),    host,   false};
+          info.boxed.data(), info.slotFlags.data(),  host,   false};
   const std::size_t n = func.params.size();
   for (std::size_t i = 0; i < n; ++i) {
     heap_.retain(func.params[i], args[i]);

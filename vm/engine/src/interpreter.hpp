@@ -50,8 +50,8 @@ class Interpreter {
     const std::uint32_t* code;
     Value* regs;
     Slot* slots;
-    const std::uint8_t* boxed;    // per register, then "some loop consumes"
-    const std::uint8_t* aliased;  // per slot: an earlier slot may hold a fact of its predicate
+    const std::uint8_t* boxed;      // per register, then "some loop consumes"
+    const std::uint8_t* slotFlags;  // per slot: kSlotAliased, kSlotReadsLists
     NodeId host;
     bool negative;
     bool updated = false;  // an UPDATE ran in this block (RET_IF_UPDATED)
@@ -71,6 +71,7 @@ class Interpreter {
   // The loop instruction at pc; runBody(bodyPc) runs its body once the slot is bound.
   template <class RunBody>
   [[gnu::noinline]] bool loop(Frame& f, std::uint32_t pc, RunBody&& runBody);  // kept out of exec
+  void fetchListsAhead(PredId p, FactRef fact, std::uint32_t listField) const;
   // One straight-on instruction with opcode OP (straight_ops.inc), for native code.
   template <Opcode OP>
   void step(Frame& f, std::uint32_t pc);
@@ -81,7 +82,8 @@ class Interpreter {
   // Whether a linear loop passes over a fact: consumed, or bound by an enclosing loop (§6.4.3;
   // only a slot that may hold a fact of the same predicate can).
   [[gnu::always_inline]] bool skipFact(const Frame& f, std::uint32_t slot, PredId p, FactRef fact) const {
-    return db_.consumedMark(p, fact) || (f.aliased[slot] && boundOutside(f, slot, p, fact));
+    return db_.consumedMark(p, fact) ||
+           ((f.slotFlags[slot] & kSlotAliased) && boundOutside(f, slot, p, fact));
   }
   bool boundOutside(const Frame& f, std::uint32_t slot, PredId p, FactRef fact) const;
   // The rule fired: consume the linear facts bound from firstSlot on (inline: a persistent rule's
@@ -133,7 +135,7 @@ class Interpreter {
   };
   struct BlockInfo {
     std::vector<std::uint8_t> boxed;       // blockFlags
-    std::vector<std::uint8_t> aliased;     // Frame::aliased (blockFlags)
+    std::vector<std::uint8_t> slotFlags;   // Frame::slotFlags (blockFlags)
     std::vector<std::uint32_t> boxedRegs;  // the boxed registers, which leave() releases
     meld_native_block native = nullptr;
   };
@@ -142,6 +144,10 @@ class Interpreter {
   const BlockInfo& infoOf(const CodeBlock& b);
   void blockFlags(const CodeBlock& b, BlockInfo& info, bool scanLoops) const;
   void aliasedSlots(const CodeBlock& b, BlockInfo& info) const;
+  void listReadingLoops(const CodeBlock& b, BlockInfo& info) const;
+  // Frame::slotFlags: an earlier slot may hold a fact of the slot's predicate; the slot's loop
+  // (over a linear predicate with a list field) reads that list.
+  static constexpr std::uint8_t kSlotAliased = 1, kSlotReadsLists = 2;
 
   Machine& machine_;
   const Program& program_;

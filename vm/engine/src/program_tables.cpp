@@ -22,6 +22,7 @@ void perPredicate(ProgramTables& t, const Program& program) {
     t.queuedPersistent.push_back(!d.linear && (!t.processesOf[p].empty() || d.aggregated()));
     t.isLinear.push_back(d.linear);
     t.arity.push_back(d.arity());
+    t.listField.push_back(detail::firstListField(program, p));
     t.isThreadPred.push_back(d.thread);
     t.hasThreads = t.hasThreads || d.thread;
   }

@@ -115,6 +115,18 @@ inline bool isLoop(std::uint32_t opcode) {
   return op == Opcode::ITER || op == Opcode::ITER_KEY || op == Opcode::ITER_SORTED;
 }
 
+// The first field of predicate p that holds a list, or -1.
+std::int32_t firstListField(const Program& program, PredId p);
+// Whether the loop instruction at loopPc of verified code is an ITER over a linear predicate with
+// a list field whose body (up to the loop's end) reads that field: such a loop fetches the lists
+// of the facts it visits next ahead of time, in the interpreter and in native code alike. Walking
+// a list waits for memory at every cell (the cells of one list were consed at different times and
+// lie apart); a loop that never reads the list would only pay for the fetching.
+bool loopReadsLists(const Program& program, std::span<const std::uint32_t> code, std::size_t loopPc);
+// How many facts ahead such a loop fetches: the first cell of the list three facts on, the second
+// cell two facts on, the third one fact on, each one visit after the cell that leads to it.
+inline constexpr int kListFetchAhead = 3;
+
 // TypeTable::name with the nesting depth capped: a file can chain thousands of `list` types, and
 // the unbounded recursion of TypeTable::name would then overflow the stack.
 std::string typeName(const TypeTable& types, TypeId t);

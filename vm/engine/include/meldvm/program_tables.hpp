@@ -20,6 +20,8 @@ struct ProgramTables {
   std::vector<std::uint8_t> isLinear;
   std::vector<std::uint8_t> isThreadPred;
   std::vector<std::uint32_t> arity;  // home excluded
+  // The first field holding a list, or -1 (Interpreter::fetchListsAhead).
+  std::vector<std::int32_t> listField;
   std::uint32_t maxArity = 1;
   // Per process: the predicates its loops read at the node (with one of them empty there, the
   // process cannot fire). Thread facts live elsewhere: not listed.
