@@ -138,12 +138,9 @@ void RegionLowering::fetchListsAhead(Function& f, llvm::IRBuilder<>& b, const Lo
   for (int k = 1; k <= kListFetchAhead; ++k) {
     ahead = highHalf(b, ahead, loop, nextWord);
     llvm::BasicBlock* there = newBlock(f, "ahead");
-    llvm::BasicBlock* live = newBlock(f, "ahead.live");
     llvm::BasicBlock* next = newBlock(f, "ahead.next");
     b.CreateCondBr(b.CreateICmpEQ(ahead, b.getInt32(MELD_NATIVE_NO_FACT)), done, there);
     b.SetInsertPoint(there);
-    b.CreateCondBr(b.CreateICmpEQ(factCount(b, loop, ahead), b.getInt32(0)), next, live);  // consumed
-    b.SetInsertPoint(live);
     llvm::Value* cell =
         b.CreateLoad(i64, factWord(b, loop, ahead, b.CreateAdd(loop.argOffset, b.getInt64(field))));
     for (int depth = kListFetchAhead - k; depth > 0; --depth) {

@@ -219,14 +219,14 @@ inline Interpreter::LoopHead Interpreter::beginLoop(Frame& f, std::uint32_t pc) 
 // Before visiting a fact, a loop that reads its facts' lists fetches the list of the fact
 // kListFetchAhead facts on, and the next cell of each list it fetched in the visits before
 // (bytecode_internal.hpp): walking the lists of 8queens-12 (queens_violation) took a third of its
-// run, waiting for one cell after another. Consumed facts are passed over: their lists may be on
-// their way out.
-void Interpreter::fetchListsAhead(PredId p, FactRef fact, std::uint32_t listField) const {
+// run, waiting for one cell after another. The facts ahead are all alive: one consumed in this
+// rule run keeps its arguments until the run ends (Machine::finishRuleRun), and an in-place
+// update gives it new ones.
+void Interpreter::fetchListsAhead(const FactTable& table, FactRef fact, std::uint32_t listField) {
   for (int k = 1; k <= detail::kListFetchAhead; ++k) {
-    fact = db_.next(p, fact);
+    fact = table.next(fact);
     if (fact == kNoFact) return;
-    if (db_.consumedMark(p, fact)) continue;
-    const auto* cell = static_cast<const ConsCell*>(db_.args(p, fact)[listField].asObject());
+    const auto* cell = static_cast<const ConsCell*>(table.args(fact)[listField].asObject());
     for (int depth = detail::kListFetchAhead - k; depth > 0 && cell; --depth) cell = cell->tail;
     if (cell) __builtin_prefetch(cell);
   }
@@ -269,7 +269,7 @@ bool Interpreter::loop(Frame& f, std::uint32_t pc, RunBody&& runBody) {
   } else if (op != Opcode::ITER_SORTED) {
     const bool readsLists = f.slotFlags[s] & kSlotReadsLists;
     for (FactRef fact = db_.first(at, p); fact != kNoFact;) {
-      if (readsLists) fetchListsAhead(p, fact, std::uint32_t(machine_.tables_.listField[p]));
+      if (readsLists) fetchListsAhead(db_.table(p), fact, std::uint32_t(machine_.tables_.listField[p]));
       if (!visit(fact)) break;
       fact = db_.next(p, fact);
     }

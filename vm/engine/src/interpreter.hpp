@@ -71,7 +71,7 @@ class Interpreter {
   // The loop instruction at pc; runBody(bodyPc) runs its body once the slot is bound.
   template <class RunBody>
   [[gnu::noinline]] bool loop(Frame& f, std::uint32_t pc, RunBody&& runBody);  // kept out of exec
-  void fetchListsAhead(PredId p, FactRef fact, std::uint32_t listField) const;
+  static void fetchListsAhead(const FactTable& table, FactRef fact, std::uint32_t listField);
   // One straight-on instruction with opcode OP (straight_ops.inc), for native code.
   template <Opcode OP>
   void step(Frame& f, std::uint32_t pc);

@@ -336,13 +336,31 @@ void Machine::runRule(NodeId n, std::uint32_t rule) {
 }
 
 void Machine::finishRuleRun() {
-  for (const Consumed& c : consumed_) {
+  for (std::size_t i = 0; i < consumed_.size(); ++i) {
+    fetchListsOfConsumed(i);
+    const Consumed& c = consumed_[i];
     db_->consumeTrusted(c.node, c.pred, c.fact);
     factRemoved(c.node, c.pred);
   }
   consumed_.clear();
   storeDerivedLinear();
   processPersistent();
+}
+
+// A consumed fact's list dies with it when the fact held its last reference, and its death drops
+// a reference to the next cell, consed long before and cold by now: a fifth of n-queens 13's
+// native run waited there (Heap::destroy). So the consumptions fetch ahead: the list's first cell
+// sixteen facts on, and the second cell eight facts on (the first one arrived meanwhile). The
+// deaths that follow (a cell whose last reference that was) still wait.
+void Machine::fetchListsOfConsumed(std::size_t i) const {
+  auto firstCell = [&](std::size_t k) -> const ConsCell* {
+    if (k >= consumed_.size()) return nullptr;
+    const Consumed& c = consumed_[k];
+    const std::int32_t field = tables_.listField[c.pred];
+    return field < 0 ? nullptr : static_cast<const ConsCell*>(db_->args(c.pred, c.fact)[field].asObject());
+  };
+  if (const ConsCell* cell = firstCell(i + 16)) __builtin_prefetch(cell);
+  if (const ConsCell* cell = firstCell(i + 8); cell && cell->tail) __builtin_prefetch(cell->tail);
 }
 
 void Machine::storeDerivedLinear() {

@@ -258,6 +258,7 @@ class Machine : private SchedulerView {
   // ---- node runs ----
   void runRule(NodeId n, std::uint32_t rule);
   void finishRuleRun();
+  void fetchListsOfConsumed(std::size_t i) const;  // finishRuleRun, before consuming consumed_[i]
   void publishAdded(NodeId n, PredId p);
   void runOnce(NodeId n);  // one run of node n (runNode repeats it while the node sent itself facts)
   void markThreadCandidates(NodeId n);  // §6.12: at the start of a normal node's run
