@@ -1,5 +1,6 @@
-// Which loops fetch the lists of the facts ahead (detail::loopReadsLists): ITER loops over a
-// linear predicate with a list field whose body reads that field, and no others.
+// How deep loops fetch the lists of the facts ahead (detail::listFetchDepth): ITER loops over a
+// linear predicate with a list field whose body loads that field; the whole pipeline when the
+// loaded list goes to a function, the first cell when it is only moved on; no others.
 #define BOOST_TEST_MODULE vm_list_reading_loops
 #include <boost/test/unit_test.hpp>
 
@@ -8,7 +9,8 @@
 
 using namespace bctest;
 using meldvm::detail::firstListField;
-using meldvm::detail::loopReadsLists;
+using meldvm::detail::kListFetchAhead;
+using meldvm::detail::listFetchDepth;
 
 namespace {
 
@@ -20,8 +22,7 @@ struct Preds {
   PredId count = pred(p, "count", {TypeTable::kInt}, true);          // no list
 };
 
-// A block of one loop over `predicate` (ITER or ITER_KEY) into slot 0 whose body is `body`;
-// returns the loop's offset (0) and the block.
+// A block of one loop over `predicate` (ITER or ITER_KEY) into slot 0 whose body is `body`.
 CodeBlock oneLoop(Opcode iter, PredId predicate, std::uint32_t flags,
                   const std::function<void(CodeBlock&)>& body) {
   CodeBlock b;
@@ -35,6 +36,8 @@ CodeBlock oneLoop(Opcode iter, PredId predicate, std::uint32_t flags,
   return b;
 }
 
+constexpr int kWhole = kListFetchAhead - 1, kFirstCell = 0, kNone = -1;
+
 }  // namespace
 
 BOOST_AUTO_TEST_CASE(first_list_field) {
@@ -44,49 +47,62 @@ BOOST_AUTO_TEST_CASE(first_list_field) {
   BOOST_TEST(firstListField(t.p, t.count) == -1);
 }
 
-BOOST_AUTO_TEST_CASE(a_linear_loop_that_loads_its_list_reads_lists) {
+BOOST_AUTO_TEST_CASE(a_list_handed_to_a_function_is_fetched_deep) {
   Preds t;
-  const CodeBlock direct = oneLoop(Opcode::ITER, t.placed, kLinConsume, [](CodeBlock& b) {
+  const CodeBlock builtin = oneLoop(Opcode::ITER, t.placed, kLinConsume, [](CodeBlock& b) {
     emit(b, Opcode::LOAD, {0, 1, 1});
+    emit(b, Opcode::CALL, {2, 0, TypeTable::kBool, 2, 0, 1});  // r2 = builtin 0 (r0, r1)
     emit(b, Opcode::FIRE, {0});
   });
-  BOOST_TEST(loopReadsLists(t.p, direct.code, 0));
-  // Behind a test and inside an inner loop: still the body of the outer loop.
+  BOOST_TEST(listFetchDepth(t.p, builtin.code, 0) == kWhole);
+  // Inside an inner loop, to a user function: still the body of the outer loop.
   const CodeBlock nested = oneLoop(Opcode::ITER, t.placed, kLinConsume, [&](CodeBlock& b) {
-    emit(b, Opcode::LOAD, {0, 0, 0});
-    loop(b, Opcode::ITER, {t.count, 1, kIterLinear}, [&] { emit(b, Opcode::LOAD, {0, 1, 1}); });
+    emit(b, Opcode::LOAD, {0, 1, 1});
+    loop(b, Opcode::ITER, {t.count, 1, kIterLinear}, [&] { emit(b, Opcode::CALLF, {2, 0, 1, 1}); });
   });
-  BOOST_TEST(loopReadsLists(t.p, nested.code, 0));
-  BOOST_TEST(!loopReadsLists(t.p, nested.code, 9));  // the inner loop's predicate has no list
+  BOOST_TEST(listFetchDepth(t.p, nested.code, 0) == kWhole);
+  BOOST_TEST(listFetchDepth(t.p, nested.code, 9) == kNone);  // the inner loop's predicate has no list
 }
 
-BOOST_AUTO_TEST_CASE(other_loops_do_not) {
+BOOST_AUTO_TEST_CASE(a_list_moved_on_is_fetched_at_its_first_cell) {
+  Preds t;
+  // Loaded and sent on (8queens' propagate rules), or handed to a function in another register.
+  const CodeBlock moved = oneLoop(Opcode::ITER, t.placed, kLinConsume, [](CodeBlock& b) {
+    emit(b, Opcode::LOAD, {0, 1, 1});
+    emit(b, Opcode::LOAD, {0, 0, 0});
+    emit(b, Opcode::CALL, {2, 0, TypeTable::kBool, 1, 0});
+    emit(b, Opcode::FIRE, {0});
+  });
+  BOOST_TEST(listFetchDepth(t.p, moved.code, 0) == kFirstCell);
+}
+
+BOOST_AUTO_TEST_CASE(other_loops_do_not_fetch) {
   Preds t;
   // The body reads another field only (a join on it, as belief propagation's in-msg(A, B, _)).
   const CodeBlock other = oneLoop(Opcode::ITER, t.placed, kLinConsume, [](CodeBlock& b) {
     emit(b, Opcode::LOAD, {0, 0, 0});
     emit(b, Opcode::FIRE, {0});
   });
-  BOOST_TEST(!loopReadsLists(t.p, other.code, 0));
+  BOOST_TEST(listFetchDepth(t.p, other.code, 0) == kNone);
   // The list of another slot.
   const CodeBlock otherSlot = oneLoop(Opcode::ITER, t.placed, kLinConsume, [](CodeBlock& b) {
     emit(b, Opcode::LOAD, {1, 1, 1});
   });
-  BOOST_TEST(!loopReadsLists(t.p, otherSlot.code, 0));
+  BOOST_TEST(listFetchDepth(t.p, otherSlot.code, 0) == kNone);
   // A persistent predicate, and an index look-up.
   const CodeBlock persistent = oneLoop(Opcode::ITER, t.path, 0, [](CodeBlock& b) {
     emit(b, Opcode::LOAD, {0, 0, 1});
   });
-  BOOST_TEST(!loopReadsLists(t.p, persistent.code, 0));
+  BOOST_TEST(listFetchDepth(t.p, persistent.code, 0) == kNone);
   const CodeBlock keyed = oneLoop(Opcode::ITER_KEY, t.placed, kLinConsume, [](CodeBlock& b) {
     emit(b, Opcode::LOAD, {0, 1, 1});
   });
-  BOOST_TEST(!loopReadsLists(t.p, keyed.code, 0));
+  BOOST_TEST(listFetchDepth(t.p, keyed.code, 0) == kNone);
   // A load of the list after the loop's end is not in its body.
   CodeBlock after =
       oneLoop(Opcode::ITER, t.placed, kLinConsume, [](CodeBlock& b) { emit(b, Opcode::FIRE, {0}); });
   after.code.pop_back();  // RET
   emit(after, Opcode::LOAD, {0, 1, 1});
   emit(after, Opcode::RET);
-  BOOST_TEST(!loopReadsLists(t.p, after.code, 0));
+  BOOST_TEST(listFetchDepth(t.p, after.code, 0) == kNone);
 }

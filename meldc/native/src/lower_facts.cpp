@@ -92,9 +92,9 @@ void RegionLowering::lowerNativeLoop(Function& f, llvm::IRBuilder<>& b, std::uin
   b.CreateCondBr(b.CreateICmpEQ(fact, b.getInt32(MELD_NATIVE_NO_FACT)), exit, visit);
   b.SetInsertPoint(visit);
   b.CreateStore(b.CreateAdd(b.CreateLoad(i64, triedVar), b.getInt64(1)), triedVar);
-  if (meldvm::detail::loopReadsLists(program_, code_, pc))
-    fetchListsAhead(f, b, loop, fact, nextWord,
-                    std::uint32_t(meldvm::detail::firstListField(program_, pred)));
+  if (const int depth = meldvm::detail::listFetchDepth(program_, code_, pc); depth >= 0)
+    fetchListsAhead(f, b, loop, fact, nextWord, std::uint32_t(meldvm::detail::firstListField(program_, pred)),
+                    depth);
   if (flags & meldvm::kIterLinear) {  // skipFact: consumed, or bound by an enclosing loop (§6.4.3)
     llvm::BasicBlock* live = newBlock(f, "live");
     b.CreateCondBr(b.CreateICmpEQ(factCount(b, loop, fact), b.getInt32(0)), advance, live);
@@ -130,7 +130,8 @@ void RegionLowering::lowerNativeLoop(Function& f, llvm::IRBuilder<>& b, std::uin
 }
 
 void RegionLowering::fetchListsAhead(Function& f, llvm::IRBuilder<>& b, const LoopView& loop,
-                                     llvm::Value* fact, llvm::Value* nextWord, std::uint32_t field) {
+                                     llvm::Value* fact, llvm::Value* nextWord, std::uint32_t field,
+                                     int maxDepth) {
   using meldvm::detail::kListFetchAhead;
   llvm::Type* i64 = b.getInt64Ty();
   llvm::BasicBlock* done = newBlock(f, "fetched");
@@ -141,6 +142,11 @@ void RegionLowering::fetchListsAhead(Function& f, llvm::IRBuilder<>& b, const Lo
     llvm::BasicBlock* next = newBlock(f, "ahead.next");
     b.CreateCondBr(b.CreateICmpEQ(ahead, b.getInt32(MELD_NATIVE_NO_FACT)), done, there);
     b.SetInsertPoint(there);
+    if (kListFetchAhead - k > maxDepth) {  // this fact's cell at that depth is not fetched
+      b.CreateBr(next);
+      b.SetInsertPoint(next);
+      continue;
+    }
     llvm::Value* cell =
         b.CreateLoad(i64, factWord(b, loop, ahead, b.CreateAdd(loop.argOffset, b.getInt64(field))));
     for (int depth = kListFetchAhead - k; depth > 0; --depth) {

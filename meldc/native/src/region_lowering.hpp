@@ -209,10 +209,10 @@ class RegionLowering {
   // ITER and ITER_KEY: the VM binds the slot and finds the first fact (loop_begin); the facts are
   // stepped through here, in the order, with the skips and the counts of Interpreter::loop.
   void lowerNativeLoop(Function& f, llvm::IRBuilder<>& b, std::uint32_t pc);
-  // Before visiting `fact`, a loop that reads its facts' lists (detail::loopReadsLists) fetches
-  // the lists of the facts ahead, as Interpreter::fetchListsAhead does.
+  // Before visiting `fact`, a loop that reads its facts' lists fetches the lists of the facts
+  // ahead down to maxDepth (detail::listFetchDepth), as Interpreter::fetchListsAhead does.
   void fetchListsAhead(Function& f, llvm::IRBuilder<>& b, const LoopView& loop, llvm::Value* fact,
-                       llvm::Value* nextWord, std::uint32_t field);
+                       llvm::Value* nextWord, std::uint32_t field, int maxDepth);
 
   void lowerInstruction(Function& f, llvm::IRBuilder<>& b, std::uint32_t pc);
 

@@ -1,6 +1,7 @@
 // Which loops read the lists of the facts they visit (bytecode_internal.hpp): the interpreter and
 // native code fetch those lists ahead.
 #include <algorithm>
+#include <vector>
 
 #include "meldvm/bytecode_internal.hpp"
 
@@ -13,20 +14,28 @@ std::int32_t firstListField(const Program& program, PredId p) {
   return -1;
 }
 
-bool loopReadsLists(const Program& program, std::span<const std::uint32_t> code, std::size_t loopPc) {
-  if (Opcode(code[loopPc]) != Opcode::ITER || !(code[loopPc + 3] & kIterLinear)) return false;
+int listFetchDepth(const Program& program, std::span<const std::uint32_t> code, std::size_t loopPc) {
+  if (Opcode(code[loopPc]) != Opcode::ITER || !(code[loopPc + 3] & kIterLinear)) return -1;
   const std::uint32_t slot = code[loopPc + 2];
   const std::int32_t field = firstListField(program, code[loopPc + 1]);
-  if (field < 0) return false;
+  if (field < 0) return -1;
   const std::span<const std::uint32_t> body =
       code.first(std::min<std::size_t>(code[loopPc + 4], code.size()));
+  std::vector<std::uint32_t> listRegs;  // the registers the body loads the list into
   std::string why;
   for (std::size_t pc = loopPc + 5, len; pc < body.size(); pc += len) {
-    if (Opcode(code[pc]) == Opcode::LOAD && code[pc + 1] == slot && code[pc + 2] == std::uint32_t(field))
-      return true;
-    if ((len = instructionLength(body, pc, why)) == 0) return false;
+    const auto op = Opcode(code[pc]);
+    if (op == Opcode::LOAD && code[pc + 1] == slot && code[pc + 2] == std::uint32_t(field))
+      listRegs.push_back(code[pc + 3]);
+    if (op == Opcode::CALL || op == Opcode::CALLF) {  // operands: r0, B or U, (T,) count, registers
+      const std::size_t first = op == Opcode::CALL ? 5 : 4;
+      for (std::size_t a = 0; a < code[pc + first - 1]; ++a)
+        if (std::find(listRegs.begin(), listRegs.end(), code[pc + first + a]) != listRegs.end())
+          return kListFetchAhead - 1;
+    }
+    if ((len = instructionLength(body, pc, why)) == 0) break;
   }
-  return false;
+  return listRegs.empty() ? -1 : 0;
 }
 
 }  // namespace meldvm::detail

@@ -83,11 +83,12 @@ void Interpreter::aliasedSlots(const CodeBlock& b, BlockInfo& info) const {
       }
 }
 
-// The loops that fetch the lists of the facts ahead (fetchListsAhead, detail::loopReadsLists).
+// The loops that fetch the lists of the facts ahead (fetchListsAhead, detail::listFetchDepth).
 void Interpreter::listReadingLoops(const CodeBlock& b, BlockInfo& info) const {
   detail::forEachInstruction(b.code, [&](std::size_t pc) {
-    if (detail::loopReadsLists(program_, b.code, pc) && b.code[pc + 2] < b.slots)
-      info.slotFlags[b.code[pc + 2]] |= kSlotReadsLists;
+    const int depth = detail::listFetchDepth(program_, b.code, pc);
+    if (depth >= 0 && b.code[pc + 2] < b.slots)
+      info.slotFlags[b.code[pc + 2]] |= depth > 0 ? kSlotWalksLists : kSlotMovesLists;
   });
 }
 
@@ -217,17 +218,20 @@ inline Interpreter::LoopHead Interpreter::beginLoop(Frame& f, std::uint32_t pc) 
 }
 
 // Before visiting a fact, a loop that reads its facts' lists fetches the list of the fact
-// kListFetchAhead facts on, and the next cell of each list it fetched in the visits before
-// (bytecode_internal.hpp): walking the lists of 8queens-12 (queens_violation) took a third of its
-// run, waiting for one cell after another. The facts ahead are all alive: one consumed in this
-// rule run keeps its arguments until the run ends (Machine::finishRuleRun), and an in-place
-// update gives it new ones.
-void Interpreter::fetchListsAhead(const FactTable& table, FactRef fact, std::uint32_t listField) {
+// kListFetchAhead facts on, and the next cell of each list it fetched in the visits before, down
+// to maxDepth (bytecode_internal.hpp): walking the lists of 8queens-12 (queens_violation) took a
+// third of its run, waiting for one cell after another. The facts ahead are all alive: one
+// consumed in this rule run keeps its arguments until the run ends (Machine::finishRuleRun), and
+// an in-place update gives it new ones.
+void Interpreter::fetchListsAhead(const FactTable& table, FactRef fact, std::uint32_t listField,
+                                  int maxDepth) {
   for (int k = 1; k <= detail::kListFetchAhead; ++k) {
     fact = table.next(fact);
     if (fact == kNoFact) return;
+    const int depth = detail::kListFetchAhead - k;
+    if (depth > maxDepth) continue;
     const auto* cell = static_cast<const ConsCell*>(table.args(fact)[listField].asObject());
-    for (int depth = detail::kListFetchAhead - k; depth > 0 && cell; --depth) cell = cell->tail;
+    for (int d = depth; d > 0 && cell; --d) cell = cell->tail;
     if (cell) __builtin_prefetch(cell);
   }
 }
@@ -267,9 +271,12 @@ bool Interpreter::loop(Frame& f, std::uint32_t pc, RunBody&& runBody) {
       fact = db_.nextWithKey(p, ix, fact);
     }
   } else if (op != Opcode::ITER_SORTED) {
-    const bool readsLists = f.slotFlags[s] & kSlotReadsLists;
+    const int fetchDepth = f.slotFlags[s] & kSlotWalksLists   ? detail::kListFetchAhead - 1
+                           : f.slotFlags[s] & kSlotMovesLists ? 0
+                                                              : -1;
     for (FactRef fact = db_.first(at, p); fact != kNoFact;) {
-      if (readsLists) fetchListsAhead(db_.table(p), fact, std::uint32_t(machine_.tables_.listField[p]));
+      if (fetchDepth >= 0)
+        fetchListsAhead(db_.table(p), fact, std::uint32_t(machine_.tables_.listField[p]), fetchDepth);
       if (!visit(fact)) break;
       fact = db_.next(p, fact);
     }

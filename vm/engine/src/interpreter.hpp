@@ -51,7 +51,7 @@ class Interpreter {
     Value* regs;
     Slot* slots;
     const std::uint8_t* boxed;      // per register, then "some loop consumes"
-    const std::uint8_t* slotFlags;  // per slot: kSlotAliased, kSlotReadsLists
+    const std::uint8_t* slotFlags;  // per slot: kSlotAliased, kSlotMovesLists, kSlotWalksLists
     NodeId host;
     bool negative;
     bool updated = false;  // an UPDATE ran in this block (RET_IF_UPDATED)
@@ -71,7 +71,7 @@ class Interpreter {
   // The loop instruction at pc; runBody(bodyPc) runs its body once the slot is bound.
   template <class RunBody>
   [[gnu::noinline]] bool loop(Frame& f, std::uint32_t pc, RunBody&& runBody);  // kept out of exec
-  static void fetchListsAhead(const FactTable& table, FactRef fact, std::uint32_t listField);
+  static void fetchListsAhead(const FactTable& table, FactRef fact, std::uint32_t listField, int maxDepth);
   // One straight-on instruction with opcode OP (straight_ops.inc), for native code.
   template <Opcode OP>
   void step(Frame& f, std::uint32_t pc);
@@ -146,8 +146,9 @@ class Interpreter {
   void aliasedSlots(const CodeBlock& b, BlockInfo& info) const;
   void listReadingLoops(const CodeBlock& b, BlockInfo& info) const;
   // Frame::slotFlags: an earlier slot may hold a fact of the slot's predicate; the slot's loop
-  // (over a linear predicate with a list field) reads that list.
-  static constexpr std::uint8_t kSlotAliased = 1, kSlotReadsLists = 2;
+  // (over a linear predicate with a list field) moves that list on, or hands it to a function
+  // (detail::listFetchDepth).
+  static constexpr std::uint8_t kSlotAliased = 1, kSlotMovesLists = 2, kSlotWalksLists = 4;
 
   Machine& machine_;
   const Program& program_;

@@ -117,18 +117,20 @@ inline bool isLoop(std::uint32_t opcode) {
 
 // The first field of predicate p that holds a list, or -1.
 std::int32_t firstListField(const Program& program, PredId p);
-// Whether the loop instruction at loopPc of verified code is an ITER over a linear predicate with
-// a list field whose body (up to the loop's end) reads that field: such a loop fetches the lists
-// of the facts it visits next ahead of time, in the interpreter and in native code alike. Walking
-// a list waits for memory at every cell (the cells of one list were consed at different times and
-// lie apart); a loop that never reads the list would only pay for the fetching.
-bool loopReadsLists(const Program& program, std::span<const std::uint32_t> code, std::size_t loopPc);
-// How many facts ahead such a loop fetches: the first cell of the list five facts on, the second
-// cell four facts on, and so on to the fifth cell one fact on, each one visit after the cell that
-// leads to it. n-queens 13 walks lists of up to 12 cells: 3 facts ahead ran it in 3.52 s, 5 in
-// 2.99 s, 9 in 2.66 s; 8queens-12 (lists of up to 11) ran as fast with 5 as with 3, 9 cost it 11 %
-// (the walk to the deepest cells is repeated at every visit).
+// How many facts ahead a loop over lists fetches them (listFetchDepth): the first cell of the list
+// five facts on, the second cell four facts on, and so on to the fifth cell one fact on, each one
+// visit after the cell that leads to it. n-queens 13 walks lists of up to 12 cells: 3 facts ahead
+// ran it in 3.52 s, 5 in 2.99 s, 9 in 2.66 s; 8queens-12 (lists of up to 11) ran as fast with 5 as
+// with 3, 9 cost it 11 % (the walk to the deepest cells is repeated at every visit).
 inline constexpr int kListFetchAhead = 5;
+// For the loop instruction at loopPc of verified code, how deep it fetches the lists of the facts
+// it visits next, or -1 for not at all. Walking a list waits for memory at every cell (the cells
+// of one list were consed at different times and lie apart). Only an ITER over a linear predicate
+// with a list field whose body (up to the loop's end) loads that field fetches: kListFetchAhead - 1
+// (the whole pipeline) when a loaded register goes to a built-in or user function, which may walk
+// the list; 0 (only the first cell of the fact kListFetchAhead on, which the load's reference count
+// touches) when the list is only moved on. The interpreter and native code fetch alike.
+int listFetchDepth(const Program& program, std::span<const std::uint32_t> code, std::size_t loopPc);
 
 // TypeTable::name with the nesting depth capped: a file can chain thousands of `list` types, and
 // the unbounded recursion of TypeTable::name would then overflow the stack.
