@@ -337,7 +337,7 @@ void Machine::runRule(NodeId n, std::uint32_t rule) {
 
 void Machine::finishRuleRun() {
   for (std::size_t i = 0; i < consumed_.size(); ++i) {
-    fetchListsOfConsumed(i);
+    if (tables_.linearLists) fetchListsOfConsumed(i);
     const Consumed& c = consumed_[i];
     db_->consumeTrusted(c.node, c.pred, c.fact);
     factRemoved(c.node, c.pred);

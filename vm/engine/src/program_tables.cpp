@@ -23,6 +23,7 @@ void perPredicate(ProgramTables& t, const Program& program) {
     t.isLinear.push_back(d.linear);
     t.arity.push_back(d.arity());
     t.listField.push_back(detail::firstListField(program, p));
+    t.linearLists = t.linearLists || (d.linear && t.listField.back() >= 0);
     t.isThreadPred.push_back(d.thread);
     t.hasThreads = t.hasThreads || d.thread;
   }

@@ -22,6 +22,7 @@ struct ProgramTables {
   std::vector<std::uint32_t> arity;  // home excluded
   // The first field holding a list, or -1 (Interpreter::fetchListsAhead).
   std::vector<std::int32_t> listField;
+  bool linearLists = false;  // some linear predicate has a list field
   std::uint32_t maxArity = 1;
   // Per process: the predicates its loops read at the node (with one of them empty there, the
   // process cannot fire). Thread facts live elsewhere: not listed.
