@@ -274,9 +274,10 @@ bool Interpreter::loop(Frame& f, std::uint32_t pc, RunBody&& runBody) {
     const int fetchDepth = f.slotFlags[s] & kSlotWalksLists   ? detail::kListFetchAhead - 1
                            : f.slotFlags[s] & kSlotMovesLists ? 0
                                                               : -1;
+    const FactTable& table = db_.table(p);  // (its slot array may move; the table does not)
+    const auto listField = std::uint32_t(fetchDepth >= 0 ? machine_.tables_.listField[p] : 0);
     for (FactRef fact = db_.first(at, p); fact != kNoFact;) {
-      if (fetchDepth >= 0)
-        fetchListsAhead(db_.table(p), fact, std::uint32_t(machine_.tables_.listField[p]), fetchDepth);
+      if (fetchDepth >= 0) fetchListsAhead(table, fact, listField, fetchDepth);
       if (!visit(fact)) break;
       fact = db_.next(p, fact);
     }

@@ -120,8 +120,9 @@ std::int32_t firstListField(const Program& program, PredId p);
 // How many facts ahead a loop over lists fetches them (listFetchDepth): the first cell of the list
 // five facts on, the second cell four facts on, and so on to the fifth cell one fact on, each one
 // visit after the cell that leads to it. n-queens 13 walks lists of up to 12 cells: 3 facts ahead
-// ran it in 3.52 s, 5 in 2.99 s, 9 in 2.66 s; 8queens-12 (lists of up to 11) ran as fast with 5 as
-// with 3, 9 cost it 11 % (the walk to the deepest cells is repeated at every visit).
+// ran it in 3.52 s, 5 in 2.99 s, 9 in 2.66 s (2-core VM, 2026-11-28, medians of 5 runs, user CPU s);
+// 8queens-12 (lists of up to 11) ran as fast with 5 as with 3, 9 cost it 11 % (the walk to the deepest cells
+// is repeated at every visit).
 inline constexpr int kListFetchAhead = 5;
 // For the loop instruction at loopPc of verified code, how deep it fetches the lists of the facts
 // it visits next, or -1 for not at all. Walking a list waits for memory at every cell (the cells
