@@ -71,6 +71,11 @@ void Machine::deliverIncoming(NodeId n) {
   // linear fact has been sent at all, the first pass has nothing to find.
   bool persistent = !linearPosted_;
   delivering_ = true;
+  // A shard's node may take in tens of thousands of facts at once (8queens-12): a rebalance would
+  // wait for all of them to be stored, so the runtime gets a safe point every few hundred. Facts
+  // it takes in for this node meanwhile are held back (receive), other nodes' boxes are not this
+  // one's, and this node does not move.
+  std::uint32_t untilSafePoint = kFactsBetweenSafePoints;
   if (linearPosted_)
     mail_->forEach(
         n,
@@ -81,6 +86,10 @@ void Machine::deliverIncoming(NodeId n) {
         [&](PredId p, bool, const Value* args) {
           db_->addLinearTrusted(n, p, args);  // the mailbox's references go to the fact
           factAdded(n, p);
+          if (safePointFlag_ && --untilSafePoint == 0) [[unlikely]] {
+            untilSafePoint = kFactsBetweenSafePoints;
+            if (safePointFlag_->load(std::memory_order_relaxed)) shard_->safePoint();
+          }
         });
   if (persistent)
     mail_->forEach(

@@ -69,7 +69,8 @@ struct MachineOptions {
   // runs, so that a node run that would never end on its own still stops.
   const std::atomic<bool>* stopFlag = nullptr;
   // Set by the threaded runtime when it wants every thread at a safe point (a rebalance): read
-  // between rule runs, where the machine then calls shard->safePoint().
+  // between rule runs and every few hundred facts a node run takes in, where the machine then
+  // calls shard->safePoint().
   const std::atomic<bool>* safePointFlag = nullptr;
   // Native entry points of the program's blocks (meld --jit, a native .so); they must outlive the
   // machine. nullptr: everything runs in the interpreter.
@@ -373,6 +374,8 @@ class Machine : private SchedulerView {
   ShardLink* shard_ = nullptr;
   const std::atomic<bool>* stopFlag_ = nullptr;
   const std::atomic<bool>* safePointFlag_ = nullptr;
+  // A safe point between every so many linear facts a node run takes in (deliverIncoming).
+  static constexpr std::uint32_t kFactsBetweenSafePoints = 256;
   ShardPlacement placement_;
   NodeId nextCreated_ = 0, createdEnd_ = 0;                   // a shard's block of ids for created nodes
   void postOrRoute(const PendingFact& e, const Value* args);  // takes over the references of args

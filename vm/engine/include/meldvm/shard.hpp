@@ -48,7 +48,8 @@ class ShardLink {
   // set-static / set-moving changed how many nodes of thread t are static (cpu-static, §5.7).
   virtual void staticChanged(ThreadId t, int delta) = 0;
   virtual std::int32_t staticNodes(ThreadId t) const = 0;
-  // Between two rules of a node run, when MachineOptions::safePointFlag is set: the runtime may
+  // Between two rules of a node run, or while it takes in its facts, when
+  // MachineOptions::safePointFlag is set: the runtime may
   // deliver facts to this shard and move its other nodes away (Machine::movableNow).
   virtual void safePoint() {}
 };

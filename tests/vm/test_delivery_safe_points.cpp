@@ -1,0 +1,121 @@
+// A shard's node run that takes in a large mailbox (thousands of facts) reaches the runtime's safe
+// points while it stores them (Machine::deliverIncoming), not only between its rules: a rebalance
+// then waits for a few hundred facts, not for all of them. At such a safe point the running node
+// does not move, and facts the runtime hands it meanwhile wait until the delivery is over.
+#define BOOST_TEST_MODULE vm_delivery_safe_points
+#include <atomic>
+#include <boost/test/unit_test.hpp>
+#include <functional>
+
+#include "bytecode_fixture.hpp"
+#include "meldvm/machine.hpp"
+
+using namespace bctest;
+
+namespace {
+
+// Thread 0 of two, owning every node; counts the safe points and runs `atSafePoint` at each.
+class CountingLink final : public ShardLink {
+ public:
+  ThreadId ownerOf(NodeId) const override { return 0; }
+  void sendRemote(ThreadId, NodeId, PredId, const Value*, bool) override {}
+  void coordinateRemote(ThreadId, Opcode, NodeId, double) override {}
+  NodeId allocateNodeBlock(ThreadId, NodeId& count) override {
+    count = 0;
+    return 0;
+  }
+  void requestMove(NodeId, ThreadId) override {}
+  void stopAll() override {}
+  void staticChanged(ThreadId, int) override {}
+  std::int32_t staticNodes(ThreadId) const override { return 0; }
+  void safePoint() override {
+    ++calls;
+    if (atSafePoint) atSafePoint();
+  }
+  int calls = 0;
+  std::function<void()> atSafePoint;
+};
+
+// Three nodes; `_init` is consumed by rule 0, and no rule reads `a(node, int)`: a node run that
+// takes in `a` facts only stores them, so its only safe points are the delivery's.
+struct ThreeNodes {
+  std::unique_ptr<Program> program = std::make_unique<Program>();
+  PredId a = 0;
+  ThreeNodes() {
+    Program& p = *program;
+    p.initPredicate = pred(p, "_init", {}, true);
+    a = pred(p, "a", {TypeTable::kInt}, true);
+    emit(p.globalsInit, Opcode::RET);
+    for (std::uint32_t n = 0; n < 3; ++n) {
+      p.nodeSourceIds.push_back(n);
+      p.nodeAxioms.push_back(Program::kNoAxioms);
+    }
+    Rule r;
+    r.block.slots = 1;
+    r.bodyPredicates = {p.initPredicate};
+    loop(r.block, Opcode::ITER, {p.initPredicate, 0, kLinConsume | kIterConsumableClass},
+         [&] { emit(r.block, Opcode::FIRE, {0}); });
+    emit(r.block, Opcode::RET);
+    p.rules.push_back(std::move(r));
+    verifyProgram(p);
+  }
+};
+
+struct Shard {
+  ThreeNodes program;
+  CountingLink link;
+  std::atomic<bool> rebalanceWanted{true};
+  std::unique_ptr<Machine> machine;
+  Shard() {
+    MachineOptions o;
+    o.shard = &link;
+    o.placement = {0, 2, 0, 3};
+    o.safePointFlag = &rebalanceWanted;
+    machine = std::make_unique<Machine>(*program.program, std::move(o));
+    while (machine->runNext()) {
+    }
+    link.calls = 0;
+  }
+  void send(NodeId n, std::int64_t i) {
+    const Value v = Value::fromInt(i);
+    machine->receive(n, program.a, &v, false);
+  }
+};
+
+}  // namespace
+
+BOOST_AUTO_TEST_CASE(a_node_taking_in_thousands_of_facts_reaches_a_safe_point_every_few_hundred) {
+  Shard s;
+  for (int i = 0; i < 1000; ++i) s.send(0, i);
+  BOOST_REQUIRE(s.machine->runNext());
+  BOOST_TEST(s.link.calls == 3);  // after the 256th, 512th and 768th fact
+  BOOST_TEST(s.machine->database().factCount(0, s.program.a) == 1000u);
+}
+
+BOOST_AUTO_TEST_CASE(without_a_rebalance_wanted_the_delivery_only_looks_at_the_flag) {
+  Shard s;
+  s.rebalanceWanted = false;
+  for (int i = 0; i < 1000; ++i) s.send(0, i);
+  BOOST_REQUIRE(s.machine->runNext());
+  BOOST_TEST(s.link.calls == 0);
+  BOOST_TEST(s.machine->database().factCount(0, s.program.a) == 1000u);
+}
+
+BOOST_AUTO_TEST_CASE(at_a_delivery_safe_point_the_running_node_stays_and_its_new_facts_wait) {
+  Shard s;
+  for (int i = 0; i < 300; ++i) s.send(0, i);
+  s.send(1, 7);  // node 1 waits behind node 0: it may be given away
+  bool movable = true;
+  std::vector<NodeId> given;
+  s.link.atSafePoint = [&] {
+    movable = s.machine->movableNow(0);
+    given = s.machine->pickNodesToGive(5, true);
+    s.send(0, 1000);  // for the node whose box is being read: stored after the delivery
+  };
+  BOOST_REQUIRE(s.machine->runNext());
+  BOOST_TEST(s.link.calls == 1);
+  BOOST_TEST(!movable);
+  BOOST_TEST(given == (std::vector<NodeId>{1, 2}), boost::test_tools::per_element());
+  BOOST_TEST(s.machine->database().factCount(0, s.program.a) == 301u);
+  BOOST_TEST(!s.machine->runNext());  // node 1 was handed out of the queue, node 0 is done
+}
