@@ -128,6 +128,70 @@ BOOST_AUTO_TEST_CASE(random_churn_matches_a_scan) {
   BOOST_TEST(total == live.size());
 }
 
+BOOST_AUTO_TEST_CASE(small_lists_found_by_walking_them_agree_with_the_hash_table) {
+  // A node with at most 8 facts of the predicate finds a key by walking its list, a larger one
+  // through the hash table: lists that grow and shrink across that size give the scan's answer
+  // either way.
+  Store s;
+  const PredId e = s.linear("e", {TypeTable::kInt, TypeTable::kInt});
+  Database& db = s.open(40);
+  const std::uint32_t ix = db.requestIndex(e, 0);
+  std::mt19937 rng(99);
+  std::vector<std::pair<NodeId, FactRef>> live;
+  std::uint32_t small = 0, large = 0;
+  for (int step = 0; step < 20000; ++step) {
+    const int op = int(rng() % 10);
+    if (op < 5 || live.size() < 200) {
+      const NodeId n = rng() % 40;
+      live.push_back({n, db.addLinear(n, e, std::vector<Value>{I(int(rng() % 4)), I(step)}.data())});
+    } else if (op < 9 || live.size() > 400) {
+      const std::size_t k = rng() % live.size();
+      db.consume(live[k].first, e, live[k].second);
+      live[k] = live.back();
+      live.pop_back();
+    } else {
+      const std::size_t k = rng() % live.size();
+      db.updateLinear(live[k].first, e, live[k].second, std::vector<Value>{I(int(rng() % 4)), I(step)}.data(),
+                      rng() % 2);
+    }
+    if (step % 89 == 0)
+      for (NodeId n = 0; n < 40; ++n) {
+        (db.factCount(n, e) <= 8 ? small : large) += 1;
+        for (int key = 0; key < 4; ++key)
+          BOOST_REQUIRE(byKey(db, n, e, ix, I(key)) == byScan(db, n, e, 0, I(key)));
+      }
+  }
+  BOOST_TEST(small > 1000u);  // both ways were taken many times
+  BOOST_TEST(large > 1000u);
+}
+
+BOOST_AUTO_TEST_CASE(a_walked_list_yields_the_head_of_the_index_chain) {
+  // Persistent facts are listed grouped by their first field, while an index on another field
+  // chains them in insertion order: the walk must start the chain at its head, not at the first
+  // fact of the list with the key. Node 1 holds the same facts and ten more (the hash table).
+  Store s;
+  const PredId p = s.persistent("p", {TypeTable::kInt, TypeTable::kInt, TypeTable::kInt});
+  Database& db = s.open(2);
+  const std::uint32_t ix = db.requestIndex(p, 1);
+  for (NodeId n : {NodeId(0), NodeId(1)}) {
+    db.derive(n, p, std::vector<Value>{I(2), I(6), I(0)}.data());
+    db.derive(n, p, std::vector<Value>{I(1), I(5), I(1)}.data());  // the chain's head
+    db.derive(n, p, std::vector<Value>{I(2), I(5), I(2)}.data());  // listed before it, in group 2
+  }
+  for (int i = 0; i < 10; ++i) db.derive(1, p, std::vector<Value>{I(9), I(6), I(i)}.data());
+  auto third = [&](NodeId n) {
+    std::vector<int> out;
+    for (FactRef f = db.firstWithKey(n, p, ix, I(5)); f != kNoFact; f = db.nextWithKey(p, ix, f))
+      out.push_back(db.args(p, f)[2].asInt());
+    return out;
+  };
+  BOOST_TEST(db.factCount(0, p) == 3u);
+  BOOST_TEST(db.factCount(1, p) == 13u);
+  BOOST_TEST(third(1) == std::vector<int>({1, 2}), boost::test_tools::per_element());
+  BOOST_TEST(third(0) == third(1), boost::test_tools::per_element());
+  BOOST_TEST(db.firstWithKey(0, p, ix, I(7)) == kNoFact);
+}
+
 BOOST_AUTO_TEST_CASE(slot_hash_agrees_with_a_map) {
   // Keys collide on purpose (hash = key % 64) to exercise probing and backward-shift deletion.
   SlotHash h;

@@ -94,6 +94,14 @@ class FactTable {
   // De-duplicating tables only: the fact of this node with exactly these arguments, or kNoFact.
   FactRef find(NodeId node, const Value* args) const;
   FactRef firstWithKey(NodeId node, std::uint32_t index, const Value* key) const;
+  // The same, found by walking the node's list from `first` instead of the hash table.
+  FactRef firstInListWithKey(FactRef first, std::uint32_t index, const Value* key) const {
+    const KeySpec spec = indexes_[index].key;
+    for (FactRef f = first; f != kNoFact; f = next(f))
+      // The chain's head: the fact before it in the chain is the tail (the head links to it).
+      if (keyEqual(f, key, spec) && hi(linkWord(lo(linkWord(f, index)), index)) == kNoFact) return f;
+    return kNoFact;
+  }
   // Hints that find / firstWithKey with these arguments come soon.
   [[gnu::always_inline]] void prefetchFind(NodeId node, const Value* args) const {
     facts_.prefetch(hashKey(node, args, KeySpec{0, arity()}));  // not memoised: a later key
