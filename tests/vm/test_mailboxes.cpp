@@ -40,18 +40,22 @@ void post(Mailboxes& m, NodeId n, const Message& msg) {
 }
 
 std::vector<Message> taken(const Mailboxes& m, NodeId n,
-                           const std::vector<PredId>& shown = {0, 1, 2, 3, 4, 5}) {
+                           const std::vector<PredId>& shown = {0, 1, 2, 3, 4, 5},
+                           std::uint32_t maxChunks = Mailboxes::kAllChunks) {
   std::vector<Message> out;
   auto select = [&](PredId p) {
     for (PredId q : shown)
       if (p == q) return true;
     return false;
   };
-  m.forEach(n, select, [&](PredId p, bool negative, const Value* args) {
-    Message msg{p, negative, {}};
-    for (std::size_t i = 0; i < kShapes[p].size(); ++i) msg.bits.push_back(args[i].bits());
-    out.push_back(msg);
-  });
+  m.forEach(
+      n, select,
+      [&](PredId p, bool negative, const Value* args) {
+        Message msg{p, negative, {}};
+        for (std::size_t i = 0; i < kShapes[p].size(); ++i) msg.bits.push_back(args[i].bits());
+        out.push_back(msg);
+      },
+      maxChunks);
   return out;
 }
 
@@ -115,6 +119,29 @@ BOOST_AUTO_TEST_CASE(long_chains_and_recycled_chunks_keep_every_message) {
     // The next rounds reuse the released chunks: no more memory.
     if (round > 0) BOOST_TEST(m.bytesReserved() == reserved);
   }
+}
+
+BOOST_AUTO_TEST_CASE(the_first_chunks_come_out_and_go_alone_and_later_posts_queue_behind_the_rest) {
+  // A shard's node run takes in only the first chunks of its box (Machine::deliverIncoming).
+  // One-word records: 31 to a 256-byte chunk, so 100 messages fill three chunks and start a fourth.
+  Mailboxes m(kShapes);
+  m.addNodes(1);
+  std::vector<Message> sent;
+  for (int i = 0; i < 100; ++i) sent.push_back({1, false, {I(i)}});
+  for (const Message& msg : sent) post(m, 0, msg);
+  const std::vector<Message> first(sent.begin(), sent.begin() + 62);
+  BOOST_TEST(taken(m, 0, {0, 1, 2, 3, 4, 5}, 2) == first, boost::test_tools::per_element());
+  m.release(0, 2);
+  BOOST_TEST(!m.empty(0));
+  const Message late{1, true, {I(-7)}};
+  post(m, 0, late);
+  std::vector<Message> rest(sent.begin() + 62, sent.end());
+  rest.push_back(late);
+  BOOST_TEST(taken(m, 0) == rest, boost::test_tools::per_element());
+  m.release(0, 2);  // the last two chunks: nothing is left
+  BOOST_TEST(m.empty(0));
+  post(m, 0, late);  // an emptied box starts a new chain
+  BOOST_TEST(taken(m, 0) == std::vector<Message>{late}, boost::test_tools::per_element());
 }
 
 BOOST_AUTO_TEST_CASE(narrow_records_take_less_room) {

@@ -76,6 +76,7 @@ void Machine::deliverIncoming(NodeId n) {
   // it takes in for this node meanwhile are held back (receive), other nodes' boxes are not this
   // one's, and this node does not move.
   std::uint32_t untilSafePoint = kFactsBetweenSafePoints;
+  const std::uint32_t chunks = shard_ ? kChunksPerShardDelivery : Mailboxes::kAllChunks;
   if (linearPosted_)
     mail_->forEach(
         n,
@@ -90,12 +91,13 @@ void Machine::deliverIncoming(NodeId n) {
             untilSafePoint = kFactsBetweenSafePoints;
             if (safePointFlag_->load(std::memory_order_relaxed)) shard_->safePoint();
           }
-        });
+        },
+        chunks);
   if (persistent)
     mail_->forEach(
         n, [&](PredId p) { return tables_.isLinear[p] == 0; },
-        [&](PredId p, bool negative, const Value* args) { applyPersistent(n, p, args, negative); });
-  mail_->release(n);
+        [&](PredId p, bool negative, const Value* args) { applyPersistent(n, p, args, negative); }, chunks);
+  mail_->release(n, chunks);
   delivering_ = false;
   if (!heldBack_.empty()) [[unlikely]] {
     for (const PendingFact& e : heldBack_) {

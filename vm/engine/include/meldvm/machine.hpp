@@ -376,6 +376,13 @@ class Machine : private SchedulerView {
   const std::atomic<bool>* safePointFlag_ = nullptr;
   // A safe point between every so many linear facts a node run takes in (deliverIncoming).
   static constexpr std::uint32_t kFactsBetweenSafePoints = 256;
+  // A shard's node run takes in at most this many mailbox chunks (4 KiB: about 250 facts of two
+  // words), in arrival order; the rest waits for the node's next run, right after. A node of
+  // 8queens-12 took in up to 79,000 placements at once at -j 2: its fact tables, rule-run buffers
+  // and sent facts grew with them, every access missed the cache, and rebalances waited. The
+  // serial VM takes in the whole mailbox, as the established VM does; with threads, a node that
+  // takes in the earliest arrivals first is a node that ran earlier.
+  static constexpr std::uint32_t kChunksPerShardDelivery = 16;
   ShardPlacement placement_;
   NodeId nextCreated_ = 0, createdEnd_ = 0;                   // a shard's block of ids for created nodes
   void postOrRoute(const PendingFact& e, const Value* args);  // takes over the references of args

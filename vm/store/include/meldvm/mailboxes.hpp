@@ -73,11 +73,13 @@ class Mailboxes {
   bool empty(NodeId n) const { return boxes_[n].first == kNone; }
 
   // Calls f(pred, negative, args) for every message of node n whose predicate passes select(pred),
-  // in arrival order, leaving them in the box (release() empties it). f must not post to n.
+  // in arrival order, leaving them in the box (release() empties it). f must not post to n. With
+  // maxChunks, only the messages of the box's first chunks (the earliest arrivals).
   template <class Select, class F>
-  void forEach(NodeId n, Select&& select, F&& f) const {
+  void forEach(NodeId n, Select&& select, F&& f, std::uint32_t maxChunks = kAllChunks) const {
     const Box& b = boxes_[n];
-    for (std::uint32_t c = b.first; c != kNone;) {
+    std::uint32_t chunks = 0;
+    for (std::uint32_t c = b.first; c != kNone && chunks++ < maxChunks;) {
       const Value* head = chunk(c);
       const std::uint32_t next = std::uint32_t(head[0].bits());
       if (next != kNone) prefetchChunk(next);
@@ -85,17 +87,22 @@ class Mailboxes {
       c = next;
     }
   }
-  // Empties node n's box; the messages' references must have been taken over or released.
-  void release(NodeId n) {
+  // Empties node n's box, or its first maxChunks chunks; the messages' references must have been
+  // taken over or released.
+  void release(NodeId n, std::uint32_t maxChunks = kAllChunks) {
     std::uint32_t c = boxes_[n].first;
-    boxes_[n] = Box{};
-    while (c != kNone) {
+    for (std::uint32_t chunks = 0; c != kNone && chunks < maxChunks; ++chunks) {
       const std::uint32_t next = std::uint32_t(chunk(c)[0].bits());
       chunk(c)[0] = Value::fromBits(free_);
       free_ = c;
       c = next;
     }
+    if (c == kNone)
+      boxes_[n] = Box{};
+    else
+      boxes_[n].first = c;
   }
+  static constexpr std::uint32_t kAllChunks = 0xFFFFFFFFu;
   // Every message still waiting, in no particular order (to release references at the end).
   template <class F>
   void forEachPending(F&& f) const {
