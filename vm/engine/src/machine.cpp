@@ -218,15 +218,17 @@ bool Machine::runNext() {
   return false;
 }
 
-void Machine::receive(NodeId n, PredId p, const Value* args, bool negative) {
+void Machine::receive(NodeId n, PredId p, const Value* args, bool negative, bool adopt) {
   start();
   if (n >= db_->nodeCount() || (shard_ && !holdsNode(n)))
     throw RuntimeError("fact for node @" + std::to_string(n) + ", which does not exist");
   if (delivering_ && n == running_) [[unlikely]] {
-    heldBack_.push_back({n, p, negative, pushArgs(heldBackArgs_, p, args)});
+    heldBack_.push_back(
+        {n, p, negative,
+         adopt ? heldBackArgs_.append(args, tables_.arity[p]) : pushArgs(heldBackArgs_, p, args)});
     return;
   }
-  post(n, p, args, negative);
+  post(n, p, args, negative, adopt);
 }
 
 std::uint64_t Machine::runNode(NodeId n) {
@@ -675,13 +677,14 @@ void Machine::takeNode(NodeId n, const SerialScheduler::Carried& state) {
   if (state.isStatic) setStatic(n, true);  // counted for this thread (cpu-static)
 }
 
-void Machine::takeStoredFact(NodeId n, PredId p, const Value* args, std::uint32_t copies) {
+bool Machine::takeStoredFact(NodeId n, PredId p, const Value* args, std::uint32_t copies) {
   if (program_.predicates[p].linear) {
-    db_->addLinear(n, p, args);
+    db_->addLinearTrusted(n, p, args);
     factAdded(n, p);
-    return;
+    return true;
   }
   if (db_->derive(n, p, args, copies).added) factAdded(n, p);
+  return false;
 }
 
 void Machine::takeNodeDone(NodeId n) {

@@ -10,7 +10,9 @@ namespace {
 // A record: its kind (u8), the node (u32), then
 // - a fact: the predicate with the negative flag in its top bit (u32), then its arguments' bits
 //   (u64 each). A boxed argument (string, list, struct, array, set) is a pointer into the sender's
-//   heap, shared (Heap::share) and holding one reference that the record hands to the receiver;
+//   heap, shared (Heap::share) and holding one reference that the record hands to the receiver
+//   (a sent fact's is the sender's own, a moving node's its own; the receiver's mailbox or store
+//   takes it over where it can, so that a value crossing threads changes its count once at most);
 // - a coordination fact: the opcode (u32) and the value (f64);
 // - a moving node (kMigrate): its scheduling state (f64 priority, f64 default priority, u8
 //   static), u8 1 if set-cpu moved it (0: stolen), its stored facts (u32 count; each u32 copies
@@ -43,11 +45,11 @@ ShardMail::ShardMail(const Program& program) : program_(program), boxed_(program
       if (preds.types().boxed(preds[p].fields[i])) boxed_[p].push_back(i);
 }
 
-void ShardMail::putArgs(MailBytes& out, Heap& heap, PredId p, const Value* args, bool negative) {
+void ShardMail::putArgs(MailBytes& out, Heap& heap, PredId p, const Value* args, bool negative, bool adopt) {
   for (std::uint32_t i : boxed_[p]) {  // the record's references, handed over with it
     const TypeId t = program_.predicates[p].fields[i];
     heap.share(t, args[i]);
-    heap.retain(t, args[i]);
+    if (!adopt) heap.retain(t, args[i]);
   }
   const std::uint32_t arity = program_.predicates[p].arity();
   const std::size_t at = out.size();
@@ -64,7 +66,7 @@ void ShardMail::putArgs(MailBytes& out, Heap& heap, PredId p, const Value* args,
 void ShardMail::putFact(MailBytes& out, Heap& heap, NodeId dest, PredId p, const Value* args, bool negative) {
   put<std::uint8_t>(out, kFact);
   put<std::uint32_t>(out, dest);
-  putArgs(out, heap, p, args, negative);
+  putArgs(out, heap, p, args, negative, /*adopt=*/true);
 }
 
 template <class Use>
@@ -74,16 +76,17 @@ void ShardMail::readFact(Machine& to, const MailBytes& in, std::size_t& pos, Use
   const std::uint32_t arity = program_.predicates[p].arity();
   args_.resize(arity);
   for (std::uint32_t i = 0; i < arity; ++i) args_[i] = Value::fromBits(get<std::uint64_t>(in, pos));
-  auto release = [&] {  // the references the record brought (use() took its own)
+  auto release = [&] {  // the references the record brought, unless use() took them over
     for (std::uint32_t i : boxed_[p]) to.heap().release(program_.predicates[p].fields[i], args_[i]);
   };
+  bool adopted;
   try {
-    use(p, args_.data(), (predWord & kNegativeBit) != 0);
-  } catch (...) {
+    adopted = use(p, args_.data(), (predWord & kNegativeBit) != 0);
+  } catch (...) {  // use() took nothing over
     release();
     throw;
   }
-  release();
+  if (!adopted) release();
 }
 
 void ShardMail::putCoordination(MailBytes& out, NodeId n, Opcode op, double value) {
@@ -108,11 +111,11 @@ void ShardMail::putNode(MailBytes& out, Machine& from, NodeId n, bool moved) {
       n,
       [&](PredId p, const Value* args, std::uint32_t copies) {
         put<std::uint32_t>(out, copies);
-        putArgs(out, heap, p, args, false);
+        putArgs(out, heap, p, args, false, /*adopt=*/false);
         ++stored;
       },
       [&](PredId p, const Value* args, bool negative) {
-        putArgs(pendingScratch_, heap, p, args, negative);
+        putArgs(pendingScratch_, heap, p, args, negative, /*adopt=*/false);
         ++pending;
       });
   std::memcpy(out.data() + storedAt, &stored, sizeof stored);
@@ -129,8 +132,10 @@ void ShardMail::apply(Machine& to, const MailBytes& in, Taken& taken) {
     const NodeId node = get<std::uint32_t>(in, pos);
     if (kind == kFact) {
       ++taken.facts;
-      readFact(to, in, pos,
-               [&](PredId p, const Value* args, bool negative) { to.receive(node, p, args, negative); });
+      readFact(to, in, pos, [&](PredId p, const Value* args, bool negative) {
+        to.receive(node, p, args, negative, /*adopt=*/true);
+        return true;
+      });
     } else if (kind == kMigrate) {
       takeNode(to, node, in, pos);
       ++taken.nodes;
@@ -153,11 +158,13 @@ void ShardMail::takeNode(Machine& to, NodeId n, const MailBytes& in, std::size_t
   to.takeNode(n, state);
   for (std::uint32_t i = 0, count = get<std::uint32_t>(in, pos); i < count; ++i) {
     const auto copies = get<std::uint32_t>(in, pos);
-    readFact(to, in, pos, [&](PredId p, const Value* args, bool) { to.takeStoredFact(n, p, args, copies); });
+    readFact(to, in, pos,
+             [&](PredId p, const Value* args, bool) { return to.takeStoredFact(n, p, args, copies); });
   }
   for (std::uint32_t i = 0, count = get<std::uint32_t>(in, pos); i < count; ++i)
-    readFact(to, in, pos,
-             [&](PredId p, const Value* args, bool negative) { to.takePendingFact(n, p, args, negative); });
+    readFact(to, in, pos, [&](PredId p, const Value* args, bool negative) {
+      return to.takePendingFact(n, p, args, negative);
+    });
   if (moved) to.settleMovedNode(n);
   to.takeNodeDone(n);
 }

@@ -140,7 +140,9 @@ class Machine : private SchedulerView {
   // Driving the nodes from outside (MachineOptions::host): a fact arrives at node n (a message, a
   // sensor change; negative = a retraction), and node n runs until it has nothing left to do.
   // runNode returns the number of rules fired. Both throw RuntimeError like run().
-  void receive(NodeId n, PredId p, const Value* args, bool negative);
+  // adopt: the machine takes over the references of the boxed arguments (else it takes its own).
+  // Throws, having taken nothing, for a node it does not hold.
+  void receive(NodeId n, PredId p, const Value* args, bool negative, bool adopt = false);
   std::uint64_t runNode(NodeId n);
   bool hasWork(NodeId n) const;
   // A node for a block that joined the world after the start (the host drives it like the others):
@@ -194,8 +196,13 @@ class Machine : private SchedulerView {
   SerialScheduler::Carried giveNode(NodeId n, const StoredFactVisitor& stored,
                                     const PendingFactVisitor& pending);
   void takeNode(NodeId n, const SerialScheduler::Carried& state);
-  void takeStoredFact(NodeId n, PredId p, const Value* args, std::uint32_t copies);
-  void takePendingFact(NodeId n, PredId p, const Value* args, bool negative) { post(n, p, args, negative); }
+  // The taker's side of a move. Both take over the references of the boxed arguments (true) or
+  // take their own (false: the caller keeps its references).
+  bool takeStoredFact(NodeId n, PredId p, const Value* args, std::uint32_t copies);
+  bool takePendingFact(NodeId n, PredId p, const Value* args, bool negative) {
+    post(n, p, args, negative, /*adopt=*/true);
+    return true;
+  }
   void takeNodeDone(NodeId n);
   // The store's index on field `field` of `p` (requested at construction for every `index`
   // directive and every ITER_KEY of the program).

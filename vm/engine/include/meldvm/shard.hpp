@@ -32,8 +32,8 @@ class ShardLink {
   // The thread that owns node n now (initial, thread and created nodes), or kNoThread when no
   // node n exists. Read on every fact sent to a node outside the shard's own initial range.
   virtual ThreadId ownerOf(NodeId n) const = 0;
-  // A fact for node `dest` of thread `to`; arguments are borrowed (the link copies them). Sent
-  // in order: facts from one thread to one node arrive in sending order.
+  // A fact for node `dest` of thread `to`; the link takes over the references of its boxed
+  // arguments. Sent in order: facts from one thread to one node arrive in sending order.
   virtual void sendRemote(ThreadId to, NodeId dest, PredId p, const Value* args, bool negative) = 0;
   // A coordination fact (§5.7: priorities, schedule-next, static/moving) for another thread's
   // node; `op` is the opcode, SET_PRIORITY for set-priority.

@@ -28,7 +28,8 @@ class ShardMail {
  public:
   explicit ShardMail(const Program& program);
 
-  // A fact for node dest; `heap` is the sender's (its boxed values are shared and retained).
+  // A fact for node dest; `heap` is the sender's (its boxed values are shared, and the record takes
+  // over the caller's references to them).
   void putFact(MailBytes& out, Heap& heap, NodeId dest, PredId p, const Value* args, bool negative);
   void putCoordination(MailBytes& out, NodeId n, Opcode op, double value);
   // Node n leaves `from` with its stored facts, waiting messages and scheduling state (it must be
@@ -44,7 +45,10 @@ class ShardMail {
   void apply(Machine& to, const MailBytes& in, Taken& taken);
 
  private:
-  void putArgs(MailBytes& out, Heap& heap, PredId p, const Value* args, bool negative);
+  // adopt: the record takes over the caller's references (else it retains its own).
+  void putArgs(MailBytes& out, Heap& heap, PredId p, const Value* args, bool negative, bool adopt);
+  // use(pred, args, negative) returns whether it took over the record's references; if it throws,
+  // it took nothing.
   template <class Use>
   void readFact(Machine& to, const MailBytes& in, std::size_t& pos, Use&& use);
   void takeNode(Machine& to, NodeId n, const MailBytes& in, std::size_t& pos);

@@ -1,0 +1,124 @@
+// A boxed value that crosses shards (meldvm/shard_mail.hpp) keeps exactly one reference per holder:
+// a sent fact's record takes over the sender's reference and the receiver's mailbox takes over the
+// record's, a moving node's stored linear facts go to the taker's store the same way, and when the
+// last holder lets go the cells go back to the heap that allocated them. (A count one too high
+// would keep the cells forever; one too low would free them under a fact.)
+#define BOOST_TEST_MODULE vm_shard_mail_references
+#include <boost/test/unit_test.hpp>
+
+#include "bytecode_fixture.hpp"
+#include "meldvm/machine.hpp"
+#include "meldvm/shard_mail.hpp"
+
+using namespace bctest;
+
+namespace {
+
+// Two shards: node 0 is thread 0's, node 1 thread 1's, unless a test moves it.
+class TwoThreads final : public ShardLink {
+ public:
+  ThreadId ownerOf(NodeId n) const override { return owner[n]; }
+  void sendRemote(ThreadId, NodeId, PredId, const Value*, bool) override {}
+  void coordinateRemote(ThreadId, Opcode, NodeId, double) override {}
+  NodeId allocateNodeBlock(ThreadId, NodeId& count) override {
+    count = 0;
+    return 0;
+  }
+  void requestMove(NodeId, ThreadId) override {}
+  void stopAll() override {}
+  void staticChanged(ThreadId, int) override {}
+  std::int32_t staticNodes(ThreadId) const override { return 0; }
+  ThreadId owner[2] = {0, 1};
+};
+
+// Nodes 0 and 1; rule 0 consumes `_init`; `p(node, list int)` is stored, read by no rule.
+struct ListProgram {
+  std::unique_ptr<Program> program = std::make_unique<Program>();
+  PredId p = 0;
+  TypeId listInt = 0;
+  ListProgram() {
+    Program& g = *program;
+    listInt = g.types.list(TypeTable::kInt);
+    g.initPredicate = pred(g, "_init", {}, true);
+    p = pred(g, "p", {listInt}, true);
+    emit(g.globalsInit, Opcode::RET);
+    for (std::uint32_t n = 0; n < 2; ++n) {
+      g.nodeSourceIds.push_back(n);
+      g.nodeAxioms.push_back(Program::kNoAxioms);
+    }
+    Rule r;
+    r.block.slots = 1;
+    r.bodyPredicates = {g.initPredicate};
+    loop(r.block, Opcode::ITER, {g.initPredicate, 0, kLinConsume | kIterConsumableClass},
+         [&] { emit(r.block, Opcode::FIRE, {0}); });
+    emit(r.block, Opcode::RET);
+    g.rules.push_back(std::move(r));
+    verifyProgram(g);
+  }
+};
+
+struct Shards {
+  ListProgram lp;
+  TwoThreads link;
+  ShardMail mail{*lp.program};
+  std::unique_ptr<Machine> shard[2];
+  Shards() {
+    for (ThreadId t = 0; t < 2; ++t) {
+      MachineOptions o;
+      o.shard = &link;
+      o.placement = {t, 2, t, t + 1};
+      shard[t] = std::make_unique<Machine>(*lp.program, std::move(o));
+      while (shard[t]->runNext()) {
+      }
+    }
+  }
+  std::uint32_t count(Value v) const { return v.asObject()->refs & ~Object::kShared; }
+};
+
+}  // namespace
+
+BOOST_AUTO_TEST_CASE(a_sent_list_has_one_reference_at_the_receiver_and_goes_home_when_dropped) {
+  Shards s;
+  Heap& home = s.shard[0]->heap();
+  const std::vector<Value> items = {Value::fromInt(1), Value::fromInt(2), Value::fromInt(3)};
+  const Value list = home.makeList(s.lp.listInt, items);  // thread 0 holds its one reference
+  const std::size_t before = home.liveObjects();
+  MailBytes bytes;
+  s.mail.putFact(bytes, home, 1, s.lp.p, &list, false);  // the record takes it over
+  BOOST_TEST(s.count(list) == 1u);
+  ShardMail::Taken taken;
+  s.mail.apply(*s.shard[1], bytes, taken);  // thread 1's mailbox takes it over
+  BOOST_TEST(taken.facts == 1u);
+  BOOST_TEST(s.count(list) == 1u);
+  while (s.shard[1]->runNext()) {
+  }
+  BOOST_TEST(s.shard[1]->database().factCount(1, s.lp.p) == 1u);
+  BOOST_TEST(s.count(list) == 1u);  // the stored fact's
+  BOOST_TEST(home.liveObjects() == before);
+
+  // Node 1 moves to thread 0 with its fact: still one reference, now the taker's store's.
+  MailBytes move;
+  s.mail.putNode(move, *s.shard[1], 1, false);
+  s.link.owner[1] = 0;
+  s.mail.apply(*s.shard[0], move, taken);
+  BOOST_TEST(taken.nodes == 1u);
+  BOOST_TEST(s.shard[0]->database().factCount(1, s.lp.p) == 1u);
+  BOOST_TEST(s.count(list) == 1u);
+
+  s.shard[1]->releaseAll();  // thread 1 holds nothing of it any more
+  BOOST_TEST(home.liveObjects() == before);
+  s.shard[0]->releaseAll();  // the last holder: the three cells go
+  BOOST_TEST(home.liveObjects() == before - 3);
+}
+
+BOOST_AUTO_TEST_CASE(a_fact_for_a_node_the_receiver_does_not_hold_leaves_the_reference_to_be_released) {
+  Shards s;
+  Heap& home = s.shard[0]->heap();
+  const Value list = home.makeList(s.lp.listInt, std::vector<Value>{Value::fromInt(7)});
+  const std::size_t before = home.liveObjects();
+  MailBytes bytes;
+  s.mail.putFact(bytes, home, 5, s.lp.p, &list, false);  // node 5 does not exist
+  ShardMail::Taken taken;
+  BOOST_CHECK_THROW(s.mail.apply(*s.shard[1], bytes, taken), RuntimeError);
+  BOOST_TEST(home.liveObjects() == before - 1);  // the record's reference was released: freed
+}
