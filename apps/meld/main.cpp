@@ -47,9 +47,10 @@ void printStats(const meldvm::MachineStats& s, double loadSeconds, double wall, 
                nodes ? double(vmBytes) / double(nodes) : 0.0);
   std::fprintf(
       stderr,
-      "VM MB by part: fact tables %.1f, list heads %.1f, heaps %.1f, mailboxes %.1f, scheduling %.1f\n",
+      "VM MB by part: fact tables %.1f, list heads %.1f, heaps %.1f, mailboxes %.1f, scheduling %.1f, "
+      "buffers %.1f\n",
       double(vm.factTables) / 1e6, double(vm.listHeads) / 1e6, double(vm.heaps) / 1e6,
-      double(vm.mailboxes) / 1e6, double(vm.scheduling) / 1e6);
+      double(vm.mailboxes) / 1e6, double(vm.scheduling) / 1e6, double(vm.buffers) / 1e6);
 }
 
 void printThreadTable(const std::vector<meldvm::ThreadStats>& threads) {

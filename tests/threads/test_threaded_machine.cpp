@@ -202,6 +202,22 @@ BOOST_AUTO_TEST_CASE(a_run_time_error_on_one_thread_ends_the_run_with_its_messag
   }
 }
 
+BOOST_AUTO_TEST_CASE(memory_use_counts_the_run_buffers_and_the_batches_between_threads) {
+  // The token crosses between threads: the rule runs' buffers and each thread's batches are
+  // memory the VM holds (kept at the size of the largest run), part of the total.
+  const auto p = compile(ringProgram());
+  meldvm::Machine serial(*p);
+  serial.run();
+  const meldvm::MemoryUse one = serial.memoryUse();
+  BOOST_TEST(one.buffers > 0u);
+  meldvm::ThreadedMachine m(*p, {}, 3);
+  m.run();
+  const meldvm::MemoryUse three = m.memoryUse();
+  BOOST_TEST(three.buffers > 3 * one.buffers);  // each thread's own, and the batches on top
+  BOOST_TEST(three.total() == three.factTables + three.listHeads + three.heaps + three.mailboxes +
+                                  three.scheduling + three.buffers);
+}
+
 BOOST_AUTO_TEST_CASE(per_thread_statistics_add_up) {
   const auto p = compile(ringProgram());
   meldvm::ThreadedMachine m(*p, {}, 3);

@@ -81,6 +81,14 @@ MemoryUse Machine::memoryUse() const {
   m.mailboxes = mail_->bytesReserved();
   m.scheduling =
       candidates_.capacity() * sizeof(std::uint64_t) + created_.capacity() + sched_.bytesReserved();
+  const std::size_t facts = consumed_.capacity() * sizeof(Consumed) +
+                            (heldBack_.capacity() + linearOut_.capacity() + persistentQueue_.capacity() +
+                             sentPersistent_.capacity() + sentLinear_.capacity()) *
+                                sizeof(PendingFact);
+  const std::size_t values = heldBackArgs_.bytesReserved() + linearOutArgs_.bytesReserved() +
+                             persistentArgs_.bytesReserved() + sentArgs_.bytesReserved() +
+                             (triggerAdded_.capacity() + triggerRemoved_.capacity()) * sizeof(Value);
+  m.buffers = facts + values + sendOrder_->bytesReserved();
   return m;
 }
 

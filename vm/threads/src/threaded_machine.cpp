@@ -70,7 +70,7 @@ std::vector<ThreadStats> ThreadedMachine::threadStats() const {
 
 MemoryUse ThreadedMachine::memoryUse() const {
   MemoryUse m;
-  for (const auto& w : workers_) m += w->machine().memoryUse();
+  for (const auto& w : workers_) m += w->memoryUse();
   return m;
 }
 

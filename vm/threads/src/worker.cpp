@@ -102,6 +102,13 @@ void Worker::loop() {
   stats_.busySeconds = std::max(0.0, secondsSince(start) - stats_.idleSeconds);
 }
 
+MemoryUse Worker::memoryUse() const {
+  MemoryUse m = machine_->memoryUse();
+  m.buffers += incoming_.capacity() + mail_.bytesReserved();
+  for (const Bytes& b : outgoing_) m.buffers += b.capacity();
+  return m;
+}
+
 bool Worker::mailWaiting() const {
   for (ThreadId from = 0; from < shared_.threads; ++from)
     if (from != self_ && shared_.channel(from, self_).ready()) return true;

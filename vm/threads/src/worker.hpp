@@ -33,6 +33,8 @@ class Worker final : public ShardLink {
   }
   Machine& machine() { return *machine_; }
   const Machine& machine() const { return *machine_; }
+  // The machine's memory, with the batches this thread sends and takes in counted as buffers.
+  MemoryUse memoryUse() const;
   ThreadStats stats() const;
   // Records a timeline of this thread's run (before launch()).
   void recordProfile(std::chrono::steady_clock::time_point origin) {

@@ -89,13 +89,17 @@ struct MemoryUse {
   std::size_t heaps = 0;       // boxed values (lists, strings, ...)
   std::size_t mailboxes = 0;   // pending facts and per-node boxes
   std::size_t scheduling = 0;  // scheduler records, candidate sets, created-node marks
-  std::size_t total() const { return factTables + listHeads + heaps + mailboxes + scheduling; }
+  // What a node run works in (facts consumed, derived and sent, queued persistent facts) and, with
+  // threads, the batches between them: kept at the size of the largest run.
+  std::size_t buffers = 0;
+  std::size_t total() const { return factTables + listHeads + heaps + mailboxes + scheduling + buffers; }
   MemoryUse& operator+=(const MemoryUse& o) {
     factTables += o.factTables;
     listHeads += o.listHeads;
     heaps += o.heaps;
     mailboxes += o.mailboxes;
     scheduling += o.scheduling;
+    buffers += o.buffers;
     return *this;
   }
 };

@@ -43,6 +43,8 @@ class ShardMail {
   // Applies every record of `in` to shard `to`; counts what it took. Throws RuntimeError for a
   // coordination fact whose node does not exist.
   void apply(Machine& to, const MailBytes& in, Taken& taken);
+  // The scratch space's memory.
+  std::size_t bytesReserved() const { return args_.capacity() * sizeof(Value) + pendingScratch_.capacity(); }
 
  private:
   // adopt: the record takes over the caller's references (else it retains its own).

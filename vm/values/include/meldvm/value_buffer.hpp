@@ -14,6 +14,7 @@ namespace meldvm {
 class ValueBuffer {
  public:
   std::uint32_t size() const { return size_; }
+  std::size_t bytesReserved() const { return store_.capacity() * sizeof(Value); }
   const Value* data() const { return store_.data(); }
   void clear() { size_ = 0; }
   void reserve(std::size_t n) {
