@@ -6,66 +6,25 @@
 #define BOOST_TEST_MODULE vm_shard_delivery
 #include <atomic>
 #include <boost/test/unit_test.hpp>
-#include <functional>
 
-#include "bytecode_fixture.hpp"
-#include "meldvm/machine.hpp"
+#include "shard_fixture.hpp"
 
 using namespace bctest;
 
 namespace {
 
-// Thread 0 of two, owning every node; counts the safe points and runs `atSafePoint` at each.
-class CountingLink final : public ShardLink {
- public:
-  ThreadId ownerOf(NodeId) const override { return 0; }
-  void sendRemote(ThreadId, NodeId, PredId, const Value*, bool) override {}
-  void coordinateRemote(ThreadId, Opcode, NodeId, double) override {}
-  NodeId allocateNodeBlock(ThreadId, NodeId& count) override {
-    count = 0;
-    return 0;
-  }
-  void requestMove(NodeId, ThreadId) override {}
-  void stopAll() override {}
-  void staticChanged(ThreadId, int) override {}
-  std::int32_t staticNodes(ThreadId) const override { return 0; }
-  void safePoint() override {
-    ++calls;
-    if (atSafePoint) atSafePoint();
-  }
-  int calls = 0;
-  std::function<void()> atSafePoint;
-};
-
-// Three nodes; `_init` is consumed by rule 0, and no rule reads `a(node, int)`: a node run that
-// takes in `a` facts only stores them, so its only safe points are the delivery's.
+// Three nodes; no rule reads `a(node, int)`: a node run that takes in `a` facts only stores them,
+// so its only safe points are the delivery's.
 struct ThreeNodes {
-  std::unique_ptr<Program> program = std::make_unique<Program>();
   PredId a = 0;
-  ThreeNodes() {
-    Program& p = *program;
-    p.initPredicate = pred(p, "_init", {}, true);
-    a = pred(p, "a", {TypeTable::kInt}, true);
-    emit(p.globalsInit, Opcode::RET);
-    for (std::uint32_t n = 0; n < 3; ++n) {
-      p.nodeSourceIds.push_back(n);
-      p.nodeAxioms.push_back(Program::kNoAxioms);
-    }
-    Rule r;
-    r.block.slots = 1;
-    r.bodyPredicates = {p.initPredicate};
-    loop(r.block, Opcode::ITER, {p.initPredicate, 0, kLinConsume | kIterConsumableClass},
-         [&] { emit(r.block, Opcode::FIRE, {0}); });
-    emit(r.block, Opcode::RET);
-    p.rules.push_back(std::move(r));
-    verifyProgram(p);
-  }
+  std::unique_ptr<Program> program =
+      initOnlyProgram(3, [this](Program& p) { a = pred(p, "a", {TypeTable::kInt}, true); });
 };
 
 // A shard of a threaded run, or (asShard false) the serial VM.
 struct Shard {
   ThreeNodes program;
-  CountingLink link;
+  TestShardLink link;
   std::atomic<bool> rebalanceWanted{true};
   std::unique_ptr<Machine> machine;
   explicit Shard(bool asShard = true) {
@@ -78,7 +37,7 @@ struct Shard {
     machine = std::make_unique<Machine>(*program.program, std::move(o));
     while (machine->runNext()) {
     }
-    link.calls = 0;
+    link.safePoints = 0;
   }
   void send(NodeId n, std::int64_t i) {
     const Value v = Value::fromInt(i);
@@ -116,7 +75,7 @@ BOOST_AUTO_TEST_CASE(a_node_taking_in_hundreds_of_facts_reaches_a_safe_point_eve
   const int perRun = kFactsPerChunk * kChunksPerRun;  // 496: one safe point each run
   for (int i = 0; i < 2 * perRun; ++i) s.send(0, i);
   BOOST_REQUIRE(s.machine->runNext());
-  BOOST_TEST(s.link.calls == 2);
+  BOOST_TEST(s.link.safePoints == 2);
   BOOST_TEST(s.machine->database().factCount(0, s.program.a) == std::uint32_t(2 * perRun));
 }
 
@@ -125,7 +84,7 @@ BOOST_AUTO_TEST_CASE(without_a_rebalance_wanted_the_delivery_only_looks_at_the_f
   s.rebalanceWanted = false;
   for (int i = 0; i < 1000; ++i) s.send(0, i);
   BOOST_REQUIRE(s.machine->runNext());
-  BOOST_TEST(s.link.calls == 0);
+  BOOST_TEST(s.link.safePoints == 0);
   BOOST_TEST(s.machine->database().factCount(0, s.program.a) == 1000u);
 }
 
@@ -141,7 +100,7 @@ BOOST_AUTO_TEST_CASE(at_a_delivery_safe_point_the_running_node_stays_and_its_new
     s.send(0, 1000);  // for the node whose box is being read: stored after the delivery
   };
   BOOST_REQUIRE(s.machine->runNext());
-  BOOST_TEST(s.link.calls == 1);
+  BOOST_TEST(s.link.safePoints == 1);
   BOOST_TEST(!movable);
   BOOST_TEST(given == (std::vector<NodeId>{1, 2}), boost::test_tools::per_element());
   BOOST_TEST(s.machine->database().factCount(0, s.program.a) == 301u);

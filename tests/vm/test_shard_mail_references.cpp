@@ -6,63 +6,31 @@
 #define BOOST_TEST_MODULE vm_shard_mail_references
 #include <boost/test/unit_test.hpp>
 
-#include "bytecode_fixture.hpp"
-#include "meldvm/machine.hpp"
 #include "meldvm/shard_mail.hpp"
+#include "shard_fixture.hpp"
 
 using namespace bctest;
 
 namespace {
 
-// Two shards: node 0 is thread 0's, node 1 thread 1's, unless a test moves it.
-class TwoThreads final : public ShardLink {
- public:
-  ThreadId ownerOf(NodeId n) const override { return owner[n]; }
-  void sendRemote(ThreadId, NodeId, PredId, const Value*, bool) override {}
-  void coordinateRemote(ThreadId, Opcode, NodeId, double) override {}
-  NodeId allocateNodeBlock(ThreadId, NodeId& count) override {
-    count = 0;
-    return 0;
-  }
-  void requestMove(NodeId, ThreadId) override {}
-  void stopAll() override {}
-  void staticChanged(ThreadId, int) override {}
-  std::int32_t staticNodes(ThreadId) const override { return 0; }
-  ThreadId owner[2] = {0, 1};
-};
-
-// Nodes 0 and 1; rule 0 consumes `_init`; `p(node, list int)` is stored, read by no rule.
+// Nodes 0 and 1; `p(node, list int)` is stored, read by no rule.
 struct ListProgram {
-  std::unique_ptr<Program> program = std::make_unique<Program>();
-  PredId p = 0;
   TypeId listInt = 0;
-  ListProgram() {
-    Program& g = *program;
+  PredId p = 0;
+  std::unique_ptr<Program> program = initOnlyProgram(2, [this](Program& g) {
     listInt = g.types.list(TypeTable::kInt);
-    g.initPredicate = pred(g, "_init", {}, true);
     p = pred(g, "p", {listInt}, true);
-    emit(g.globalsInit, Opcode::RET);
-    for (std::uint32_t n = 0; n < 2; ++n) {
-      g.nodeSourceIds.push_back(n);
-      g.nodeAxioms.push_back(Program::kNoAxioms);
-    }
-    Rule r;
-    r.block.slots = 1;
-    r.bodyPredicates = {g.initPredicate};
-    loop(r.block, Opcode::ITER, {g.initPredicate, 0, kLinConsume | kIterConsumableClass},
-         [&] { emit(r.block, Opcode::FIRE, {0}); });
-    emit(r.block, Opcode::RET);
-    g.rules.push_back(std::move(r));
-    verifyProgram(g);
-  }
+  });
 };
 
+// Two shards: node 0 is thread 0's, node 1 thread 1's, unless a test moves it.
 struct Shards {
   ListProgram lp;
-  TwoThreads link;
+  TestShardLink link;
   ShardMail mail{*lp.program};
   std::unique_ptr<Machine> shard[2];
   Shards() {
+    link.owners = {0, 1};
     for (ThreadId t = 0; t < 2; ++t) {
       MachineOptions o;
       o.shard = &link;
@@ -99,7 +67,7 @@ BOOST_AUTO_TEST_CASE(a_sent_list_has_one_reference_at_the_receiver_and_goes_home
   // Node 1 moves to thread 0 with its fact: still one reference, now the taker's store's.
   MailBytes move;
   s.mail.putNode(move, *s.shard[1], 1, false);
-  s.link.owner[1] = 0;
+  s.link.owners[1] = 0;
   s.mail.apply(*s.shard[0], move, taken);
   BOOST_TEST(taken.nodes == 1u);
   BOOST_TEST(s.shard[0]->database().factCount(1, s.lp.p) == 1u);

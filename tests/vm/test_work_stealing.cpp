@@ -5,56 +5,20 @@
 #define BOOST_TEST_MODULE vm_work_stealing
 #include <boost/test/unit_test.hpp>
 
-#include "bytecode_fixture.hpp"
-#include "meldvm/machine.hpp"
+#include "shard_fixture.hpp"
 
 using namespace bctest;
 
 namespace {
 
-// Thread 0 of two. The owner table says every node is thread 0's: node 11 started on thread 1,
-// which has just handed it over (set-cpu) in the rebalance under way, and its facts have not
-// arrived yet, so thread 0 must not give it away.
-class TwoShards final : public ShardLink {
- public:
-  ThreadId ownerOf(NodeId) const override { return 0; }
-  void sendRemote(ThreadId, NodeId, PredId, const Value*, bool) override {}
-  void coordinateRemote(ThreadId, Opcode, NodeId, double) override {}
-  NodeId allocateNodeBlock(ThreadId, NodeId& count) override {
-    count = 0;
-    return 0;
-  }
-  void requestMove(NodeId, ThreadId) override {}
-  void stopAll() override {}
-  void staticChanged(ThreadId, int) override {}
-  std::int32_t staticNodes(ThreadId) const override { return 0; }
-};
-
-// 12 nodes, each starting with `_init` (queued), and one rule that consumes it.
-std::unique_ptr<Program> twelveNodes() {
-  auto p = std::make_unique<Program>();
-  p->initPredicate = pred(*p, "_init", {}, true);
-  emit(p->globalsInit, Opcode::RET);
-  for (std::uint32_t n = 0; n < 12; ++n) {
-    p->nodeSourceIds.push_back(n);
-    p->nodeAxioms.push_back(Program::kNoAxioms);
-  }
-  Rule r;
-  r.block.slots = 1;
-  r.bodyPredicates = {p->initPredicate};
-  loop(r.block, Opcode::ITER, {p->initPredicate, 0, kLinConsume | kIterConsumableClass},
-       [&] { emit(r.block, Opcode::FIRE, {0}); });
-  emit(r.block, Opcode::RET);
-  p->rules.push_back(std::move(r));
-  verifyProgram(*p);
-  return p;
-}
-
-// A shard owning nodes 0..10 that has run `runs` nodes. They start in the scheduler's heap, which
-// serves them 0, 10, 9, 8, ... (§6.11's start-up order): after 4 runs, 1..7 wait.
+// Thread 0 of two, owning nodes 0..10, that has run `runs` nodes; the 12 nodes each start with
+// `_init` (queued), which one rule consumes. They start in the scheduler's heap, which serves them
+// 0, 10, 9, 8, ... (§6.11's start-up order): after 4 runs, 1..7 wait. The owner table says every
+// node is thread 0's: node 11 started on thread 1, which has just handed it over (set-cpu) in the
+// rebalance under way, and its facts have not arrived yet, so thread 0 must not give it away.
 struct Shard {
-  std::unique_ptr<Program> program = twelveNodes();
-  TwoShards link;
+  std::unique_ptr<Program> program = initOnlyProgram(12);
+  TestShardLink link;
   std::unique_ptr<Machine> machine;
   explicit Shard(int runs = 4) {
     MachineOptions o;
