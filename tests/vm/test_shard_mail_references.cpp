@@ -64,7 +64,15 @@ BOOST_AUTO_TEST_CASE(a_sent_list_has_one_reference_at_the_receiver_and_goes_home
   BOOST_TEST(s.count(list) == 1u);  // the stored fact's
   BOOST_TEST(home.liveObjects() == before);
 
-  // Node 1 moves to thread 0 with its fact: still one reference, now the taker's store's.
+  // A second list waits in node 1's mailbox, unread.
+  const Value waiting = home.makeList(s.lp.listInt, std::vector<Value>{Value::fromInt(9)});
+  MailBytes more;
+  s.mail.putFact(more, home, 1, s.lp.p, &waiting, false);
+  s.mail.apply(*s.shard[1], more, taken);
+  BOOST_TEST(s.count(waiting) == 1u);
+
+  // Node 1 moves to thread 0 with its fact and its message: still one reference each, now the
+  // taker's store's and mailbox's.
   MailBytes move;
   s.mail.putNode(move, *s.shard[1], 1, false);
   s.link.owners[1] = 0;
@@ -72,10 +80,15 @@ BOOST_AUTO_TEST_CASE(a_sent_list_has_one_reference_at_the_receiver_and_goes_home
   BOOST_TEST(taken.nodes == 1u);
   BOOST_TEST(s.shard[0]->database().factCount(1, s.lp.p) == 1u);
   BOOST_TEST(s.count(list) == 1u);
+  BOOST_TEST(s.count(waiting) == 1u);
+  while (s.shard[0]->runNext()) {
+  }
+  BOOST_TEST(s.shard[0]->database().factCount(1, s.lp.p) == 2u);
+  BOOST_TEST(s.count(waiting) == 1u);
 
-  s.shard[1]->releaseAll();  // thread 1 holds nothing of it any more
-  BOOST_TEST(home.liveObjects() == before);
-  s.shard[0]->releaseAll();  // the last holder: the three cells go
+  s.shard[1]->releaseAll();  // thread 1 holds nothing of them any more
+  BOOST_TEST(home.liveObjects() == before + 1);
+  s.shard[0]->releaseAll();  // the last holder: the four cells go
   BOOST_TEST(home.liveObjects() == before - 3);
 }
 

@@ -667,10 +667,7 @@ SerialScheduler::Carried Machine::giveNode(NodeId n, const StoredFactVisitor& st
   db_->forEachStored(n, stored);
   mail_->forEach(
       n, [](PredId) { return true; },
-      [&](PredId p, bool negative, const Value* args) {
-        pending(p, args, negative);
-        releaseArgs(p, args);  // the mailbox's references
-      });
+      [&](PredId p, bool negative, const Value* args) { pending(p, args, negative); });
   mail_->release(n);
   db_->clearNode(n);
   std::fill_n(candidates_.data() + std::size_t(n) * tables_.ruleWords, tables_.ruleWords, 0);

@@ -115,7 +115,7 @@ void ShardMail::putNode(MailBytes& out, Machine& from, NodeId n, bool moved) {
         ++stored;
       },
       [&](PredId p, const Value* args, bool negative) {
-        putArgs(pendingScratch_, heap, p, args, negative, /*adopt=*/false);
+        putArgs(pendingScratch_, heap, p, args, negative, /*adopt=*/true);  // the mailbox's references
         ++pending;
       });
   std::memcpy(out.data() + storedAt, &stored, sizeof stored);

@@ -195,6 +195,8 @@ class Machine : private SchedulerView {
   bool movableNow(NodeId n) const { return !(nodeRunning_ && n == running_); }
   // The taker's side of set-cpu: the node is pinned and just-moved is added (§5.7).
   void settleMovedNode(NodeId n);
+  // `stored` sees each stored fact (the store keeps and then releases its references); `pending`
+  // each waiting message, and takes over the message's references.
   using StoredFactVisitor = std::function<void(PredId, const Value*, std::uint32_t copies)>;
   using PendingFactVisitor = std::function<void(PredId, const Value*, bool negative)>;
   SerialScheduler::Carried giveNode(NodeId n, const StoredFactVisitor& stored,
