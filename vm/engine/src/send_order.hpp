@@ -26,11 +26,6 @@ class SendOrder {
   // first eight (a comparison sort of the facts was a fifth of all the instructions of
   // 8queens-12, whose node runs send thousands of facts). The scratch space is kept, so
   // steady-state runs allocate nothing.
-  // The scratch space's memory.
-  std::size_t bytesReserved() const {
-    return dests_.capacity() * sizeof(Destination) + groups_.capacity() * sizeof(Group) +
-           (next_.capacity() + order_.capacity()) * sizeof(std::uint32_t) + table_.capacity() * sizeof(Slot);
-  }
   template <class NodeOf, class PredOf>
   const std::vector<std::uint32_t>& arrange(std::size_t n, NodeOf nodeOf, PredOf predOf) {
     order_.clear();
@@ -65,6 +60,12 @@ class SendOrder {
       for (std::uint32_t g = d.firstGroup; g != kNone; g = groups_[g].sibling)
         for (std::uint32_t i = groups_[g].head; i != kNone; i = next_[i]) order_.push_back(i);
     return order_;
+  }
+
+  // The scratch space's memory (MemoryUse::buffers).
+  std::size_t bytesReserved() const {
+    return dests_.capacity() * sizeof(Destination) + groups_.capacity() * sizeof(Group) +
+           (next_.capacity() + order_.capacity()) * sizeof(std::uint32_t) + table_.capacity() * sizeof(Slot);
   }
 
  private:

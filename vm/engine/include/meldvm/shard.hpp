@@ -49,8 +49,8 @@ class ShardLink {
   virtual void staticChanged(ThreadId t, int delta) = 0;
   virtual std::int32_t staticNodes(ThreadId t) const = 0;
   // Between two rules of a node run, or while it takes in its facts, when
-  // MachineOptions::safePointFlag is set: the runtime may
-  // deliver facts to this shard and move its other nodes away (Machine::movableNow).
+  // MachineOptions::safePointFlag is set: the runtime may deliver facts to this shard and move its
+  // other nodes away (Machine::movableNow).
   virtual void safePoint() {}
 };
 

@@ -72,6 +72,7 @@ class Mailboxes {
   }
   bool empty(NodeId n) const { return boxes_[n].first == kNone; }
 
+  static constexpr std::uint32_t kAllChunks = 0xFFFFFFFFu;  // forEach / release: the whole box
   // Calls f(pred, negative, args) for every message of node n whose predicate passes select(pred),
   // in arrival order, leaving them in the box (release() empties it). f must not post to n. With
   // maxChunks, only the messages of the box's first chunks (the earliest arrivals).
@@ -102,7 +103,6 @@ class Mailboxes {
     else
       boxes_[n].first = c;
   }
-  static constexpr std::uint32_t kAllChunks = 0xFFFFFFFFu;
   // Every message still waiting, in no particular order (to release references at the end).
   template <class F>
   void forEachPending(F&& f) const {

@@ -1,7 +1,7 @@
 // The multicore target (`meld -j N`): a Meld program on N worker threads. Each thread owns a
 // shard (a Machine with its own store, heap and scheduler, shard.hpp) and a contiguous range of
 // the graph's nodes, as the established VM partitions them statically; thread t also has thread
-// node N + t (§6.12). A fact for another thread's node goes, copied, through the channel of that
+// node N + t (§6.12). A fact for another thread's node goes through the channel of that
 // pair of threads. The run ends by quiescence: no thread has work and no fact is in transit
 // (one counter of busy threads and batches in transit, see worker.cpp), or by stop-program.
 //
