@@ -362,6 +362,10 @@ void Machine::finishRuleRun() {
 // native run waited there (Heap::destroy). So the consumptions fetch ahead: the list's first cell
 // sixteen facts on, and the second cell eight facts on (the first one arrived meanwhile). The
 // deaths that follow (a cell whose last reference that was) still wait.
+namespace {
+constexpr std::size_t kFirstCellAhead = 16, kSecondCellAhead = 8;
+}
+
 void Machine::fetchListsOfConsumed(std::size_t i) const {
   auto firstCell = [&](std::size_t k) -> const ConsCell* {
     if (k >= consumed_.size()) return nullptr;
@@ -369,8 +373,9 @@ void Machine::fetchListsOfConsumed(std::size_t i) const {
     const std::int32_t field = tables_.listField[c.pred];
     return field < 0 ? nullptr : static_cast<const ConsCell*>(db_->args(c.pred, c.fact)[field].asObject());
   };
-  if (const ConsCell* cell = firstCell(i + 16)) __builtin_prefetch(cell);
-  if (const ConsCell* cell = firstCell(i + 8); cell && cell->tail) __builtin_prefetch(cell->tail);
+  if (const ConsCell* cell = firstCell(i + kFirstCellAhead)) __builtin_prefetch(cell);
+  if (const ConsCell* cell = firstCell(i + kSecondCellAhead); cell && cell->tail)
+    __builtin_prefetch(cell->tail);
 }
 
 void Machine::storeDerivedLinear() {

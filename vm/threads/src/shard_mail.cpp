@@ -11,8 +11,9 @@ namespace {
 // - a fact: the predicate with the negative flag in its top bit (u32), then its arguments' bits
 //   (u64 each). A boxed argument (string, list, struct, array, set) is a pointer into the sender's
 //   heap, shared (Heap::share) and holding one reference that the record hands to the receiver
-//   (a sent fact's is the sender's own, a moving node's its own; the receiver's mailbox or store
-//   takes it over where it can, so that a value crossing threads changes its count once at most);
+//   (a sent fact's is the sender's own, a moving node's waiting message's its mailbox's, a moving
+//   node's stored fact's its own; the receiver's mailbox or store takes it over where it can, so
+//   that a value crossing threads changes its count once at most);
 // - a coordination fact: the opcode (u32) and the value (f64);
 // - a moving node (kMigrate): its scheduling state (f64 priority, f64 default priority, u8
 //   static), u8 1 if set-cpu moved it (0: stolen), its stored facts (u32 count; each u32 copies
