@@ -3,8 +3,8 @@
 // through verifyProgram, so malformed input ends in a BytecodeError, never in a crash.
 #include <bit>
 #include <cstring>
-#include <fstream>
 
+#include "file_bytes.hpp"
 #include "meldvm/bytecode.hpp"
 #include "meldvm/bytecode_internal.hpp"
 
@@ -197,11 +197,13 @@ void readSection(Cursor& c, std::uint32_t tag, Program& p) {
     }
     case kSecStrings: {
       const std::uint32_t n = c.count("string", 4);
+      p.strings.reserve(n);
       for (std::uint32_t i = 0; i < n; ++i) p.strings.push_back(c.str("string constant"));
       break;
     }
     case kSecGlobals: {
       const std::uint32_t n = c.count("global", 8);
+      p.globals.reserve(n);
       for (std::uint32_t i = 0; i < n; ++i) {
         Global g;
         g.name = c.str("global name");
@@ -213,6 +215,7 @@ void readSection(Cursor& c, std::uint32_t tag, Program& p) {
     }
     case kSecFunctions: {
       const std::uint32_t n = c.count("function", 4 * 7);
+      p.functions.reserve(n);
       for (std::uint32_t i = 0; i < n; ++i) {
         Function f;
         f.name = c.str("function name");
@@ -225,6 +228,7 @@ void readSection(Cursor& c, std::uint32_t tag, Program& p) {
     }
     case kSecExterns: {
       const std::uint32_t n = c.count("extern", 4 * 3);
+      p.externs.reserve(n);
       for (std::uint32_t i = 0; i < n; ++i) {
         Extern e;
         e.name = c.str("extern name");
@@ -236,6 +240,7 @@ void readSection(Cursor& c, std::uint32_t tag, Program& p) {
     }
     case kSecRules: {
       const std::uint32_t n = c.count("rule", 4 * 5);
+      p.rules.reserve(n);
       for (std::uint32_t i = 0; i < n; ++i) {
         Rule r;
         r.block = c.block();
@@ -246,6 +251,7 @@ void readSection(Cursor& c, std::uint32_t tag, Program& p) {
     }
     case kSecProcesses: {
       const std::uint32_t n = c.count("process", 4 * 5);
+      p.processes.reserve(n);
       for (std::uint32_t i = 0; i < n; ++i) {
         Process pr;
         pr.trigger = c.word("process trigger");
@@ -257,6 +263,7 @@ void readSection(Cursor& c, std::uint32_t tag, Program& p) {
     case kSecAxioms: {
       p.nodeAxioms = c.words("node axioms");
       const std::uint32_t n = c.count("axiom block", 4 * 4);
+      p.axiomBlocks.reserve(n);
       for (std::uint32_t i = 0; i < n; ++i) p.axiomBlocks.push_back(c.block());
       break;
     }
@@ -280,6 +287,7 @@ void readSection(Cursor& c, std::uint32_t tag, Program& p) {
     }
     case kSecIndexes: {
       const std::uint32_t n = c.count("index", 8);
+      p.indexes.reserve(n);
       for (std::uint32_t i = 0; i < n; ++i) {
         IndexRequest ix;
         ix.predicate = c.word("index predicate");
@@ -347,27 +355,7 @@ std::unique_ptr<Program> readBytecode(const std::uint8_t* data, std::size_t size
 }
 
 std::unique_ptr<Program> readBytecodeFile(const std::string& path) {
-  std::ifstream in(path, std::ios::binary);
-  if (!in) throw BytecodeError("cannot open " + path, 0);
-  std::vector<std::uint8_t> bytes;
-  // In blocks, not byte by byte through a stream iterator (16 instructions a byte: 44 M for a
-  // 2.7 MB program, a tenth of a short run). The path may be a pipe, so the size is not asked
-  // for beforehand. libstdc++ reports some read errors (e.g. the path is a directory) by throwing
-  // from the stream buffer even without exceptions() set.
-  try {
-    constexpr std::size_t kBlock = 256 * 1024;
-    for (std::size_t got = 0;; got += std::size_t(in.gcount())) {
-      bytes.resize(got + kBlock);
-      in.read(reinterpret_cast<char*>(bytes.data() + got), kBlock);
-      if (std::size_t(in.gcount()) < kBlock) {
-        bytes.resize(got + std::size_t(in.gcount()));
-        break;
-      }
-    }
-  } catch (const std::exception& e) {
-    throw BytecodeError("cannot read " + path + ": " + e.what(), 0);
-  }
-  if (in.bad()) throw BytecodeError("cannot read " + path, 0);
+  const detail::FileBytes bytes(path);
   try {
     return readBytecode(bytes.data(), bytes.size());
   } catch (const BytecodeError& e) {
