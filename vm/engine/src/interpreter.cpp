@@ -35,8 +35,8 @@ double immDouble(const std::uint32_t* c) {
 Interpreter::Interpreter(Machine& machine, const Program& program, Database& db, BuiltinContext& ctx,
                          const NativeCode* native)
     : machine_(machine), program_(program), db_(db), heap_(db.heap()), ctx_(ctx), native_(native) {
-  regChunks_.push_back(std::make_unique<Value[]>(kRegChunk));
-  slotChunks_.push_back(std::make_unique<Slot[]>(kSlotChunk));
+  regChunks_.push_back(rawChunk<Value>(kRegChunk));
+  slotChunks_.push_back(rawChunk<Slot>(kSlotChunk));
   args_.resize(64);
 }
 
@@ -119,11 +119,11 @@ Interpreter::Alloc Interpreter::enter(const CodeBlock& b) {
   if (regs > kRegChunk || slots > kSlotChunk) throw RuntimeError("code block '" + b.label + "' is too large");
   Alloc a{nullptr, nullptr, regChunk_ * kRegChunk + regUsed_, slotChunk_ * kSlotChunk + slotUsed_};
   if (regUsed_ + regs > kRegChunk) {
-    if (++regChunk_ == regChunks_.size()) regChunks_.push_back(std::make_unique<Value[]>(kRegChunk));
+    if (++regChunk_ == regChunks_.size()) regChunks_.push_back(rawChunk<Value>(kRegChunk));
     regUsed_ = 0;
   }
   if (slotUsed_ + slots > kSlotChunk) {
-    if (++slotChunk_ == slotChunks_.size()) slotChunks_.push_back(std::make_unique<Slot[]>(kSlotChunk));
+    if (++slotChunk_ == slotChunks_.size()) slotChunks_.push_back(rawChunk<Slot>(kSlotChunk));
     slotUsed_ = 0;
   }
   a.regs = regChunks_[regChunk_].get() + regUsed_;
