@@ -188,8 +188,8 @@ FactRef FactTable::place(ListHead& list, NodeId n, const Value* a, std::uint32_t
     f = freeList_;
     freeList_ = next(f);
   } else {
-    if (words_.size() / stride_ >= kNoFact - 1) throw std::length_error("meldvm: too many facts");
-    f = FactRef(words_.size() / stride_);
+    if (slots_ >= kNoFact - 1) throw std::length_error("meldvm: too many facts");
+    f = slots_++;  // counted, not words_.size() / stride_: a division per new fact
     growForOneMore();
     // `a` may point into words_ (arguments read from this very table), which the resize may move:
     // re-point it into the new array then.

@@ -209,8 +209,8 @@ class FactTable {
   Heap& heap_;
   std::vector<TypeId> fields_;
   ReferenceFields references_;  // the fields to retain/release (boxed, counted nodes)
-  bool allUnboxed_ = true;      // no field is a pointer
   std::vector<Index> indexes_;
+  bool allUnboxed_ = true;  // no field is a pointer
   bool dedup_;
   bool plain_ = false;                           // no index and no de-duplication (insertAdopted's fast case)
   SlotHash facts_;                               // de-duplication: node + all arguments
@@ -222,6 +222,7 @@ class FactTable {
   LargeBuffer<Value> words_;
   const Value* slotArray_ = nullptr;  // words_.data(), refreshed whenever words_ reallocates
   FactRef freeList_ = kNoFact;
+  std::uint32_t slots_ = 0;  // words_.size() / stride_
   std::uint32_t live_ = 0;
 };
 
