@@ -145,8 +145,20 @@ void Interpreter::leave(const Frame& f, const Alloc& a, const BlockInfo& info) {
 
 void Interpreter::run(const CodeBlock& block, NodeId host, bool negative, PredId triggerPred,
                       const Value* trigger) {
+  runWith(block, infoOf(block), host, negative, triggerPred, trigger);
+}
+
+void Interpreter::runRule(std::uint32_t rule, NodeId host) {
+  const CodeBlock& block = program_.rules[rule].block;
+  if (ruleInfo_.empty()) ruleInfo_.assign(program_.rules.size(), nullptr);
+  const BlockInfo*& info = ruleInfo_[rule];
+  if (!info) info = &infoOf(block);
+  runWith(block, *info, host, false, 0, nullptr);
+}
+
+void Interpreter::runWith(const CodeBlock& block, const BlockInfo& info, NodeId host, bool negative,
+                          PredId triggerPred, const Value* trigger) {
   const Alloc a = enter(block);
-  const BlockInfo& info = infoOf(block);
   Frame f{&block, block.code.data(), a.regs, a.slots, info.boxed.data(), info.slotFlags.data(),
           host,   negative};
   if (trigger) f.slots[0] = Slot{triggerPred, host, kNoFact, 0, trigger};
@@ -457,7 +469,7 @@ struct NativeHelpers {
     return F(vm(v).ctx_, {reinterpret_cast<const Value*>(args), count}, TypeId(result)).bits();
   }
   static constexpr meld_native_builtin kBuiltins[] = {
-      // builtins.def's ids are dense, in order
+  // builtins.def's ids are dense, in order
 #define BUILTIN(id, name, impl, signature, typeArg) &builtin<&builtins::impl>,
 #include "meldvm/builtins.def"
 #undef BUILTIN

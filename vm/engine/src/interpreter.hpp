@@ -37,6 +37,8 @@ class Interpreter {
   // `negative`: the retraction mode of the persistent processes (§6.8).
   void run(const CodeBlock& block, NodeId host, bool negative = false, PredId triggerPred = 0,
            const Value* trigger = nullptr);
+  // Runs rule `rule`'s block: its BlockInfo found by number, not by hashing the block's address.
+  void runRule(std::uint32_t rule, NodeId host);
 
  private:
   struct Slot {
@@ -143,6 +145,8 @@ class Interpreter {
   Alloc enter(const CodeBlock& b);
   void leave(const Frame& f, const Alloc& a, const BlockInfo& info);
   const BlockInfo& infoOf(const CodeBlock& b);
+  void runWith(const CodeBlock& block, const BlockInfo& info, NodeId host, bool negative, PredId triggerPred,
+               const Value* trigger);
   void blockFlags(const CodeBlock& b, BlockInfo& info, bool scanLoops) const;
   void aliasedSlots(const CodeBlock& b, BlockInfo& info) const;
   void listReadingLoops(const CodeBlock& b, BlockInfo& info) const;
@@ -176,8 +180,9 @@ class Interpreter {
   std::size_t regChunk_ = 0, regUsed_ = 0, slotChunk_ = 0, slotUsed_ = 0;
   const NativeCode* native_;
   std::unordered_map<const CodeBlock*, BlockInfo> blocks_;
-  BlockInfo axiomInfo_;                   // infoOf an axiom block (not cached)
-  const CodeBlock* lastBlock_ = nullptr;  // the processes of a program run the same few blocks
+  std::vector<const BlockInfo*> ruleInfo_;  // into blocks_ (its entries never move), by rule
+  BlockInfo axiomInfo_;                     // infoOf an axiom block (not cached)
+  const CodeBlock* lastBlock_ = nullptr;    // the processes of a program run the same few blocks
   const BlockInfo* lastInfo_ = nullptr;
   std::vector<Value> args_;      // arguments gathered for DERIVE/SEND/CALL (grows, never shrinks)
   std::vector<FactRef> sorted_;  // ITER_SORTED candidates (a stack of runs)

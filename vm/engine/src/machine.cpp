@@ -339,7 +339,7 @@ void Machine::stepLimitReached() const {
 void Machine::runRule(NodeId n, std::uint32_t rule) {
   countStep();
   try {
-    interp_->run(program_.rules[rule].block, n);
+    interp_->runRule(rule, n);
   } catch (const RuntimeError& e) {
     fail(e, n, "rule " + std::to_string(rule) + " (" + program_.rules[rule].block.label + ")");
   }
