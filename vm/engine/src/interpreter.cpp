@@ -469,7 +469,7 @@ struct NativeHelpers {
     return F(vm(v).ctx_, {reinterpret_cast<const Value*>(args), count}, TypeId(result)).bits();
   }
   static constexpr meld_native_builtin kBuiltins[] = {
-  // builtins.def's ids are dense, in order
+      // builtins.def's ids are dense, in order
 #define BUILTIN(id, name, impl, signature, typeArg) &builtin<&builtins::impl>,
 #include "meldvm/builtins.def"
 #undef BUILTIN
