@@ -46,10 +46,14 @@ ShardMail::ShardMail(const Program& program) : program_(program), boxed_(program
       if (preds.types().boxed(preds[p].fields[i])) boxed_[p].push_back(i);
 }
 
-void ShardMail::putArgs(MailBytes& out, Heap& heap, PredId p, const Value* args, bool negative, bool adopt) {
+void ShardMail::putArgs(MailBytes& out, Heap& heap, PredId p, const Value* args, bool negative, bool adopt,
+                        std::vector<Object*>* shareLater) {
   for (std::uint32_t i : boxed_[p]) {  // the record's references, handed over with it
     const TypeId t = program_.predicates[p].fields[i];
-    heap.share(t, args[i]);
+    if (!shareLater)
+      heap.share(t, args[i]);
+    else if (!args[i].isNil())
+      shareLater->push_back(args[i].asObject());
     if (!adopt) heap.retain(t, args[i]);
   }
   const std::uint32_t arity = program_.predicates[p].arity();
@@ -107,18 +111,21 @@ void ShardMail::putNode(MailBytes& out, Machine& from, NodeId n, bool moved) {
   put<std::uint32_t>(out, 0);
   std::uint32_t stored = 0, pending = 0;
   pendingScratch_.clear();  // the messages come after all stored facts: kept apart meanwhile
+  toShare_.clear();         // (nothing reads the record before the move ends: shared at the end)
   Heap& heap = from.heap();
   const SerialScheduler::Carried state = from.giveNode(
       n,
       [&](PredId p, const Value* args, std::uint32_t copies) {
         put<std::uint32_t>(out, copies);
-        putArgs(out, heap, p, args, false, /*adopt=*/false);
+        putArgs(out, heap, p, args, false, /*adopt=*/false, &toShare_);
         ++stored;
       },
       [&](PredId p, const Value* args, bool negative) {
-        putArgs(pendingScratch_, heap, p, args, negative, /*adopt=*/true);  // the mailbox's references
+        putArgs(pendingScratch_, heap, p, args, negative, /*adopt=*/true,
+                &toShare_);  // the mailbox's references
         ++pending;
       });
+  heap.shareAll(toShare_);
   std::memcpy(out.data() + storedAt, &stored, sizeof stored);
   put<std::uint32_t>(out, pending);
   out.insert(out.end(), pendingScratch_.begin(), pendingScratch_.end());

@@ -44,11 +44,16 @@ class ShardMail {
   // coordination fact whose node does not exist.
   void apply(Machine& to, const MailBytes& in, Taken& taken);
   // The scratch space's memory.
-  std::size_t bytesReserved() const { return args_.capacity() * sizeof(Value) + pendingScratch_.capacity(); }
+  std::size_t bytesReserved() const {
+    return args_.capacity() * sizeof(Value) + pendingScratch_.capacity() +
+           toShare_.capacity() * sizeof(Object*);
+  }
 
  private:
-  // adopt: the record takes over the caller's references (else it retains its own).
-  void putArgs(MailBytes& out, Heap& heap, PredId p, const Value* args, bool negative, bool adopt);
+  // adopt: the record takes over the caller's references (else it retains its own). shareLater:
+  // the boxed values are listed there for Heap::shareAll, not shared one by one.
+  void putArgs(MailBytes& out, Heap& heap, PredId p, const Value* args, bool negative, bool adopt,
+               std::vector<Object*>* shareLater = nullptr);
   // use(pred, args, negative) returns whether it took over the record's references; if it throws,
   // it took nothing.
   template <class Use>
@@ -58,7 +63,8 @@ class ShardMail {
   const Program& program_;
   std::vector<std::vector<std::uint32_t>> boxed_;  // per predicate: its boxed fields
   std::vector<Value> args_;                        // the reader's storage, reused
-  MailBytes pendingScratch_;  // a moving node's waiting messages, until its stored facts are out
+  MailBytes pendingScratch_;      // a moving node's waiting messages, until its stored facts are out
+  std::vector<Object*> toShare_;  // a moving node's boxed values, shared once all are listed
 };
 
 }  // namespace meldvm

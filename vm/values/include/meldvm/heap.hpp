@@ -129,6 +129,9 @@ class Heap {
   }
   // Marks v and everything it reaches shared, before v is handed to another thread.
   void share(TypeId t, Value v);
+  // share() for many objects that are likely cold (a moving node's facts): each one is fetched
+  // some objects ahead, and a list's second cell halfway there.
+  void shareAll(std::span<Object* const> objects);
 
   // Objects and bytes of this heap's blocks (the blocks other threads freed count once drained).
   std::size_t liveObjects() {
