@@ -58,9 +58,10 @@ void FactTable::growForOneMore() {
   // Large tables by a quarter, not the vector's doubling: a threaded run's shards each reserve
   // their share of the facts and grow when stolen nodes bring theirs, and doubling then left each
   // shard room for nearly all of them (pagerank at -j 2: 10.2 MB of slots for 5.1 MB of facts);
-  // their pages move as they grow (support::growLarge), nothing is copied. Between 64 KiB and
-  // 2 MiB they double: by a quarter, the copies of a table that grows to 2 MiB were 4 % of
-  // pagerank-recipes. (Below, a quarter costs little and keeps a robot's tables small.)
+  // their pages move as they grow (support::growLarge: from 128 KiB), nothing is copied. Between
+  // 64 KiB and 2 MiB they double: by a quarter, when tables below 2 MiB were still copied, the
+  // copies of a table that grows to 2 MiB were 4 % of pagerank-recipes (the part of a mapping not
+  // yet written takes no memory). Below, a quarter costs little and keeps a robot's tables small.
   if (words_.size() + stride_ <= words_.capacity()) return;
   const std::size_t slots = words_.capacity() / stride_;
   const std::size_t bytes = words_.capacity() * sizeof(Value);
