@@ -229,6 +229,24 @@ case_frontend_module() {
   unset MELD_FRONTEND_MODULE
 }
 
+case_pipe_input() {
+  # Bytecode through a named pipe (read once, as a stream): the dump of the file itself. meld once
+  # read the pipe's first bytes to see whether it was a shared object, then waited for a writer
+  # that had gone: hence the timeout.
+  "$MELDC" "$WORK/reach.meld" -o "$WORK/reach.mbc" || fail "meldc failed"
+  run 0 "$WORK/reach.mbc" --dump
+  cp "$OUT" "$WORK/from_file"
+  mkfifo "$WORK/pipe.mbc" || fail "mkfifo failed"
+  cat "$WORK/reach.mbc" >"$WORK/pipe.mbc" &
+  writer=$!
+  timeout 30 "$MELD" "$WORK/pipe.mbc" --dump >"$OUT" 2>"$ERR" </dev/null
+  rc=$?
+  kill "$writer" 2>/dev/null
+  [ "$rc" -eq 0 ] || fail "meld on a pipe: exit code $rc (124: it did not finish in 30 s)"
+  cmp -s "$OUT" "$WORK/from_file" || fail "the pipe gave another dump than the file"
+  has "$OUT" "reach(2)"
+}
+
 case_native() {
   # meldc --emit=native, then meld FILE.so: the bytecode's dump. Files that are not native Meld
   # programs, or were built for another version, are refused with exit status 3.

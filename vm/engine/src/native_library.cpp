@@ -3,6 +3,7 @@
 #include <dlfcn.h>
 
 #include <cstring>
+#include <filesystem>
 #include <fstream>
 #include <span>
 
@@ -63,6 +64,10 @@ NativeLibrary::~NativeLibrary() {
 
 bool isNativeProgramFile(const std::string& path) {
   if (path.size() >= 3 && path.compare(path.size() - 3, 3, ".so") == 0) return true;
+  // Only a regular file can be loaded as a shared object; the head of a pipe is not read here,
+  // or the bytecode reader would miss it.
+  std::error_code ec;
+  if (!std::filesystem::is_regular_file(path, ec)) return false;
   static constexpr char kElf[4] = {0x7f, 'E', 'L', 'F'};
   std::ifstream in(path, std::ios::binary);
   char head[4] = {};
