@@ -2,7 +2,8 @@
 // from the page cache, many per fault), anything else (a pipe, /dev/stdin) is read in blocks.
 //
 // Why: reading pagerank-movies' 1.9 MB `.mbc` into a growing vector zeroed, copied and faulted in
-// about 2.5 times its size; that was a quarter of the run's page faults.
+// about 2.5 times its size; that was a quarter of the run's page faults. (A file that another
+// process truncates during the few milliseconds of the read ends the run with SIGBUS.)
 #pragma once
 
 #include <cstddef>
