@@ -1,5 +1,7 @@
 #include "file_bytes.hpp"
 
+#include <cerrno>
+#include <cstring>
 #include <fstream>
 
 #include "meldvm/bytecode.hpp"
@@ -28,9 +30,18 @@ FileBytes::FileBytes(const std::string& path) {
       return;
     }
   }
+  // From the descriptor already open: a pipe opened a second time would have lost what its
+  // writer wrote meanwhile, and might wait forever for a writer that has gone.
+  try {
+    readDescriptor(fd, path);
+  } catch (...) {
+    ::close(fd);
+    throw;
+  }
   ::close(fd);
-#endif
+#else
   readStream(path);
+#endif
 }
 
 FileBytes::~FileBytes() {
@@ -39,6 +50,26 @@ FileBytes::~FileBytes() {
 #endif
 }
 
+#if defined(__unix__)
+void FileBytes::readDescriptor(int fd, const std::string& path) {
+  constexpr std::size_t kBlock = 256 * 1024;
+  for (std::size_t got = 0;;) {
+    read_.resize(got + kBlock);
+    const ssize_t n = ::read(fd, read_.data() + got, kBlock);
+    if (n < 0 && errno == EINTR) continue;
+    if (n < 0) throw BytecodeError("cannot read " + path + ": " + std::strerror(errno), 0);
+    got += std::size_t(n);
+    if (n == 0) {
+      read_.resize(got);
+      break;
+    }
+  }
+  data_ = read_.data();
+  size_ = read_.size();
+}
+#endif
+
+#if !defined(__unix__)
 // In blocks, not byte by byte through a stream iterator (16 instructions a byte). libstdc++
 // reports some read errors (e.g. the path is a directory) by throwing from the stream buffer even
 // without exceptions() set.
@@ -62,5 +93,6 @@ void FileBytes::readStream(const std::string& path) {
   data_ = read_.data();
   size_ = read_.size();
 }
+#endif
 
 }  // namespace meldvm::detail
