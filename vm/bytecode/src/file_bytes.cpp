@@ -1,22 +1,18 @@
 #include "file_bytes.hpp"
 
-#include <cerrno>
-#include <cstring>
-#include <fstream>
-
-#include "meldvm/bytecode.hpp"
-
-#if defined(__unix__)
 #include <fcntl.h>
 #include <sys/mman.h>
 #include <sys/stat.h>
 #include <unistd.h>
-#endif
+
+#include <cerrno>
+#include <cstring>
+
+#include "meldvm/bytecode.hpp"
 
 namespace meldvm::detail {
 
 FileBytes::FileBytes(const std::string& path) {
-#if defined(__unix__)
   const int fd = ::open(path.c_str(), O_RDONLY | O_CLOEXEC);
   if (fd < 0) throw BytecodeError("cannot open " + path, 0);
   struct stat st {};
@@ -39,18 +35,12 @@ FileBytes::FileBytes(const std::string& path) {
     throw;
   }
   ::close(fd);
-#else
-  readStream(path);
-#endif
 }
 
 FileBytes::~FileBytes() {
-#if defined(__unix__)
   if (mapping_) ::munmap(mapping_, size_);
-#endif
 }
 
-#if defined(__unix__)
 void FileBytes::readDescriptor(int fd, const std::string& path) {
   constexpr std::size_t kBlock = 256 * 1024;
   for (std::size_t got = 0;;) {
@@ -67,32 +57,5 @@ void FileBytes::readDescriptor(int fd, const std::string& path) {
   data_ = read_.data();
   size_ = read_.size();
 }
-#endif
-
-#if !defined(__unix__)
-// In blocks, not byte by byte through a stream iterator (16 instructions a byte). libstdc++
-// reports some read errors (e.g. the path is a directory) by throwing from the stream buffer even
-// without exceptions() set.
-void FileBytes::readStream(const std::string& path) {
-  std::ifstream in(path, std::ios::binary);
-  if (!in) throw BytecodeError("cannot open " + path, 0);
-  try {
-    constexpr std::size_t kBlock = 256 * 1024;
-    for (std::size_t got = 0;; got += std::size_t(in.gcount())) {
-      read_.resize(got + kBlock);
-      in.read(reinterpret_cast<char*>(read_.data() + got), kBlock);
-      if (std::size_t(in.gcount()) < kBlock) {
-        read_.resize(got + std::size_t(in.gcount()));
-        break;
-      }
-    }
-  } catch (const std::exception& e) {
-    throw BytecodeError("cannot read " + path + ": " + e.what(), 0);
-  }
-  if (in.bad()) throw BytecodeError("cannot read " + path, 0);
-  data_ = read_.data();
-  size_ = read_.size();
-}
-#endif
 
 }  // namespace meldvm::detail

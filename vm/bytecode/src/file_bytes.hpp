@@ -1,6 +1,6 @@
 // The bytes of a file, for the bytecode reader: a regular file is mapped (its pages come straight
 // from the page cache, many per fault), anything else (a pipe, /dev/stdin) is read in blocks from
-// the same descriptor.
+// the same descriptor (POSIX, as the rest of the VM: dlopen, mmap).
 //
 // Why: reading pagerank-movies' 1.9 MB `.mbc` into a growing vector zeroed, copied and faulted in
 // about 2.5 times its size; that was a quarter of the run's page faults. (A file that another
@@ -27,7 +27,6 @@ class FileBytes {
 
  private:
   void readDescriptor(int fd, const std::string& path);  // to its end (a pipe, a device)
-  void readStream(const std::string& path);             // without POSIX descriptors
 
   const std::uint8_t* data_ = nullptr;
   std::size_t size_ = 0;

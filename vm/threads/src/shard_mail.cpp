@@ -117,12 +117,11 @@ void ShardMail::putNode(MailBytes& out, Machine& from, NodeId n, bool moved) {
       n,
       [&](PredId p, const Value* args, std::uint32_t copies) {
         put<std::uint32_t>(out, copies);
-        putArgs(out, heap, p, args, false, /*adopt=*/false, &toShare_);
+        putArgs(out, heap, p, args, false, /*adopt=*/false, &toShare_);  // retained while private
         ++stored;
       },
-      [&](PredId p, const Value* args, bool negative) {
-        putArgs(pendingScratch_, heap, p, args, negative, /*adopt=*/true,
-                &toShare_);  // the mailbox's references
+      [&](PredId p, const Value* args, bool negative) {  // the record takes the mailbox's references
+        putArgs(pendingScratch_, heap, p, args, negative, /*adopt=*/true, &toShare_);
         ++pending;
       });
   heap.shareAll(toShare_);
