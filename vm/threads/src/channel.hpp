@@ -2,7 +2,8 @@
 // writer and one reader and facts keep their sending order. The sender appends whole batches of
 // records (worker.cpp; meldvm/shard_mail.hpp) under the channel's lock; the receiver swaps
 // the buffer out under the same lock. Nobody else ever takes that lock, and it is taken once per batch, not
-// per fact. The two buffers trade places, so their capacity is reused: no allocation in the steady state.
+// per fact. The two buffers trade places, so their capacity is reused: no allocation in the steady state
+// (a buffer that grew large is given back after use: BatchPolicy::kKeptBytes).
 #pragma once
 
 #include <atomic>
@@ -10,9 +11,11 @@
 #include <mutex>
 #include <vector>
 
+#include "meldvm/shard_mail.hpp"
+
 namespace meldvm::threads {
 
-using Bytes = std::vector<std::uint8_t>;
+using Bytes = MailBytes;
 
 class Channel {
  public:

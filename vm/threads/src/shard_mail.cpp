@@ -131,6 +131,8 @@ void ShardMail::putNode(MailBytes& out, Machine& from, NodeId n, bool moved) {
   std::memcpy(out.data() + stateAt, &state.prio, sizeof state.prio);
   std::memcpy(out.data() + stateAt + 8, &state.defaultPrio, sizeof state.defaultPrio);
   out[stateAt + 16] = state.isStatic ? 1 : 0;
+  clearBuffer(pendingScratch_);
+  clearBuffer(toShare_);
 }
 
 void ShardMail::apply(Machine& to, const MailBytes& in, Taken& taken) {

@@ -124,7 +124,7 @@ bool Worker::takeMail() {
     const std::uint32_t batches = ch.take(incoming_);
     if (batches == 0) continue;
     decode(incoming_);
-    incoming_.clear();
+    clearBuffer(incoming_);
     shared_.active.fetch_sub(batches);  // cannot reach zero: this thread is busy
     any = true;
   }
@@ -161,6 +161,7 @@ void Worker::flush() {
     if (w.empty()) continue;
     shared_.active.fetch_add(1);  // before the batch can be taken
     shared_.channel(self_, to).push(w);
+    clearBuffer(w);  // push() left it empty: what it gives back is a large capacity
     shared_.wake(to);
     ++stats_.batchesOut;
   }
