@@ -50,6 +50,7 @@ class MeldChip final : public multicore::CoreWorkload {
 
   const meldvm::Program& program_;
   std::unique_ptr<meldvm::threads::NodeDirectory> directory_;
+  std::unique_ptr<meldvm::MailSlabs> mailSlabs_;  // outlives the cores' mailboxes
   std::vector<std::unique_ptr<CoreShard>> cores_;
   meldvm::ShardMail mail_;
   std::vector<meldvm::MailBytes> batches_;  // in transit, by handle

@@ -1,5 +1,6 @@
 // Mailboxes: messages come back in arrival order with the arguments they were posted with, narrow
-// records (all 32-bit scalars) included, across chained chunks and recycled chunks.
+// records (all 32-bit scalars) included, across chained chunks and recycled chunks, and across the
+// mailboxes of shards that share their chunks (MailSlabs).
 #define BOOST_TEST_MODULE vm_mailboxes
 #include <boost/test/unit_test.hpp>
 #include <cstdint>
@@ -119,6 +120,61 @@ BOOST_AUTO_TEST_CASE(long_chains_and_recycled_chunks_keep_every_message) {
     // The next rounds reuse the released chunks: no more memory.
     if (round > 0) BOOST_TEST(m.bytesReserved() == reserved);
   }
+}
+
+// Shards of one run (MailSlabs): a node's messages move to another shard's mailboxes as they are.
+BOOST_AUTO_TEST_CASE(a_detached_box_joins_another_shards_box_behind_what_waits_there) {
+  MailSlabs slabs(2);
+  Mailboxes a(kShapes, &slabs, 0), b(kShapes, &slabs, 1);
+  a.addNodes(2);
+  b.addNodes(2);
+  std::vector<Message> sent, already;
+  for (int i = 0; i < 300; ++i) {  // many chunks
+    sent.push_back({2, i % 5 == 0, {Value::fromNode(std::uint32_t(i)).bits(), I(-i), I(i % 2)}});
+    post(a, 1, sent.back());
+  }
+  already.push_back({1, false, {I(42)}});
+  post(b, 1, already.back());
+  const Mailboxes::Chain chain = a.detach(1);
+  BOOST_TEST(a.empty(1));
+  BOOST_TEST(taken(a, 1).empty());
+  b.attach(1, chain);
+  std::vector<Message> all = already;
+  all.insert(all.end(), sent.begin(), sent.end());
+  BOOST_TEST(taken(b, 1) == all, boost::test_tools::per_element());
+  // Posts queue behind the chain; an empty chain changes nothing.
+  const Message later{1, true, {I(-7)}};
+  post(b, 1, later);
+  b.attach(1, a.detach(0));
+  all.push_back(later);
+  BOOST_TEST(taken(b, 1) == all, boost::test_tools::per_element());
+  // b recycles a's chunks: what b posts next needs no slab of its own.
+  const std::size_t reserved = b.bytesReserved();
+  b.release(1);
+  for (int i = 0; i < 300; ++i) post(b, 0, sent[std::size_t(i)]);
+  BOOST_TEST(b.bytesReserved() == reserved);
+  BOOST_TEST(taken(b, 0) == sent, boost::test_tools::per_element());
+}
+
+BOOST_AUTO_TEST_CASE(a_shard_with_plenty_of_free_chunks_leaves_more_to_the_shard_that_runs_out) {
+  MailSlabs slabs(2);
+  Mailboxes a(kShapes, &slabs, 0), b(kShapes, &slabs, 1);
+  a.addNodes(2);
+  b.addNodes(1);
+  // a fills about 3,000 chunks for node 0, then as many for node 1, and releases both: the first
+  // box's chunks stay on its free list, the second's, beyond what it keeps, go to the spares.
+  const Message wide{4, false, std::vector<std::uint64_t>(17, I(3))};  // 18 words: one a chunk
+  for (int i = 0; i < 3000; ++i) post(a, 0, wide);
+  for (int i = 0; i < 3000; ++i) post(a, 1, wide);
+  a.release(0);
+  a.release(1);
+  // b takes those instead of mapping slabs of its own; a's free list serves a.
+  const std::size_t reservedA = a.bytesReserved();
+  for (int i = 0; i < 3000; ++i) post(b, 0, wide);
+  BOOST_TEST(b.bytesReserved() < 64 * 1024u);  // its box array and first small slab at most
+  for (int i = 0; i < 3000; ++i) post(a, 0, wide);
+  BOOST_TEST(a.bytesReserved() == reservedA);
+  BOOST_TEST(taken(b, 0).size() == 3000u);
 }
 
 BOOST_AUTO_TEST_CASE(the_first_chunks_come_out_and_go_alone_and_later_posts_queue_behind_the_rest) {

@@ -26,12 +26,14 @@ struct Shard {
   ThreeNodes program;
   TestShardLink link;
   std::atomic<bool> rebalanceWanted{true};
+  MailSlabs mailSlabs{2};
   std::unique_ptr<Machine> machine;
   explicit Shard(bool asShard = true) {
     MachineOptions o;
     if (asShard) {
       o.shard = &link;
       o.placement = {0, 2, 0, 3};
+      o.mailSlabs = &mailSlabs;
       o.safePointFlag = &rebalanceWanted;
     }
     machine = std::make_unique<Machine>(*program.program, std::move(o));

@@ -28,6 +28,7 @@ struct Shards {
   ListProgram lp;
   TestShardLink link;
   ShardMail mail{*lp.program};
+  MailSlabs mailSlabs{2};
   std::unique_ptr<Machine> shard[2];
   Shards() {
     link.owners = {0, 1};
@@ -35,6 +36,7 @@ struct Shards {
       MachineOptions o;
       o.shard = &link;
       o.placement = {t, 2, t, t + 1};
+      o.mailSlabs = &mailSlabs;
       shard[t] = std::make_unique<Machine>(*lp.program, std::move(o));
       while (shard[t]->runNext()) {
       }
@@ -90,6 +92,31 @@ BOOST_AUTO_TEST_CASE(a_sent_list_has_one_reference_at_the_receiver_and_goes_home
   BOOST_TEST(home.liveObjects() == before + 1);
   s.shard[0]->releaseAll();  // the last holder: the four cells go
   BOOST_TEST(home.liveObjects() == before - 3);
+}
+
+BOOST_AUTO_TEST_CASE(a_moving_nodes_waiting_messages_go_as_they_are_with_their_values_shared) {
+  Shards s;
+  Heap& home = s.shard[1]->heap();
+  // A list of thread 1's own waits in node 1's mailbox: private, one reference (the mailbox's).
+  const Value mine = home.makeList(s.lp.listInt, std::vector<Value>{Value::fromInt(5), Value::fromInt(6)});
+  s.shard[1]->receive(1, s.lp.p, &mine, false, /*adopt=*/true);
+  BOOST_TEST((mine.asObject()->refs & Object::kShared) == 0);
+  BOOST_TEST(s.count(mine) == 1u);
+  MailBytes move;
+  s.mail.putNode(move, *s.shard[1], 1, false);
+  BOOST_TEST((mine.asObject()->refs & Object::kShared) != 0);  // with every cell it reaches
+  BOOST_TEST((listTail(mine).asObject()->refs & Object::kShared) != 0);
+  BOOST_TEST(!s.shard[1]->hasWork(1));
+  s.link.owners[1] = 0;
+  ShardMail::Taken taken;
+  s.mail.apply(*s.shard[0], move, taken);
+  BOOST_TEST(s.shard[0]->hasWork(1));
+  BOOST_TEST(s.count(mine) == 1u);  // the taker's mailbox's, as before the move
+  while (s.shard[0]->runNext()) {
+  }
+  BOOST_TEST(s.shard[0]->database().factCount(1, s.lp.p) == 1u);  // the message, stored
+  s.shard[0]->releaseAll();
+  s.shard[1]->releaseAll();
 }
 
 BOOST_AUTO_TEST_CASE(a_fact_for_a_node_the_receiver_does_not_hold_leaves_the_reference_to_be_released) {

@@ -19,11 +19,13 @@ namespace {
 struct Shard {
   std::unique_ptr<Program> program = initOnlyProgram(12);
   TestShardLink link;
+  MailSlabs mailSlabs{2};
   std::unique_ptr<Machine> machine;
   explicit Shard(int runs = 4) {
     MachineOptions o;
     o.shard = &link;
     o.placement = {0, 2, 0, 11};
+    o.mailSlabs = &mailSlabs;
     machine = std::make_unique<Machine>(*program, std::move(o));
     for (int i = 0; i < runs; ++i) BOOST_REQUIRE(machine->runNext());
     BOOST_REQUIRE_EQUAL(machine->waitingNodes(), std::size_t(11 - runs));

@@ -49,7 +49,8 @@ Machine::Machine(const Program& program, MachineOptions options)
   std::vector<std::vector<ArgWidth>> shapes(preds);
   for (PredId p = 0; p < preds; ++p)
     for (TypeId t : program.predicates[p].fields) shapes[p].push_back(argWidth(program.types.kind(t)));
-  mail_ = std::make_unique<Mailboxes>(shapes);
+  if (options_.shard && !options_.mailSlabs) throw std::invalid_argument("a shard needs the run's MailSlabs");
+  mail_ = std::make_unique<Mailboxes>(shapes, options_.mailSlabs, options_.placement.self);
   sendOrder_ = std::make_unique<detail::SendOrder>();
   linearOutArgs_.reserve(1024);
   persistentArgs_.reserve(1024);
@@ -667,24 +668,27 @@ void Machine::settleMovedNode(NodeId n) {
   if (tables_.justMoved != Program::kNoPred) post(n, tables_.justMoved, kNoArgs, false);
 }
 
-SerialScheduler::Carried Machine::giveNode(NodeId n, const StoredFactVisitor& stored,
-                                           const PendingFactVisitor& pending) {
+Machine::GivenNode Machine::giveNode(NodeId n, const StoredFactVisitor& stored,
+                                     const WaitingFactVisitor& waiting) {
   db_->forEachStored(n, stored);
   mail_->forEach(
-      n, [](PredId) { return true; },
-      [&](PredId p, bool negative, const Value* args) { pending(p, args, negative); });
-  mail_->release(n);
+      n, [](PredId) { return true; }, [&](PredId p, bool, const Value* args) { waiting(p, args); });
+  const Mailboxes::Chain messages = mail_->detach(n);
   db_->clearNode(n);
   std::fill_n(candidates_.data() + std::size_t(n) * tables_.ruleWords, tables_.ruleWords, 0);
   const SerialScheduler::Carried state = sched_.carried(n);
   sched_.letGo(n);
   if (state.isStatic) setStatic(n, false);  // static here no more (the count of this thread)
-  return state;
+  return {state, messages};
 }
 
-void Machine::takeNode(NodeId n, const SerialScheduler::Carried& state) {
+void Machine::takeNode(NodeId n, const SerialScheduler::Carried& state, const Mailboxes::Chain& waiting) {
   sched_.adopt(n, {state.prio, state.defaultPrio, false});
   if (state.isStatic) setStatic(n, true);  // counted for this thread (cpu-static)
+  if (!waiting.empty()) {
+    mail_->attach(n, waiting);
+    linearPosted_ = true;  // (it may not be: the flag only spares a pass over the box)
+  }
 }
 
 bool Machine::takeStoredFact(NodeId n, PredId p, const Value* args, std::uint32_t copies) {

@@ -5,7 +5,18 @@
 
 namespace meldvm {
 
-Mailboxes::Mailboxes(const std::vector<std::vector<ArgWidth>>& shapes) {
+Mailboxes::Mailboxes(const std::vector<std::vector<ArgWidth>>& shapes, MailSlabs* shared,
+                     std::uint32_t self) {
+  if (!shared) {
+    ownSlabs_ = std::make_unique<MailSlabs>(1);
+    shared = ownSlabs_.get();
+    self = 0;
+  } else {
+    spares_ = &shared->spares();
+  }
+  table_ = shared->table();
+  firstSlab_ = shared->firstSlab(self);
+  endSlab_ = firstSlab_ + shared->slabsPerShard();
   if (shapes.size() > 0x80000000u) throw std::length_error("meldvm: too many predicates for the mailboxes");
   std::uint32_t widest = 0;
   for (const std::vector<ArgWidth>& fields : shapes) {
@@ -23,28 +34,50 @@ Mailboxes::Mailboxes(const std::vector<std::vector<ArgWidth>>& shapes) {
 }
 
 Mailboxes::~Mailboxes() {
-  for (std::size_t s = 0; s < slabs_.size(); ++s)
-    LargeAllocator<Value>().deallocate(slabs_[s], std::size_t(slabCapacity(s)) * chunkWords_);
+  for (std::uint32_t s = 0; s < slabCount_; ++s)
+    LargeAllocator<Value>().deallocate(table_[firstSlab_ + s], std::size_t(slabCapacity(s)) * chunkWords_);
 }
 
 std::uint32_t Mailboxes::newChunk() {
   std::uint32_t c;
-  if (free_ != kNone) {
+  if (free_ != kNone || (spares_ && takeSpares())) {
     c = free_;
     free_ = std::uint32_t(chunk(c)[0].bits());
+    --freeChunks_;
   } else {
-    if (slabs_.empty() || slabUsed_ == slabCapacity(slabs_.size() - 1)) {
-      if (slabs_.size() == (std::size_t(1) << (32 - kSlabShift)) - 1)
+    if (slabCount_ == 0 || slabUsed_ == slabCapacity(slabCount_ - 1)) {
+      const std::uint32_t slab = firstSlab_ + slabCount_;
+      // (The table's last slab is never used: its last chunk's id would be kNone.)
+      if (slab >= endSlab_ || slab == MailSlabs::kSlabs - 1)
         throw std::length_error("meldvm: too many messages in transit");
-      slabs_.reserve(slabs_.size() + 1);  // no leak if the push_back would throw
-      slabs_.push_back(
-          LargeAllocator<Value>().allocate(std::size_t(slabCapacity(slabs_.size())) * chunkWords_));
+      table_[slab] = LargeAllocator<Value>().allocate(std::size_t(slabCapacity(slabCount_)) * chunkWords_);
+      ++slabCount_;
       slabUsed_ = 0;
     }
-    c = std::uint32_t(((slabs_.size() - 1) << kSlabShift) | slabUsed_++);
+    c = ((firstSlab_ + slabCount_ - 1) << kSlabShift) | slabUsed_++;
   }
   chunk(c)[0] = Value::fromBits(kNone);  // next = none, no words used
   return c;
+}
+
+void Mailboxes::giveSpares(std::uint32_t head, std::uint32_t tail, std::uint32_t chunks) {
+  std::lock_guard<std::mutex> lock(spares_->lock);
+  chunk(tail)[0] = Value::fromBits(spares_->head);
+  spares_->head = head;
+  spares_->chunks += chunks;
+  spares_->any.store(true, std::memory_order_relaxed);
+}
+
+bool Mailboxes::takeSpares() {
+  if (!spares_->any.load(std::memory_order_relaxed)) return false;  // a hint: the lock decides
+  std::lock_guard<std::mutex> lock(spares_->lock);
+  if (spares_->head == kNone) return false;
+  free_ = spares_->head;  // (this one's list is empty)
+  freeChunks_ = spares_->chunks;
+  spares_->head = kNone;
+  spares_->chunks = 0;
+  spares_->any.store(false, std::memory_order_relaxed);
+  return true;
 }
 
 }  // namespace meldvm

@@ -16,12 +16,15 @@ namespace {
 //   that a value crossing threads changes its count once at most);
 // - a coordination fact: the opcode (u32) and the value (f64);
 // - a moving node (kMigrate): its scheduling state (f64 priority, f64 default priority, u8
-//   static), u8 1 if set-cpu moved it (0: stolen), its stored facts (u32 count; each u32 copies
-//   and a fact as above) and its waiting messages (u32 count; each a fact as above).
+//   static), its waiting messages as the chain of their mailbox chunks (u32 first, u32 last, u32
+//   words used in the last: Mailboxes::Chain; the chunks and the messages' references go with
+//   it, and the messages' boxed values are shared), u8 1 if set-cpu moved it (0: stolen), and its
+//   stored facts (u32 count; each u32 copies and a fact as above).
 // Native byte order: the bytes never leave the process.
 enum RecordKind : std::uint8_t { kFact = 0, kCoordination = 1, kMigrate = 2 };
 constexpr std::uint32_t kNegativeBit = 0x80000000u;
-constexpr std::size_t kStateBytes = 17;  // priority, default priority (f64), static (u8)
+// Written once the node is given: priority, default priority (f64), static (u8), the chain (3 u32).
+constexpr std::size_t kStateBytes = 29;
 
 template <class T>
 void put(MailBytes& out, T v) {
@@ -104,35 +107,34 @@ void ShardMail::putCoordination(MailBytes& out, NodeId n, Opcode op, double valu
 void ShardMail::putNode(MailBytes& out, Machine& from, NodeId n, bool moved) {
   put<std::uint8_t>(out, kMigrate);
   put<std::uint32_t>(out, n);
-  const std::size_t stateAt = out.size();  // written once the node is given (giveNode returns it)
+  const std::size_t stateAt = out.size();
   out.resize(stateAt + kStateBytes);
   put<std::uint8_t>(out, moved ? 1 : 0);
   const std::size_t storedAt = out.size();
   put<std::uint32_t>(out, 0);
-  std::uint32_t stored = 0, pending = 0;
-  pendingScratch_.clear();  // the messages come after all stored facts: kept apart meanwhile
-  toShare_.clear();         // (nothing reads the record before the move ends: shared at the end)
+  std::uint32_t stored = 0;
+  toShare_.clear();  // (nothing reads the record before the move ends: shared at the end)
   Heap& heap = from.heap();
-  const SerialScheduler::Carried state = from.giveNode(
+  const Machine::GivenNode given = from.giveNode(
       n,
       [&](PredId p, const Value* args, std::uint32_t copies) {
         put<std::uint32_t>(out, copies);
         putArgs(out, heap, p, args, false, /*adopt=*/false, &toShare_);  // retained while private
         ++stored;
       },
-      [&](PredId p, const Value* args, bool negative) {  // the record takes the mailbox's references
-        putArgs(pendingScratch_, heap, p, args, negative, /*adopt=*/true, &toShare_);
-        ++pending;
+      [&](PredId p, const Value* args) {
+        for (std::uint32_t i : boxed_[p])
+          if (!args[i].isNil()) toShare_.push_back(args[i].asObject());
       });
   heap.shareAll(toShare_);
-  std::memcpy(out.data() + storedAt, &stored, sizeof stored);
-  put<std::uint32_t>(out, pending);
-  out.insert(out.end(), pendingScratch_.begin(), pendingScratch_.end());
-  std::memcpy(out.data() + stateAt, &state.prio, sizeof state.prio);
-  std::memcpy(out.data() + stateAt + 8, &state.defaultPrio, sizeof state.defaultPrio);
-  out[stateAt + 16] = state.isStatic ? 1 : 0;
-  clearBuffer(pendingScratch_);
   clearBuffer(toShare_);
+  std::memcpy(out.data() + storedAt, &stored, sizeof stored);
+  std::uint8_t* state = out.data() + stateAt;
+  std::memcpy(state, &given.state.prio, 8);
+  std::memcpy(state + 8, &given.state.defaultPrio, 8);
+  state[16] = given.state.isStatic ? 1 : 0;
+  const std::uint32_t chain[3] = {given.waiting.first, given.waiting.last, given.waiting.used};
+  std::memcpy(state + 17, chain, sizeof chain);
 }
 
 void ShardMail::apply(Machine& to, const MailBytes& in, Taken& taken) {
@@ -163,17 +165,17 @@ void ShardMail::takeNode(Machine& to, NodeId n, const MailBytes& in, std::size_t
   state.prio = get<double>(in, pos);
   state.defaultPrio = get<double>(in, pos);
   state.isStatic = get<std::uint8_t>(in, pos) != 0;
+  Mailboxes::Chain waiting;
+  waiting.first = get<std::uint32_t>(in, pos);
+  waiting.last = get<std::uint32_t>(in, pos);
+  waiting.used = get<std::uint32_t>(in, pos);
   const bool moved = get<std::uint8_t>(in, pos) != 0;
-  to.takeNode(n, state);
+  to.takeNode(n, state, waiting);
   for (std::uint32_t i = 0, count = get<std::uint32_t>(in, pos); i < count; ++i) {
     const auto copies = get<std::uint32_t>(in, pos);
     readFact(to, in, pos,
              [&](PredId p, const Value* args, bool) { return to.takeStoredFact(n, p, args, copies); });
   }
-  for (std::uint32_t i = 0, count = get<std::uint32_t>(in, pos); i < count; ++i)
-    readFact(to, in, pos, [&](PredId p, const Value* args, bool negative) {
-      return to.takePendingFact(n, p, args, negative);
-    });
   if (moved) to.settleMovedNode(n);
   to.takeNodeDone(n);
 }

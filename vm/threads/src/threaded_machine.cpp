@@ -18,6 +18,8 @@ ThreadedMachine::ThreadedMachine(const Program& program, MachineOptions options,
   const ProgramTables tables(program);
   directory_ = std::make_unique<threads::NodeDirectory>(graph, threads, tables.hasThreads);
   shared_ = std::make_unique<threads::SharedState>(threads);
+  mailSlabs_ = std::make_unique<MailSlabs>(threads);
+  options.mailSlabs = mailSlabs_.get();
   for (ThreadId t = 0; t < threads; ++t)
     workers_.push_back(
         std::make_unique<threads::Worker>(program, options, t, *directory_, *shared_, outputLock_));

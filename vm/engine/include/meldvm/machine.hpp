@@ -22,6 +22,7 @@
 #include "meldvm/database.hpp"
 #include "meldvm/heap.hpp"
 #include "meldvm/large_allocator.hpp"
+#include "meldvm/mailboxes.hpp"
 #include "meldvm/node_recycling.hpp"
 #include "meldvm/program.hpp"
 #include "meldvm/program_tables.hpp"
@@ -65,6 +66,10 @@ struct MachineOptions {
   // nodes of `placement`; facts for other nodes go through the link.
   ShardLink* shard = nullptr;
   ShardPlacement placement;
+  // Required with `shard`: the chunk table that the mailboxes of every shard of the run share, so
+  // that a moving node's waiting messages change shards as they are (mail_slabs.hpp). It must
+  // outlive every shard.
+  MailSlabs* mailSlabs = nullptr;
   // Set by another thread to end the run (stop-program elsewhere, an error): read between rule
   // runs, so that a node run that would never end on its own still stops.
   const std::atomic<bool>* stopFlag = nullptr;
@@ -117,7 +122,6 @@ struct MachineStats {
 
 class DerivationLog;
 class Interpreter;
-class Mailboxes;
 namespace detail {
 class SendOrder;
 }
@@ -195,20 +199,20 @@ class Machine : private SchedulerView {
   bool movableNow(NodeId n) const { return !(nodeRunning_ && n == running_); }
   // The taker's side of set-cpu: the node is pinned and just-moved is added (§5.7).
   void settleMovedNode(NodeId n);
-  // `stored` sees each stored fact (the store keeps and then releases its references); `pending`
-  // each waiting message, and takes over the message's references.
+  // `stored` sees each stored fact (the store keeps and then releases its references); `waiting`
+  // each waiting message, whose references stay with it: the messages leave in
+  // `GivenNode::waiting`, chunks and all, for the taker's takeNode (the shards share MailSlabs).
   using StoredFactVisitor = std::function<void(PredId, const Value*, std::uint32_t copies)>;
-  using PendingFactVisitor = std::function<void(PredId, const Value*, bool negative)>;
-  SerialScheduler::Carried giveNode(NodeId n, const StoredFactVisitor& stored,
-                                    const PendingFactVisitor& pending);
-  void takeNode(NodeId n, const SerialScheduler::Carried& state);
-  // The taker's side of a move. Both take over the references of the boxed arguments (true) or
-  // take their own (false: the caller keeps its references).
+  using WaitingFactVisitor = std::function<void(PredId, const Value*)>;
+  struct GivenNode {
+    SerialScheduler::Carried state;
+    Mailboxes::Chain waiting;
+  };
+  GivenNode giveNode(NodeId n, const StoredFactVisitor& stored, const WaitingFactVisitor& waiting);
+  void takeNode(NodeId n, const SerialScheduler::Carried& state, const Mailboxes::Chain& waiting);
+  // The taker's side of a move: takes over the references of the boxed arguments (true) or takes
+  // its own (false: the caller keeps its references).
   bool takeStoredFact(NodeId n, PredId p, const Value* args, std::uint32_t copies);
-  bool takePendingFact(NodeId n, PredId p, const Value* args, bool negative) {
-    post(n, p, args, negative, /*adopt=*/true);
-    return true;
-  }
   void takeNodeDone(NodeId n);
   // The store's index on field `field` of `p` (requested at construction for every `index`
   // directive and every ITER_KEY of the program).

@@ -14,9 +14,11 @@
 #pragma once
 
 #include <cstdint>
+#include <memory>
 #include <vector>
 
 #include "meldvm/large_allocator.hpp"
+#include "meldvm/mail_slabs.hpp"
 #include "meldvm/predicate.hpp"
 #include "meldvm/types.hpp"
 #include "meldvm/value.hpp"
@@ -34,8 +36,10 @@ inline ArgWidth argWidth(TypeKind k) {
 
 class Mailboxes {
  public:
-  // shapes: per predicate, the widths of its arguments (home excluded).
-  explicit Mailboxes(const std::vector<std::vector<ArgWidth>>& shapes);
+  // shapes: per predicate, the widths of its arguments (home excluded). shared: the chunk table of
+  // the run's shards, this one being shard `self` (nullptr: a table of its own).
+  explicit Mailboxes(const std::vector<std::vector<ArgWidth>>& shapes, MailSlabs* shared = nullptr,
+                     std::uint32_t self = 0);
   ~Mailboxes();
   Mailboxes(const Mailboxes&) = delete;
   Mailboxes& operator=(const Mailboxes&) = delete;
@@ -72,6 +76,32 @@ class Mailboxes {
   }
   bool empty(NodeId n) const { return boxes_[n].first == kNone; }
 
+  // A node's waiting messages as they stand, for another shard's mailboxes of the same MailSlabs.
+  struct Chain {
+    std::uint32_t first = kNone, last = kNone;
+    std::uint32_t used = 0;  // words of records in the last chunk
+    bool empty() const { return first == kNone; }
+  };
+  // Node n's messages leave its box, which is left empty; the chunks and the messages' references
+  // go with the chain.
+  Chain detach(NodeId n) {
+    const Chain c = boxes_[n];
+    boxes_[n] = Chain{};
+    return c;
+  }
+  // The chain's messages join node n's box, after those already there.
+  void attach(NodeId n, const Chain& c) {
+    if (c.first == kNone) return;
+    Chain& b = boxes_[n];
+    if (b.first == kNone) {
+      b = c;
+      return;
+    }
+    chunk(b.last)[0] = Value::fromBits(c.first | (std::uint64_t(b.used) << 32));  // closed: link and length
+    b.last = c.last;
+    b.used = c.used;
+  }
+
   static constexpr std::uint32_t kAllChunks = 0xFFFFFFFFu;  // forEach / release: the whole box
   // Calls f(pred, negative, args) for every message of node n whose predicate passes select(pred),
   // in arrival order, leaving them in the box (release() empties it). f must not post to n. With
@@ -91,12 +121,22 @@ class Mailboxes {
   // Empties node n's box, or its first maxChunks chunks; the messages' references must have been
   // taken over or released.
   void release(NodeId n, std::uint32_t maxChunks = kAllChunks) {
-    std::uint32_t c = boxes_[n].first;
-    for (std::uint32_t chunks = 0; c != kNone && chunks < maxChunks; ++chunks) {
+    // A shard with plenty of free chunks gives the box's to the run's spares (chunks that moved
+    // here with nodes would otherwise pile up here while the giver maps new slabs).
+    const bool spare = spares_ && freeChunks_ >= kKeptFreeChunks;
+    std::uint32_t c = boxes_[n].first, head = spare ? kNone : free_, tail = kNone, chunks = 0;
+    for (; c != kNone && chunks < maxChunks; ++chunks) {
       const std::uint32_t next = std::uint32_t(chunk(c)[0].bits());
-      chunk(c)[0] = Value::fromBits(free_);
-      free_ = c;
+      chunk(c)[0] = Value::fromBits(head);
+      if (tail == kNone) tail = c;
+      head = c;
       c = next;
+    }
+    if (spare) {
+      if (chunks) giveSpares(head, tail, chunks);
+    } else {
+      free_ = head;
+      freeChunks_ += chunks;
     }
     if (c == kNone)
       boxes_[n] = Box{};
@@ -123,27 +163,25 @@ class Mailboxes {
     const Box& b = boxes_[n];
     if (b.last != kNone) __builtin_prefetch(chunk(b.last) + 1 + b.used, 1);
   }
+  // The slabs this one allocated (chunks move between the shards' mailboxes; slabs do not).
   std::size_t bytesReserved() const {
     std::size_t chunks = 0;
-    for (std::size_t s = 0; s < slabs_.size(); ++s) chunks += slabCapacity(s);
+    for (std::uint32_t s = 0; s < slabCount_; ++s) chunks += slabCapacity(s);
     return chunks * chunkWords_ * sizeof(Value) + boxes_.capacity() * sizeof(Box);
   }
 
  private:
   static constexpr std::uint32_t kNone = 0xFFFFFFFFu;
-  // Chunk ids are [slab | chunk in slab]. Slabs hold up to kSlabChunks chunks (2 MiB); the first
-  // two are smaller, so that a small program or robot world keeps a small footprint.
-  static constexpr std::uint32_t kSlabShift = 13, kSlabChunks = 1u << kSlabShift;
-  static std::uint32_t slabCapacity(std::size_t slab) {
-    return slab == 0 ? 16 : slab == 1 ? 1024 : kSlabChunks;
+  // Chunk ids are [slab | chunk in slab] (MailSlabs). Slabs hold up to kSlabChunks chunks (2 MiB);
+  // a shard's first two are smaller, so that a small program or robot world keeps a small footprint.
+  static constexpr std::uint32_t kSlabShift = MailSlabs::kChunkBits, kSlabChunks = 1u << kSlabShift;
+  static std::uint32_t slabCapacity(std::uint32_t ownSlab) {
+    return ownSlab == 0 ? 16 : ownSlab == 1 ? 1024 : kSlabChunks;
   }
   // The last chunk's length is kept here, not in the chunk: a post then writes its record without
   // first reading the chunk (a cache miss per message on a large graph). A chunk's head gets its
   // final length when the next chunk is linked.
-  struct Box {
-    std::uint32_t first = kNone, last = kNone;
-    std::uint32_t used = 0;  // words of records in the last chunk
-  };
+  using Box = Chain;
   struct Shape {
     std::uint32_t arity;
     std::uint32_t words;     // the record's length
@@ -153,7 +191,7 @@ class Mailboxes {
   static constexpr std::uint32_t kMaxNarrowArity = 16;  // wider predicates keep whole words
   // A chunk: [next | words used (once closed)] then the records.
   Value* chunk(std::uint32_t c) const {
-    return slabs_[c >> kSlabShift] + std::size_t(c & (kSlabChunks - 1)) * chunkWords_;
+    return table_[c >> kSlabShift] + std::size_t(c & (kSlabChunks - 1)) * chunkWords_;
   }
   std::uint32_t wordsUsed(const Box& b, std::uint32_t c) const {
     return c == b.last ? b.used : std::uint32_t(chunk(c)[0].bits() >> 32);
@@ -190,12 +228,22 @@ class Mailboxes {
     }
   }
   std::uint32_t newChunk();
+  // The run's spare chunks (MailSlabs): a chain of `chunks` free chunks, head to tail, joins them;
+  // takeSpares moves them all to this one's free list (false: there were none).
+  void giveSpares(std::uint32_t head, std::uint32_t tail, std::uint32_t chunks);
+  bool takeSpares();
+  static constexpr std::uint32_t kKeptFreeChunks = 1024;  // 256 KiB
 
   std::vector<Shape> shape_;
   std::uint32_t chunkWords_;
-  std::vector<Value*> slabs_;   // from LargeAllocator, freed by the destructor
-  std::uint32_t slabUsed_ = 0;  // chunks handed out of the last slab
+  std::unique_ptr<MailSlabs> ownSlabs_;  // a serial machine's
+  MailSlabs::Spares* spares_ = nullptr;  // a shard's: the run's
+  Value** table_;                        // the MailSlabs' table
+  std::uint32_t firstSlab_, endSlab_;    // this one's range of it
+  std::uint32_t slabCount_ = 0;          // slabs allocated (LargeAllocator), freed by the destructor
+  std::uint32_t slabUsed_ = 0;           // chunks handed out of the last slab
   std::uint32_t free_ = kNone;
+  std::uint32_t freeChunks_ = 0;  // on free_
   std::vector<Box> boxes_;
 };
 

@@ -24,10 +24,10 @@ using MailBytes = LargeVector<std::uint8_t>;
 struct BatchPolicy {
   static constexpr std::size_t kFlushBytes = 65536;
   static constexpr unsigned kFlushRuns = 64;
-  // A buffer that grew past this (a rebalance moving nodes with their waiting messages: megabytes
-  // on 8queens-12) is given back once used. Kept, every buffer on the way (the sender's, the
-  // channel's, the receiver's, a move's scratch) held its largest size to the end of the run:
-  // 7.6 MB of 8queens-12's 37.5 MB at -j 2.
+  // A buffer that grew past this (a rebalance moving nodes with their stored facts, or a long
+  // node run's facts for one thread) is given back once used. Kept, every buffer on the way (the
+  // sender's, the channel's, the receiver's, a move's scratch) held its largest size to the end of
+  // the run: 7.6 MB of 8queens-12's 37.5 MB at -j 2, when moves still copied the waiting messages.
   static constexpr std::size_t kKeptBytes = 4 * kFlushBytes;
 };
 
@@ -50,7 +50,8 @@ class ShardMail {
   void putCoordination(MailBytes& out, NodeId n, Opcode op, double value);
   // Node n leaves `from` with its stored facts, waiting messages and scheduling state (it must be
   // out of from's queue: Machine::unqueueToGive or pickNodesToGive). moved: by set-cpu (the taker
-  // pins it and gives it just-moved).
+  // pins it and gives it just-moved). The waiting messages stay in their mailbox chunks, which
+  // pass to the taker: the shards' mailboxes must share one MailSlabs.
   void putNode(MailBytes& out, Machine& from, NodeId n, bool moved);
 
   struct Taken {
@@ -61,8 +62,7 @@ class ShardMail {
   void apply(Machine& to, const MailBytes& in, Taken& taken);
   // The scratch space's memory.
   std::size_t bytesReserved() const {
-    return args_.capacity() * sizeof(Value) + pendingScratch_.capacity() +
-           toShare_.capacity() * sizeof(Object*);
+    return args_.capacity() * sizeof(Value) + toShare_.capacity() * sizeof(Object*);
   }
 
  private:
@@ -79,8 +79,7 @@ class ShardMail {
   const Program& program_;
   std::vector<std::vector<std::uint32_t>> boxed_;  // per predicate: its boxed fields
   std::vector<Value> args_;                        // the reader's storage, reused
-  MailBytes pendingScratch_;      // a moving node's waiting messages, until its stored facts are out
-  std::vector<Object*> toShare_;  // a moving node's boxed values, shared once all are listed
+  std::vector<Object*> toShare_;                   // a moving node's boxed values, shared once all are listed
 };
 
 }  // namespace meldvm

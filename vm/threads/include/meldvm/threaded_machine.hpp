@@ -80,6 +80,7 @@ class ThreadedMachine {
   const Program& program_;
   std::unique_ptr<threads::NodeDirectory> directory_;
   std::unique_ptr<threads::SharedState> shared_;
+  std::unique_ptr<MailSlabs> mailSlabs_;  // outlives the workers' mailboxes
   std::vector<std::unique_ptr<threads::Worker>> workers_;
   std::mutex outputLock_;
   double wallSeconds_ = 0;
