@@ -8,8 +8,8 @@
 // a chunk may be used and recycled by any shard meanwhile, so every shard's mailboxes must go
 // before the table, and none may read a chunk once another shard's mailboxes are gone.
 // Entries are written once, by their range's shard, before any chunk of the slab is used; a chunk
-// reaches another shard only through a synchronised hand-over (a move happens inside a barrier),
-// so reading an entry of another range needs no atomic.
+// reaches another shard only through a synchronised hand-over (a move happens inside a barrier;
+// spares pass under their lock), so reading an entry of another range needs no atomic.
 #pragma once
 
 #include <atomic>
