@@ -40,6 +40,40 @@ T get(const MailBytes& in, std::size_t& pos) {
   return v;
 }
 
+// The fact records of a batch some records ahead of the one being applied: each is handed to
+// fetch(node) once. A record of another kind stops the walk until the reader has passed it.
+class FactsAhead {
+ public:
+  FactsAhead(const MailBytes& in, const PredicateTable& preds, std::uint32_t distance)
+      : in_(in), preds_(preds), distance_(distance) {}
+  // The reader is at the fact record that starts at `pos`.
+  template <class Fetch>
+  void keepAhead(std::size_t pos, Fetch&& fetch) {
+    if (at_ <= pos) {
+      at_ = pos;
+      lead_ = 0;
+    } else {
+      --lead_;  // the reader's record was fetched
+    }
+    while (lead_ < distance_ && at_ < in_.size() && in_[at_] == kFact) {
+      NodeId node;
+      std::uint32_t predWord;
+      std::memcpy(&node, in_.data() + at_ + 1, 4);
+      std::memcpy(&predWord, in_.data() + at_ + 5, 4);
+      fetch(node);
+      at_ += 9 + 8 * std::size_t(preds_[predWord & ~kNegativeBit].arity());
+      ++lead_;
+    }
+  }
+
+ private:
+  const MailBytes& in_;
+  const PredicateTable& preds_;
+  const std::uint32_t distance_;
+  std::size_t at_ = 0;      // the next record to fetch
+  std::uint32_t lead_ = 0;  // records fetched from the reader's on
+};
+
 }  // namespace
 
 ShardMail::ShardMail(const Program& program) : program_(program), boxed_(program.predicates.size()) {
@@ -138,10 +172,16 @@ void ShardMail::putNode(MailBytes& out, Machine& from, NodeId n, bool moved) {
 }
 
 void ShardMail::apply(Machine& to, const MailBytes& in, Taken& taken) {
+  // A batch names nodes at random: their mailbox entries are fetched 8 facts ahead, and the ends
+  // of their mailboxes (whose address is in the entry) 4 ahead, as Machine::postAll does.
+  FactsAhead entries(in, program_.predicates, 8), tails(in, program_.predicates, 4);
   for (std::size_t pos = 0; pos < in.size();) {
+    const std::size_t start = pos;
     const auto kind = get<std::uint8_t>(in, pos);
     const NodeId node = get<std::uint32_t>(in, pos);
     if (kind == kFact) {
+      entries.keepAhead(start, [&](NodeId n) { to.prefetchPost(n); });
+      tails.keepAhead(start, [&](NodeId n) { to.prefetchPostTail(n); });
       ++taken.facts;
       readFact(to, in, pos, [&](PredId p, const Value* args, bool negative) {
         to.receive(node, p, args, negative, /*adopt=*/true);

@@ -176,6 +176,19 @@ class Machine : private SchedulerView {
   std::vector<NodeId> emptyCreatedNodes() const;
   void markReferencedNodes(std::vector<std::uint8_t>& referenced) const;
   void removeNode(NodeId n) { db_->removeNode(n); }
+  // Hints for a fact about to be posted to node n from outside a node run (a thread's batch,
+  // ShardMail::apply): its mailbox entry and scheduler record, then, once the entry has arrived,
+  // the end of its mailbox. (Always inlined: GCC drops calls to functions whose only effect is a
+  // prefetch.)
+  [[gnu::always_inline]] void prefetchPost(NodeId n) const {
+    if (n < db_->nodeCount()) {
+      mail_->prefetchBox(n);
+      sched_.prefetch(n);
+    }
+  }
+  [[gnu::always_inline]] void prefetchPostTail(NodeId n) const {
+    if (n < db_->nodeCount()) mail_->prefetchTail(n);
+  }
   // Whether the node's facts are here: a live node of the graph or thread node, or a node created
   // here (a shard's arrays also span the other threads' nodes and unused created ids).
   bool holdsNode(NodeId n) const {
