@@ -23,6 +23,8 @@ namespace {
 // Native byte order: the bytes never leave the process.
 enum RecordKind : std::uint8_t { kFact = 0, kCoordination = 1, kMigrate = 2 };
 constexpr std::uint32_t kNegativeBit = 0x80000000u;
+// A fact's bytes after its kind and node: the predicate word, then one u64 per argument.
+constexpr std::size_t factBytes(std::uint32_t arity) { return 4 + 8 * std::size_t(arity); }
 // Written once the node is given: priority, default priority (f64), static (u8), the chain (3 u32).
 constexpr std::size_t kStateBytes = 29;
 
@@ -61,7 +63,7 @@ class FactsAhead {
       std::memcpy(&node, in_.data() + at_ + 1, 4);
       std::memcpy(&predWord, in_.data() + at_ + 5, 4);
       fetch(node);
-      at_ += 9 + 8 * std::size_t(preds_[predWord & ~kNegativeBit].arity());
+      at_ += 5 + factBytes(preds_[predWord & ~kNegativeBit].arity());  // kind, node, fact
       ++lead_;
     }
   }
@@ -95,7 +97,7 @@ void ShardMail::putArgs(MailBytes& out, Heap& heap, PredId p, const Value* args,
   }
   const std::uint32_t arity = program_.predicates[p].arity();
   const std::size_t at = out.size();
-  out.resize(at + 4 + 8 * std::size_t(arity));  // one resize for the whole fact
+  out.resize(at + factBytes(arity));  // one resize for the whole fact
   std::uint8_t* w = out.data() + at;
   const std::uint32_t predWord = p | (negative ? kNegativeBit : 0);
   std::memcpy(w, &predWord, 4);

@@ -29,6 +29,7 @@ class MailSlabs {
   // Chunk ids are 32 bits: [slab | chunk in slab], kChunkBits of the latter.
   static constexpr std::uint32_t kChunkBits = 13;
   static constexpr std::uint32_t kSlabs = std::uint32_t(1) << (32 - kChunkBits);
+  static constexpr std::uint32_t kNoChunk = 0xFFFFFFFFu;  // the end of a chain
 
   explicit MailSlabs(std::uint32_t shards) {
     std::uint32_t bits = 0;
@@ -48,7 +49,7 @@ class MailSlabs {
   // the giver maps new slabs. A shard takes the lock only when it has plenty or none.
   struct Spares {
     std::mutex lock;
-    std::uint32_t head = 0xFFFFFFFFu, chunks = 0;  // a chain through the chunks' first words
+    std::uint32_t head = kNoChunk, chunks = 0;  // a chain through the chunks' first words
     std::atomic<bool> any{false};
   };
   Spares& spares() { return spares_; }

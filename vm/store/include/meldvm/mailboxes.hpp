@@ -172,7 +172,7 @@ class Mailboxes {
   }
 
  private:
-  static constexpr std::uint32_t kNone = 0xFFFFFFFFu;
+  static constexpr std::uint32_t kNone = MailSlabs::kNoChunk;
   // Chunk ids are [slab | chunk in slab] (MailSlabs). Slabs hold up to kSlabChunks chunks (2 MiB);
   // a shard's first two are smaller, so that a small program or robot world keeps a small footprint.
   static constexpr std::uint32_t kSlabShift = MailSlabs::kChunkBits, kSlabChunks = 1u << kSlabShift;
