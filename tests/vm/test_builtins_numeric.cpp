@@ -2,6 +2,7 @@
 #include <boost/test/unit_test.hpp>
 #include <cmath>
 #include <limits>
+#include <vector>
 
 #include "builtins_fixture.hpp"
 
@@ -120,6 +121,62 @@ BOOST_AUTO_TEST_CASE(float_struct_variants) {
                     ":(-708.4, -708.4)");  // underflow: log of the smallest normal double
   BOOST_CHECK_THROW(call("addfloatstructs", {fstruct({1, 2}), fstruct({1})}, s2), RuntimeError);
   BOOST_CHECK_THROW(call("convolvestruct", {fstruct({1, 2, 3}), fstruct({0, 1})}, s2), RuntimeError);
+}
+
+namespace {
+
+// log sum_j exp(M[i*n + j] + v_j), as the definition says it.
+std::vector<double> convolution(const std::vector<double>& m, const std::vector<double>& v) {
+  std::vector<double> out;
+  for (std::size_t i = 0; i < v.size(); ++i) {
+    double sum = 0;
+    for (std::size_t j = 0; j < v.size(); ++j) sum += std::exp(m[i * v.size() + j] + v[j]);
+    out.push_back(std::log(sum));
+  }
+  return out;
+}
+
+}  // namespace
+
+// convolve keeps the exponentials of its last matrix (moderate entries only): every call, with the
+// same matrix again, a new one, a list or a struct, an extreme vector, agrees with the definition.
+BOOST_AUTO_TEST_CASE(convolve_with_the_last_matrix_kept_agrees_with_the_definition) {
+  const std::vector<double> m1 = {-0.0, -2.0, -4.0, -2.0, -0.0, -2.0, -4.0, -2.0, -0.0};
+  const std::vector<double> m2 = {0.5, -1.0, 2.0, -3.0, 0.25, 1.5, -0.5, 0.0, -2.5};
+  const std::vector<double> mExtreme = {400, -2.0, -4.0, -2.0, -0.0, -2.0, -4.0, -2.0, -0.0};
+  const std::vector<double> v1 = {-0.1, -2.3, -1.7}, v2 = {-28.4, -6.3, -0.01}, vExtreme = {-350, 0, -1};
+  const TypeId s3 = floatStruct(3), s9 = floatStruct(9);
+  auto asStruct = [&](const std::vector<double>& xs, TypeId t) {
+    std::vector<Value> items;
+    for (double x : xs) items.push_back(F(x));
+    return tuple(t, items);
+  };
+  auto asList = [&](const std::vector<double>& xs) {
+    std::vector<Value> items;
+    for (double x : xs) items.push_back(F(x));
+    return keep(tLF, heap.makeList(tLF, items));
+  };
+  struct Case {
+    const std::vector<double>& m;
+    const std::vector<double>& v;
+    bool list;
+  };
+  const Case cases[] = {{m1, v1, false},       {m1, v2, false},       {m2, v1, false}, {m1, v1, true},
+                        {m1, vExtreme, false}, {mExtreme, v1, false}, {m1, v2, true},  {m2, v2, true}};
+  for (const Case& c : cases) {
+    const std::vector<double> want = convolution(c.m, c.v);
+    std::vector<double> got;
+    if (c.list) {
+      for (Value l = call("convolve", {asList(c.m), asList(c.v)}, tLF); !l.isNil(); l = listTail(l))
+        got.push_back(listHead(l).asFloat());
+    } else {
+      const Value r = call("convolvestruct", {asStruct(c.m, s9), asStruct(c.v, s3)}, s3);
+      for (Value x : tupleItems(r)) got.push_back(x.asFloat());
+    }
+    BOOST_REQUIRE_EQUAL(got.size(), want.size());
+    // 1e-12 relative (the tolerance is in percent): log near 1 magnifies the sum's last bits.
+    for (std::size_t i = 0; i < want.size(); ++i) BOOST_CHECK_CLOSE(got[i], want[i], 1e-10);
+  }
 }
 
 BOOST_AUTO_TEST_SUITE_END()

@@ -65,12 +65,54 @@ void checkConvolution(std::string_view fn, std::size_t matrix, std::size_t vecto
         fn, "matrix has " + std::to_string(matrix) + " entries, expected " + std::to_string(vector * vector));
 }
 
+// Entries whose exponentials are normal doubles with room to spare: a product of two of them is
+// the exponential of their sum, rounded a little differently, and neither overflows nor underflows.
+constexpr double kModerate = 300;
+
+template <class T>
+bool allModerate(std::span<const T> xs) {
+  for (const T& x : xs)
+    if (!(std::fabs(toDouble(x)) <= kModerate)) return false;
+  return true;
+}
+
+// exp of each entry of m, from ctx's cache when m is the matrix of the last call; null when m has
+// an entry that is not moderate.
+template <class T>
+const double* matrixExponentials(BuiltinContext& ctx, std::span<const T> m) {
+  std::vector<double>& last = ctx.convolveMatrix;
+  bool same = last.size() == m.size();
+  for (std::size_t i = 0; same && i < m.size(); ++i) same = last[i] == toDouble(m[i]);
+  if (same) return ctx.convolveMatrixExp.data();
+  if (!allModerate(m)) return nullptr;
+  last.resize(m.size());
+  ctx.convolveMatrixExp.resize(m.size());
+  for (std::size_t i = 0; i < m.size(); ++i) {
+    last[i] = toDouble(m[i]);
+    ctx.convolveMatrixExp[i] = std::exp(last[i]);
+  }
+  return ctx.convolveMatrixExp.data();
+}
+
 // out_i = log sum_j exp(M[i*n + j] + v_j), n = |v| = |out|, M has n*n entries (checkConvolution).
 // A sum that underflows to 0 counts as the smallest normal double, as in the established VM: a
-// very unlikely row gives about -708, not -inf.
+// very unlikely row gives about -708, not -inf. With moderate entries (all but such extremes),
+// exp(M_ij + v_j) is taken as exp(M_ij) exp(v_j), M's exponentials kept from call to call.
 template <class T>
-void convolveInto(std::span<const T> m, std::span<const T> v, Value* out) {
+void convolveInto(BuiltinContext& ctx, std::span<const T> m, std::span<const T> v, Value* out) {
   const std::size_t n = v.size();
+  constexpr std::size_t kMaxCached = 16;  // vectors of up to this many entries: exp(v_j) on the stack
+  const double* expM = n <= kMaxCached && allModerate(v) ? matrixExponentials(ctx, m) : nullptr;
+  if (expM) {
+    double expV[kMaxCached];
+    for (std::size_t j = 0; j < n; ++j) expV[j] = std::exp(toDouble(v[j]));
+    for (std::size_t i = 0; i < n; ++i) {
+      double sum = 0;
+      for (std::size_t j = 0; j < n; ++j) sum += expM[i * n + j] * expV[j];
+      out[i] = Value::fromFloat(std::log(sum));
+    }
+    return;
+  }
   for (std::size_t i = 0; i < n; ++i) {
     double sum = 0;
     for (std::size_t j = 0; j < n; ++j) sum += std::exp(toDouble(m[i * n + j]) + toDouble(v[j]));
@@ -120,7 +162,7 @@ Value convolve(BuiltinContext& ctx, std::span<const Value> a, TypeId result) {
   const std::span<const double> all(buf);
   checkConvolution("convolve", mn, all.size() - mn);
   ctx.scratch.resize(all.size() - mn);
-  convolveInto(all.first(mn), all.subspan(mn), ctx.scratch.data());
+  convolveInto(ctx, all.first(mn), all.subspan(mn), ctx.scratch.data());
   return ctx.heap.makeList(result, ctx.scratch);
 }
 
@@ -196,7 +238,7 @@ Value convolvestruct(BuiltinContext& ctx, std::span<const Value> a, TypeId) {
   checkConvolution("convolvestruct", m.size(), v.size());
   Value result;
   Value* out = ctx.heap.makePlainTuple(objectType(a[1]), std::uint32_t(v.size()), result);
-  convolveInto(m, v, out);
+  convolveInto(ctx, m, v, out);
   return result;
 }
 

@@ -64,6 +64,9 @@ struct BuiltinContext {
   std::vector<Value> scratch;
   std::vector<double> numbers;
   std::string text;
+  // convolve's last matrix and the exponentials of its entries: belief propagation convolves with
+  // one constant matrix throughout, so each call takes n exponentials instead of n * n.
+  std::vector<double> convolveMatrix, convolveMatrixExp;
 };
 
 using BuiltinFn = Value (*)(BuiltinContext& ctx, std::span<const Value> args, TypeId result);
