@@ -179,4 +179,24 @@ BOOST_AUTO_TEST_CASE(convolve_with_the_last_matrix_kept_agrees_with_the_definiti
   }
 }
 
+// damp takes one exponential per item for moderate items, two otherwise: both agree with the
+// definition, log(f e^b + (1 - f) e^a), the extremes exactly (an overflow stays infinite).
+BOOST_AUTO_TEST_CASE(damp_agrees_with_the_definition) {
+  const double pairs[][2] = {{-0.1, -2.3}, {-28.4, -0.01}, {3.5, -250}, {299, -299},
+                             {0, 0},       {-350, -1},     {800, 1},    {-800, -700}};
+  for (double f : {0.1, 0.5, 0.9}) {
+    for (const auto& p : pairs) {
+      const double want = std::log(f * std::exp(p[1]) + (1.0 - f) * std::exp(p[0]));
+      const Value r = call("dampstruct", {fstruct({p[0]}), fstruct({p[1]}), F(f)}, floatStruct(1));
+      const double got = tupleItems(r)[0].asFloat();
+      if (std::isfinite(want))
+        BOOST_CHECK_CLOSE(got, want, 1e-10);
+      else
+        BOOST_CHECK_EQUAL(got, want);
+      const Value list = call("damp", {floats({p[0]}), floats({p[1]}), F(f)}, tLF);
+      BOOST_CHECK_EQUAL(listHead(list).asFloat(), got);
+    }
+  }
+}
+
 BOOST_AUTO_TEST_SUITE_END()

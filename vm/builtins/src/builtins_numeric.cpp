@@ -57,16 +57,15 @@ void normalizeEach(std::span<const T> xs, Write&& write) {
   for (std::size_t i = 0; i < xs.size(); ++i) write(i, toDouble(xs[i]) - mx - lsum);
 }
 
-double dampOne(double a, double b, double f) { return std::log(f * std::exp(b) + (1.0 - f) * std::exp(a)); }
-
 void checkConvolution(std::string_view fn, std::size_t matrix, std::size_t vector) {
   if (matrix != vector * vector)
     throw error(
         fn, "matrix has " + std::to_string(matrix) + " entries, expected " + std::to_string(vector * vector));
 }
 
-// Entries whose exponentials are normal doubles with room to spare: a product of two of them is
-// the exponential of their sum, rounded a little differently, and neither overflows nor underflows.
+// Arguments whose exponentials are normal doubles with room to spare: a formula rewritten with
+// fewer exponentials (the exponential of a sum as a product, or of a difference) rounds a little
+// differently but neither overflows nor underflows where the definition does not.
 constexpr double kModerate = 300;
 
 template <class T>
@@ -74,6 +73,14 @@ bool allModerate(std::span<const T> xs) {
   for (const T& x : xs)
     if (!(std::fabs(toDouble(x)) <= kModerate)) return false;
   return true;
+}
+
+// log(f e^b + (1 - f) e^a), as a + log((1 - f) + f e^(b - a)) when a and b are moderate: one
+// exponential instead of two (belief propagation damps every message it sends).
+double dampOne(double a, double b, double f) {
+  if (std::fabs(a) <= kModerate && std::fabs(b) <= kModerate)
+    return a + std::log((1.0 - f) + f * std::exp(b - a));
+  return std::log(f * std::exp(b) + (1.0 - f) * std::exp(a));
 }
 
 // exp of each entry of m, from ctx's cache when m is the matrix of the last call; null when m has
