@@ -118,7 +118,16 @@ def thread_shares(text):
 
 class Program:
     def __init__(self, spec, unscheduled):
+        # The arguments follow the first '=' after which a BASE.mbc exists (generated programs'
+        # names hold '=' themselves); without such a file, the first '='.
         base, _, args = spec.partition("=")
+        for at in (i for i, c in enumerate(spec) if c == "="):
+            if os.path.isfile(spec[:at] + ".mbc"):
+                base, args = spec[:at], spec[at + 1:]
+                break
+        else:
+            if os.path.isfile(spec + ".mbc"):
+                base, args = spec, ""
         self.base, self.name = os.path.abspath(base), os.path.basename(base)
         self.dir = os.path.dirname(self.base)
         self.args = args.split()
