@@ -261,8 +261,7 @@ void Machine::runOnce(NodeId n) {
   // for memory when it starts.
   NodeId ahead;
   if (sched_.peek(2, ahead)) {
-    sched_.prefetch(ahead);
-    mail_->prefetchBox(ahead);
+    prefetchMailEntry(ahead);
     db_->prefetchNode(ahead);
     __builtin_prefetch(candidates_.data() + std::size_t(ahead) * tables_.ruleWords);
   }
@@ -479,10 +478,7 @@ void Machine::send(NodeId host, NodeId dest, PredId p, const Value* args, bool n
     }
   }
   if (dest >= db_->nodeCount()) noSuchNode(p, dest);
-  if (!host_) {  // posted when the run ends (flushOutgoing): fetch what the post will touch
-    mail_->prefetchBox(dest);
-    sched_.prefetch(dest);
-  }
+  if (!host_) prefetchMailEntry(dest);  // posted when the run ends (flushOutgoing)
   if (!db_->alive(dest)) noSuchNode(p, dest);
   const PredicateDesc& d = program_.predicates[p];
   if (d.action) {

@@ -181,13 +181,15 @@ class Machine : private SchedulerView {
   // the end of its mailbox. (Always inlined: GCC drops calls to functions whose only effect is a
   // prefetch.)
   [[gnu::always_inline]] void prefetchPost(NodeId n) const {
-    if (n < db_->nodeCount()) {
-      mail_->prefetchBox(n);
-      sched_.prefetch(n);
-    }
+    if (n < db_->nodeCount()) prefetchMailEntry(n);
   }
   [[gnu::always_inline]] void prefetchPostTail(NodeId n) const {
     if (n < db_->nodeCount()) mail_->prefetchTail(n);
+  }
+  // What a post to node n (< nodeCount) touches first: its mailbox entry and scheduler record.
+  [[gnu::always_inline]] void prefetchMailEntry(NodeId n) const {
+    mail_->prefetchBox(n);
+    sched_.prefetch(n);
   }
   // Whether the node's facts are here: a live node of the graph or thread node, or a node created
   // here (a shard's arrays also span the other threads' nodes and unused created ids).
