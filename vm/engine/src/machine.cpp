@@ -93,7 +93,7 @@ MemoryUse Machine::memoryUse() const {
   return m;
 }
 
-bool Machine::hasWork(NodeId n) const { return !mail_->empty(n); }
+bool Machine::hasWork(NodeId n) const { return !mail_->empty(n) || (sentItself_ && n == running_); }
 
 // ---- set-up and the scheduler loop ----
 
@@ -272,6 +272,7 @@ void Machine::runOnce(NodeId n) {
   running_ = n;
   inRun_ = true;
   runDerived_ = runConsumed_ = 0;
+  sentItself_ = false;  // what it sent itself is in its store: this run takes it in
   ++stats_.nodeRuns;
   deliverIncoming(n);
   processPersistent();
@@ -478,9 +479,14 @@ void Machine::send(NodeId host, NodeId dest, PredId p, const Value* args, bool n
     }
   }
   if (dest >= db_->nodeCount()) noSuchNode(p, dest);
-  if (!host_) prefetchMailEntry(dest);  // posted when the run ends (flushOutgoing)
-  if (!db_->alive(dest)) noSuchNode(p, dest);
   const PredicateDesc& d = program_.predicates[p];
+  if (!host_ && d.linear && !shard_) {  // stored in dest when the run ends (storeSentLinear)
+    db_->prefetchListHead(dest, p);
+    sched_.prefetch(dest);
+  } else if (!host_) {
+    prefetchMailEntry(dest);  // posted when the run ends (flushOutgoing)
+  }
+  if (!db_->alive(dest)) noSuchNode(p, dest);
   if (d.action) {
     if (negative) return;
     if (delayMs == 0) return action(host, dest, p, args);

@@ -311,6 +311,7 @@ class Machine : private SchedulerView {
   [[gnu::noinline]] void publishChange(NodeId n, PredId p, const Change& c);
   void runProcesses(NodeId n, PredId p, const Value* args, bool negative);
   void flushOutgoing();
+  void storeSentLinear(const std::vector<std::uint32_t>& order);
   void applyPriorityRequests();
   // Candidate rules (§6.4.2). A rule that is a candidate already needs no look at its other
   // predicates (most adds). Inline: called for every fact stored.
@@ -424,6 +425,7 @@ class Machine : private SchedulerView {
   NodeId initialNodes_ = 0;
 
   bool linearPosted_ = false;  // some linear fact went into a mailbox
+  bool sentItself_ = false;    // the running node stored facts it sent itself (storeSentLinear)
   // While a node's mailbox is being delivered, facts the host gives that node (a robot's action
   // retracting its own `at`, run by a persistent rule during the delivery) wait here: the box is
   // released when the delivery ends, so a post into it would be lost. Posted right after.
