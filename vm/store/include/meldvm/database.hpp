@@ -185,7 +185,9 @@ class Database {
   // first two cache lines of each, which holds a few facts when they were stored together).
   // A hint that addLinearTrusted(n, p, ...) comes soon: the list's head, then (once the head is
   // here) the last fact, whose link the new one changes.
-  [[gnu::always_inline]] void prefetchListHead(NodeId n, PredId p) const { __builtin_prefetch(&heads_.of(n)[p], 1); }
+  [[gnu::always_inline]] void prefetchListHead(NodeId n, PredId p) const {
+    __builtin_prefetch(&heads_.of(n)[p], 1);
+  }
   [[gnu::always_inline]] void prefetchListTail(NodeId n, PredId p) const {
     if (const FactRef last = heads_.of(n)[p].last; last != kNoFact)
       __builtin_prefetch(tables_[p].slotAddress(last), 1);
