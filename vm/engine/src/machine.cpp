@@ -561,7 +561,7 @@ void Machine::action(NodeId from, NodeId dest, PredId p, const Value* args) {
 }
 
 void Machine::updated(NodeId host, PredId p, FactRef f, const Value* args, bool moveToBack) {
-  db_->updateLinear(host, p, f, args, moveToBack);
+  db_->updateLinearTrusted(host, p, f, args, moveToBack);
   factAdded(host, p);  // as consume + derive (§6.4.5): the rule may run again
   ++stats_.factsDerived;
   ++runDerived_;

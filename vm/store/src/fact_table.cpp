@@ -235,15 +235,7 @@ void FactTable::unhash(FactRef f) {
   if (dedup_) facts_.erase(dedupHash(node(f), args(f)), f);
 }
 
-void FactTable::moveToBack(ListHead& list, FactRef f) {
-  if (list.last == f) return;
-  connect(list, prevOf(f), next(f));  // f is not the last: list.last stays
-  const FactRef last = list.last;
-  connect(list, last, f);
-  connect(list, f, kNoFact);
-}
-
-void FactTable::replaceArgs(const ListHead& list, FactRef f, const Value* a) {
+void FactTable::replaceIndexedArgs(const ListHead& list, FactRef f, const Value* a) {
   // Each chain keeps the list's order, as the established VM scans the list (an index only skips
   // the facts with other keys): a chain whose key is unchanged keeps the fact where it is, unless
   // the fact just moved to the end of the list; the others take it at its place in list order.

@@ -117,6 +117,14 @@ class Database {
   bool consumedMark(PredId p, FactRef f) const { return tables_[p].count(f) == 0; }
   // In-place update (§6.4.5): new arguments; the fact keeps its list position unless moveToBack.
   void updateLinear(NodeId n, PredId p, FactRef f, const Value* args, bool moveToBack);
+  // The same for the rule engine, which updates only facts its loops found (inline: heat-transfer
+  // updates a fact for every message it takes in).
+  void updateLinearTrusted(NodeId n, PredId p, FactRef f, const Value* args, bool moveToBack) {
+    releaseHeldScratch();
+    FactTable& t = tables_[p];
+    if (moveToBack) t.moveToBack(head(n, p), f);
+    t.replaceArgs(head(n, p), f, args);
+  }
 
   // Persistent predicates, aggregated ones included (then args is an aggregate input).
   Change derive(NodeId n, PredId p, const Value* args, std::uint32_t copies = 1);

@@ -85,10 +85,21 @@ class FactTable {
     freeList_ = f;
     --live_;
   }
-  void moveToBack(ListHead& list, FactRef f);
+  void moveToBack(ListHead& list, FactRef f) {
+    if (list.last == f) return;
+    connect(list, prevOf(f), next(f));  // f is not the last: list.last stays
+    const FactRef last = list.last;
+    connect(list, last, f);
+    connect(list, f, kNoFact);
+  }
   // New arguments for a stored fact (in-place update), after any move in the list: its index
-  // chains keep the list's order.
-  void replaceArgs(const ListHead& list, FactRef f, const Value* args);
+  // chains keep the list's order. (Inline for a table of plain words with no index.)
+  void replaceArgs(const ListHead& list, FactRef f, const Value* args) {
+    if (!plain_ || !references_.empty()) [[unlikely]]
+      return replaceIndexedArgs(list, f, args);
+    Value* w = words_.data() + base(f) + argOffset_;
+    for (std::uint32_t i = 0, n = arity(); i < n; ++i) w[i] = args[i];
+  }
   void setCount(FactRef f, std::uint32_t count) { setHi(base(f) + 1, count); }
 
   // De-duplicating tables only: the fact of this node with exactly these arguments, or kNoFact.
@@ -202,6 +213,7 @@ class FactTable {
   // Links f into chain x in front of the next fact of the list with its key (at the end if none).
   void linkInListOrder(const ListHead& list, FactRef f, std::uint32_t x);
   static constexpr std::uint32_t kMaxIndexes = 64;  // replaceArgs keeps one bit per index
+  void replaceIndexedArgs(const ListHead& list, FactRef f, const Value* args);
   void retainArgs(const Value* args) { references_.retain(heap_, args); }
   void releaseArgs(FactRef f) { references_.release(heap_, args(f)); }
 
