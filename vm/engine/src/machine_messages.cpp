@@ -71,9 +71,9 @@ void Machine::postAll(const std::vector<PendingFact>& facts, const std::vector<s
 // order is the one a mailbox would give: nothing else adds facts to a node before its next run,
 // and a node that sent itself facts runs again (runNode). The thread node's facts are visible to
 // every node's rules: they wait in its mailbox until it runs. A threaded run's shards keep their
-// linear facts in mailboxes too: a node that moves to another thread takes its waiting messages
-// along as a chain of chunks, but its stored facts one by one (stored on arrival, 8queens-12 at
-// -j 2 took 3.3-3.6 s and 53-83 MB instead of 2.2-2.4 s and 35-39 MB).
+// linear facts in mailboxes too, where a node takes its messages in slices and moves to another
+// thread with them as a chain of chunks (stored on arrival, 8queens-12 at -j 2 took 3.3-3.6 s and
+// 53-83 MB instead of 2.2-2.4 s and 35-39 MB).
 void Machine::storeSentLinear(const std::vector<std::uint32_t>& order) {
   constexpr std::size_t kTailAhead = 4;  // send() fetched the list heads: now their last facts
   const std::size_t n = order.size();
