@@ -32,6 +32,10 @@ Options:
   --runs N       timed runs per mode (default 3)
   --modes LIST   the columns, as above
   --timeout S    seconds a run may take (default 600); a run past it is shown as "timeout"
+  --compile-timeout S
+                 seconds a compiler may take on one program (default: --timeout); the modes of a
+                 compile past it are shown as "compile: timed out" and the others still run (the
+                 established compiler takes over half an hour on B2 shortest-path here)
   --json         one JSON record per program instead of the table
   --workdir DIR  compiled files (default: a temporary folder, removed at the end)
 MELD and MELDC name our binaries (default: build/release/apps/meld/meld and build/release/meldc/meldc
@@ -114,10 +118,14 @@ class Program:
             steps.append((("ref1", "ref2"), [self.tools.meldc_ref, self.path, self.m]))
         env = dict(os.environ, MELDC_REF_NO_CPP="1")
         for affected, cmd in steps:
-            p = subprocess.run(cmd, cwd=self.dir, stdout=subprocess.PIPE, stderr=subprocess.STDOUT,
-                               text=True, errors="replace", env=env, timeout=timeout)
-            if p.returncode != 0:
-                why = "compile: " + ((p.stdout.strip().splitlines() or ["failed"])[-1])[:70]
+            try:
+                p = subprocess.run(cmd, cwd=self.dir, stdout=subprocess.PIPE, stderr=subprocess.STDOUT,
+                                   text=True, errors="replace", env=env, timeout=timeout)
+                why = None if p.returncode == 0 else \
+                    "compile: " + ((p.stdout.strip().splitlines() or ["failed"])[-1])[:70]
+            except subprocess.TimeoutExpired:
+                why = f"compile: timed out after {timeout:g} s"
+            if why:
                 for mode in affected:
                     broken[mode] = why
         return broken
@@ -176,8 +184,8 @@ def agreement(dump, reference):
     return "same"
 
 
-def compare(program, modes, runs, timeout):
-    broken = program.prepare(modes, timeout)
+def compare(program, modes, runs, timeout, compile_timeout):
+    broken = program.prepare(modes, compile_timeout)
     dumps, notes = {}, {}
     for mode in modes:
         if mode in broken:
@@ -227,10 +235,11 @@ def print_table(records, modes):
 
 class Tools:
     def __init__(self, anchors):
-        self.meld = os.environ.get("MELD", os.path.join(REPO, "build/release/apps/meld/meld"))
-        self.meldc = os.environ.get("MELDC", os.path.join(REPO, "build/release/meldc/meldc"))
-        self.meld_ref = os.path.join(anchors, "meld-ref")
-        self.meldc_ref = os.path.join(anchors, "meldc-ref")
+        # Absolute: the programs run from their own folders.
+        self.meld = os.path.abspath(os.environ.get("MELD", os.path.join(REPO, "build/release/apps/meld/meld")))
+        self.meldc = os.path.abspath(os.environ.get("MELDC", os.path.join(REPO, "build/release/meldc/meldc")))
+        self.meld_ref = os.path.abspath(os.path.join(anchors, "meld-ref"))
+        self.meldc_ref = os.path.abspath(os.path.join(anchors, "meldc-ref"))
 
     def check(self, modes):
         needed = [self.meld, self.meldc] if any(not m.startswith("ref") for m in modes) else []
@@ -247,6 +256,7 @@ def main():
     p.add_argument("--runs", type=int, default=3)
     p.add_argument("--modes", default="bc,so,j2,ref1,ref2")
     p.add_argument("--timeout", type=float, default=600)
+    p.add_argument("--compile-timeout", type=float)
     p.add_argument("--json", action="store_true")
     p.add_argument("--workdir")
     p.add_argument("-h", "--help", action="store_true")
@@ -270,7 +280,8 @@ def main():
     try:
         records = []
         for spec in a.programs:
-            record = compare(Program(spec, tools, workdir), modes, a.runs, a.timeout)
+            record = compare(Program(spec, tools, workdir), modes, a.runs, a.timeout,
+                             a.compile_timeout or a.timeout)
             records.append(record)
             if a.json:
                 print(json.dumps(record), flush=True)

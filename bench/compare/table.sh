@@ -3,11 +3,11 @@
 # and the five B2 programs of this project, on both toolchains (compare.py, interleaved runs,
 # medians), with the dump check.
 #   bench/compare/table.sh [--anchors DIR] [--suite DIR] [--runs K] [--modes LIST] [--json]
-#                          [--only "name ..."]
+#                          [--only "name ..."] [--compile-timeout S]
 # --anchors: where ../shared/tools/build-anchors.sh put meld-ref and meldc-ref (default
 # $MELD_ANCHORS, else $TMPDIR/anchors); --suite: the established VM's source tree, for its
 # benchs/progs (default ANCHORS/src/meld, which build-anchors.sh exports); --runs (default 3),
-# --modes and --json go to compare.py; --only keeps the named programs (8queens-12,
+# --modes, --json and --compile-timeout go to compare.py; --only keeps the named programs (8queens-12,
 # belief-propagation-50, new-heat-transfer-80, pagerank-movies, pagerank-recipes, shortest-path,
 # heat-transfer, n-queens, pagerank, belief-propagation). The B2 programs are generated at their
 # default sizes by bench/meld/run-b2.sh --generate-only (into build/bench/meld).
@@ -15,7 +15,7 @@ set -euo pipefail
 here="$(cd "$(dirname "$0")" && pwd)"
 . "$here/../common.sh"  # usage
 anchors="${MELD_ANCHORS:-${TMPDIR:-/tmp}/anchors}"
-suite="" runs=3 modes="" json=0 only=""
+suite="" runs=3 modes="" json=0 only="" compile_timeout=""
 while [ $# -gt 0 ]; do
   case "$1" in
     --anchors) anchors="$2"; shift 2 ;;
@@ -23,6 +23,7 @@ while [ $# -gt 0 ]; do
     --runs) runs="$2"; shift 2 ;;
     --modes) modes="$2"; shift 2 ;;
     --only) only="$2"; shift 2 ;;
+    --compile-timeout) compile_timeout="$2"; shift 2 ;;
     --json) json=1; shift ;;
     -h|--help) usage; exit 0 ;;
     *) echo "table.sh: unknown option '$1' (see --help)" >&2; exit 2 ;;
@@ -51,4 +52,5 @@ done
 extra=()
 [ -n "$modes" ] && extra+=(--modes "$modes")
 [ "$json" = 1 ] && extra+=(--json)
+[ -n "$compile_timeout" ] && extra+=(--compile-timeout "$compile_timeout")
 exec python3 "$here/compare.py" --anchors "$anchors" --runs "$runs" "${extra[@]}" "${specs[@]}"
