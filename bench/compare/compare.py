@@ -46,6 +46,7 @@ import json
 import os
 import re
 import shutil
+import signal
 import statistics
 import subprocess
 import sys
@@ -64,12 +65,26 @@ class Failure(Exception):
     pass
 
 
+def run_group(cmd, cwd, timeout, stderr=subprocess.PIPE, env=None):
+    """subprocess.run in a process group of its own: on a timeout the whole group is killed (the
+    established compiler is a script whose compiler process outlived a plain kill, and took a
+    core from every run after it), then TimeoutExpired is raised."""
+    p = subprocess.Popen(cmd, cwd=cwd, stdout=subprocess.PIPE, stderr=stderr, env=env, text=True,
+                         errors="replace", start_new_session=True)
+    try:
+        out, err = p.communicate(timeout=timeout)
+    except subprocess.TimeoutExpired:
+        os.killpg(p.pid, signal.SIGKILL)
+        p.communicate()
+        raise
+    return subprocess.CompletedProcess(cmd, p.returncode, out, err)
+
+
 def run(cmd, cwd, timeout):
     """Runs cmd; returns (wall seconds, stdout) or raises Failure with the reason."""
     start = time.perf_counter()
     try:
-        p = subprocess.run(cmd, cwd=cwd, stdout=subprocess.PIPE, stderr=subprocess.PIPE,
-                           timeout=timeout, text=True, errors="replace")
+        p = run_group(cmd, cwd, timeout)
     except subprocess.TimeoutExpired:
         raise Failure("timeout")
     wall = time.perf_counter() - start
@@ -119,8 +134,7 @@ class Program:
         env = dict(os.environ, MELDC_REF_NO_CPP="1")
         for affected, cmd in steps:
             try:
-                p = subprocess.run(cmd, cwd=self.dir, stdout=subprocess.PIPE, stderr=subprocess.STDOUT,
-                                   text=True, errors="replace", env=env, timeout=timeout)
+                p = run_group(cmd, self.dir, timeout, stderr=subprocess.STDOUT, env=env)
                 why = None if p.returncode == 0 else \
                     "compile: " + ((p.stdout.strip().splitlines() or ["failed"])[-1])[:70]
             except subprocess.TimeoutExpired:
