@@ -189,8 +189,6 @@ class Database {
       tables_[p].prefetchKey(n, 0, args);
     }
   }
-  // The next stage, once the list heads are cached: the first facts of the node's lists (the
-  // first two cache lines of each, which holds a few facts when they were stored together).
   // A hint that addLinearTrusted(n, p, ...) comes soon: the list's head, then (once the head is
   // here) the last fact, whose link the new one changes.
   [[gnu::always_inline]] void prefetchListHead(NodeId n, PredId p) const {
@@ -200,6 +198,8 @@ class Database {
     if (const FactRef last = heads_.of(n)[p].last; last != kNoFact)
       __builtin_prefetch(tables_[p].slotAddress(last), 1);
   }
+  // The next stage, once the list heads are cached: the first facts of the node's lists (the
+  // first two cache lines of each, which holds a few facts when they were stored together).
   [[gnu::always_inline]] void prefetchNodeFacts(NodeId n) const {
     const ListHead* h = heads_.of(n);
     for (std::size_t t = 0; t < tableCount_; ++t)
