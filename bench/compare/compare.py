@@ -65,11 +65,11 @@ class Failure(Exception):
     pass
 
 
-def run_group(cmd, cwd, timeout, stderr=subprocess.PIPE, env=None):
+def run_group(cmd, cwd, timeout, stdout=subprocess.PIPE, stderr=subprocess.PIPE, env=None):
     """subprocess.run in a process group of its own: on a timeout the whole group is killed (the
     established compiler is a script whose compiler process outlived a plain kill, and took a
-    core from every run after it), then TimeoutExpired is raised."""
-    p = subprocess.Popen(cmd, cwd=cwd, stdout=subprocess.PIPE, stderr=stderr, env=env, text=True,
+    core from every run after it), then TimeoutExpired is raised. scaling.py runs its VMs with it."""
+    p = subprocess.Popen(cmd, cwd=cwd, stdout=stdout, stderr=stderr, env=env, text=True,
                          errors="replace", start_new_session=True)
     try:
         out, err = p.communicate(timeout=timeout)

@@ -42,7 +42,6 @@ import json
 import os
 import re
 import shutil
-import signal
 import statistics
 import subprocess
 import sys
@@ -53,7 +52,7 @@ sys.dont_write_bytecode = True
 HERE = os.path.dirname(os.path.abspath(__file__))
 REPO = os.path.dirname(os.path.dirname(HERE))
 sys.path.insert(0, os.path.join(HERE, "..", "compare"))
-from compare import agreement  # noqa: E402  (the one dump comparison of bench/)
+from compare import agreement, run_group  # noqa: E402  (bench/'s one dump comparison and child runner)
 
 
 class Failure(Exception):
@@ -71,19 +70,16 @@ def run(cmd, cwd, timeout, gnu_time=None, dump=False):
         os.close(fd)
         cmd = [gnu_time, "-f", "%M", "-o", rss_file] + cmd
     start = time.perf_counter()
-    # Its own process group, so that a timeout stops the program too, not only GNU time.
-    p = subprocess.Popen(cmd, cwd=cwd, stdout=subprocess.PIPE if dump else subprocess.DEVNULL,
-                         stderr=subprocess.PIPE, text=True, errors="replace", start_new_session=True)
     try:
-        out, err = p.communicate(timeout=timeout)
+        # (A process group of its own: a timeout stops the program too, not only GNU time.)
+        p = run_group(cmd, cwd, timeout, stdout=subprocess.PIPE if dump else subprocess.DEVNULL)
         wall = time.perf_counter() - start
+        out, err = p.stdout, p.stderr
         rss = None
         if rss_file:
             lines = open(rss_file).read().split()
             rss = int(lines[-1]) / 1024.0 if lines and lines[-1].isdigit() else None
     except subprocess.TimeoutExpired:
-        os.killpg(p.pid, signal.SIGKILL)
-        p.communicate()
         raise Failure("timeout")
     finally:
         if rss_file:
