@@ -83,7 +83,7 @@ MeldChip::MeldChip(const meldvm::Program& program, meldvm::MachineOptions option
   if (options.host) throw std::invalid_argument("a chip drives its own nodes (no host)");
   const NodeId graph = std::max<NodeId>(NodeId(program.nodeSourceIds.size()), options.nodes);
   const meldvm::ProgramTables tables(program);
-  directory_ = std::make_unique<meldvm::threads::NodeDirectory>(graph, cores, tables.hasThreads);
+  directory_ = std::make_unique<meldvm::threads::NodeDirectory>(program, graph, cores, tables.hasThreads);
   mailSlabs_ = std::make_unique<meldvm::MailSlabs>(cores);
   options.mailSlabs = mailSlabs_.get();
   for (ThreadId c = 0; c < cores; ++c) cores_.push_back(std::make_unique<CoreShard>(*this, options, c));

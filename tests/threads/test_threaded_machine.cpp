@@ -8,24 +8,11 @@
 #include <sstream>
 #include <string>
 
-#include "../meldc/temp_dir.hpp"
-#include "meldc/compile.hpp"
-#include "meldc/diagnostics.hpp"
+#include "compile_source.hpp"
 #include "meldvm/machine.hpp"
 #include "meldvm/threaded_machine.hpp"
 
 namespace {
-
-std::unique_ptr<meldvm::Program> compile(const std::string& source) {
-  TempDir dir;
-  const std::string path = dir.write("prog.meld", source);
-  meldc::SourceManager sources;
-  std::ostringstream errors;
-  meldc::Diagnostics diag(sources, errors);
-  std::unique_ptr<meldvm::Program> p = meldc::compileProgram({path, {}, {}}, sources, diag);
-  BOOST_REQUIRE_MESSAGE(p, "compile errors:\n" << errors.str());
-  return p;
-}
 
 std::string serialDump(const meldvm::Program& p) {
   meldvm::Machine m(p);

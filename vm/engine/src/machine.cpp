@@ -138,20 +138,18 @@ void Machine::initNode(NodeId n) {
 }
 
 void Machine::reserveForAxioms() {
-  // Every DERIVE of an axiom block stores one fact (the blocks are straight-line code): room for
-  // them all up front spares the fact tables and their hash tables growing step by step while
-  // millions of axioms go in.
+  // Room up front for every fact the axiom blocks of this machine's nodes store spares the fact
+  // tables and their hash tables growing step by step while millions of axioms go in.
   std::vector<std::size_t> facts(program_.predicates.size(), 0);
-  for (const CodeBlock& b : program_.axiomBlocks)
-    detail::forEachInstruction(b.code, [&](std::size_t pc) {
-      if (Opcode(b.code[pc]) == Opcode::DERIVE) ++facts[b.code[pc + 1]];
-    });
-  // A shard stores about its share of them.
-  const double share =
-      initialNodes_ ? double(placement_.endOwned - placement_.firstOwned) / initialNodes_ : 1;
+  const NodeId end = std::min<NodeId>(placement_.endOwned, NodeId(program_.nodeAxioms.size()));
+  for (NodeId n = placement_.firstOwned; n < end; ++n)
+    if (const std::uint32_t b = program_.nodeAxioms[n]; b != Program::kNoAxioms)
+      detail::forEachAxiomStore(program_, program_.axiomBlocks[b].code,
+                                [&](PredId p, std::size_t count) { facts[p] += count; });
+  // A shard may take nodes from others later.
+  const std::size_t slack = shard_ ? 64 : 0;
   for (PredId p = 0; p < facts.size(); ++p)
-    if (facts[p] != 0 && !program_.predicates[p].action)
-      db_->reserve(p, std::size_t(double(facts[p]) * share) + (share < 1 ? 64 : 0));
+    if (facts[p] != 0 && !program_.predicates[p].action) db_->reserve(p, facts[p] + slack);
 }
 
 void Machine::startThreadNode() {

@@ -16,7 +16,7 @@ ThreadedMachine::ThreadedMachine(const Program& program, MachineOptions options,
   if (options.host) throw std::invalid_argument("a threaded run drives its own nodes (no host)");
   const NodeId graph = std::max<NodeId>(NodeId(program.nodeSourceIds.size()), options.nodes);
   const ProgramTables tables(program);
-  directory_ = std::make_unique<threads::NodeDirectory>(graph, threads, tables.hasThreads);
+  directory_ = std::make_unique<threads::NodeDirectory>(program, graph, threads, tables.hasThreads);
   shared_ = std::make_unique<threads::SharedState>(threads);
   mailSlabs_ = std::make_unique<MailSlabs>(threads);
   options.mailSlabs = mailSlabs_.get();

@@ -109,6 +109,19 @@ void forEachInstruction(std::span<const std::uint32_t> code, F&& f) {
   }
 }
 
+// The facts an axiom block (verified) stores: f(predicate, count) for each DERIVE (one fact) and
+// AXIOM_FACTS (its data words hold whole facts of axiomFactWords each).
+template <class F>
+void forEachAxiomStore(const Program& program, std::span<const std::uint32_t> code, F&& f) {
+  forEachInstruction(code, [&](std::size_t pc) {
+    const auto op = Opcode(code[pc]);
+    if (op == Opcode::DERIVE) f(PredId(code[pc + 1]), std::size_t(1));
+    if (op != Opcode::AXIOM_FACTS) return;
+    const PredId p = code[pc + 1];
+    if (const std::size_t per = axiomFactWords(program.predicates[p].fields)) f(p, std::size_t(code[pc + 2]) / per);
+  });
+}
+
 // ITER, ITER_KEY and ITER_SORTED: operands predicate, slot, flags (IterFlags), then their own.
 inline bool isLoop(std::uint32_t opcode) {
   const auto op = Opcode(opcode);

@@ -1,6 +1,6 @@
 // Which thread (or simulated core) owns which node in a threaded run. The graph's nodes start cut into
-// contiguous ranges, one per thread (the established VM's static partition), and move when threads steal
-// them; thread t's thread node is N + t; a thread creates nodes (exists) from blocks of 16384
+// contiguous ranges, one per thread, of about equal weight (a node weighs one plus the facts of its
+// axioms), and move when threads steal them; thread t's thread node is N + t; a thread creates nodes (exists) from blocks of 16384
 // ids it takes in turn (§6.10). Read by every thread on every fact it sends: no lock. A graph
 // node's owner changes only while every thread waits in the rebalancing barrier (worker.cpp),
 // and a block's owner is written before any of its ids can appear in a fact.
@@ -9,6 +9,7 @@
 #include <atomic>
 #include <cstdint>
 #include <memory>
+#include <vector>
 
 #include "meldvm/shard.hpp"
 
@@ -19,12 +20,14 @@ class NodeDirectory {
   static constexpr NodeId kBlockIds = 16384;
   static constexpr std::uint32_t kMaxBlocks = 1u << 16;
 
-  NodeDirectory(NodeId graphNodes, ThreadId threads, bool threadNodes);
+  // The initial ranges weigh the nodes by their axioms (program.nodeAxioms); nodes beyond the
+  // program's (a graph the run was told is larger) weigh one.
+  NodeDirectory(const Program& program, NodeId graphNodes, ThreadId threads, bool threadNodes);
 
   ThreadId threads() const { return threads_; }
   NodeId graphNodes() const { return graph_; }
-  NodeId firstOwned(ThreadId t) const { return NodeId(std::uint64_t(graph_) * t / threads_); }
-  NodeId endOwned(ThreadId t) const { return firstOwned(t + 1); }
+  NodeId firstOwned(ThreadId t) const { return cuts_[t]; }
+  NodeId endOwned(ThreadId t) const { return cuts_[t + 1]; }
 
   ThreadId ownerOf(NodeId n) const {
     if (n < graph_) return owner_[n].load(std::memory_order_relaxed);
@@ -42,6 +45,7 @@ class NodeDirectory {
  private:
   NodeId graph_;
   ThreadId threads_;
+  std::vector<NodeId> cuts_;  // thread t starts with the graph nodes [cuts_[t], cuts_[t + 1])
   NodeId createdBase_;                                   // the first id of the first block of created nodes
   std::unique_ptr<std::atomic<std::uint16_t>[]> owner_;  // per graph node (threads <= 1024)
   std::unique_ptr<std::atomic<ThreadId>[]> blockOwner_;
