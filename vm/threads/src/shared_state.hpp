@@ -20,7 +20,9 @@ struct SharedState {
   explicit SharedState(ThreadId threads)
       : threads(threads),
         channels(new Channel[std::size_t(threads) * threads]),
+        gaveNodes(new std::atomic<bool>[std::size_t(threads) * threads]),
         perThread(new PerThread[threads]) {
+    for (std::size_t i = 0; i < std::size_t(threads) * threads; ++i) gaveNodes[i].store(false);
     active.store(threads);
   }
 
@@ -88,9 +90,12 @@ struct SharedState {
   std::atomic<std::uint32_t> idleThreads{0};  // threads in waitForWork: a busy one with a queue asks for them
   std::atomic<std::int64_t> nextRebalanceNs{0};
   std::atomic<std::uint32_t> barrierArrived{0}, barrierGeneration{0};
-  // set-cpu / set-affinity requests, carried out at the next rebalance.
+  // set-cpu / set-affinity requests, carried out at the next rebalance: `moves` collects them
+  // (under the lock), a rebalance plans with what it held when every thread had arrived.
   std::mutex movesLock;
-  std::vector<std::pair<NodeId, ThreadId>> moves;
+  std::vector<std::pair<NodeId, ThreadId>> moves, plannedMoves;
+  // [from * threads + to]: in this rebalance, thread `from` put nodes in its channel to `to`.
+  std::unique_ptr<std::atomic<bool>[]> gaveNodes;
 
   struct alignas(64) PerThread {
     std::atomic<std::uint32_t> signal{0};

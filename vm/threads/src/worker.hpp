@@ -63,6 +63,8 @@ class Worker final : public ShardLink {
 
   void loop();
   bool takeMail();  // takes in every batch waiting for this thread; false if there was none
+  bool takeFrom(ThreadId from);  // what the channel from that thread holds; false if nothing
+  void takeGivenNodes();
   bool mailWaiting() const;
   void decode(const Bytes& records);
   void flush();
