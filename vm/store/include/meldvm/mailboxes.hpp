@@ -174,10 +174,13 @@ class Mailboxes {
  private:
   static constexpr std::uint32_t kNone = MailSlabs::kNoChunk;
   // Chunk ids are [slab | chunk in slab] (MailSlabs). Slabs hold up to kSlabChunks chunks (2 MiB);
-  // a shard's first two are smaller, so that a small program or robot world keeps a small footprint.
+  // a shard's first four are smaller, so that a small program or robot world keeps a small
+  // footprint: a slab of 2 MiB gets huge pages (LargeAllocator), all of it resident at its first
+  // message, and on belief-propagation-50 at -j 2 the two shards' first such slabs were 4 MB of
+  // 14 (serially 8.4). The next two (1 MiB each) get small pages, resident as they fill.
   static constexpr std::uint32_t kSlabShift = MailSlabs::kChunkBits, kSlabChunks = 1u << kSlabShift;
   static std::uint32_t slabCapacity(std::uint32_t ownSlab) {
-    return ownSlab == 0 ? 16 : ownSlab == 1 ? 1024 : kSlabChunks;
+    return ownSlab == 0 ? 16 : ownSlab == 1 ? 1024 : ownSlab < 4 ? kSlabChunks / 2 : kSlabChunks;
   }
   // The last chunk's length is kept here, not in the chunk: a post then writes its record without
   // first reading the chunk (a cache miss per message on a large graph). A chunk's head gets its
