@@ -248,6 +248,8 @@ class RegionLowering {
   // CALL: the built-in's implementation is called directly (builtins[id]) with the registers'
   // values; its result is owned, so a boxed register only lets go of its old value. fabs is inline.
   void lowerCall(Function& f, llvm::IRBuilder<>& b, std::uint32_t pc);
+  // queens_violation(Y, L) as a loop over L's cells in the block itself.
+  llvm::Value* queensViolation(Function& f, llvm::IRBuilder<>& b, llvm::Value* row, llvm::Value* list);
 
   // LOADs and TESTs of integer-like fields, one after the other on the same slot: its arguments
   // are looked up once and read in place (nothing stores a fact in between: a release that frees
@@ -262,6 +264,7 @@ class RegionLowering {
   const meldvm::Program& program_;
   std::set<std::uint32_t> consumingSlots_;  // slots some loop binds with kIterConsume
   const std::uint32_t fabsId_ = meldvm::findBuiltin("fabs")->id;
+  const std::uint32_t queensId_ = meldvm::findBuiltin("queens_violation")->id;
   std::map<std::uint32_t, std::int64_t> slotPreds_;  // slot -> predicate of every loop binding it
   const meldvm::CodeBlock& block_;
   std::span<const std::uint32_t> code_;

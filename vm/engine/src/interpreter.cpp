@@ -394,7 +394,8 @@ struct NativeHelpers {
                 offsetof(Slot, flags) == offsetof(meld_native_slot, flags) &&
                 offsetof(Slot, fixed) == offsetof(meld_native_slot, fixed) && kNoFact == MELD_NATIVE_NO_FACT);
   // A cell is its header, its head, then its tail (offsetof is not defined on a derived struct).
-  static_assert(sizeof(Object) + sizeof(Value) == 8 * MELD_NATIVE_LIST_TAIL_WORD &&
+  static_assert(sizeof(Object) == 8 * MELD_NATIVE_LIST_HEAD_WORD &&
+                sizeof(Object) + sizeof(Value) == 8 * MELD_NATIVE_LIST_TAIL_WORD &&
                 sizeof(ConsCell) == 8 * (MELD_NATIVE_LIST_TAIL_WORD + 1));
   static_assert(sizeof(bool) == 1 && sizeof(std::atomic<bool>) == 1 && std::atomic<bool>::is_always_lock_free,
                 "native code reads the stop flags as bytes");

@@ -21,7 +21,7 @@ extern "C" {
 #endif
 
 /* Bumped whenever a helper, its meaning or the block signature changes. */
-#define MELD_NATIVE_ABI_VERSION 6u
+#define MELD_NATIVE_ABI_VERSION 7u
 
 typedef struct meld_native_vm meld_native_vm;       /* the interpreter running the block */
 typedef struct meld_native_frame meld_native_frame; /* its frame (registers, loop slots) */
@@ -37,9 +37,11 @@ typedef uint64_t (*meld_native_builtin)(meld_native_vm* vm, const uint64_t* args
 
 #define MELD_NATIVE_NO_FACT 0xFFFFFFFFu
 
-/* A list value is the address of its first cell (0: the empty list), and the 8-byte word
- * MELD_NATIVE_LIST_TAIL_WORD of a cell is the address of the next one. Native code reads it only
- * to fetch the lists of the facts a loop visits next (a hint: it changes no result). */
+/* A list value is the address of its first cell (0: the empty list); the 8-byte word
+ * MELD_NATIVE_LIST_HEAD_WORD of a cell is its element (a value, as in a register) and word
+ * MELD_NATIVE_LIST_TAIL_WORD the address of the next cell. Native code reads them to fetch the
+ * lists of the facts a loop visits next (a hint) and in built-ins it inlines (queens_violation). */
+#define MELD_NATIVE_LIST_HEAD_WORD 1u
 #define MELD_NATIVE_LIST_TAIL_WORD 2u
 
 /* A loop slot of the frame (meldvm::Interpreter::Slot, same layout): the fact a loop has bound,
