@@ -11,6 +11,8 @@ namespace meldvm {
 FactTable::FactTable(const TypeTable& types, Heap& heap, std::vector<TypeId> fields, bool dedup)
     : types_(types), heap_(heap), fields_(std::move(fields)), references_(heap_, fields_), dedup_(dedup) {
   for (TypeId t : fields_) allUnboxed_ = allUnboxed_ && !types_.boxed(t);
+  for (std::size_t i = 0; i < fields_.size() && i < 32; ++i)
+    if (integerLike(types_, fields_[i])) integerFields_ |= std::uint32_t(1) << i;
   argOffset_ = 2;
   stride_ = argOffset_ + arity();
   plain_ = !dedup_;
@@ -34,13 +36,30 @@ std::uint32_t FactTable::addIndex(KeySpec key) {
 }
 
 std::uint64_t FactTable::hashKey(NodeId node, const Value* key, KeySpec spec) const {
+  if (!integerKey(spec)) [[unlikely]]
+    return hashKeyOfTypes(node, key, spec);
+  std::uint64_t h = mixHash(0x6d656c64, node);
+  for (std::uint32_t i = 0; i < spec.count; ++i) h = mixHash(h, hashIntegerLike(key[i]));
+  return h;
+}
+
+bool FactTable::keyEqual(FactRef f, const Value* key, KeySpec spec) const {
+  if (!integerKey(spec)) [[unlikely]]
+    return keyEqualOfTypes(f, key, spec);
+  const Value* a = args(f) + spec.first;
+  for (std::uint32_t i = 0; i < spec.count; ++i)
+    if (a[i].bits() != key[i].bits()) return false;
+  return true;
+}
+
+std::uint64_t FactTable::hashKeyOfTypes(NodeId node, const Value* key, KeySpec spec) const {
   std::uint64_t h = mixHash(0x6d656c64, node);
   for (std::uint32_t i = 0; i < spec.count; ++i)
     h = mixHash(h, hashValueFast(types_, fields_[spec.first + i], key[i]));
   return h;
 }
 
-bool FactTable::keyEqual(FactRef f, const Value* key, KeySpec spec) const {
+bool FactTable::keyEqualOfTypes(FactRef f, const Value* key, KeySpec spec) const {
   const Value* a = args(f) + spec.first;
   for (std::uint32_t i = 0; i < spec.count; ++i)
     if (!valuesEqualFast(types_, fields_[spec.first + i], a[i], key[i])) return false;

@@ -71,7 +71,7 @@ std::uint64_t hashValue(const TypeTable& types, TypeId t, Value v) {
     case TypeKind::Bool:
     case TypeKind::Node:
     case TypeKind::Thread:
-      return mixHash(2, v.bits());
+      return hashIntegerLike(v);
     case TypeKind::String: {
       std::uint64_t h = 0xcbf29ce484222325ull;  // FNV-1a
       for (unsigned char c : stringOf(v)) h = (h ^ c) * 0x100000001b3ull;

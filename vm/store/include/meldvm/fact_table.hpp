@@ -153,6 +153,9 @@ class FactTable {
   }
 
   // Hash of a node and `count` key values with the types of fields [first, first + count).
+  // Keys of ints, bools, nodes and threads only (pagerank's neighbour, every ITER_KEY on a node)
+  // hash and compare their bits, in leaf functions; the others go through the types' own hash
+  // and equality (out of line: their calls made every look-up save and restore registers).
   std::uint64_t hashKey(NodeId node, const Value* key, KeySpec spec) const;
   bool keyEqual(FactRef f, const Value* key, KeySpec spec) const;
 
@@ -161,6 +164,14 @@ class FactTable {
     KeySpec key;
     SlotHash heads;
   };
+
+  bool integerKey(KeySpec spec) const {
+    if (spec.first + spec.count > 32) return false;
+    const std::uint64_t m = ((std::uint64_t(1) << spec.count) - 1) << spec.first;
+    return (integerFields_ & m) == m;
+  }
+  [[gnu::noinline]] std::uint64_t hashKeyOfTypes(NodeId node, const Value* key, KeySpec spec) const;
+  [[gnu::noinline]] bool keyEqualOfTypes(FactRef f, const Value* key, KeySpec spec) const;
 
   std::size_t base(FactRef f) const { return std::size_t(f) * stride_; }
   std::size_t linkWord(FactRef f, std::uint32_t index) const { return base(f) + indexLinkWord(index); }
@@ -228,6 +239,10 @@ class FactTable {
   SlotHash facts_;                               // de-duplication: node + all arguments
   static constexpr std::uint32_t kHashMemo = 4;  // arities up to this use the memo
   mutable NodeId memoNode_ = 0xFFFFFFFFu;
+  // Bit i: field i (i < 32) is an int, bool, node or thread. 32 bits, in the padding before
+  // memoKey_: a larger FactTable made indexing the Database's vector of them dearer everywhere
+  // (heat-transfer 20x20 +2 % instructions with a 64-bit mask after allUnboxed_).
+  std::uint32_t integerFields_ = 0;
   mutable Value memoKey_[kHashMemo] = {};
   mutable std::uint64_t memoHash_ = 0;
   std::uint32_t stride_ = 0, argOffset_ = 0;

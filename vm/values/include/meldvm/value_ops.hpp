@@ -44,8 +44,10 @@ inline std::uint64_t mixHash(std::uint64_t h, std::uint64_t v) {
   return h ^ (h >> 29);
 }
 
+// What hashValue gives an int, bool, node or thread (their bits are their identity).
+inline std::uint64_t hashIntegerLike(Value v) { return mixHash(2, v.bits()); }
 inline std::uint64_t hashValueFast(const TypeTable& types, TypeId t, Value v) {
-  return integerLike(types, t) ? mixHash(2, v.bits()) : hashValue(types, t, v);
+  return integerLike(types, t) ? hashIntegerLike(v) : hashValue(types, t, v);
 }
 inline int compareValuesFast(const TypeTable& types, TypeId t, Value a, Value b) {
   if (types.kind(t) == TypeKind::Int) return (a.asInt() > b.asInt()) - (a.asInt() < b.asInt());
