@@ -8,27 +8,15 @@
 #include <string>
 #include <vector>
 
-#include "../meldc/temp_dir.hpp"
-#include "meldc/compile.hpp"
-#include "meldc/diagnostics.hpp"
+#include "../meldc/compile_source.hpp"
 #include "meldvm/block_runtime.hpp"
 #include "simcore/simulation.hpp"
 #include "targets.hpp"
 
 namespace robots {
 
-inline std::unique_ptr<meldvm::Program> compile(const std::string& source) {
-  TempDir dir;
-  const std::string path = dir.write("prog.meld", source);
-  meldc::SourceManager sources;
-  std::ostringstream errors;
-  meldc::Diagnostics diag(sources, errors);
-  meldc::FrontEndInput input{path, {}, {}};
-  input.identityNodes = true;
-  std::unique_ptr<meldvm::Program> p = meldc::compileProgram(input, sources, diag);
-  BOOST_REQUIRE_MESSAGE(p, "compile errors:\n" << errors.str());
-  return p;
-}
+// Node ids = block ids.
+inline std::unique_ptr<meldvm::Program> compile(const std::string& source) { return compileSource(source, true); }
 
 struct World {
   std::unique_ptr<meldvm::Program> program;

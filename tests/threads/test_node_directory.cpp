@@ -5,7 +5,7 @@
 #include <boost/test/unit_test.hpp>
 #include <vector>
 
-#include "compile_source.hpp"
+#include "../meldc/compile_source.hpp"
 #include "meldvm/node_directory.hpp"
 
 using meldvm::NodeId;
@@ -35,7 +35,7 @@ std::vector<NodeId> cuts(const NodeDirectory& d) {
 }  // namespace
 
 BOOST_AUTO_TEST_CASE(ranges_of_equal_weight_not_of_equal_node_counts) {
-  const auto p = compile(kSkewed);
+  const auto p = compileSource(kSkewed);
   const NodeDirectory two(*p, 11, 2, false);
   // 0..6 weigh 14, 7..10 weigh 17: the nearest cut to 15.5 (equal counts would give 10 and 21).
   BOOST_TEST(cuts(two) == (std::vector<NodeId>{0, 7, 11}), boost::test_tools::per_element());
@@ -47,7 +47,7 @@ BOOST_AUTO_TEST_CASE(ranges_of_equal_weight_not_of_equal_node_counts) {
 }
 
 BOOST_AUTO_TEST_CASE(equal_weights_cut_as_equal_counts) {
-  const auto p = compile(R"(
+  const auto p = compileSource(R"(
 type item(node, int).
 type linear done(node).
 !item(A, _) -o done(A).
@@ -61,7 +61,7 @@ type linear done(node).
 }
 
 BOOST_AUTO_TEST_CASE(nodes_beyond_the_program_weigh_one_and_more_threads_than_nodes_leave_some_empty) {
-  const auto p = compile(kSkewed);
+  const auto p = compileSource(kSkewed);
   // 32 nodes: 21 more of weight 1 (52 in all). The goal, 26, falls in the heavy node (20 before
   // it, 31 after): it goes to thread 0, whose share ends nearer the goal so (31 against 21, not
   // 20 against 32).

@@ -8,7 +8,7 @@
 #include <sstream>
 #include <string>
 
-#include "compile_source.hpp"
+#include "../meldc/compile_source.hpp"
 #include "meldvm/machine.hpp"
 #include "meldvm/threaded_machine.hpp"
 
@@ -56,7 +56,7 @@ std::string ringProgram() {
 }  // namespace
 
 BOOST_AUTO_TEST_CASE(boxed_values_cross_threads_and_the_dump_is_the_serial_one) {
-  const auto p = compile(ringProgram());
+  const auto p = compileSource(ringProgram());
   const std::string serial = serialDump(*p);
   BOOST_TEST(serial.find("seen([1,2,3,4,5,6,7,8,9,10,11,12,13,14,15,16,17,18,19,20,21,22,23], ") !=
              std::string::npos);
@@ -90,7 +90,7 @@ BOOST_AUTO_TEST_CASE(scalar_facts_cross_threads_bit_for_bit_and_so_do_retraction
        "!report(@44, @0).\n"
        "!dist(A, D), !road(A, B, W) -o !dist(B, D + W).\n"
        "!dist(A, D), !report(A, R) -o !cand(R, D).\n";
-  const auto p = compile(s);
+  const auto p = compileSource(s);
   const std::string serial = serialDump(*p);
   BOOST_TEST(serial.find("!cand(22)") != std::string::npos, serial);
   BOOST_TEST(serial.find("!cand(140)") == std::string::npos, serial);
@@ -99,7 +99,7 @@ BOOST_AUTO_TEST_CASE(scalar_facts_cross_threads_bit_for_bit_and_so_do_retraction
 }
 
 BOOST_AUTO_TEST_CASE(more_threads_than_nodes) {
-  const auto p = compile("type linear a(node, int).\na(@0, 1). a(@1, 2).\na(A, N), N < 5 -o a(A, N + 2).\n");
+  const auto p = compileSource("type linear a(node, int).\na(@0, 1). a(@1, 2).\na(A, N), N < 5 -o a(A, N + 2).\n");
   BOOST_TEST(threadedDump(*p, 6) == serialDump(*p));
 }
 
@@ -115,7 +115,7 @@ BOOST_AUTO_TEST_CASE(nodes_created_on_every_thread_are_collected_like_the_serial
   s += "grow(A, R, N), N > 0 -o exists B. (grow(B, R, N - 1)).\n"
        "grow(A, R, 0) -o back(R, 1), kept(A, 1).\n"
        "back(A, X), total(A, T) -o total(A, T + X).\n";
-  const auto p = compile(s);
+  const auto p = compileSource(s);
   const std::string serial = serialDump(*p);
   auto shape = [](const std::string& dump) {
     std::multiset<std::string> lines;
@@ -132,7 +132,7 @@ BOOST_AUTO_TEST_CASE(nodes_created_on_every_thread_are_collected_like_the_serial
 
 BOOST_AUTO_TEST_CASE(thread_facts_are_sent_to_other_threads) {
   // Every thread node greets every other thread once: each ends with threads - 1 greetings.
-  const auto p = compile(
+  const auto p = compileSource(
       "type linear hello(thread, int).\ntype linear start(thread).\n"
       "start(T).\n"
       "start(T) -o {T2, I | !other-thread(T, T2, I) | hello(T2, 1)}.\n");
@@ -149,7 +149,7 @@ BOOST_AUTO_TEST_CASE(write_string_lines_of_all_threads_come_whole) {
   std::string s = "type linear say(node, int).\n";
   for (int i = 0; i < 40; ++i) s += "say(@" + std::to_string(i) + ", " + std::to_string(i) + ").\n";
   s += "say(A, N) -o write-string(A, concatenate(\"line \", int2str(N))).\n";
-  const auto p = compile(s);
+  const auto p = compileSource(s);
   std::string output;
   threadedDump(*p, 4, &output);
   std::set<std::string> lines;
@@ -167,7 +167,7 @@ BOOST_AUTO_TEST_CASE(stop_program_on_one_thread_stops_them_all) {
   for (int i = 0; i < 5; ++i) s += "tick(@" + std::to_string(i) + ", 0).\n";
   s += "halt(@5).\n";
   s += "halt(A) -o stop-program(A).\ntick(A, N) -o tick(A, N + 1).\n";
-  const auto p = compile(s);
+  const auto p = compileSource(s);
   meldvm::ThreadedMachine m(*p, {}, 3);
   m.run();
   BOOST_TEST(m.stopped());
@@ -179,7 +179,7 @@ BOOST_AUTO_TEST_CASE(a_run_time_error_on_one_thread_ends_the_run_with_its_messag
   // loop forever.
   for (int i = 0; i < 9; ++i) s += "d(@" + std::to_string(i) + ", " + std::to_string(i == 5 ? 0 : 1) + ").\n";
   s += "d(A, N) -o d(A, 10 / N).\n";
-  const auto p = compile(s);
+  const auto p = compileSource(s);
   meldvm::ThreadedMachine m(*p, {}, 3);
   try {
     m.run();
@@ -192,7 +192,7 @@ BOOST_AUTO_TEST_CASE(a_run_time_error_on_one_thread_ends_the_run_with_its_messag
 BOOST_AUTO_TEST_CASE(memory_use_counts_the_run_buffers_and_the_batches_between_threads) {
   // The token crosses between threads: the rule runs' buffers and each thread's batches are
   // memory the VM holds (kept at the size of the largest run), part of the total.
-  const auto p = compile(ringProgram());
+  const auto p = compileSource(ringProgram());
   meldvm::Machine serial(*p);
   serial.run();
   const meldvm::MemoryUse one = serial.memoryUse();
@@ -206,7 +206,7 @@ BOOST_AUTO_TEST_CASE(memory_use_counts_the_run_buffers_and_the_batches_between_t
 }
 
 BOOST_AUTO_TEST_CASE(per_thread_statistics_add_up) {
-  const auto p = compile(ringProgram());
+  const auto p = compileSource(ringProgram());
   meldvm::ThreadedMachine m(*p, {}, 3);
   m.run();
   const std::vector<meldvm::ThreadStats> threads = m.threadStats();
@@ -237,7 +237,7 @@ BOOST_AUTO_TEST_CASE(an_idle_thread_steals_queued_nodes_even_from_a_long_node_ru
   // first is in the middle of a run: that thread joins the rebalance between two rules (it does
   // not wait for the run's end), gives waiting nodes but never the running one, and the run goes
   // on where it was. The dump is the serial one.
-  const auto p = compile(countdownProgram());
+  const auto p = compileSource(countdownProgram());
   const std::string serial = serialDump(*p);
   meldvm::ThreadedMachine m(*p, {}, 2);
   m.run();
@@ -255,7 +255,7 @@ BOOST_AUTO_TEST_CASE(set_cpu_moves_nodes_to_another_thread_where_they_get_just_m
   // Every node asks to go to the leader thread #T0: the nodes of the other threads move there
   // (facts and all), are pinned, and only then get just-moved (§5.7), so every node ends with
   // cpu-id #T0 and thread 0 counts all 8 as static in the end.
-  const auto p = compile(
+  const auto p = compileSource(
       "type linear go(node).\ntype linear where(node, thread, int).\n"
       "go(@0). go(@1). go(@2). go(@3). go(@4). go(@5). go(@6). go(@7).\n"
       "go(A), !leader-thread(T, L) -o set-cpu(A, L).\n"
@@ -295,7 +295,7 @@ BOOST_AUTO_TEST_CASE(lists_consed_on_one_tail_cross_threads_still_sharing_it) {
   for (int k = 1; k <= 40; ++k)
     s += "!edge(@0, @" + std::to_string(40 + k) + ", " + std::to_string(k) + ").\n";
   s += "fan(A), base(A, L) -o {B, K | !edge(A, B, K) | got(B, [K | L])}.\n";
-  const auto p = compile(s);
+  const auto p = compileSource(s);
   const std::string serial = serialDump(*p);
   BOOST_TEST(serial.find("got([40,0,1,2,") != std::string::npos);
   meldvm::MachineOptions o;

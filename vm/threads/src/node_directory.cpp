@@ -14,23 +14,31 @@ namespace {
 // unevenly: pagerank-movies' first half holds 72 % of its edges, so equal counts of nodes left
 // one thread with most of the work until a rebalance moved nodes over (a fifth of a 50 ms run).
 std::vector<NodeId> weightedCuts(const Program& program, NodeId graph, ThreadId threads) {
-  std::vector<std::uint64_t> weight(graph, 1);
-  const NodeId described = std::min<NodeId>(graph, NodeId(program.nodeAxioms.size()));
-  for (NodeId n = 0; n < described; ++n)
-    if (const std::uint32_t b = program.nodeAxioms[n]; b != Program::kNoAxioms)
-      detail::forEachAxiomStore(program, program.axiomBlocks[b].code,
-                                [&](PredId, std::size_t count) { weight[n] += count; });
+  // Two passes over the axioms rather than an array of weights: graphs run to millions of nodes.
+  auto weight = [&](NodeId n) {
+    std::uint64_t w = 1;
+    if (n < program.nodeAxioms.size())
+      if (const std::uint32_t b = program.nodeAxioms[n]; b != Program::kNoAxioms)
+        detail::forEachAxiomStore(program, program.axiomBlocks[b].code,
+                                  [&](PredId, std::size_t count) { w += count; });
+    return w;
+  };
   std::uint64_t total = 0;
-  for (const std::uint64_t w : weight) total += w;
+  for (NodeId n = 0; n < graph; ++n) total += weight(n);
   std::vector<NodeId> cuts(threads + 1, graph);
   cuts[0] = 0;
   std::uint64_t before = 0;  // the weight of the nodes below n
   NodeId n = 0;
+  std::uint64_t w = graph ? weight(0) : 0;  // node n's
   for (ThreadId t = 1; t < threads; ++t) {
     const std::uint64_t goal = total * t / threads;
-    // Stop at the node whose end is nearer the goal than its start (never below the last cut).
-    while (n < graph && before + weight[n] <= goal) before += weight[n++];
-    if (n < graph && before < goal && goal - before > before + weight[n] - goal) before += weight[n++];
+    auto step = [&] {
+      before += w;
+      if (++n < graph) w = weight(n);
+    };
+    while (n < graph && before + w <= goal) step();
+    // The node that straddles the goal goes below the cut if its end is nearer the goal.
+    if (n < graph && before < goal && goal - before > before + w - goal) step();
     cuts[t] = n;
   }
   return cuts;
