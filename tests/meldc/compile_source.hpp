@@ -7,9 +7,9 @@
 #include <sstream>
 #include <string>
 
-#include "temp_dir.hpp"
 #include "meldc/compile.hpp"
 #include "meldc/diagnostics.hpp"
+#include "temp_dir.hpp"
 
 inline std::unique_ptr<meldvm::Program> compileSource(const std::string& source, bool identityNodes = false) {
   TempDir dir;

@@ -16,7 +16,9 @@
 namespace robots {
 
 // Node ids = block ids.
-inline std::unique_ptr<meldvm::Program> compile(const std::string& source) { return compileSource(source, true); }
+inline std::unique_ptr<meldvm::Program> compile(const std::string& source) {
+  return compileSource(source, true);
+}
 
 struct World {
   std::unique_ptr<meldvm::Program> program;

@@ -99,7 +99,8 @@ BOOST_AUTO_TEST_CASE(scalar_facts_cross_threads_bit_for_bit_and_so_do_retraction
 }
 
 BOOST_AUTO_TEST_CASE(more_threads_than_nodes) {
-  const auto p = compileSource("type linear a(node, int).\na(@0, 1). a(@1, 2).\na(A, N), N < 5 -o a(A, N + 2).\n");
+  const auto p =
+      compileSource("type linear a(node, int).\na(@0, 1). a(@1, 2).\na(A, N), N < 5 -o a(A, N + 2).\n");
   BOOST_TEST(threadedDump(*p, 6) == serialDump(*p));
 }
 

@@ -251,16 +251,17 @@ llvm::Value* RegionLowering::queensViolation(Function& f, llvm::IRBuilder<>& b, 
   b.SetInsertPoint(cell);
   llvm::Value* address = b.CreateIntToPtr(at, b.getPtrTy());
   llvm::Value* queen = b.CreateTrunc(
-      b.CreateLoad(b.getInt64Ty(), b.CreateConstInBoundsGEP1_64(b.getInt64Ty(), address, MELD_NATIVE_LIST_HEAD_WORD)),
+      b.CreateLoad(b.getInt64Ty(),
+                   b.CreateConstInBoundsGEP1_64(b.getInt64Ty(), address, MELD_NATIVE_LIST_HEAD_WORD)),
       b.getInt32Ty());
   // Wrapping sums, as the interpreter's intAdd and intSub.
-  llvm::Value* conflict = b.CreateOr(
-      b.CreateICmpEQ(queen, row), b.CreateOr(b.CreateICmpEQ(queen, b.CreateAdd(row, distance)),
-                                              b.CreateICmpEQ(queen, b.CreateSub(row, distance))));
+  llvm::Value* conflict =
+      b.CreateOr(b.CreateICmpEQ(queen, row), b.CreateOr(b.CreateICmpEQ(queen, b.CreateAdd(row, distance)),
+                                                        b.CreateICmpEQ(queen, b.CreateSub(row, distance))));
   b.CreateCondBr(conflict, done, next);
   b.SetInsertPoint(next);
-  llvm::Value* tail =
-      b.CreateLoad(b.getInt64Ty(), b.CreateConstInBoundsGEP1_64(b.getInt64Ty(), address, MELD_NATIVE_LIST_TAIL_WORD));
+  llvm::Value* tail = b.CreateLoad(
+      b.getInt64Ty(), b.CreateConstInBoundsGEP1_64(b.getInt64Ty(), address, MELD_NATIVE_LIST_TAIL_WORD));
   at->addIncoming(tail, next);
   distance->addIncoming(b.CreateAdd(distance, b.getInt32(1)), next);
   b.CreateBr(walk);

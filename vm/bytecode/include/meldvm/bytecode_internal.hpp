@@ -118,7 +118,8 @@ void forEachAxiomStore(const Program& program, std::span<const std::uint32_t> co
     if (op == Opcode::DERIVE) f(PredId(code[pc + 1]), std::size_t(1));
     if (op != Opcode::AXIOM_FACTS) return;
     const PredId p = code[pc + 1];
-    if (const std::size_t per = axiomFactWords(program.predicates[p].fields)) f(p, std::size_t(code[pc + 2]) / per);
+    if (const std::size_t per = axiomFactWords(program.predicates[p].fields))
+      f(p, std::size_t(code[pc + 2]) / per);
   });
 }
 

@@ -1,9 +1,9 @@
 // Which thread (or simulated core) owns which node in a threaded run. The graph's nodes start cut into
 // contiguous ranges, one per thread, of about equal weight (a node weighs one plus the facts of its
-// axioms), and move when threads steal them; thread t's thread node is N + t; a thread creates nodes (exists) from blocks of 16384
-// ids it takes in turn (§6.10). Read by every thread on every fact it sends: no lock. A graph
-// node's owner changes only while every thread waits in the rebalancing barrier (worker.cpp),
-// and a block's owner is written before any of its ids can appear in a fact.
+// axioms), and move when threads steal them; thread t's thread node is N + t; a thread creates nodes (exists)
+// from blocks of 16384 ids it takes in turn (§6.10). Read by every thread on every fact it sends: no lock. A
+// graph node's owner changes only while every thread waits in the rebalancing barrier (worker.cpp), and a
+// block's owner is written before any of its ids can appear in a fact.
 #pragma once
 
 #include <atomic>
