@@ -16,8 +16,9 @@ usage: fit_costs.py LOGDIR   (calibrate.sh writes LOGDIR/PROGRAM.j1.log and PROG
    threads, so the two ends cannot be told apart).
 3. Rebalancing: each thread's time in rebalances after both threads arrived ("move ms": moving
    nodes, not waiting for the other thread to end its node run, which the chip simulates by
-   itself) = rounds x rebalance + nodes moved x move + bytes moved x 2 movebyte (the moving
-   nodes' records, encoded by the giver and rebuilt by the taker one after the other). Bytes of
+   itself) = rounds x rebalance + nodes moved x move + movebyte x (every byte moved, which all
+   threads wait for while the givers encode it, + the bytes this thread took, which it alone
+   rebuilds while the others go on: vm/threads' worker.cpp, phase 4). Bytes of
    moving nodes get their own cost: a node that carries thousands of placements with their lists
    (n-queens) costs per byte what scalar facts crossing threads (pagerank) cannot tell.
 Prints the --costs string and the fit, per program.
@@ -99,12 +100,12 @@ def main():
             cross_rows.append([model(runs, rules, facts, looked), out + inn, bytes_out + bytes_in])
             cross_targets.append(wall * busy_pct / 100 / scale[p])
             moved_bytes, move_ms = t[15], t[16]
-            steal_rows.append([rounds, taken + given, moved_bytes + (all_moved - moved_bytes)])
+            took_bytes = all_moved - moved_bytes  # two threads: what the other one gave
+            steal_rows.append([rounds, taken + given, all_moved + took_bytes])
             steal_targets.append(move_ms / 1e3)
     slowdown, crossing, byte = lstsq(cross_rows, cross_targets) if cross_rows else (1.0, 0.0, 0.0)
     contention = max(slowdown - 1, 0.0)
-    rebalance, move, moved_byte_both_ends = lstsq(steal_rows, steal_targets) if steal_rows else (0.0, 0.0, 0.0)
-    movebyte = moved_byte_both_ends / 2
+    rebalance, move, movebyte = lstsq(steal_rows, steal_targets) if steal_rows else (0.0, 0.0, 0.0)
     ns = lambda v: v * 1e9 + 0.0  # + 0.0: no "-0.00"
     print("fit (ns): node %.1f, rule %.1f, fact %.1f, fact tried %.2f; a fact crossing cores %.1f at each end,"
           " a byte %.2f at each end; rebalance %.0f, node moved %.0f, a byte moved %.2f at each end;"

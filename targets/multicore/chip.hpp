@@ -28,9 +28,10 @@ struct CoreCosts {
   double send = 0;            // one fact sent to another core (into the batch)
   double receive = 0;         // one fact received from another core (stored or posted)
   double byte = 1.85;         // one byte of such a fact's record, at each end
-  double rebalance = 417703;  // one work-stealing round (all cores wait in it)
+  double rebalance = 417703;  // one work-stealing round (all cores wait in it until the packing ends)
   double nodeMoved = 0;       // one node moved by it, beyond its bytes
   double movedByte = 7.74;    // one byte of a moving node's record (its facts and messages), at each end
+                              // (packed while all wait, unpacked by its taker alone)
   // Not ns: how much slower a core runs while all the others are busy too (shared caches and
   // memory), 0.3 = 30 %; with k of N cores busy, a run costs (1 + contention (k-1)/(N-1)) times more.
   double contention = 0.03;

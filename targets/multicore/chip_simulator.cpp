@@ -198,14 +198,22 @@ void ChipSimulator::completeBarrier(simcore::SimTime now) {
   }
   std::vector<std::uint64_t> takenBefore(chip_.cores);
   for (unsigned c = 0; c < chip_.cores; ++c) takenBefore[c] = stats_[c].nodesTaken;
-  std::uint64_t bytes = 0;  // a moving node's records: its facts go as a crossing fact's do
-  std::size_t moved = work_.applyRequestedMoves(bytes);
-  if (chip_.stealing) moved += stealPlan(now, bytes);
-  const double cost = chip_.costs.rebalance + double(moved) * chip_.costs.nodeMoved +
-                      2 * double(bytes) * chip_.costs.movedByte;
-  const simcore::SimTime resume = drained + ns(cost);
+  // A moving node's records (its facts go as a crossing fact's do) are packed while every core
+  // waits, then unpacked by the taker alone while the others go on (vm/threads' worker.cpp, phase
+  // 4). Moves asked for by set-cpu are not told apart by taker: every core waits for them both ways.
+  std::uint64_t bytes = 0;
+  const std::size_t requested = work_.applyRequestedMoves(bytes);
+  const std::uint64_t requestedBytes = bytes;
+  std::vector<std::uint64_t> takenBytes(chip_.cores, 0);
+  const std::size_t moved = requested + (chip_.stealing ? stealPlan(now, bytes, takenBytes) : 0);
+  const double shared = chip_.costs.rebalance + double(moved) * chip_.costs.nodeMoved +
+                        double(bytes + requestedBytes) * chip_.costs.movedByte;
+  double longest = shared;
   ++rebalances_;
   for (unsigned c = 0; c < chip_.cores; ++c) {
+    const double cost = shared + double(takenBytes[c]) * chip_.costs.movedByte;
+    longest = std::max(longest, cost);
+    const simcore::SimTime resume = drained + ns(cost);
     Core& core = core_[c];
     core.inBarrier = false;
     ++stats_[c].rebalances;
@@ -215,13 +223,15 @@ void ChipSimulator::completeBarrier(simcore::SimTime now) {
     wake(c, resume);  // a core with nothing to do goes idle again at once
   }
   barrier_ = false;
-  nextRebalance_ = resume + StealPolicy::nextRebalanceAfter(cost);
+  const simcore::SimTime resume = drained + ns(longest);
+  nextRebalance_ = resume + StealPolicy::nextRebalanceAfter(longest);
   windowStart_ = resume;
   for (unsigned c = 0; c < chip_.cores; ++c) idleAtWindow_[c] = stats_[c].idleNs;
 }
 
 // The i-th most loaded core gives to the i-th least loaded (StealPolicy says how many nodes).
-std::size_t ChipSimulator::stealPlan(simcore::SimTime now, std::uint64_t& bytes) {
+std::size_t ChipSimulator::stealPlan(simcore::SimTime now, std::uint64_t& bytes,
+                                     std::vector<std::uint64_t>& takenBytes) {
   std::vector<unsigned> order(chip_.cores);
   std::vector<std::size_t> load(chip_.cores);
   std::vector<double> idle(chip_.cores);
@@ -238,7 +248,9 @@ std::size_t ChipSimulator::stealPlan(simcore::SimTime now, std::uint64_t& bytes)
     const unsigned giver = order[i], taker = order[order.size() - 1 - i];
     const std::size_t count = StealPolicy::nodesToGive(load[giver], load[taker], idle[giver], idle[taker]);
     if (count == 0) continue;
+    const std::uint64_t before = bytes;
     const std::size_t n = work_.moveNodes(giver, taker, count, bytes);
+    takenBytes[taker] += bytes - before;
     stats_[giver].nodesGiven += n;
     stats_[taker].nodesTaken += n;
     moved += n;

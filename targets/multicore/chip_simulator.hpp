@@ -99,7 +99,8 @@ class ChipSimulator {
   void requestRebalance(simcore::SimTime now, bool forced);
   void arriveAtBarrier(unsigned core, simcore::SimTime now);
   void completeBarrier(simcore::SimTime now);
-  std::size_t stealPlan(simcore::SimTime now, std::uint64_t& bytes);
+  // Adds the bytes of the nodes moved to `bytes` and each taker's share to takenBytes[taker].
+  std::size_t stealPlan(simcore::SimTime now, std::uint64_t& bytes, std::vector<std::uint64_t>& takenBytes);
   bool someoneCanGive(unsigned except) const;
   simcore::SimTime ns(double v) const { return simcore::SimTime(v + 0.5); }
   double workCost(const Work& w) const {

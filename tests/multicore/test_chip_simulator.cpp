@@ -154,7 +154,7 @@ BOOST_AUTO_TEST_CASE(idle_cores_steal_and_finish_sooner) {
   BOOST_TEST(stealingEnd == 320 + 5000 + 199 * 50 + 200 * 320);
 }
 
-BOOST_AUTO_TEST_CASE(a_moving_node_pays_for_its_bytes_at_both_ends) {
+BOOST_AUTO_TEST_CASE(a_moving_node_pays_for_its_bytes_at_both_ends_and_only_the_taker_unpacks) {
   FakeWorkload w(2);
   for (int i = 0; i < 400; ++i) w.queue[0].push_back({20, 20, 0, 0});
   ChipSpec chip = chipOf(2, true);
@@ -162,8 +162,13 @@ BOOST_AUTO_TEST_CASE(a_moving_node_pays_for_its_bytes_at_both_ends) {
   chip.costs.byte = 1000;  // the crossing facts' rate: not the moves'
   ChipSimulator sim(chip, w);
   sim.run();
-  // As above, and the rebalance carries 199 units of 100 bytes, 0.5 ns a byte at each end.
-  BOOST_TEST(sim.endTime() == 320 + 5000 + 199 * 50 + 199 * 100 * 2 / 2 + 200 * 320);
+  // As above, and the rebalance carries 199 units of 100 bytes, 0.5 ns a byte at each end: both
+  // cores wait while they are packed (from 320 ns on), then core 0 goes on with its 200 units
+  // while core 1 (in the barrier since 0) unpacks its 199 and runs them, and ends last.
+  const std::uint64_t packed = 5000 + 199 * 50 + 199 * 100 / 2, unpacked = 199 * 100 / 2;
+  BOOST_TEST(sim.cores()[0].stealNs == packed);
+  BOOST_TEST(sim.cores()[1].stealNs == 320 + packed + unpacked);
+  BOOST_TEST(sim.endTime() == 320 + packed + unpacked + 199 * 320);
 }
 
 BOOST_AUTO_TEST_CASE(runs_are_deterministic_and_profiles_have_one_lane_per_core) {
