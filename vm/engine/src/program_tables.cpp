@@ -59,11 +59,33 @@ void scanCode(ProgramTables& t, const Program& program) {
   for (const Function& f : program.functions) scan(f.block);
 }
 
+void ruleTriggers(ProgramTables& t, const Program& program) {
+  std::vector<std::uint32_t> needsFrom, needCount;
+  for (const Rule& r : program.rules) {
+    needsFrom.push_back(std::uint32_t(t.needs.size()));
+    for (PredId q : r.bodyPredicates)
+      if (std::find(t.needs.begin() + needsFrom.back(), t.needs.end(), q) == t.needs.end()) t.needs.push_back(q);
+    needCount.push_back(std::uint32_t(t.needs.size()) - needsFrom.back());
+  }
+  for (PredId p = 0; p < t.rulesOf.size(); ++p) {
+    t.triggersFrom.push_back(std::uint32_t(t.triggers.size()));
+    for (std::uint32_t r : t.rulesOf[p]) {
+      if (!t.triggers.empty() && t.triggersFrom.back() < t.triggers.size() && t.triggers.back().rule == r)
+        continue;  // p twice in the body
+      bool threadFacts = false;
+      for (std::uint32_t i = 0; i < needCount[r]; ++i) threadFacts = threadFacts || t.isThreadPred[t.needs[needsFrom[r] + i]];
+      t.triggers.push_back({std::uint64_t(1) << (r % 64), r / 64, r, needsFrom[r], needCount[r], threadFacts});
+    }
+  }
+  t.triggersFrom.push_back(std::uint32_t(t.triggers.size()));
+}
+
 }  // namespace
 
 ProgramTables::ProgramTables(const Program& program) {
   perPredicate(*this, program);
   scanCode(*this, program);
+  ruleTriggers(*this, program);
   for (std::uint32_t r = 0; r < program.rules.size(); ++r) {
     bool node = false, thread = false;
     for (PredId p : program.rules[r].bodyPredicates) (isThreadPred[p] ? thread : node) = true;

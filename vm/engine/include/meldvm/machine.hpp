@@ -318,11 +318,19 @@ class Machine : private SchedulerView {
   void factAdded(NodeId n, PredId p) {
     std::uint64_t* cand = candidates_.data() + std::size_t(n) * tables_.ruleWords;
     const ListHead* heads = db_->listHeads(n);
-    for (std::uint32_t r : tables_.rulesOf[p])
-      if (!(cand[r / 64] >> (r % 64) & 1) && allPresent(heads, r))
-        cand[r / 64] |= std::uint64_t(1) << (r % 64);
+    const ProgramTables::RuleTrigger* t = tables_.triggers.data() + tables_.triggersFrom[p];
+    const ProgramTables::RuleTrigger* const end = tables_.triggers.data() + tables_.triggersFrom[p + 1];
+    for (; t != end; ++t)
+      if (!(cand[t->word] & t->bit) && (t->threadFacts ? allPresent(heads, t->rule) : nodeFactsPresent(heads, *t)))
+        cand[t->word] |= t->bit;
     if (n == threadNode_ && inRun_ && running_ != threadNode_) [[unlikely]]
       threadFactAdded(p);
+  }
+  bool nodeFactsPresent(const ListHead* heads, const ProgramTables::RuleTrigger& t) const {
+    const PredId* q = tables_.needs.data() + t.needsFrom;
+    for (std::uint32_t i = 0; i < t.needCount; ++i)
+      if (heads[q[i]].size == 0) return false;
+    return true;
   }
   void threadFactAdded(PredId p);
   // Every body predicate has a fact at the node whose list heads are given (thread predicates:
@@ -335,7 +343,8 @@ class Machine : private SchedulerView {
   void factRemoved(NodeId n, PredId p) {  // after the store lost a fact of p (inline: every consumption)
     if (db_->factCount(n, p) != 0) return;
     std::uint64_t* cand = candidates_.data() + std::size_t(n) * tables_.ruleWords;
-    for (std::uint32_t r : tables_.rulesOf[p]) cand[r / 64] &= ~(std::uint64_t(1) << (r % 64));
+    for (std::uint32_t i = tables_.triggersFrom[p], end = tables_.triggersFrom[p + 1]; i < end; ++i)
+      cand[tables_.triggers[i].word] &= ~tables_.triggers[i].bit;
   }
   void collectGarbageNodes();
   // The established VM's deletions during the run (node_recycling.hpp): the nodes whose last

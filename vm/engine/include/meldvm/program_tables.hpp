@@ -15,6 +15,21 @@ struct ProgramTables {
 
   // Per predicate.
   std::vector<std::vector<std::uint32_t>> rulesOf;      // the rules with it in their body
+  // A rule that a new fact of a predicate may make a candidate (Machine::factAdded, for every fact
+  // stored: flat, so that the check reads no rule record): its bit in the candidate set, and the
+  // distinct predicates of its body, needs[needsFrom, needsFrom + needCount). A body with thread
+  // facts is checked the long way (Machine::allPresent).
+  struct RuleTrigger {
+    std::uint64_t bit;
+    std::uint32_t word;
+    std::uint32_t rule;
+    std::uint32_t needsFrom;
+    std::uint32_t needCount : 31;
+    std::uint32_t threadFacts : 1;
+  };
+  std::vector<RuleTrigger> triggers;       // grouped by predicate, each group in rule order
+  std::vector<std::uint32_t> triggersFrom;  // predicate p's: [triggersFrom[p], triggersFrom[p + 1])
+  std::vector<PredId> needs;
   std::vector<std::vector<std::uint32_t>> processesOf;  // its processes (persistent rules, §6.5)
   std::vector<std::uint8_t> queuedPersistent;           // has processes or an aggregate: derive via the queue
   std::vector<std::uint8_t> isLinear;
