@@ -106,3 +106,21 @@ BOOST_AUTO_TEST_CASE(other_loops_do_not_fetch) {
   emit(after, Opcode::RET);
   BOOST_TEST(listFetchDepth(t.p, after.code, 0) == kNone);
 }
+
+BOOST_AUTO_TEST_CASE(lists_stay_put_unless_the_block_updates_a_fact) {
+  Preds t;
+  const CodeBlock walks = oneLoop(Opcode::ITER, t.placed, kLinConsume, [](CodeBlock& b) {
+    emit(b, Opcode::LOAD, {0, 1, 1});
+    emit(b, Opcode::CALL, {2, 0, TypeTable::kBool, 2, 0, 1});
+    emit(b, Opcode::FIRE, {0});
+  });
+  BOOST_TEST(meldvm::detail::listsStayPut(walks.code));
+  // An UPDATE anywhere in the block (here of another predicate's fact) may free a list a loop of
+  // the block carries cells of: no carrying then.
+  const CodeBlock updates = oneLoop(Opcode::ITER, t.placed, kLinConsume, [&](CodeBlock& b) {
+    emit(b, Opcode::LOAD, {0, 1, 1});
+    emit(b, Opcode::CALL, {2, 0, TypeTable::kBool, 2, 0, 1});
+    loop(b, Opcode::ITER, {t.count, 1, kIterLinear}, [&] { emit(b, Opcode::UPDATE, {1, 0, 1, 0}); });
+  });
+  BOOST_TEST(!meldvm::detail::listsStayPut(updates.code));
+}

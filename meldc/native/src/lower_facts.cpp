@@ -3,6 +3,8 @@
 // does is said once, at its declaration in region_lowering.hpp.
 #include "region_lowering.hpp"
 
+#include <optional>
+
 namespace meldc::native::detail {
 
 llvm::Value* RegionLowering::loopField(llvm::IRBuilder<>& b, llvm::Value* info, LoopField k,
@@ -73,6 +75,11 @@ void RegionLowering::lowerNativeLoop(Function& f, llvm::IRBuilder<>& b, std::uin
   llvm::Value* sharedStop = field(kLoopSharedStop, b.getPtrTy());
   llvm::Value* nextWord = b.CreateZExt(field(kLoopNextWord, i32), i64);
   b.CreateStore(field(kLoopFirst, i32), factVar);
+  const int fetchDepth = meldvm::detail::listFetchDepth(program_, code_, pc);
+  const auto listField = std::uint32_t(fetchDepth >= 0 ? meldvm::detail::firstListField(program_, pred) : 0);
+  std::optional<ListPipe> pipe;
+  if (fetchDepth > 0 && meldvm::detail::listsStayPut(code_))
+    pipe = startListPipeline(f, b, loop, b.CreateLoad(i32, factVar), nextWord, listField);
   b.CreateStore(b.getInt64(0), triedVar);
   b.CreateStore(b.getFalse(), firedVar);
   auto stopping = [&] {
@@ -92,9 +99,7 @@ void RegionLowering::lowerNativeLoop(Function& f, llvm::IRBuilder<>& b, std::uin
   b.CreateCondBr(b.CreateICmpEQ(fact, b.getInt32(MELD_NATIVE_NO_FACT)), exit, visit);
   b.SetInsertPoint(visit);
   b.CreateStore(b.CreateAdd(b.CreateLoad(i64, triedVar), b.getInt64(1)), triedVar);
-  if (const int depth = meldvm::detail::listFetchDepth(program_, code_, pc); depth >= 0)
-    fetchListsAhead(f, b, loop, fact, nextWord, std::uint32_t(meldvm::detail::firstListField(program_, pred)),
-                    depth);
+  if (fetchDepth >= 0 && !pipe) fetchListsAhead(f, b, loop, fact, nextWord, listField, fetchDepth);
   if (flags & meldvm::kIterLinear) {  // skipFact: consumed, or bound by an enclosing loop (§6.4.3)
     llvm::BasicBlock* live = newBlock(f, "live");
     b.CreateCondBr(b.CreateICmpEQ(factCount(b, loop, fact), b.getInt32(0)), advance, live);
@@ -121,6 +126,7 @@ void RegionLowering::lowerNativeLoop(Function& f, llvm::IRBuilder<>& b, std::uin
   b.CreateCondBr(leave, exit, advance);
   b.SetInsertPoint(advance);
   b.CreateStore(highHalf(b, b.CreateLoad(i32, factVar), loop, nextWord), factVar);
+  if (pipe) stepListPipeline(f, b, loop, *pipe, nextWord, listField);
   b.CreateBr(header);
 
   b.SetInsertPoint(exit);

@@ -213,6 +213,22 @@ class RegionLowering {
   // ahead down to maxDepth (detail::listFetchDepth), as Interpreter::fetchListsAhead does.
   void fetchListsAhead(Function& f, llvm::IRBuilder<>& b, const LoopView& loop, llvm::Value* fact,
                        llvm::Value* nextWord, std::uint32_t field, int maxDepth);
+  // The same, carried from one visit to the next when the lists stay put (detail::listsStayPut,
+  // lower_list_pipeline.cpp): the cell on the way for each fact ahead, and the fact furthest on.
+  struct ListPipe {
+    llvm::ArrayType* cellsType = nullptr;
+    llvm::AllocaInst* cells = nullptr;  // [k - 1]: the cell of the fact k on (0: none)
+    llvm::AllocaInst* ahead = nullptr;
+  };
+  // Before the loop's first visit (of `first`), and before each later one.
+  ListPipe startListPipeline(Function& f, llvm::IRBuilder<>& b, const LoopView& loop, llvm::Value* first,
+                             llvm::Value* nextWord, std::uint32_t field);
+  void stepListPipeline(Function& f, llvm::IRBuilder<>& b, const LoopView& loop, const ListPipe& pipe,
+                        llvm::Value* nextWord, std::uint32_t field);
+  llvm::Value* tailOrNull(Function& f, llvm::IRBuilder<>& b, llvm::Value* cell);
+  std::pair<llvm::Value*, llvm::Value*> nextWithList(Function& f, llvm::IRBuilder<>& b, const LoopView& loop,
+                                                     llvm::Value* fact, llvm::Value* nextWord, std::uint32_t field);
+  void fetchCell(llvm::IRBuilder<>& b, const ListPipe& pipe, int k, llvm::Value* cell);
 
   void lowerInstruction(Function& f, llvm::IRBuilder<>& b, std::uint32_t pc);
 

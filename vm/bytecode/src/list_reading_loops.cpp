@@ -38,4 +38,10 @@ int listFetchDepth(const Program& program, std::span<const std::uint32_t> code, 
   return listRegs.empty() ? -1 : 0;
 }
 
+bool listsStayPut(std::span<const std::uint32_t> code) {
+  bool put = true;
+  forEachInstruction(code, [&](std::size_t pc) { put = put && Opcode(code[pc]) != Opcode::UPDATE; });
+  return put;
+}
+
 }  // namespace meldvm::detail

@@ -1,4 +1,5 @@
 #include "interpreter.hpp"
+#include "list_pipeline.hpp"
 
 #include <algorithm>
 #include <atomic>
@@ -85,10 +86,13 @@ void Interpreter::aliasedSlots(const CodeBlock& b, BlockInfo& info) const {
 
 // The loops that fetch the lists of the facts ahead (fetchListsAhead, detail::listFetchDepth).
 void Interpreter::listReadingLoops(const CodeBlock& b, BlockInfo& info) const {
+  int stayPut = -1;  // detail::listsStayPut, worked out once for the block
   detail::forEachInstruction(b.code, [&](std::size_t pc) {
     const int depth = detail::listFetchDepth(program_, b.code, pc);
     if (depth >= 0 && b.code[pc + 2] < b.slots)
       info.slotFlags[b.code[pc + 2]] |= depth > 0 ? kSlotWalksLists : kSlotMovesLists;
+    if (depth > 0 && b.code[pc + 2] < b.slots && (stayPut < 0 ? (stayPut = detail::listsStayPut(b.code)) : stayPut))
+      info.slotFlags[b.code[pc + 2]] |= kSlotListsStayPut;
   });
 }
 
@@ -288,8 +292,13 @@ bool Interpreter::loop(Frame& f, std::uint32_t pc, RunBody&& runBody) {
                                                               : -1;
     const FactTable& table = db_.table(p);  // (its slot array may move; the table does not)
     const auto listField = std::uint32_t(fetchDepth >= 0 ? machine_.tables_.listField[p] : 0);
+    const bool pipelined = fetchDepth > 0 && (f.slotFlags[s] & kSlotListsStayPut);
+    ListPipeline pipeline;
     for (FactRef fact = db_.first(at, p); fact != kNoFact;) {
-      if (fetchDepth >= 0) fetchListsAhead(table, fact, listField, fetchDepth);
+      if (pipelined)
+        pipeline.step(table, fact, listField);
+      else if (fetchDepth >= 0)
+        fetchListsAhead(table, fact, listField, fetchDepth);
       if (!visit(fact)) break;
       fact = db_.next(p, fact);
     }

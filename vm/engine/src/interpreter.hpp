@@ -153,7 +153,8 @@ class Interpreter {
   // Frame::slotFlags: an earlier slot may hold a fact of the slot's predicate; the slot's loop
   // (over a linear predicate with a list field) moves that list on, or hands it to a function
   // (detail::listFetchDepth).
-  static constexpr std::uint8_t kSlotAliased = 1, kSlotMovesLists = 2, kSlotWalksLists = 4;
+  // kSlotListsStayPut: its loop walks lists that stay put (detail::listsStayPut, ListPipeline).
+  static constexpr std::uint8_t kSlotAliased = 1, kSlotMovesLists = 2, kSlotWalksLists = 4, kSlotListsStayPut = 8;
 
   Machine& machine_;
   const Program& program_;
