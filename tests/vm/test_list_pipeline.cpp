@@ -35,8 +35,9 @@ int visitAll(const Database& db, PredId placed) {
   for (FactRef f = db.first(0, placed); f != kNoFact; f = db.next(placed, f), ++visits) {
     pipeline.step(table, f, 1);
     for (int k = 1; k <= ListPipeline::kAhead; ++k)
-      BOOST_TEST(pipeline.cellAhead(k) == cellAt(db, placed, ahead(db, placed, f, k), ListPipeline::kAhead - k),
-                 "visit " << visits << ", fact " << k << " on");
+      BOOST_TEST(
+          pipeline.cellAhead(k) == cellAt(db, placed, ahead(db, placed, f, k), ListPipeline::kAhead - k),
+          "visit " << visits << ", fact " << k << " on");
   }
   return visits;
 }

@@ -3,8 +3,6 @@
 // does is said once, at its declaration in region_lowering.hpp.
 #include "region_lowering.hpp"
 
-#include <optional>
-
 namespace meldc::native::detail {
 
 llvm::Value* RegionLowering::loopField(llvm::IRBuilder<>& b, llvm::Value* info, LoopField k,

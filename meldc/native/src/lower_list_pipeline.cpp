@@ -16,8 +16,8 @@ llvm::Value* RegionLowering::tailOrNull(Function& f, llvm::IRBuilder<>& b, llvm:
   b.CreateCondBr(b.CreateICmpEQ(cell, b.getInt64(0)), done, load);
   b.SetInsertPoint(load);
   llvm::Value* tail = b.CreateLoad(
-      b.getInt64Ty(),
-      b.CreateConstInBoundsGEP1_64(b.getInt64Ty(), b.CreateIntToPtr(cell, b.getPtrTy()), MELD_NATIVE_LIST_TAIL_WORD));
+      b.getInt64Ty(), b.CreateConstInBoundsGEP1_64(b.getInt64Ty(), b.CreateIntToPtr(cell, b.getPtrTy()),
+                                                   MELD_NATIVE_LIST_TAIL_WORD));
   b.CreateBr(done);
   b.SetInsertPoint(done);
   llvm::PHINode* phi = b.CreatePHI(b.getInt64Ty(), 2);
@@ -30,7 +30,8 @@ llvm::Value* RegionLowering::tailOrNull(Function& f, llvm::IRBuilder<>& b, llvm:
 // loop's last one.
 std::pair<llvm::Value*, llvm::Value*> RegionLowering::nextWithList(Function& f, llvm::IRBuilder<>& b,
                                                                    const LoopView& loop, llvm::Value* fact,
-                                                                   llvm::Value* nextWord, std::uint32_t field) {
+                                                                   llvm::Value* nextWord,
+                                                                   std::uint32_t field) {
   llvm::BasicBlock* from = b.GetInsertBlock();
   llvm::BasicBlock* there = newBlock(f, "pipe.fact");
   llvm::BasicBlock* done = newBlock(f, "pipe.fact.done");
@@ -63,9 +64,9 @@ void RegionLowering::fetchCell(llvm::IRBuilder<>& b, const ListPipe& pipe, int k
                     {b.CreateIntToPtr(cell, b.getPtrTy()), b.getInt32(0), b.getInt32(3), b.getInt32(1)});
 }
 
-RegionLowering::ListPipe RegionLowering::startListPipeline(Function& f, llvm::IRBuilder<>& b, const LoopView& loop,
-                                                           llvm::Value* first, llvm::Value* nextWord,
-                                                           std::uint32_t field) {
+RegionLowering::ListPipe RegionLowering::startListPipeline(Function& f, llvm::IRBuilder<>& b,
+                                                           const LoopView& loop, llvm::Value* first,
+                                                           llvm::Value* nextWord, std::uint32_t field) {
   ListPipe pipe;
   pipe.cellsType = llvm::ArrayType::get(b.getInt64Ty(), kListPipelineAhead);
   pipe.cells = local(f, pipe.cellsType, "pipe.cells");
@@ -81,11 +82,11 @@ RegionLowering::ListPipe RegionLowering::startListPipeline(Function& f, llvm::IR
   return pipe;
 }
 
-void RegionLowering::stepListPipeline(Function& f, llvm::IRBuilder<>& b, const LoopView& loop, const ListPipe& pipe,
-                                      llvm::Value* nextWord, std::uint32_t field) {
+void RegionLowering::stepListPipeline(Function& f, llvm::IRBuilder<>& b, const LoopView& loop,
+                                      const ListPipe& pipe, llvm::Value* nextWord, std::uint32_t field) {
   for (int k = 1; k < kListPipelineAhead; ++k) {  // the fact k + 1 on is now k on: one cell deeper
-    llvm::Value* cell =
-        b.CreateLoad(b.getInt64Ty(), b.CreateConstInBoundsGEP2_32(pipe.cellsType, pipe.cells, 0, unsigned(k)));
+    llvm::Value* cell = b.CreateLoad(
+        b.getInt64Ty(), b.CreateConstInBoundsGEP2_32(pipe.cellsType, pipe.cells, 0, unsigned(k)));
     fetchCell(b, pipe, k, tailOrNull(f, b, cell));
   }
   auto [next, cell] = nextWithList(f, b, loop, b.CreateLoad(b.getInt32Ty(), pipe.ahead), nextWord, field);

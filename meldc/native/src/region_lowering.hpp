@@ -8,8 +8,10 @@
 
 #include <cstddef>
 #include <map>
+#include <optional>
 #include <set>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "lower_block.hpp"
@@ -227,7 +229,8 @@ class RegionLowering {
                         llvm::Value* nextWord, std::uint32_t field);
   llvm::Value* tailOrNull(Function& f, llvm::IRBuilder<>& b, llvm::Value* cell);
   std::pair<llvm::Value*, llvm::Value*> nextWithList(Function& f, llvm::IRBuilder<>& b, const LoopView& loop,
-                                                     llvm::Value* fact, llvm::Value* nextWord, std::uint32_t field);
+                                                     llvm::Value* fact, llvm::Value* nextWord,
+                                                     std::uint32_t field);
   void fetchCell(llvm::IRBuilder<>& b, const ListPipe& pipe, int k, llvm::Value* cell);
 
   void lowerInstruction(Function& f, llvm::IRBuilder<>& b, std::uint32_t pc);

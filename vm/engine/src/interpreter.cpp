@@ -1,11 +1,11 @@
 #include "interpreter.hpp"
-#include "list_pipeline.hpp"
 
 #include <algorithm>
 #include <atomic>
 #include <cstddef>
 #include <cstring>
 
+#include "list_pipeline.hpp"
 #include "meldvm/arith.hpp"
 #include "meldvm/bytecode_internal.hpp"
 #include "meldvm/derivation_log.hpp"
@@ -91,7 +91,8 @@ void Interpreter::listReadingLoops(const CodeBlock& b, BlockInfo& info) const {
     const int depth = detail::listFetchDepth(program_, b.code, pc);
     if (depth >= 0 && b.code[pc + 2] < b.slots)
       info.slotFlags[b.code[pc + 2]] |= depth > 0 ? kSlotWalksLists : kSlotMovesLists;
-    if (depth > 0 && b.code[pc + 2] < b.slots && (stayPut < 0 ? (stayPut = detail::listsStayPut(b.code)) : stayPut))
+    if (depth > 0 && b.code[pc + 2] < b.slots &&
+        (stayPut < 0 ? (stayPut = detail::listsStayPut(b.code)) : stayPut))
       info.slotFlags[b.code[pc + 2]] |= kSlotListsStayPut;
   });
 }

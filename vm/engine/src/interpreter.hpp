@@ -154,7 +154,8 @@ class Interpreter {
   // (over a linear predicate with a list field) moves that list on, or hands it to a function
   // (detail::listFetchDepth).
   // kSlotListsStayPut: its loop walks lists that stay put (detail::listsStayPut, ListPipeline).
-  static constexpr std::uint8_t kSlotAliased = 1, kSlotMovesLists = 2, kSlotWalksLists = 4, kSlotListsStayPut = 8;
+  static constexpr std::uint8_t kSlotAliased = 1, kSlotMovesLists = 2, kSlotWalksLists = 4,
+                                kSlotListsStayPut = 8;
 
   Machine& machine_;
   const Program& program_;

@@ -47,7 +47,7 @@ class ListPipeline {
   }
 
   bool started_ = false;
-  FactRef ahead_ = kNoFact;         // the fact kAhead on
+  FactRef ahead_ = kNoFact;        // the fact kAhead on
   const ConsCell* cells_[kAhead];  // [k - 1]: the cell of the fact k on
 };
 

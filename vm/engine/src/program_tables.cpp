@@ -64,7 +64,8 @@ void ruleTriggers(ProgramTables& t, const Program& program) {
   for (const Rule& r : program.rules) {
     needsFrom.push_back(std::uint32_t(t.needs.size()));
     for (PredId q : r.bodyPredicates)
-      if (std::find(t.needs.begin() + needsFrom.back(), t.needs.end(), q) == t.needs.end()) t.needs.push_back(q);
+      if (std::find(t.needs.begin() + needsFrom.back(), t.needs.end(), q) == t.needs.end())
+        t.needs.push_back(q);
     needCount.push_back(std::uint32_t(t.needs.size()) - needsFrom.back());
   }
   for (PredId p = 0; p < t.rulesOf.size(); ++p) {
@@ -73,8 +74,10 @@ void ruleTriggers(ProgramTables& t, const Program& program) {
       if (!t.triggers.empty() && t.triggersFrom.back() < t.triggers.size() && t.triggers.back().rule == r)
         continue;  // p twice in the body
       bool threadFacts = false;
-      for (std::uint32_t i = 0; i < needCount[r]; ++i) threadFacts = threadFacts || t.isThreadPred[t.needs[needsFrom[r] + i]];
-      t.triggers.push_back({std::uint64_t(1) << (r % 64), r / 64, r, needsFrom[r], needCount[r], threadFacts});
+      for (std::uint32_t i = 0; i < needCount[r]; ++i)
+        threadFacts = threadFacts || t.isThreadPred[t.needs[needsFrom[r] + i]];
+      t.triggers.push_back(
+          {std::uint64_t(1) << (r % 64), r / 64, r, needsFrom[r], needCount[r], threadFacts});
     }
   }
   t.triggersFrom.push_back(std::uint32_t(t.triggers.size()));

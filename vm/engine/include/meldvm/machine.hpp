@@ -321,7 +321,8 @@ class Machine : private SchedulerView {
     const ProgramTables::RuleTrigger* t = tables_.triggers.data() + tables_.triggersFrom[p];
     const ProgramTables::RuleTrigger* const end = tables_.triggers.data() + tables_.triggersFrom[p + 1];
     for (; t != end; ++t)
-      if (!(cand[t->word] & t->bit) && (t->threadFacts ? allPresent(heads, t->rule) : nodeFactsPresent(heads, *t)))
+      if (!(cand[t->word] & t->bit) &&
+          (t->threadFacts ? allPresent(heads, t->rule) : nodeFactsPresent(heads, *t)))
         cand[t->word] |= t->bit;
     if (n == threadNode_ && inRun_ && running_ != threadNode_) [[unlikely]]
       threadFactAdded(p);

@@ -27,7 +27,7 @@ struct ProgramTables {
     std::uint32_t needCount : 31;
     std::uint32_t threadFacts : 1;
   };
-  std::vector<RuleTrigger> triggers;       // grouped by predicate, each group in rule order
+  std::vector<RuleTrigger> triggers;        // grouped by predicate, each group in rule order
   std::vector<std::uint32_t> triggersFrom;  // predicate p's: [triggersFrom[p], triggersFrom[p + 1])
   std::vector<PredId> needs;
   std::vector<std::vector<std::uint32_t>> processesOf;  // its processes (persistent rules, §6.5)
