@@ -212,7 +212,7 @@ class RegionLowering {
   // stepped through here, in the order, with the skips and the counts of Interpreter::loop.
   void lowerNativeLoop(Function& f, llvm::IRBuilder<>& b, std::uint32_t pc);
   // Before visiting `fact`, a loop that reads its facts' lists fetches the lists of the facts
-  // ahead down to maxDepth (detail::listFetchDepth), as Interpreter::fetchListsAhead does.
+  // ahead down to maxDepth (detail::listFetchDepth), as the interpreter's walkListsAhead does.
   void fetchListsAhead(Function& f, llvm::IRBuilder<>& b, const LoopView& loop, llvm::Value* fact,
                        llvm::Value* nextWord, std::uint32_t field, int maxDepth);
   // The same, carried from one visit to the next when the lists stay put (detail::listsStayPut,

@@ -84,7 +84,7 @@ void Interpreter::aliasedSlots(const CodeBlock& b, BlockInfo& info) const {
       }
 }
 
-// The loops that fetch the lists of the facts ahead (fetchListsAhead, detail::listFetchDepth).
+// The loops that fetch the lists of the facts ahead (walkListsAhead, detail::listFetchDepth).
 void Interpreter::listReadingLoops(const CodeBlock& b, BlockInfo& info) const {
   int stayPut = -1;  // detail::listsStayPut, worked out once for the block
   detail::forEachInstruction(b.code, [&](std::size_t pc) {
@@ -234,25 +234,6 @@ inline Interpreter::LoopHead Interpreter::beginLoop(Frame& f, std::uint32_t pc) 
   return h;
 }
 
-// Before visiting a fact, a loop that reads its facts' lists fetches the list of the fact
-// kListFetchAhead facts on, and the next cell of each list it fetched in the visits before, down
-// to maxDepth (bytecode_internal.hpp): walking the lists of 8queens-12 (queens_violation) took a
-// third of its run, waiting for one cell after another. The facts ahead are all alive: one
-// consumed in this rule run keeps its arguments until the run ends (Machine::finishRuleRun), and
-// an in-place update gives it new ones.
-void Interpreter::fetchListsAhead(const FactTable& table, FactRef fact, std::uint32_t listField,
-                                  int maxDepth) {
-  for (int k = 1; k <= detail::kListFetchAhead; ++k) {
-    fact = table.next(fact);
-    if (fact == kNoFact) return;
-    const int depth = detail::kListFetchAhead - k;
-    if (depth > maxDepth) continue;
-    const auto* cell = static_cast<const ConsCell*>(table.args(fact)[listField].asObject());
-    for (int d = depth; d > 0 && cell; --d) cell = cell->tail;
-    if (cell) __builtin_prefetch(cell);
-  }
-}
-
 template <class RunBody>
 bool Interpreter::loop(Frame& f, std::uint32_t pc, RunBody&& runBody) {
   const LoopHead h = beginLoop(f, pc);
@@ -299,7 +280,7 @@ bool Interpreter::loop(Frame& f, std::uint32_t pc, RunBody&& runBody) {
       if (pipelined)
         pipeline.step(table, fact, listField);
       else if (fetchDepth >= 0)
-        fetchListsAhead(table, fact, listField, fetchDepth);
+        walkListsAhead<detail::kListFetchAhead>(table, fact, listField, fetchDepth, nullptr);
       if (!visit(fact)) break;
       fact = db_.next(p, fact);
     }

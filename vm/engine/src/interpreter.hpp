@@ -74,7 +74,6 @@ class Interpreter {
   // The loop instruction at pc; runBody(bodyPc) runs its body once the slot is bound.
   template <class RunBody>
   [[gnu::noinline]] bool loop(Frame& f, std::uint32_t pc, RunBody&& runBody);  // kept out of exec
-  static void fetchListsAhead(const FactTable& table, FactRef fact, std::uint32_t listField, int maxDepth);
   // One straight-on instruction with opcode OP (straight_ops.inc), for native code.
   template <Opcode OP>
   void step(Frame& f, std::uint32_t pc);

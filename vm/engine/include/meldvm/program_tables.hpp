@@ -35,7 +35,7 @@ struct ProgramTables {
   std::vector<std::uint8_t> isLinear;
   std::vector<std::uint8_t> isThreadPred;
   std::vector<std::uint32_t> arity;  // home excluded
-  // The first field holding a list, or -1 (Interpreter::fetchListsAhead).
+  // The first field holding a list, or -1 (walkListsAhead in vm/engine/src/list_pipeline.hpp).
   std::vector<std::int32_t> listField;
   bool linearLists = false;  // some linear predicate has a list field
   std::uint32_t maxArity = 1;
