@@ -129,6 +129,29 @@ BOOST_AUTO_TEST_CASE(compact_predicates_append_every_derivation) {
   BOOST_TEST(s.facts(0, c) == S({"!axiom(1)", "!axiom(3)"}), boost::test_tools::per_element());
 }
 
+// A node's literal axioms are stored a predicate at a time: the same facts, counts and order as
+// one derive() each, on plain, grouped and compact predicates.
+BOOST_AUTO_TEST_CASE(deriving_facts_together_is_deriving_each) {
+  Store s;
+  const PredId e = s.persistent("edge", {TypeTable::kNode, TypeTable::kInt});
+  const PredId c = s.persistent("axiom", {TypeTable::kNode, TypeTable::kInt}, true);
+  Database& db = s.open(3);
+  const std::vector<Value> facts{N(2), I(5), N(1), I(6), N(2), I(7), N(2), I(5), N(1), I(6)};
+  for (const PredId p : {e, c}) {
+    BOOST_TEST(db.deriveEach(0, p, facts.data(), 5));
+    for (std::size_t i = 0; i < facts.size(); i += 2) db.derive(1, p, facts.data() + i);
+    BOOST_TEST(s.facts(0, p) == s.facts(1, p), boost::test_tools::per_element());
+  }
+  BOOST_TEST(s.facts(0, e) == S({"!edge(@2, 5) x2", "!edge(@2, 7)", "!edge(@1, 6) x2"}),
+             boost::test_tools::per_element());
+  BOOST_TEST(db.factCount(0, c) == 5u);
+  // Only copies of stored facts: nothing new becomes visible.
+  BOOST_TEST(!db.deriveEach(0, e, facts.data(), 2));
+  BOOST_TEST(s.facts(0, e).front() == "!edge(@2, 5) x3");
+  BOOST_TEST(!db.deriveEach(2, e, facts.data(), 0));
+  BOOST_TEST(db.factCount(2, e) == 0u);
+}
+
 BOOST_AUTO_TEST_CASE(misuse_is_refused) {
   Store s;
   const PredId l = s.linear("l", {TypeTable::kInt});

@@ -206,6 +206,29 @@ void Interpreter::noteDerivation(const Frame& f, std::uint32_t pc, NodeId node, 
   log.record(node, std::move(text), std::move(d));
 }
 
+void Interpreter::axiomFacts(const Frame& f, std::uint32_t pc) {
+  const std::uint32_t* c = f.code + pc;
+  const PredId p = c[1];
+  const std::span<const TypeId> fields = program_.predicates[p].fields;
+  const std::uint32_t* w = c + 3;
+  const std::uint32_t* const end = w + c[2];
+  if (machine_.derivations_ || f.negative) [[unlikely]] {
+    if (fields.size() > args_.size()) growArgs(std::uint32_t(fields.size()));
+    while (w != end) {
+      const auto at = std::uint32_t(pc + (w - c));  // a fact's line: the one at its first data word
+      for (std::size_t i = 0; i < fields.size(); ++i) args_[i] = detail::axiomField(fields[i], w);
+      if (machine_.derivations_ && !f.negative) noteDerivation(f, at, f.host, p, args_.data());
+      machine_.derive(f.host, p, args_.data(), f.negative);
+    }
+    return;
+  }
+  const std::size_t facts = std::size_t(c[2]) / detail::axiomFactWords(fields);
+  if (facts * fields.size() > args_.size()) growArgs(std::uint32_t(facts * fields.size()));
+  for (Value* out = args_.data(); w != end;)
+    for (const TypeId t : fields) *out++ = detail::axiomField(t, w);
+  machine_.deriveEach(f.host, p, args_.data(), std::uint32_t(facts));
+}
+
 bool Interpreter::boundOutside(const Frame& f, std::uint32_t slot, PredId p, FactRef fact) const {
   for (std::uint32_t s = 0; s < slot; ++s)
     if (f.slots[s].fact == fact && f.slots[s].pred == p && !f.slots[s].fixed) return true;

@@ -101,6 +101,9 @@ class Interpreter {
            !db_.consumedMark(sl.pred, sl.fact);
   }
   void consumeSlot(const Slot& sl);  // inline, in interpreter.cpp (where Machine is complete)
+  // AXIOM_FACTS at pc (verified: whole facts of its predicate, every field an int, float, bool or
+  // node), decoded and derived.
+  void axiomFacts(const Frame& f, std::uint32_t pc);
   // Why a fact exists (DerivationLog): the rule's line and the facts its slots hold.
   [[gnu::noinline]] void noteDerivation(const Frame& f, std::uint32_t pc, NodeId node, PredId p,
                                         const Value* args);

@@ -453,6 +453,20 @@ void Machine::derive(NodeId host, PredId p, const Value* args, bool negative) {
   if (c.removed) factRemoved(host, p);
 }
 
+// A node's literal axioms come a predicate at a time, thousands of facts at start-up on a large
+// graph: a plain persistent predicate stores them in one call to the store and checks the rules
+// they trigger once (the candidate bits depend only on which predicates have facts).
+void Machine::deriveEach(NodeId host, PredId p, const Value* args, std::uint32_t count) {
+  const PredicateDesc& d = program_.predicates[p];
+  if (d.action || d.linear || tables_.queuedPersistent[p]) {
+    for (std::uint32_t i = 0; i < count; ++i) derive(host, p, args + std::size_t(i) * d.arity(), false);
+    return;
+  }
+  stats_.factsDerived += count;
+  runDerived_ += count;
+  if (db_->deriveEach(host, p, args, count)) factAdded(host, p);
+}
+
 void Machine::send(NodeId host, NodeId dest, PredId p, const Value* args, bool negative,
                    std::uint32_t delayMs) {
   // Delays need simulated time: only a host has it; on the VM's own graph a delayed fact is sent

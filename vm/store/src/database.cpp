@@ -190,6 +190,27 @@ Change Database::derive(NodeId n, PredId p, const Value* args, std::uint32_t cop
   return c;
 }
 
+bool Database::deriveEach(NodeId n, PredId p, const Value* args, std::uint32_t count) {
+  const PredicateDesc& d = storedPredicate(p, false);
+  checkNode(n);
+  clearScratch();
+  if (d.aggregated()) throw std::logic_error("meldvm: deriveEach on aggregated '" + d.name + "'");
+  FactTable& t = tables_[p];
+  ListHead& list = head(n, p);
+  const std::uint32_t arity = d.arity();
+  bool added = false;
+  for (std::uint32_t i = 0; i < count; ++i, args += arity) {
+    if (!d.compact)
+      if (const FactRef f = t.find(n, args); f != kNoFact) {
+        t.setCount(f, t.count(f) + 1);
+        continue;
+      }
+    grouped_[p] ? t.insertGrouped(list, n, args, 1) : t.insert(list, n, args, 1);
+    added = true;
+  }
+  return added;
+}
+
 Change Database::retract(NodeId n, PredId p, const Value* args, std::uint32_t copies) {
   const PredicateDesc& d = storedPredicate(p, false);
   checkNode(n);

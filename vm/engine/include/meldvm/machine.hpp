@@ -261,6 +261,8 @@ class Machine : private SchedulerView {
 
   // ---- what the interpreter calls ----
   void derive(NodeId host, PredId p, const Value* args, bool negative);
+  // derive(host, p, fact, false) for `count` facts stored back to back in `args` (AXIOM_FACTS).
+  void deriveEach(NodeId host, PredId p, const Value* args, std::uint32_t count);
   void send(NodeId host, NodeId dest, PredId p, const Value* args, bool negative, std::uint32_t delayMs = 0);
   void action(NodeId from, NodeId dest, PredId p, const Value* args);
   // A rule consumed the fact: marked now, unlinked when the rule run ends (finishRuleRun).

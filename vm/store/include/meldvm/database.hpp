@@ -129,6 +129,10 @@ class Database {
   // Persistent predicates, aggregated ones included (then args is an aggregate input).
   Change derive(NodeId n, PredId p, const Value* args, std::uint32_t copies = 1);
   Change retract(NodeId n, PredId p, const Value* args, std::uint32_t copies = 1);
+  // derive(n, p, f) for `count` facts of a persistent predicate that is not aggregated, stored
+  // back to back in `args` (a node's literal axioms: thousands of facts at start-up, checked once
+  // here instead of once each); whether any became visible.
+  bool deriveEach(NodeId n, PredId p, const Value* args, std::uint32_t count);
   // derive (add) or retract one copy, for a caller that knows p is a persistent predicate and n
   // a live node (the rule engine): skips the checks and goes straight to the common aggregate
   // shape.
