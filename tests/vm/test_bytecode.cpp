@@ -219,6 +219,69 @@ BOOST_AUTO_TEST_CASE(source_lines_round_trip_and_are_checked) {
   BOOST_TEST(contains(readError(bytes), "out of order or out of range"));
 }
 
+// A block of literal facts only (AXIOM_FACTS and RET, no registers, no slots) comes back in
+// Program::literalAxioms, numbered after the other axiom blocks, its lines and label kept; the
+// verifier checks it as it checks the others.
+BOOST_AUTO_TEST_CASE(literal_axiom_blocks_are_read_back_to_back) {
+  auto p = fullProgram();
+  const PredId c = p->predicates.find("c"), edge = p->predicates.find("edge");
+  CodeBlock literal;
+  literal.label = "axioms of node 1";
+  emit(literal, Opcode::AXIOM_FACTS, {edge, 2, 3, 0});
+  emit(literal, Opcode::AXIOM_FACTS, {c, 3, 4, lo(0.25), hi(0.25)});
+  emit(literal, Opcode::RET);
+  literal.lines = {{3, 0, 20}, {4, 1, 21}, {5, 0, 22}};
+  const std::vector<std::uint32_t> code = literal.code;
+  p->axiomBlocks.insert(p->axiomBlocks.begin(), literal);  // file block 0: literal, 1: general
+  p->nodeAxioms = {1, 0, 1, Program::kNoAxioms};
+  BOOST_REQUIRE_EQUAL(verifyError(*p), "");
+  const auto bytes = writeBytecode(*p);
+  const auto q = readBytecode(bytes.data(), bytes.size());
+  BOOST_REQUIRE_EQUAL(q->axiomBlocks.size(), 1u);
+  BOOST_REQUIRE_EQUAL(q->literalAxioms.size(), 1u);
+  BOOST_TEST(q->axiomBlocks[0].registerTypes.size() == 3u);  // the general one
+  BOOST_TEST((q->nodeAxioms == std::vector<std::uint32_t>{0, 1, 0, Program::kNoAxioms}));
+  const auto got = q->literalAxioms.code(0);
+  BOOST_TEST((std::vector<std::uint32_t>(got.begin(), got.end()) == code));
+  BOOST_TEST(q->literalAxioms.label(0) == "axioms of node 1");
+  const auto lines = q->literalAxioms.lines(0);
+  BOOST_TEST((std::vector<SourceLine>(lines.begin(), lines.end()) == literal.lines));
+  BOOST_TEST(lineAt(lines, 8)->line == 22u);  // c's fact: the line in force at its first data word
+  BOOST_TEST((q->axiomCode(1).data() == got.data()));
+  // Written back general first: read again, the same program and the same bytes.
+  const auto again = writeBytecode(*q);
+  const auto r = readBytecode(again.data(), again.size());
+  BOOST_TEST((writeBytecode(*r) == again));
+  BOOST_TEST(listing(*r) == listing(*q));
+  BOOST_TEST(listing(*q).find("axioms 1 of node 1") != std::string::npos);
+
+  auto bad = [&](std::vector<std::uint32_t> words) {
+    auto b = readBytecode(bytes.data(), bytes.size());
+    b->literalAxioms = {};
+    b->literalAxioms.add(words, "axioms of node 1");
+    return verifyError(*b);
+  };
+  BOOST_TEST(bad(code) == "");
+  std::string e = bad({std::uint32_t(Opcode::AXIOM_FACTS), edge, 1, 9, std::uint32_t(Opcode::RET)});
+  BOOST_TEST(e == "axioms 1 (axioms of node 1): word 0: AXIOM_FACTS: node @9 at word 3 is not one of the "
+                  "program's 4 nodes",
+             e);
+  e = bad({std::uint32_t(Opcode::AXIOM_FACTS), edge, 1, 2});
+  BOOST_TEST(e == "axioms 1 (axioms of node 1): does not end with RET", e);
+  e = bad({std::uint32_t(Opcode::AXIOM_FACTS), edge, 5, 2, std::uint32_t(Opcode::RET)});
+  BOOST_TEST(contains(e, "axioms 1 (axioms of node 1): word 0: "), e);
+  BOOST_TEST(contains(e, "runs past the end of the block"), e);
+  e = bad({std::uint32_t(Opcode::RET), std::uint32_t(Opcode::RET)});
+  BOOST_TEST(e == "axioms 1 (axioms of node 1): word 0: RET: a block of literal axioms holds AXIOM_FACTS and "
+                  "a final RET only",
+             e);
+  e = bad({std::uint32_t(Opcode::AXIOM_FACTS), 99, 0, std::uint32_t(Opcode::RET)});
+  BOOST_TEST(e == "axioms 1 (axioms of node 1): word 0: AXIOM_FACTS: unknown predicate 99", e);
+  auto far = readBytecode(bytes.data(), bytes.size());
+  far->nodeAxioms[3] = 2;
+  BOOST_TEST(contains(verifyError(*far), "node 3: unknown axiom block 2"), verifyError(*far));
+}
+
 BOOST_AUTO_TEST_CASE(reader_verifies) {
   auto p = smallProgram();
   p->rules[1].block.registerTypes[3] = TypeTable::kFloat;

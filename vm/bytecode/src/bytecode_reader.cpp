@@ -3,6 +3,7 @@
 // through verifyProgram, so malformed input ends in a BytecodeError, never in a crash.
 #include <bit>
 #include <cstring>
+#include <type_traits>
 
 #include "file_bytes.hpp"
 #include "meldvm/bytecode.hpp"
@@ -54,23 +55,36 @@ class Cursor {
     }
     return n;
   }
-  std::vector<std::uint32_t> words(const char* what) {
-    const std::uint32_t n = count(what, 4);
-    // count() checked that the n words are there.
-    std::vector<std::uint32_t> v(n);
+  // `n` words into `out`, an object of n plain 32-bit words (the caller checked they are there).
+  template <class T>
+  void copyWords(T* out, const char* what, std::size_t n) {
+    static_assert(std::is_trivially_copyable_v<T> && sizeof(T) % 4 == 0 && alignof(T) <= 4);
     if constexpr (std::endian::native == std::endian::little) {
-      if (n) std::memcpy(v.data(), data_ + pos_, std::size_t(n) * 4);
-      pos_ += std::size_t(n) * 4;
+      if (n) std::memcpy(static_cast<void*>(out), data_ + pos_, n * 4);
+      pos_ += n * 4;
     } else {
-      for (std::uint32_t i = 0; i < n; ++i) v[i] = word(what);
+      std::uint32_t* w = reinterpret_cast<std::uint32_t*>(out);
+      for (std::size_t i = 0; i < n; ++i) w[i] = word(what);
     }
+  }
+  // Appends a counted run of words to `out`.
+  void appendWords(const char* what, std::vector<std::uint32_t>& out) {
+    const std::uint32_t n = count(what, 4);
+    const std::size_t from = out.size();
+    out.resize(from + n);
+    copyWords(out.data() + from, what, n);  // count() checked that the n words are there
+  }
+  std::vector<std::uint32_t> words(const char* what) {
+    std::vector<std::uint32_t> v;
+    appendWords(what, v);
     return v;
   }
-  std::string str(const char* what) {
+  // A counted, zero-padded string, in place.
+  std::string_view strView(const char* what) {
     const std::uint32_t n = count(what, 1);
     const std::size_t padded = (std::size_t(n) + 3) & ~std::size_t(3);
     need(padded, what);
-    std::string s(reinterpret_cast<const char*>(data_ + pos_), n);
+    const std::string_view s(reinterpret_cast<const char*>(data_ + pos_), n);
     // Zero padding only, so that an accepted file is exactly what the writer makes of it.
     for (std::size_t i = n; i < padded; ++i)
       if (data_[pos_ + i] != 0) {
@@ -80,6 +94,7 @@ class Cursor {
     pos_ += padded;
     return s;
   }
+  std::string str(const char* what) { return std::string(strView(what)); }
   CodeBlock block() {
     CodeBlock b;
     b.label = str("block label");
@@ -87,6 +102,29 @@ class Cursor {
     b.slots = word("slot count");
     b.code = words("code");
     return b;
+  }
+  // The next axiom block: into p.literalAxioms if it is literal facts only (no registers, no
+  // slots, literalAxiomCode), otherwise into p.axiomBlocks. `code` is scratch.
+  enum class AxiomKind : bool { General, Literal };
+  AxiomKind axiomBlock(Program& p, std::vector<std::uint32_t>& code) {
+    const std::string_view label = strView("block label");
+    code.clear();
+    appendWords("register types", code);
+    const bool noRegisters = code.empty();
+    std::vector<TypeId> registerTypes(code.begin(), code.end());
+    const std::uint32_t slots = word("slot count");
+    code.clear();
+    appendWords("code", code);
+    if (noRegisters && slots == 0 && literalAxiomCode(code)) {
+      p.literalAxioms.add(code, label);
+      return AxiomKind::Literal;
+    }
+    CodeBlock& b = p.axiomBlocks.emplace_back();
+    b.label = label;
+    b.registerTypes = std::move(registerTypes);
+    b.slots = slots;
+    b.code = code;
+    return AxiomKind::General;
   }
 
   // Reads of a section stay within its declared length.
@@ -181,7 +219,65 @@ void readPredicates(Cursor& c, Program& p) {
   p.initPredicate = c.word("init predicate");
 }
 
-void readSection(Cursor& c, std::uint32_t tag, Program& p) {
+// What one section leaves for a later one.
+struct ReadState {
+  // The axiom blocks in file order: general (Program::axiomBlocks) or literal, each kind in order.
+  std::vector<Cursor::AxiomKind> axiomKinds;
+};
+
+// A block's source lines, appended to `out`.
+void readLines(Cursor& c, std::size_t files, std::size_t codeSize, std::string_view label,
+               std::vector<SourceLine>& out) {
+  const std::uint32_t n = c.count("source line", 12);
+  const std::size_t from = out.size();
+  out.resize(from + n);
+  c.copyWords(out.data() + from, "source line", std::size_t(n) * 3);  // count() checked they are there
+  for (std::uint32_t i = 0; i < n; ++i) {
+    const SourceLine& l = out[from + i];
+    if (l.pc >= codeSize || l.file >= files || (i && l.pc <= out[from + i - 1].pc))
+      c.fail("source line " + std::to_string(i) + " of block '" + std::string(label) +
+             "' is out of order or out of range");
+  }
+}
+
+void readAxioms(Cursor& c, Program& p, ReadState& st) {
+  p.nodeAxioms = c.words("node axioms");
+  const std::uint32_t n = c.count("axiom block", 4 * 4);
+  st.axiomKinds.reserve(n);
+  p.literalAxioms.reserveCode(c.left() / 4);
+  std::vector<std::uint32_t> code;
+  for (std::uint32_t i = 0; i < n; ++i) st.axiomKinds.push_back(c.axiomBlock(p, code));
+  // Blocks are numbered axiomBlocks first, then literalAxioms: renumber the nodes' blocks.
+  std::vector<std::uint32_t> number(n);
+  std::uint32_t general = 0, literal = std::uint32_t(p.axiomBlocks.size());
+  for (std::uint32_t i = 0; i < n; ++i)
+    number[i] = st.axiomKinds[i] == Cursor::AxiomKind::General ? general++ : literal++;
+  for (std::uint32_t& b : p.nodeAxioms)
+    if (b < n) b = number[b];  // others stay out of range for the verifier to refuse
+}
+
+void readSources(Cursor& c, Program& p, const ReadState& st) {
+  const std::uint32_t files = c.count("source file", 4);
+  for (std::uint32_t i = 0; i < files; ++i) p.sourceFiles.push_back(c.str("source file name"));
+  // Checked here, not by the verifier: a wrong line only misleads a message, but it is refused.
+  forEachCodeBlockBeforeAxioms(p,
+                               [&](CodeBlock& b) { readLines(c, files, b.code.size(), b.label, b.lines); });
+  std::size_t general = 0, literal = 0;
+  std::vector<SourceLine> lines;
+  for (const Cursor::AxiomKind kind : st.axiomKinds) {
+    if (kind == Cursor::AxiomKind::General) {
+      CodeBlock& b = p.axiomBlocks[general++];
+      readLines(c, files, b.code.size(), b.label, b.lines);
+      continue;
+    }
+    lines.clear();
+    readLines(c, files, p.literalAxioms.code(literal).size(), p.literalAxioms.label(literal), lines);
+    p.literalAxioms.addLines(lines);
+    ++literal;
+  }
+}
+
+void readSection(Cursor& c, std::uint32_t tag, Program& p, ReadState& st) {
   switch (tag) {
     case kSecTypes:
       readTypes(c, p.types);
@@ -260,13 +356,9 @@ void readSection(Cursor& c, std::uint32_t tag, Program& p) {
       }
       break;
     }
-    case kSecAxioms: {
-      p.nodeAxioms = c.words("node axioms");
-      const std::uint32_t n = c.count("axiom block", 4 * 4);
-      p.axiomBlocks.reserve(n);
-      for (std::uint32_t i = 0; i < n; ++i) p.axiomBlocks.push_back(c.block());
+    case kSecAxioms:
+      readAxioms(c, p, st);
       break;
-    }
     case kSecScheduling: {
       SchedulingOptions& o = p.scheduling;
       const std::uint32_t order = c.word("priority order");
@@ -297,26 +389,9 @@ void readSection(Cursor& c, std::uint32_t tag, Program& p) {
       p.highestArg = c.word("highest argument");
       break;
     }
-    case kSecSources: {
-      const std::uint32_t files = c.count("source file", 4);
-      for (std::uint32_t i = 0; i < files; ++i) p.sourceFiles.push_back(c.str("source file name"));
-      // Checked here, not by the verifier: a wrong line only misleads a message, but it is refused.
-      forEachCodeBlock(p, [&](CodeBlock& b) {
-        const std::uint32_t n = c.count("source line", 12);
-        b.lines.reserve(n);
-        for (std::uint32_t i = 0; i < n; ++i) {
-          SourceLine l;
-          l.pc = c.word("source line pc");
-          l.file = c.word("source line file");
-          l.line = c.word("source line number");
-          if (l.pc >= b.code.size() || l.file >= files || (i && l.pc <= b.lines.back().pc))
-            c.fail("source line " + std::to_string(i) + " of block '" + b.label +
-                   "' is out of order or out of range");
-          b.lines.push_back(l);
-        }
-      });
+    case kSecSources:
+      readSources(c, p, st);
       break;
-    }
   }
 }
 
@@ -336,6 +411,7 @@ std::unique_ptr<Program> readBytecode(const std::uint8_t* data, std::size_t size
     c.fail("section count " + std::to_string(sections) + " (expected " + std::to_string(expected) + ")");
 
   auto p = std::make_unique<Program>();
+  ReadState st;
   for (std::uint32_t want = 1; want <= expected; ++want) {
     const std::uint32_t tag = c.word("section tag");
     if (tag == 0 || tag > expected) c.fail("unknown section tag " + std::to_string(tag));
@@ -346,7 +422,7 @@ std::unique_ptr<Program> readBytecode(const std::uint8_t* data, std::size_t size
     if (len % 4 != 0) c.fail(std::string("section ") + sectionName(tag) + " length is not a multiple of 4");
     c.need(len, sectionName(tag));
     const std::size_t outer = c.enter(len);
-    readSection(c, tag, *p);
+    readSection(c, tag, *p, st);
     c.leave(outer, sectionName(tag));
   }
   if (c.left() != 0) c.fail(std::to_string(c.left()) + " bytes of trailing garbage after the last section");

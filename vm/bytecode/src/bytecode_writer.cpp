@@ -24,12 +24,12 @@ class Writer {
     word(std::uint32_t(v >> 32));
   }
   void f64(double d) { u64(std::bit_cast<std::uint64_t>(d)); }  // bit-exact, NaN payloads included
-  void str(const std::string& s) {
+  void str(std::string_view s) {
     word(std::uint32_t(s.size()));
     bytes.insert(bytes.end(), s.begin(), s.end());
     while (bytes.size() % 4 != 0) bytes.push_back(0);
   }
-  void words(const std::vector<std::uint32_t>& v) {
+  void words(std::span<const std::uint32_t> v) {
     word(std::uint32_t(v.size()));
     for (std::uint32_t w : v) word(w);
   }
@@ -157,8 +157,14 @@ std::vector<std::uint8_t> writeBytecode(const Program& p) {
 
   s = w.begin(kSecAxioms);
   w.words(p.nodeAxioms);
-  w.word(std::uint32_t(p.axiomBlocks.size()));
+  w.word(std::uint32_t(p.axiomBlockCount()));
   for (const CodeBlock& b : p.axiomBlocks) w.block(b);
+  for (std::size_t i = 0; i < p.literalAxioms.size(); ++i) {
+    w.str(p.literalAxioms.label(i));
+    w.word(0);  // no registers
+    w.word(0);  // no slots
+    w.words(p.literalAxioms.code(i));
+  }
   w.end(s);
 
   s = w.begin(kSecScheduling);
@@ -184,14 +190,17 @@ std::vector<std::uint8_t> writeBytecode(const Program& p) {
   s = w.begin(kSecSources);
   w.word(std::uint32_t(p.sourceFiles.size()));
   for (const std::string& f : p.sourceFiles) w.str(f);
-  forEachCodeBlock(p, [&](const CodeBlock& b) {
-    w.word(std::uint32_t(b.lines.size()));
-    for (const SourceLine& l : b.lines) {
+  const auto lines = [&](std::span<const SourceLine> ls) {
+    w.word(std::uint32_t(ls.size()));
+    for (const SourceLine& l : ls) {
       w.word(l.pc);
       w.word(l.file);
       w.word(l.line);
     }
-  });
+  };
+  forEachCodeBlockBeforeAxioms(p, [&](const CodeBlock& b) { lines(b.lines); });
+  for (const CodeBlock& b : p.axiomBlocks) lines(b.lines);
+  for (std::size_t i = 0; i < p.literalAxioms.size(); ++i) lines(p.literalAxioms.lines(i));
   w.end(s);
 
   return std::move(w.bytes);

@@ -298,7 +298,7 @@ void disassemble(const Program& p, std::ostream& out) {
     const std::string on = pr.trigger < p.predicates.size() ? p.predicates[pr.trigger].name : "?";
     l.block("process on " + on + ": " + pr.block.label, pr.block);
   }
-  for (std::size_t i = 0; i < p.axiomBlocks.size(); ++i) {
+  for (std::size_t i = 0; i < p.axiomBlockCount(); ++i) {
     std::string nodes;
     for (std::size_t n = 0; n < p.nodeAxioms.size(); ++n)
       if (p.nodeAxioms[n] == i) {
@@ -307,7 +307,7 @@ void disassemble(const Program& p, std::ostream& out) {
       }
     l.block("axioms " + std::to_string(i) + " of node" + (nodes.find(' ') != std::string::npos ? "s " : " ") +
                 nodes,
-            p.axiomBlocks[i]);
+            i < p.axiomBlocks.size() ? p.axiomBlocks[i] : p.literalAxioms.block(i - p.axiomBlocks.size()));
   }
 }
 

@@ -1,6 +1,7 @@
 // verifyProgram: everything the interpreter relies on without checking at run time. The tables must
 // refer to existing entries, and every code block must decode, use registers of the types its
 // instructions expect, jump only to instruction boundaries of its own loop, and nest its loops.
+#include <algorithm>
 #include <functional>
 #include <optional>
 #include <type_traits>
@@ -23,6 +24,68 @@ std::string n2s(std::uint64_t n) { return std::to_string(n); }
 
 std::string titled(std::string head, const std::string& label) {
   return label.empty() ? head : head + " (" + label + ")";
+}
+
+// The data words of the AXIOM_FACTS at `at` (decoded: its predicate exists, its words are in the
+// block): whole facts of a predicate whose fields all fit in them, with valid bools and nodes (the
+// interpreter decodes them without a check). What is wrong, or nothing.
+std::string axiomFactsProblem(const Program& p, std::span<const std::uint32_t> code, std::size_t at) {
+  const PredId pred = code[at + 1];
+  const std::uint32_t count = code[at + 2];
+  const PredicateDesc& d = p.predicates[pred];
+  const auto text = [&] { return d.name + "/" + n2s(d.arity()); };
+  if (d.thread || d.action) return text() + " is a thread or action predicate";
+  const std::size_t per = detail::axiomFactWords(d.fields);
+  if (per == 0) return text() + " has a field that is not an int, float, bool or node";
+  if (count % per != 0) return n2s(count) + " data words for facts of " + n2s(per) + " words each";
+  const std::uint32_t nodes = std::uint32_t(std::min<std::size_t>(p.nodeSourceIds.size(), 0xFFFFFFFFu));
+  const std::size_t arity = d.fields.size();
+  for (std::size_t w = at + 3, end = at + 3 + count; w < end;)
+    for (std::size_t i = 0; i < arity; ++i) {
+      const TypeId t = d.fields[i];
+      const std::uint32_t v = code[w];
+      if (t == TypeTable::kFloat) {
+        w += 2;
+        continue;
+      }
+      if (t == TypeTable::kBool && v > 1) [[unlikely]]
+        return "bool " + n2s(v) + " at word " + n2s(w) + " is not 0 or 1";
+      if (t == TypeTable::kNode && v >= nodes) [[unlikely]]
+        return "node @" + n2s(v) + " at word " + n2s(w) + " is not one of the program's " +
+               n2s(p.nodeSourceIds.size()) + " nodes";
+      ++w;
+    }
+  return {};
+}
+
+// A block of LiteralAxioms in one walk: a data file makes one per node, and BlockVerifier's passes
+// cost more than checking the facts. Messages as BlockVerifier's.
+void verifyLiteralAxioms(const Program& p, std::size_t i) {
+  const std::span<const std::uint32_t> code = p.literalAxioms.code(i);
+  const auto title = [&] {
+    return titled("axioms " + n2s(p.axiomBlocks.size() + i), std::string(p.literalAxioms.label(i)));
+  };
+  if (code.empty()) fail(title() + ": empty code (no RET)");
+  std::string why;
+  for (std::size_t pos = 0; pos < code.size();) {
+    const auto op = Opcode(code[pos]);
+    // AXIOM_FACTS' length at once; instructionLength for anything else (and its messages).
+    const std::size_t left = code.size() - pos;
+    const std::size_t len = op == Opcode::AXIOM_FACTS && left >= 3 && code[pos + 2] <= left - 3
+                                ? 3 + code[pos + 2]
+                                : detail::instructionLength(code, pos, why);
+    const auto bad = [&](const std::string& what) {
+      fail(title() + ": word " + n2s(pos) + ": " + (len ? std::string(opcodeInfo(op).name) + ": " : "") +
+           what);
+    };
+    if (len == 0) bad(why);
+    if (op == Opcode::RET && pos + len == code.size()) return;
+    if (op != Opcode::AXIOM_FACTS) bad("a block of literal axioms holds AXIOM_FACTS and a final RET only");
+    if (code[pos + 1] >= p.predicates.size()) bad("unknown predicate " + n2s(code[pos + 1]));
+    if (why = axiomFactsProblem(p, code, pos); !why.empty()) bad(why);
+    pos += len;
+  }
+  fail(title() + ": does not end with RET");
 }
 
 struct Loop {
@@ -423,25 +486,9 @@ void BlockVerifier::semantics() {
   }
 }
 
-// The data words of AXIOM_FACTS: whole facts of a predicate whose fields all fit in them, with
-// valid bools and nodes (the interpreter decodes them without a check).
 void BlockVerifier::axiomFacts() {
   if (kind_ != BlockKind::Axioms) bad("outside an axiom block");
-  const PredicateDesc& d = p_.predicates[v_[0]];
-  if (d.thread || d.action) bad(predText(v_[0]) + " is a thread or action predicate");
-  const std::size_t per = detail::axiomFactWords(d.fields);
-  if (per == 0) bad(predText(v_[0]) + " has a field that is not an int, float, bool or node");
-  if (count_ % per != 0) bad(n2s(count_) + " data words for facts of " + n2s(per) + " words each");
-  const std::size_t nodes = p_.nodeSourceIds.size();
-  for (std::size_t w = list_, end = list_ + count_; w < end;)
-    for (const TypeId t : d.fields) {
-      const std::uint32_t v = code_[w];
-      if (t == TypeTable::kBool && v > 1) bad("bool " + n2s(v) + " at word " + n2s(w) + " is not 0 or 1");
-      if (t == TypeTable::kNode && v >= nodes)
-        bad("node @" + n2s(v) + " at word " + n2s(w) + " is not one of the program's " + n2s(nodes) +
-            " nodes");
-      w += t == TypeTable::kFloat ? 2 : 1;
-    }
+  if (const std::string why = axiomFactsProblem(p_, code_, at_); !why.empty()) bad(why);
 }
 
 void BlockVerifier::run() {
@@ -638,7 +685,7 @@ void verifyProgram(const Program& p) {
   if (p.nodeAxioms.size() != p.nodeSourceIds.size())
     fail(n2s(p.nodeAxioms.size()) + " axiom entries for " + n2s(p.nodeSourceIds.size()) + " nodes");
   for (std::size_t n = 0; n < p.nodeAxioms.size(); ++n)
-    if (p.nodeAxioms[n] != Program::kNoAxioms && p.nodeAxioms[n] >= p.axiomBlocks.size())
+    if (p.nodeAxioms[n] != Program::kNoAxioms && p.nodeAxioms[n] >= p.axiomBlockCount())
       fail("node " + n2s(n) + ": unknown axiom block " + n2s(p.nodeAxioms[n]));
   if (p.scheduling.order != PriorityOrder::Desc && p.scheduling.order != PriorityOrder::Asc)
     fail("unknown priority order");
@@ -683,6 +730,7 @@ void verifyProgram(const Program& p) {
         p, p.axiomBlocks[i], BlockKind::Axioms,
         [&, i] { return titled("axioms " + n2s(i), p.axiomBlocks[i].label); }, scratch)
         .run();
+  for (std::size_t i = 0; i < p.literalAxioms.size(); ++i) verifyLiteralAxioms(p, i);
 }
 
 }  // namespace meldvm

@@ -182,18 +182,11 @@ Value Interpreter::retained(const Frame& f, std::uint32_t r) const {
 }
 
 void Interpreter::noteDerivation(const Frame& f, std::uint32_t pc, NodeId node, PredId p, const Value* args) {
-  Derivation d;
   const CodeBlock* b = f.block;
   const bool axiom = b == &program_.rules.front().block ||
                      (!program_.axiomBlocks.empty() && b >= &program_.axiomBlocks.front() &&
                       b <= &program_.axiomBlocks.back());
-  d.kind = axiom ? Derivation::Kind::Axiom : Derivation::Kind::Rule;
-  if (const SourceLine* l = b->lineAt(pc))
-    d.where = program_.sourceFiles[l->file] + ":" + std::to_string(l->line);
-  d.rule = b->label.substr(0, b->label.find('\n'));
-  d.at = f.host;
-  DerivationLog& log = *machine_.derivations_;
-  if (log.clock) d.time = log.clock();
+  Derivation d = derivation(axiom, b->label, b->lines, pc, f.host);
   for (std::uint32_t s = 0; s < b->slots; ++s) {
     const Slot& sl = f.slots[s];
     if (sl.fact == kNoFact && !sl.fixed) continue;
@@ -201,32 +194,74 @@ void Interpreter::noteDerivation(const Frame& f, std::uint32_t pc, NodeId node, 
     appendFact(premise.text, db_, sl.pred, slotArgs(f, s));
     d.premises.push_back(std::move(premise));
   }
+  record(std::move(d), node, p, args);
+}
+
+Derivation Interpreter::derivation(bool axiom, std::string_view label, std::span<const SourceLine> lines,
+                                   std::uint32_t pc, NodeId host) const {
+  Derivation d;
+  d.kind = axiom ? Derivation::Kind::Axiom : Derivation::Kind::Rule;
+  if (const SourceLine* l = lineAt(lines, pc))
+    d.where = program_.sourceFiles[l->file] + ":" + std::to_string(l->line);
+  d.rule = label.substr(0, label.find('\n'));
+  d.at = host;
+  if (machine_.derivations_->clock) d.time = machine_.derivations_->clock();
+  return d;
+}
+
+void Interpreter::record(Derivation d, NodeId node, PredId p, const Value* args) {
   std::string text;
   appendFact(text, db_, p, args);
-  log.record(node, std::move(text), std::move(d));
+  machine_.derivations_->record(node, std::move(text), std::move(d));
 }
 
 void Interpreter::axiomFacts(const Frame& f, std::uint32_t pc) {
-  const std::uint32_t* c = f.code + pc;
+  if (machine_.derivations_ || f.negative) [[unlikely]]
+    return axiomFactsOneByOne(f.code, pc, f.host, f.negative, [&](std::uint32_t at, const Value* args) {
+      noteDerivation(f, at, f.host, f.code[pc + 1], args);
+    });
+  axiomFactsTogether(f.code + pc, f.host);
+}
+
+void Interpreter::axiomFactsTogether(const std::uint32_t* c, NodeId host) {
   const PredId p = c[1];
   const std::span<const TypeId> fields = program_.predicates[p].fields;
-  const std::uint32_t* w = c + 3;
-  const std::uint32_t* const end = w + c[2];
-  if (machine_.derivations_ || f.negative) [[unlikely]] {
-    if (fields.size() > args_.size()) growArgs(std::uint32_t(fields.size()));
-    while (w != end) {
-      const auto at = std::uint32_t(pc + (w - c));  // a fact's line: the one at its first data word
-      for (std::size_t i = 0; i < fields.size(); ++i) args_[i] = detail::axiomField(fields[i], w);
-      if (machine_.derivations_ && !f.negative) noteDerivation(f, at, f.host, p, args_.data());
-      machine_.derive(f.host, p, args_.data(), f.negative);
-    }
-    return;
-  }
   const std::size_t facts = std::size_t(c[2]) / detail::axiomFactWords(fields);
   if (facts * fields.size() > args_.size()) growArgs(std::uint32_t(facts * fields.size()));
-  for (Value* out = args_.data(); w != end;)
+  Value* out = args_.data();
+  for (const std::uint32_t *w = c + 3, *end = w + c[2]; w != end;)
     for (const TypeId t : fields) *out++ = detail::axiomField(t, w);
-  machine_.deriveEach(f.host, p, args_.data(), std::uint32_t(facts));
+  machine_.deriveEach(host, p, args_.data(), std::uint32_t(facts));
+}
+
+template <class Note>
+void Interpreter::axiomFactsOneByOne(const std::uint32_t* code, std::uint32_t pc, NodeId host, bool negative,
+                                     Note&& note) {
+  const std::uint32_t* c = code + pc;
+  const PredId p = c[1];
+  const std::span<const TypeId> fields = program_.predicates[p].fields;
+  if (fields.size() > args_.size()) growArgs(std::uint32_t(fields.size()));
+  for (const std::uint32_t *w = c + 3, *end = w + c[2]; w != end;) {
+    const auto at = std::uint32_t(w - code);  // a fact's line: the one at its first data word
+    for (std::size_t i = 0; i < fields.size(); ++i) args_[i] = detail::axiomField(fields[i], w);
+    if (machine_.derivations_ && !negative) note(at, args_.data());
+    machine_.derive(host, p, args_.data(), negative);
+  }
+}
+
+void Interpreter::runLiteralAxioms(std::size_t i, NodeId host) {
+  const std::span<const std::uint32_t> code = program_.literalAxioms.code(i);
+  // Verified: AXIOM_FACTS instructions (3 words and their data), then a RET.
+  for (std::uint32_t pc = 0; Opcode(code[pc]) == Opcode::AXIOM_FACTS; pc += 3 + code[pc + 2]) {
+    if (!machine_.derivations_) {
+      axiomFactsTogether(code.data() + pc, host);
+      continue;
+    }
+    axiomFactsOneByOne(code.data(), pc, host, false, [&](std::uint32_t at, const Value* args) {
+      const LiteralAxioms& axioms = program_.literalAxioms;
+      record(derivation(true, axioms.label(i), axioms.lines(i), at, host), host, code[pc + 1], args);
+    });
+  }
 }
 
 bool Interpreter::boundOutside(const Frame& f, std::uint32_t slot, PredId p, FactRef fact) const {

@@ -12,11 +12,13 @@
 #include <memory>
 #include <new>
 #include <span>
+#include <string_view>
 #include <unordered_map>
 #include <vector>
 
 #include "meldvm/builtins.hpp"
 #include "meldvm/database.hpp"
+#include "meldvm/derivation_log.hpp"
 #include "meldvm/native_abi.h"
 #include "meldvm/program.hpp"
 #include "meldvm/value_ops.hpp"
@@ -102,8 +104,18 @@ class Interpreter {
   }
   void consumeSlot(const Slot& sl);  // inline, in interpreter.cpp (where Machine is complete)
   // AXIOM_FACTS at pc (verified: whole facts of its predicate, every field an int, float, bool or
-  // node), decoded and derived.
+  // node), decoded and derived: together (Machine::deriveEach) unless derivations are recorded or
+  // the block runs negated; note(pc, args) before each fact's derivation then.
   void axiomFacts(const Frame& f, std::uint32_t pc);
+  void axiomFactsTogether(const std::uint32_t* instruction, NodeId host);
+  template <class Note>
+  void axiomFactsOneByOne(const std::uint32_t* code, std::uint32_t pc, NodeId host, bool negative,
+                          Note&& note);
+  // Block i of the program's LiteralAxioms, for the AXIOMS of `host`.
+  void runLiteralAxioms(std::size_t i, NodeId host);
+  Derivation derivation(bool axiom, std::string_view label, std::span<const SourceLine> lines,
+                        std::uint32_t pc, NodeId host) const;
+  void record(Derivation d, NodeId node, PredId p, const Value* args);
   // Why a fact exists (DerivationLog): the rule's line and the facts its slots hold.
   [[gnu::noinline]] void noteDerivation(const Frame& f, std::uint32_t pc, NodeId node, PredId p,
                                         const Value* args);

@@ -144,7 +144,7 @@ void Machine::reserveForAxioms() {
   const NodeId end = std::min<NodeId>(placement_.endOwned, NodeId(program_.nodeAxioms.size()));
   for (NodeId n = placement_.firstOwned; n < end; ++n)
     if (const std::uint32_t b = program_.nodeAxioms[n]; b != Program::kNoAxioms)
-      detail::forEachAxiomStore(program_, program_.axiomBlocks[b].code,
+      detail::forEachAxiomStore(program_, program_.axiomCode(b),
                                 [&](PredId p, std::size_t count) { facts[p] += count; });
   // A shard may take nodes from others later.
   const std::size_t slack = shard_ ? 64 : 0;

@@ -19,7 +19,7 @@ std::vector<NodeId> weightedCuts(const Program& program, NodeId graph, ThreadId 
     std::uint64_t w = 1;
     if (n < program.nodeAxioms.size())
       if (const std::uint32_t b = program.nodeAxioms[n]; b != Program::kNoAxioms)
-        detail::forEachAxiomStore(program, program.axiomBlocks[b].code,
+        detail::forEachAxiomStore(program, program.axiomCode(b),
                                   [&](PredId, std::size_t count) { w += count; });
     return w;
   };

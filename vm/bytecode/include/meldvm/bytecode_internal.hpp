@@ -33,18 +33,21 @@ inline constexpr std::uint32_t kSectionCount = kSecSources;
 inline constexpr std::uint32_t sectionCountOf(std::uint32_t version) {
   return version >= 3 ? kSecSources : kSecIndexes;
 }
-// Every code block of a program, in the order of the sources section.
+// The code blocks of a program before its axiom blocks, in the order of the sources section (the
+// axiom blocks follow: Program::axiomBlocks, then the literalAxioms).
 template <class P, class F>
-void forEachCodeBlock(P& program, F&& f) {
+void forEachCodeBlockBeforeAxioms(P& program, F&& f) {
   f(program.globalsInit);
   for (auto& fn : program.functions) f(fn.block);
   for (auto& r : program.rules) f(r.block);
   for (auto& pr : program.processes) f(pr.block);
-  for (auto& a : program.axiomBlocks) f(a);
 }
 inline std::size_t codeBlockCount(const Program& p) {
-  return 1 + p.functions.size() + p.rules.size() + p.processes.size() + p.axiomBlocks.size();
+  return 1 + p.functions.size() + p.rules.size() + p.processes.size() + p.axiomBlockCount();
 }
+// Whether verified or unverified code is literal axioms (LiteralAxioms): AXIOM_FACTS
+// instructions and a RET that ends it. (A block of them also has no registers and no slots.)
+bool literalAxiomCode(std::span<const std::uint32_t> code);
 const char* sectionName(std::uint32_t tag);  // "?" for unknown tags
 
 inline constexpr char kMagic[4] = {'M', 'B', 'C', '1'};

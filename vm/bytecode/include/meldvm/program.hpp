@@ -9,10 +9,13 @@
 #pragma once
 
 #include <cstdint>
+#include <span>
 #include <string>
 #include <vector>
 
+#include "meldvm/literal_axioms.hpp"
 #include "meldvm/predicate.hpp"
+#include "meldvm/source_line.hpp"
 #include "meldvm/types.hpp"
 #include "meldvm/value.hpp"
 
@@ -49,13 +52,6 @@ enum IterFlags : std::uint32_t {
 // Flag bits of UPDATE.
 enum UpdateFlags : std::uint32_t { kUpdateMoveToBack = 1 };
 
-// Where instructions came from: from `pc` on (until the next entry), Program::sourceFiles[file],
-// 1-based `line`. For the derivation trees (why a fact exists) and messages; no effect on runs.
-struct SourceLine {
-  std::uint32_t pc = 0, file = 0, line = 0;
-  friend bool operator==(const SourceLine&, const SourceLine&) = default;
-};
-
 // A sequence of instructions with its register file and fact slots.
 struct CodeBlock {
   std::vector<std::uint32_t> code;
@@ -65,14 +61,7 @@ struct CodeBlock {
   std::vector<SourceLine> lines;      // by increasing pc; empty when unknown (bytecode before v3)
 
   // The source line of the instruction at `pc`, or nullptr.
-  const SourceLine* lineAt(std::uint32_t pc) const {
-    const SourceLine* found = nullptr;
-    for (const SourceLine& l : lines) {
-      if (l.pc > pc) break;
-      found = &l;
-    }
-    return found;
-  }
+  const SourceLine* lineAt(std::uint32_t pc) const { return meldvm::lineAt(lines, pc); }
 };
 
 struct Rule {
@@ -149,11 +138,19 @@ struct Program {
 
   std::vector<Rule> rules;         // rules[0] = `_init -o axioms`
   std::vector<Process> processes;  // persistent rules, in program order
-  // Constant axioms per initial node (run by AXIOMS in rule 0): index into axiomBlocks, or
-  // kNoAxioms.
+  // Constant axioms per initial node (run by AXIOMS in rule 0): the number of an axiom block, or
+  // kNoAxioms. Blocks are numbered axiomBlocks first, then literalAxioms (as a file stores them;
+  // the reader keeps the blocks of literal facts only in literalAxioms).
   static constexpr std::uint32_t kNoAxioms = 0xFFFFFFFFu;
   std::vector<std::uint32_t> nodeAxioms;  // one per initial node
   std::vector<CodeBlock> axiomBlocks;
+  LiteralAxioms literalAxioms;
+  std::size_t axiomBlockCount() const { return axiomBlocks.size() + literalAxioms.size(); }
+  // The code of axiom block b (b < axiomBlockCount()).
+  std::span<const std::uint32_t> axiomCode(std::uint32_t b) const {
+    return b < axiomBlocks.size() ? std::span<const std::uint32_t>(axiomBlocks[b].code)
+                                  : literalAxioms.code(b - axiomBlocks.size());
+  }
 
   SchedulingOptions scheduling;
   std::vector<IndexRequest> indexes;
