@@ -150,6 +150,21 @@ BOOST_AUTO_TEST_CASE(deriving_facts_together_is_deriving_each) {
   BOOST_TEST(s.facts(0, e).front() == "!edge(@2, 5) x3");
   BOOST_TEST(!db.deriveEach(2, e, facts.data(), 0));
   BOOST_TEST(db.factCount(2, e) == 0u);
+  // A compact table appends: into freed slots first, then fresh ones, in order either way.
+  db.retract(0, c, facts.data() + 2);
+  db.retract(0, c, facts.data());
+  BOOST_TEST(db.deriveEach(2, c, facts.data(), 5));
+  BOOST_TEST(s.facts(2, c) == s.facts(1, c), boost::test_tools::per_element());
+  // A compact predicate with an index (ITER_KEY on it) links each fact into its chain.
+  Store t;
+  const PredId k = t.persistent("keyed", {TypeTable::kNode, TypeTable::kInt}, true);
+  Database& kd = t.open(1);
+  const std::uint32_t ix = kd.requestIndex(k, 0);
+  BOOST_TEST(kd.deriveEach(0, k, facts.data(), 5));
+  std::vector<int> withTwo;
+  for (FactRef f = kd.firstWithKey(0, k, ix, N(2)); f != kNoFact; f = kd.nextWithKey(k, ix, f))
+    withTwo.push_back(kd.args(k, f)[1].asInt());
+  BOOST_TEST(withTwo == (std::vector<int>{5, 7, 5}), boost::test_tools::per_element());
 }
 
 BOOST_AUTO_TEST_CASE(misuse_is_refused) {

@@ -197,6 +197,10 @@ bool Database::deriveEach(NodeId n, PredId p, const Value* args, std::uint32_t c
   if (d.aggregated()) throw std::logic_error("meldvm: deriveEach on aggregated '" + d.name + "'");
   FactTable& t = tables_[p];
   ListHead& list = head(n, p);
+  if (d.compact && !grouped_[p]) {  // compact predicates append every derivation (§4.4)
+    t.appendEach(list, n, args, count);
+    return count != 0;
+  }
   const std::uint32_t arity = d.arity();
   bool added = false;
   for (std::uint32_t i = 0; i < count; ++i, args += arity) {

@@ -236,6 +236,33 @@ FactRef FactTable::insert(ListHead& list, NodeId n, const Value* a, std::uint32_
   return f;
 }
 
+void FactTable::appendEach(ListHead& list, NodeId n, const Value* a, std::uint32_t facts) {
+  if (!plain_) {  // (an index requested on a compact predicate)
+    for (std::uint32_t i = 0; i < facts; ++i, a += arity()) insert(list, n, a, 1);
+    return;
+  }
+  const Value* begin = words_.data();
+  const bool inTable =  // arguments read from this very table: the array may move (place re-points)
+      std::greater_equal<const Value*>()(a, begin) && std::less<const Value*>()(a, begin + words_.size());
+  std::uint32_t i = 0;
+  for (; i < facts && (freeList_ != kNoFact || inTable); ++i, a += arity()) place(list, n, a, 1, kNoFact, false);
+  if (i == facts) return;
+  const std::uint32_t fresh = facts - i;
+  if (slots_ + std::uint64_t(fresh) >= kNoFact) throw std::length_error("meldvm: too many facts");
+  if (words_.size() + std::size_t(fresh) * stride_ > words_.capacity()) {
+    const std::size_t slots = words_.capacity() / stride_;  // grow as one fact at a time would
+    const std::size_t step = std::max<std::size_t>(slots / 4, 4);
+    words_.reserve((std::max<std::size_t>(slots + step, slots_ + std::size_t(fresh))) * stride_);
+    slotArray_ = words_.data();
+  }
+  words_.resize(words_.size() + std::size_t(fresh) * stride_);
+  for (; i < facts; ++i, a += arity()) {
+    if (!references_.empty()) retainArgs(a);
+    const FactRef f = slots_++;
+    fill(list, f, n, a, 1, list.last, kNoFact);
+  }
+}
+
 FactRef FactTable::insertGrouped(ListHead& list, NodeId n, const Value* a, std::uint32_t cnt) {
   const KeySpec spec = indexes_[0].key;
   const std::uint64_t h = hashKey(n, a + spec.first, spec);

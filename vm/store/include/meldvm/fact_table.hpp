@@ -56,6 +56,9 @@ class FactTable {
   // adopt: the caller hands its references to the boxed arguments over (no retain).
   FactRef insert(ListHead& list, NodeId node, const Value* args, std::uint32_t count, FactRef after = kNoFact,
                  bool adopt = false);
+  // insert(list, node, args + i * arity(), 1) for each i < facts; on a table with no index and no
+  // de-duplication (a compact predicate's: a data file's facts) the slot array grows once.
+  void appendEach(ListHead& list, NodeId node, const Value* args, std::uint32_t facts);
   // insert(list, node, args, 1, kNoFact, /*adopt=*/true), inline where it is simplest: a table
   // with no index and no de-duplication (a linear predicate's) that has a free slot to reuse,
   // which is every insertion of the steady state.
