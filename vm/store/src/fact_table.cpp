@@ -245,7 +245,8 @@ void FactTable::appendEach(ListHead& list, NodeId n, const Value* a, std::uint32
   const bool inTable =  // arguments read from this very table: the array may move (place re-points)
       std::greater_equal<const Value*>()(a, begin) && std::less<const Value*>()(a, begin + words_.size());
   std::uint32_t i = 0;
-  for (; i < facts && (freeList_ != kNoFact || inTable); ++i, a += arity()) place(list, n, a, 1, kNoFact, false);
+  for (; i < facts && (freeList_ != kNoFact || inTable); ++i, a += arity())
+    place(list, n, a, 1, kNoFact, false);
   if (i == facts) return;
   const std::uint32_t fresh = facts - i;
   if (slots_ + std::uint64_t(fresh) >= kNoFact) throw std::length_error("meldvm: too many facts");
