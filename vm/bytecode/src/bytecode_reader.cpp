@@ -108,14 +108,11 @@ class Cursor {
   enum class AxiomKind : bool { General, Literal };
   AxiomKind axiomBlock(Program& p, std::vector<std::uint32_t>& code) {
     const std::string_view label = strView("block label");
-    code.clear();
-    appendWords("register types", code);
-    const bool noRegisters = code.empty();
-    std::vector<TypeId> registerTypes(code.begin(), code.end());
+    std::vector<TypeId> registerTypes = words("register types");  // (none: no allocation)
     const std::uint32_t slots = word("slot count");
     code.clear();
     appendWords("code", code);
-    if (noRegisters && slots == 0 && literalAxiomCode(code)) {
+    if (registerTypes.empty() && slots == 0 && literalAxiomCode(code)) {
       p.literalAxioms.add(code, label);
       return AxiomKind::Literal;
     }

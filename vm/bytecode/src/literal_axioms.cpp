@@ -32,11 +32,10 @@ namespace detail {
 
 bool literalAxiomCode(std::span<const std::uint32_t> code) {
   for (std::size_t pos = 0; pos < code.size();) {
-    const auto op = Opcode(code[pos]);
-    const std::size_t left = code.size() - pos;
-    if (op == Opcode::RET) return left == 1;
-    if (op != Opcode::AXIOM_FACTS || left < 3 || code[pos + 2] > left - 3) return false;
-    pos += 3 + code[pos + 2];
+    if (Opcode(code[pos]) == Opcode::RET) return pos + 1 == code.size();
+    const std::size_t len = axiomFactsLength(code, pos);
+    if (len == 0) return false;
+    pos += len;
   }
   return false;  // no RET
 }

@@ -69,11 +69,9 @@ void verifyLiteralAxioms(const Program& p, std::size_t i) {
   std::string why;
   for (std::size_t pos = 0; pos < code.size();) {
     const auto op = Opcode(code[pos]);
-    // AXIOM_FACTS' length at once; instructionLength for anything else (and its messages).
-    const std::size_t left = code.size() - pos;
-    const std::size_t len = op == Opcode::AXIOM_FACTS && left >= 3 && code[pos + 2] <= left - 3
-                                ? 3 + code[pos + 2]
-                                : detail::instructionLength(code, pos, why);
+    // instructionLength only for what is not a whole AXIOM_FACTS (and its messages).
+    std::size_t len = detail::axiomFactsLength(code, pos);
+    if (len == 0) len = detail::instructionLength(code, pos, why);
     const auto bad = [&](const std::string& what) {
       fail(title() + ": word " + n2s(pos) + ": " + (len ? std::string(opcodeInfo(op).name) + ": " : "") +
            what);

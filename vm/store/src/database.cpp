@@ -172,22 +172,27 @@ Change Database::derive(NodeId n, PredId p, const Value* args, std::uint32_t cop
   checkNode(n);
   clearScratch();
   if (d.aggregated()) return aggregateChange(n, p, args, copies, true);
-  FactTable& t = tables_[p];
   Change c;
+  const FactRef f = addCopies(n, p, d, args, copies, c.count);
+  if (f == kNoFact) return c;
+  setValues(added_, tables_[p].args(f), d.arity());
+  c.added = true;
+  c.addedArgs = added_;
+  return c;
+}
+
+FactRef Database::addCopies(NodeId n, PredId p, const PredicateDesc& d, const Value* args,
+                            std::uint32_t copies, std::uint32_t& count) {
+  FactTable& t = tables_[p];
   if (!d.compact) {  // compact predicates append every derivation (§4.4)
     if (const FactRef f = t.find(n, args); f != kNoFact) {
       t.setCount(f, t.count(f) + copies);
-      c.count = t.count(f);
-      return c;
+      count = t.count(f);
+      return kNoFact;
     }
   }
-  const FactRef f =
-      grouped_[p] ? t.insertGrouped(head(n, p), n, args, copies) : t.insert(head(n, p), n, args, copies);
-  setValues(added_, t.args(f), d.arity());
-  c.added = true;
-  c.count = copies;
-  c.addedArgs = added_;
-  return c;
+  count = copies;
+  return grouped_[p] ? t.insertGrouped(head(n, p), n, args, copies) : t.insert(head(n, p), n, args, copies);
 }
 
 bool Database::deriveEach(NodeId n, PredId p, const Value* args, std::uint32_t count) {
@@ -195,23 +200,14 @@ bool Database::deriveEach(NodeId n, PredId p, const Value* args, std::uint32_t c
   checkNode(n);
   clearScratch();
   if (d.aggregated()) throw std::logic_error("meldvm: deriveEach on aggregated '" + d.name + "'");
-  FactTable& t = tables_[p];
-  ListHead& list = head(n, p);
   if (d.compact && !grouped_[p]) {  // compact predicates append every derivation (§4.4)
-    t.appendEach(list, n, args, count);
+    tables_[p].appendEach(head(n, p), n, args, count);
     return count != 0;
   }
-  const std::uint32_t arity = d.arity();
   bool added = false;
-  for (std::uint32_t i = 0; i < count; ++i, args += arity) {
-    if (!d.compact)
-      if (const FactRef f = t.find(n, args); f != kNoFact) {
-        t.setCount(f, t.count(f) + 1);
-        continue;
-      }
-    grouped_[p] ? t.insertGrouped(list, n, args, 1) : t.insert(list, n, args, 1);
-    added = true;
-  }
+  std::uint32_t copies;
+  for (std::uint32_t i = 0; i < count; ++i, args += d.arity())
+    added = addCopies(n, p, d, args, 1, copies) != kNoFact || added;
   return added;
 }
 

@@ -73,7 +73,7 @@ void FactTable::reserve(std::size_t facts) {
   for (Index& x : indexes_) x.heads.reserve(std::uint32_t(facts));
 }
 
-void FactTable::growForOneMore() {
+void FactTable::growFor(std::size_t facts) {
   // Large tables by a quarter, not the vector's doubling: a threaded run's shards each reserve
   // their share of the facts and grow when stolen nodes bring theirs, and doubling then left each
   // shard room for nearly all of them (pagerank at -j 2: 10.2 MB of slots for 5.1 MB of facts);
@@ -81,11 +81,12 @@ void FactTable::growForOneMore() {
   // 64 KiB and 2 MiB they double: by a quarter, when tables below 2 MiB were still copied, the
   // copies of a table that grows to 2 MiB were 4 % of pagerank-recipes (the part of a mapping not
   // yet written takes no memory). Below, a quarter costs little and keeps a robot's tables small.
-  if (words_.size() + stride_ <= words_.capacity()) return;
+  if (words_.size() + facts * stride_ <= words_.capacity()) return;
   const std::size_t slots = words_.capacity() / stride_;
   const std::size_t bytes = words_.capacity() * sizeof(Value);
   const bool doubles = bytes >= 64 * 1024 && bytes < support::kHugePage;
-  words_.reserve((slots + std::max<std::size_t>(doubles ? slots : slots / 4, 4)) * stride_);
+  const std::size_t grown = slots + std::max<std::size_t>(doubles ? slots : slots / 4, 4);
+  words_.reserve(std::max(grown, words_.size() / stride_ + facts) * stride_);
   slotArray_ = words_.data();
 }
 
@@ -210,7 +211,7 @@ FactRef FactTable::place(ListHead& list, NodeId n, const Value* a, std::uint32_t
   } else {
     if (slots_ >= kNoFact - 1) throw std::length_error("meldvm: too many facts");
     f = slots_++;  // counted, not words_.size() / stride_: a division per new fact
-    growForOneMore();
+    growFor(1);
     // `a` may point into words_ (arguments read from this very table), which the resize may move:
     // re-point it into the new array then.
     const Value* begin = words_.data();
@@ -250,12 +251,7 @@ void FactTable::appendEach(ListHead& list, NodeId n, const Value* a, std::uint32
   if (i == facts) return;
   const std::uint32_t fresh = facts - i;
   if (slots_ + std::uint64_t(fresh) >= kNoFact) throw std::length_error("meldvm: too many facts");
-  if (words_.size() + std::size_t(fresh) * stride_ > words_.capacity()) {
-    const std::size_t slots = words_.capacity() / stride_;  // grow as one fact at a time would
-    const std::size_t step = std::max<std::size_t>(slots / 4, 4);
-    words_.reserve((std::max<std::size_t>(slots + step, slots_ + std::size_t(fresh))) * stride_);
-    slotArray_ = words_.data();
-  }
+  growFor(fresh);
   words_.resize(words_.size() + std::size_t(fresh) * stride_);
   for (; i < facts; ++i, a += arity()) {
     if (!references_.empty()) retainArgs(a);

@@ -48,6 +48,13 @@ inline std::size_t codeBlockCount(const Program& p) {
 // Whether verified or unverified code is literal axioms (LiteralAxioms): AXIOM_FACTS
 // instructions and a RET that ends it. (A block of them also has no registers and no slots.)
 bool literalAxiomCode(std::span<const std::uint32_t> code);
+// The length of the AXIOM_FACTS at `pos` when it is one and its data words are all in `code`,
+// else 0: a data file's thousands of them, without instructionLength's general decoding.
+inline std::size_t axiomFactsLength(std::span<const std::uint32_t> code, std::size_t pos) {
+  const std::size_t left = code.size() - pos;
+  if (Opcode(code[pos]) != Opcode::AXIOM_FACTS || left < 3 || code[pos + 2] > left - 3) return 0;
+  return 3 + std::size_t(code[pos + 2]);
+}
 const char* sectionName(std::uint32_t tag);  // "?" for unknown tags
 
 inline constexpr char kMagic[4] = {'M', 'B', 'C', '1'};

@@ -255,6 +255,10 @@ class Database {
     v.resize(n);
     for (std::size_t i = 0; i < n; ++i) v[i] = a[i];
   }
+  // `copies` more of a fact of a persistent predicate that is not aggregated: a new fact (its
+  // reference), or kNoFact when the fact was stored already; `count`: its copies now.
+  FactRef addCopies(NodeId n, PredId p, const PredicateDesc& d, const Value* args, std::uint32_t copies,
+                    std::uint32_t& count);
   void keepRemoved(PredId p, FactRef f);  // copies a visible fact into removed_ before erasing it
   Change aggregateChange(NodeId n, PredId p, const Value* args, std::uint32_t copies, bool add);
   Change intMinMaxChange(NodeId n, PredId p, Value v, std::uint32_t copies, bool add);

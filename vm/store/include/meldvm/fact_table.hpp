@@ -218,7 +218,7 @@ class FactTable {
   // Links f into its index chains; for index 0 the chain head and key hash may be known already.
   void linkIndexes(FactRef f, std::uint32_t fromIndex = 0);
   void linkIndex(FactRef f, std::uint32_t x, FactRef head, std::uint64_t hash);
-  void growForOneMore();  // room for one more slot, growing by a quarter when full
+  void growFor(std::size_t facts);  // room for that many more slots, growing by a quarter when full
   FactRef place(ListHead& list, NodeId n, const Value* a, std::uint32_t cnt, FactRef after,
                 bool adopt = false);
   void unlinkIndexes(FactRef f);
