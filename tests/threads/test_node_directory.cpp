@@ -2,7 +2,9 @@
 // weight, a node weighing one plus the facts of its axioms, so that a graph whose busy nodes sit
 // at one end does not leave one thread with most of the work.
 #define BOOST_TEST_MODULE threads_node_directory
+#include <atomic>
 #include <boost/test/unit_test.hpp>
+#include <thread>
 #include <vector>
 
 #include "../meldc/compile_source.hpp"
@@ -73,4 +75,50 @@ BOOST_AUTO_TEST_CASE(nodes_beyond_the_program_weigh_one_and_more_threads_than_no
   BOOST_TEST(c.back() == 3u);
   for (std::size_t t = 0; t + 1 < c.size(); ++t) BOOST_TEST(c[t] <= c[t + 1]);
   for (NodeId n = 0; n < 3; ++n) BOOST_TEST(many.ownerOf(n) < 5u);
+}
+
+// Owners are packed several to a 64-bit word (1 bit each at two threads, 16 at up to 1024), and
+// threads move nodes of the same word at the same time in a rebalance: every node keeps the
+// owner last given to it, whatever its neighbours in the word do.
+BOOST_AUTO_TEST_CASE(packed_owners_move_one_node_at_a_time) {
+  const auto p = compileSource(kSkewed);
+  for (const meldvm::ThreadId threads : {1u, 2u, 3u, 4u, 5u, 16u, 17u, 256u, 257u, 1024u}) {
+    const NodeId nodes = 200;  // several words at every width, the last one partly used
+    NodeDirectory d(*p, nodes, threads, false);
+    for (NodeId n = 0; n < nodes; ++n) {
+      BOOST_TEST(d.ownerOf(n) < threads);
+      BOOST_TEST(d.firstOwned(d.ownerOf(n)) <= n);
+      BOOST_TEST(n < d.endOwned(d.ownerOf(n)));
+    }
+    std::vector<meldvm::ThreadId> expected(nodes);
+    for (NodeId n = 0; n < nodes; ++n) {
+      expected[n] = meldvm::ThreadId((n * 7 + 3) % threads);
+      d.moveNode(n, expected[n]);
+    }
+    d.moveNode(5, threads - 1), expected[5] = threads - 1;
+    for (NodeId n = 0; n < nodes; ++n)
+      BOOST_TEST(d.ownerOf(n) == expected[n], "node " << n << " of " << threads);
+  }
+}
+
+BOOST_AUTO_TEST_CASE(concurrent_moves_in_one_word_keep_every_owner) {
+  const auto p = compileSource(kSkewed);
+  const NodeId nodes = 128;  // two words at two threads
+  NodeDirectory d(*p, nodes, 2, false);
+  // Thread 0 moves the even nodes to and fro, thread 1 the odd ones: each node has one mover, and
+  // every word has nodes of both.
+  std::vector<meldvm::ThreadId> start(nodes);
+  for (NodeId n = 0; n < nodes; ++n) start[n] = d.ownerOf(n);
+  std::atomic<int> ready{0};
+  auto flip = [&](meldvm::ThreadId self) {
+    ready.fetch_add(1);
+    while (ready.load() < 2) {
+    }
+    for (int round = 0; round < 100000; ++round)
+      for (NodeId n = self; n < nodes; n += 2) d.moveNode(n, d.ownerOf(n) ^ 1u);
+  };
+  std::thread a(flip, 0u), b(flip, 1u);
+  a.join(), b.join();
+  for (NodeId n = 0; n < nodes; ++n)
+    BOOST_TEST(d.ownerOf(n) == start[n], "node " << n);  // an even count of flips
 }
