@@ -30,6 +30,7 @@ Machine::Machine(const Program& program, MachineOptions options)
       sched_(program.scheduling) {
   host_ = options_.host;
   shard_ = options_.shard;
+  if (shard_) graphOwners_ = shard_->graphOwners();
   stopFlag_ = options_.stopFlag;
   safePointFlag_ = options_.shard ? options_.safePointFlag : nullptr;
   placement_ = options_.placement;
@@ -477,7 +478,7 @@ void Machine::send(NodeId host, NodeId dest, PredId p, const Value* args, bool n
   // then runs again (runNode). A block of a host derives it at once.
   if (dest == host && delayMs == 0 && host_) return derive(host, p, args, negative);
   if (shard_) [[unlikely]] {
-    const ThreadId owner = shard_->ownerOf(dest);
+    const ThreadId owner = ownerOf(dest);
     if (owner == kNoThread) noSuchNode(p, dest);
     if (owner != placement_.self) {  // routed when the run ends (postOrRoute)
       const PredicateDesc& d = program_.predicates[p];

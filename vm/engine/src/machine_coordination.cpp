@@ -16,7 +16,7 @@ void Machine::priorityRequest(NodeId n, double p) {
   if (!options_.coordination) return;
   if (n == running_ && inRun_) return;  // §5.7: ignored for the running node
   if (shard_ && !ownedHere(n)) [[unlikely]] {
-    const ThreadId owner = shard_->ownerOf(n);
+    const ThreadId owner = ownerOf(n);
     if (owner == kNoThread)
       throw RuntimeError("set-priority for node " + nodeName(n) + ", which does not exist");
     if (owner != placement_.self) return shard_->coordinateRemote(owner, Opcode::SET_PRIORITY, n, p);
@@ -29,7 +29,7 @@ void Machine::priorityRequest(NodeId n, double p) {
 void Machine::applyPriorityRequests() {
   for (const auto& [n, p] : priorityRequests_) {
     if (shard_ && !ownedHere(NodeId(n))) [[unlikely]]  // it moved during the run (a safe point)
-      shard_->coordinateRemote(shard_->ownerOf(NodeId(n)), Opcode::SET_PRIORITY, NodeId(n), p);
+      shard_->coordinateRemote(ownerOf(NodeId(n)), Opcode::SET_PRIORITY, NodeId(n), p);
     else
       sched_.setPriority(NodeId(n), p);
   }
@@ -41,7 +41,7 @@ void Machine::coordination(Opcode op, NodeId n, Value arg) {
   if (op == Opcode::SET_AFFINITY || op == Opcode::SET_CPU) return placeNode(op, n, arg);
   const double value = op == Opcode::ADD_PRIORITY || op == Opcode::SET_DEFAULT_PRIORITY ? arg.asFloat() : 0.0;
   if (shard_ && !ownedHere(n)) {
-    const ThreadId owner = shard_->ownerOf(n);
+    const ThreadId owner = ownerOf(n);
     if (owner == kNoThread)
       throw RuntimeError("coordination fact for node " + nodeName(n) + ", which does not exist");
     if (owner != placement_.self) return shard_->coordinateRemote(owner, op, n, value);

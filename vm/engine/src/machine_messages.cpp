@@ -16,7 +16,7 @@ void Machine::post(NodeId dest, PredId p, const Value* args, bool negative, bool
 
 void Machine::postOrRoute(const PendingFact& e, const Value* args) {
   if (shard_) [[unlikely]] {
-    if (const ThreadId owner = shard_->ownerOf(e.node); owner != placement_.self) {
+    if (const ThreadId owner = ownerOf(e.node); owner != placement_.self) {
       shard_->sendRemote(owner, e.node, e.pred, args, e.negative);  // takes the buffer's references
       return;
     }

@@ -44,13 +44,6 @@ std::vector<NodeId> weightedCuts(const Program& program, NodeId graph, ThreadId 
   return cuts;
 }
 
-// The fewest bits, a power of two, that hold every thread id: log2 of it.
-unsigned ownerBitsLog(ThreadId threads) {
-  unsigned log = 0;
-  while ((std::uint64_t(1) << (1u << log)) < threads) ++log;
-  return log;
-}
-
 }  // namespace
 
 NodeDirectory::NodeDirectory(const Program& program, NodeId graphNodes, ThreadId threads, bool threadNodes)
@@ -58,16 +51,10 @@ NodeDirectory::NodeDirectory(const Program& program, NodeId graphNodes, ThreadId
       threads_(threads),
       cuts_(weightedCuts(program, graphNodes, threads)),
       createdBase_(graphNodes + (threadNodes ? threads : 0)),
-      ownerBitsLog_(ownerBitsLog(threads)),
-      nodesPerWordLog_(6 - ownerBitsLog_),
-      ownerMask_((std::uint64_t(1) << (1u << ownerBitsLog_)) - 1),
-      owners_(new std::atomic<std::uint64_t>[(std::size_t(graphNodes) >> nodesPerWordLog_) + 1]),
+      owners_(graphNodes, threads),
       blockOwner_(new std::atomic<ThreadId>[kMaxBlocks]) {
-  std::vector<std::uint64_t> words((std::size_t(graphNodes) >> nodesPerWordLog_) + 1, 0);
-  for (ThreadId t = 0; t < threads; ++t)
-    for (NodeId n = firstOwned(t); n < endOwned(t); ++n)
-      words[n >> nodesPerWordLog_] |= std::uint64_t(t) << ownerShift(n);
-  for (std::size_t w = 0; w < words.size(); ++w) owners_[w].store(words[w], std::memory_order_relaxed);
+  for (ThreadId t = 1; t < threads; ++t)  // (thread 0's are the zeros it starts with)
+    for (NodeId n = firstOwned(t); n < endOwned(t); ++n) owners_.move(n, t);
   for (std::uint32_t b = 0; b < kMaxBlocks; ++b) blockOwner_[b].store(kNoThread, std::memory_order_relaxed);
 }
 

@@ -42,38 +42,44 @@ T get(const MailBytes& in, std::size_t& pos) {
   return v;
 }
 
-// The fact records of a batch some records ahead of the one being applied: each is handed to
-// fetch(node) once. A record of another kind stops the walk until the reader has passed it.
+// The nodes of the fact records of a batch ahead of the one being applied, in one walk: the
+// node `kFar` records ahead goes to far(node), the one `kNear` ahead to near(node). A record of
+// another kind stops the walk until the reader has passed it.
 class FactsAhead {
  public:
-  FactsAhead(const MailBytes& in, const PredicateTable& preds, std::uint32_t distance)
-      : in_(in), preds_(preds), distance_(distance) {}
+  static constexpr std::uint32_t kFar = 8, kNear = 4;
+  FactsAhead(const MailBytes& in, const PredicateTable& preds) : in_(in), preds_(preds) {}
   // The reader is at the fact record that starts at `pos`.
-  template <class Fetch>
-  void keepAhead(std::size_t pos, Fetch&& fetch) {
-    if (at_ <= pos) {
+  template <class Far, class Near>
+  void keepAhead(std::size_t pos, Far&& far, Near&& near) {
+    if (at_ <= pos) {  // the start, or just past a record of another kind
       at_ = pos;
       lead_ = 0;
     } else {
       --lead_;  // the reader's record was fetched
     }
-    while (lead_ < distance_ && at_ < in_.size() && in_[at_] == kFact) {
+    while (lead_ < kFar && at_ < in_.size() && in_[at_] == kFact) {
       NodeId node;
       std::uint32_t predWord;
       std::memcpy(&node, in_.data() + at_ + 1, 4);
       std::memcpy(&predWord, in_.data() + at_ + 5, 4);
-      fetch(node);
+      far(node);
+      if (lead_ < kNear) near(node);  // (at the start of a run of fact records)
+      ring_[(seen_++) % kFar] = node;
       at_ += 5 + factBytes(preds_[predWord & ~kNegativeBit].arity());  // kind, node, fact
       ++lead_;
     }
+    // The record kNear ahead of the reader, each in turn.
+    if (lead_ > kNear) near(ring_[(seen_ - (lead_ - kNear)) % kFar]);
   }
 
  private:
   const MailBytes& in_;
   const PredicateTable& preds_;
-  const std::uint32_t distance_;
   std::size_t at_ = 0;      // the next record to fetch
   std::uint32_t lead_ = 0;  // records fetched from the reader's on
+  std::uint64_t seen_ = 0;  // records fetched in all
+  NodeId ring_[kFar] = {};  // the last kFar records' nodes
 };
 
 }  // namespace
@@ -85,8 +91,8 @@ ShardMail::ShardMail(const Program& program) : program_(program), boxed_(program
       if (preds.types().boxed(preds[p].fields[i])) boxed_[p].push_back(i);
 }
 
-void ShardMail::putArgs(MailBytes& out, Heap& heap, PredId p, const Value* args, bool negative, bool adopt,
-                        std::vector<Object*>* shareLater) {
+void ShardMail::handOver(Heap& heap, PredId p, const Value* args, bool adopt,
+                         std::vector<Object*>* shareLater) {
   for (std::uint32_t i : boxed_[p]) {  // the record's references, handed over with it
     const TypeId t = program_.predicates[p].fields[i];
     if (!shareLater)
@@ -95,10 +101,11 @@ void ShardMail::putArgs(MailBytes& out, Heap& heap, PredId p, const Value* args,
       shareLater->push_back(args[i].asObject());
     if (!adopt) heap.retain(t, args[i]);
   }
-  const std::uint32_t arity = program_.predicates[p].arity();
-  const std::size_t at = out.size();
-  out.resize(at + factBytes(arity));  // one resize for the whole fact
-  std::uint8_t* w = out.data() + at;
+}
+
+namespace {
+
+void writeFact(std::uint8_t* w, PredId p, std::uint32_t arity, const Value* args, bool negative) {
   const std::uint32_t predWord = p | (negative ? kNegativeBit : 0);
   std::memcpy(w, &predWord, 4);
   for (std::uint32_t i = 0; i < arity; ++i) {
@@ -107,10 +114,27 @@ void ShardMail::putArgs(MailBytes& out, Heap& heap, PredId p, const Value* args,
   }
 }
 
+}  // namespace
+
+void ShardMail::putArgs(MailBytes& out, Heap& heap, PredId p, const Value* args, bool negative, bool adopt,
+                        std::vector<Object*>* shareLater) {
+  handOver(heap, p, args, adopt, shareLater);
+  const std::uint32_t arity = program_.predicates[p].arity();
+  const std::size_t at = out.size();
+  out.resize(at + factBytes(arity));  // one resize for the whole fact
+  writeFact(out.data() + at, p, arity, args, negative);
+}
+
+// Every fact a thread sends to another's node comes this way: the record written with one resize.
 void ShardMail::putFact(MailBytes& out, Heap& heap, NodeId dest, PredId p, const Value* args, bool negative) {
-  put<std::uint8_t>(out, kFact);
-  put<std::uint32_t>(out, dest);
-  putArgs(out, heap, p, args, negative, /*adopt=*/true);
+  handOver(heap, p, args, /*adopt=*/true, nullptr);
+  const std::uint32_t arity = program_.predicates[p].arity();
+  const std::size_t at = out.size();
+  out.resize(at + 5 + factBytes(arity));
+  std::uint8_t* w = out.data() + at;
+  w[0] = kFact;
+  std::memcpy(w + 1, &dest, 4);
+  writeFact(w + 5, p, arity, args, negative);
 }
 
 template <class Use>
@@ -176,14 +200,14 @@ void ShardMail::putNode(MailBytes& out, Machine& from, NodeId n, bool moved) {
 void ShardMail::apply(Machine& to, const MailBytes& in, Taken& taken) {
   // A batch names nodes at random: their mailbox entries are fetched 8 facts ahead, and the ends
   // of their mailboxes (whose address is in the entry) 4 ahead, as Machine::postAll does.
-  FactsAhead entries(in, program_.predicates, 8), tails(in, program_.predicates, 4);
+  FactsAhead ahead(in, program_.predicates);
   for (std::size_t pos = 0; pos < in.size();) {
     const std::size_t start = pos;
     const auto kind = get<std::uint8_t>(in, pos);
     const NodeId node = get<std::uint32_t>(in, pos);
     if (kind == kFact) {
-      entries.keepAhead(start, [&](NodeId n) { to.prefetchPost(n); });
-      tails.keepAhead(start, [&](NodeId n) { to.prefetchPostTail(n); });
+      ahead.keepAhead(
+          start, [&](NodeId n) { to.prefetchPost(n); }, [&](NodeId n) { to.prefetchPostTail(n); });
       ++taken.facts;
       readFact(to, in, pos, [&](PredId p, const Value* args, bool negative) {
         to.receive(node, p, args, negative, /*adopt=*/true);

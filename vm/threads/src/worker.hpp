@@ -46,6 +46,7 @@ class alignas(64) Worker final : public ShardLink {
 
   // ShardLink.
   ThreadId ownerOf(NodeId n) const override { return directory_.ownerOf(n); }
+  const NodeOwners* graphOwners() const override { return &directory_.graphOwners(); }
   void sendRemote(ThreadId to, NodeId dest, PredId p, const Value* args, bool negative) override;
   void coordinateRemote(ThreadId to, Opcode op, NodeId n, double value) override;
   NodeId allocateNodeBlock(ThreadId self, NodeId& count) override {

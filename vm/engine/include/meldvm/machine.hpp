@@ -279,8 +279,11 @@ class Machine : private SchedulerView {
   void coordination(Opcode op, NodeId n, Value arg);
   void placeNode(Opcode op, NodeId n, Value arg);  // set-cpu, set-affinity
   void setStatic(NodeId n, bool isStatic);
-  bool ownedHere(NodeId n) const { return !shard_ || shard_->ownerOf(n) == placement_.self; }
-  ThreadId ownerOf(NodeId n) const { return shard_ ? shard_->ownerOf(n) : 0; }
+  bool ownedHere(NodeId n) const { return !shard_ || ownerOf(n) == placement_.self; }
+  ThreadId ownerOf(NodeId n) const {
+    if (graphOwners_ && n < graphOwners_->size()) return graphOwners_->owner(n);
+    return shard_ ? shard_->ownerOf(n) : 0;
+  }
   void growNodes(NodeId end);  // node arrays up to id end (a shard's block of created ids)
   void initNode(NodeId n);     // its _init fact
   void stopProgram() {
@@ -417,6 +420,7 @@ class Machine : private SchedulerView {
   bool started_ = false;
   MachineHost* host_ = nullptr;
   ShardLink* shard_ = nullptr;
+  const NodeOwners* graphOwners_ = nullptr;  // shard_'s, when it has them
   const std::atomic<bool>* stopFlag_ = nullptr;
   const std::atomic<bool>* safePointFlag_ = nullptr;
   // A safe point between every so many linear facts a node run takes in (deliverIncoming).

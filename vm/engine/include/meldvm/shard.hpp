@@ -12,6 +12,7 @@
 
 #include <cstdint>
 
+#include "meldvm/node_owners.hpp"
 #include "meldvm/program.hpp"
 #include "meldvm/value.hpp"
 
@@ -32,6 +33,9 @@ class ShardLink {
   // The thread that owns node n now (initial, thread and created nodes), or kNoThread when no
   // node n exists. Read on every fact sent to a node outside the shard's own initial range.
   virtual ThreadId ownerOf(NodeId n) const = 0;
+  // The graph nodes' owners, for the Machine to read without a call (ownerOf answers for the
+  // others); null where the runtime keeps them otherwise (the simulated chip).
+  virtual const NodeOwners* graphOwners() const { return nullptr; }
   // A fact for node `dest` of thread `to`; the link takes over the references of its boxed
   // arguments. Sent in order: facts from one thread to one node arrive in sending order.
   virtual void sendRemote(ThreadId to, NodeId dest, PredId p, const Value* args, bool negative) = 0;

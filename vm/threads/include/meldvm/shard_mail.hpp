@@ -66,8 +66,11 @@ class ShardMail {
   }
 
  private:
-  // adopt: the record takes over the caller's references (else it retains its own). shareLater:
-  // the boxed values are listed there for Heap::shareAll, not shared one by one.
+  // A fact's boxed values shared for the record. adopt: the record takes over the caller's
+  // references (else it retains its own). shareLater: the boxed values are listed there for
+  // Heap::shareAll, not shared one by one.
+  void handOver(Heap& heap, PredId p, const Value* args, bool adopt, std::vector<Object*>* shareLater);
+  // handOver, then the fact's predicate word and arguments.
   void putArgs(MailBytes& out, Heap& heap, PredId p, const Value* args, bool negative, bool adopt,
                std::vector<Object*>* shareLater = nullptr);
   // use(pred, args, negative) returns whether it took over the record's references; if it throws,
