@@ -127,7 +127,7 @@ void ShardMail::putArgs(MailBytes& out, Heap& heap, PredId p, const Value* args,
 
 // Every fact a thread sends to another's node comes this way: the record written with one resize.
 void ShardMail::putFact(MailBytes& out, Heap& heap, NodeId dest, PredId p, const Value* args, bool negative) {
-  handOver(heap, p, args, /*adopt=*/true, nullptr);
+  if (!boxed_[p].empty()) handOver(heap, p, args, /*adopt=*/true, nullptr);
   const std::uint32_t arity = program_.predicates[p].arity();
   const std::size_t at = out.size();
   out.resize(at + 5 + factBytes(arity));
