@@ -480,7 +480,7 @@ void Machine::send(NodeId host, NodeId dest, PredId p, const Value* args, bool n
   if (shard_) [[unlikely]] {
     const ThreadId owner = ownerOf(dest);
     if (owner == kNoThread) noSuchNode(p, dest);
-    if (owner != placement_.self) {  // routed when the run ends (postOrRoute)
+    if (owner != placement_.self) {
       const PredicateDesc& d = program_.predicates[p];
       if (d.action) {  // on the VM's own graph an action only prints, at the deriving node
         if (!negative) action(host, dest, p, args);
@@ -489,8 +489,17 @@ void Machine::send(NodeId host, NodeId dest, PredId p, const Value* args, bool n
       if (d.linear && negative) return;
       if (!negative) ++stats_.factsDerived, ++runDerived_;
       ++stats_.factsSent;
-      (d.linear ? sentLinear_ : sentPersistent_)
-          .push_back({dest, p, negative, std::uint32_t(sentArgs_.size())});
+      if (!d.linear) {
+        // Into the batch for the owner now: the persistent facts of a run go out in the order they
+        // were sent (postAll), which this keeps, and another thread sees them only when the batch
+        // is flushed, between runs or in a rebalance, which takes every batch in before a node
+        // moves. A copy and a second owner look-up less than waiting for the run's end.
+        if (db_->holdsReferences(p)) retainArgs(p, args);  // the record takes them over
+        shard_->sendRemote(owner, dest, p, args, negative);
+        return;
+      }
+      // The linear ones when the run ends, in the delivery order of send_order.hpp (postOrRoute).
+      sentLinear_.push_back({dest, p, negative, std::uint32_t(sentArgs_.size())});
       pushArgs(sentArgs_, p, args);
       return;
     }
