@@ -22,6 +22,7 @@ class MeldChip::CoreShard final : public meldvm::ShardLink {
   }
 
   ThreadId ownerOf(NodeId n) const override { return chip_.directory_->ownerOf(n); }
+  const meldvm::NodeOwners* graphOwners() const override { return &chip_.directory_->graphOwners(); }
   void sendRemote(ThreadId to, NodeId dest, meldvm::PredId p, const meldvm::Value* args,
                   bool negative) override {
     const std::size_t before = outgoing_[to].size();

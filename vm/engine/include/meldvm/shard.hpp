@@ -31,10 +31,10 @@ class ShardLink {
  public:
   virtual ~ShardLink() = default;
   // The thread that owns node n now (initial, thread and created nodes), or kNoThread when no
-  // node n exists. Read on every fact sent to a node outside the shard's own initial range.
+  // node n exists.
   virtual ThreadId ownerOf(NodeId n) const = 0;
-  // The graph nodes' owners, for the Machine to read without a call (ownerOf answers for the
-  // others); null where the runtime keeps them otherwise (the simulated chip).
+  // The graph nodes' owners, read by the Machine on every fact it sends without a call (ownerOf
+  // answers for the thread nodes and created ones); null: ownerOf answers for all.
   virtual const NodeOwners* graphOwners() const { return nullptr; }
   // A fact for node `dest` of thread `to`; the link takes over the references of its boxed
   // arguments. Sent in order: facts from one thread to one node arrive in sending order.
