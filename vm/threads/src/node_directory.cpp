@@ -54,7 +54,7 @@ NodeDirectory::NodeDirectory(const Program& program, NodeId graphNodes, ThreadId
       owners_(graphNodes, threads),
       blockOwner_(new std::atomic<ThreadId>[kMaxBlocks]) {
   for (ThreadId t = 1; t < threads; ++t)  // (thread 0's are the zeros it starts with)
-    for (NodeId n = firstOwned(t); n < endOwned(t); ++n) owners_.move(n, t);
+    owners_.assignInitial(firstOwned(t), endOwned(t), t);
   for (std::uint32_t b = 0; b < kMaxBlocks; ++b) blockOwner_[b].store(kNoThread, std::memory_order_relaxed);
 }
 
