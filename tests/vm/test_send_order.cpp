@@ -85,3 +85,25 @@ BOOST_AUTO_TEST_CASE(random_runs_follow_the_definition) {
     BOOST_TEST((arranged(order, sent) == want), "run " << run << " of " << n << " facts");
   }
 }
+
+BOOST_AUTO_TEST_CASE(runs_sent_destination_by_destination_follow_the_definition) {
+  // The shape a comprehension over the neighbours sends (a fact or two of each predicate to one
+  // destination, then the next), where the delivery order is often the sending order: blocks of
+  // facts per destination, destinations past the eighth in rising or falling order, some sent to
+  // twice, some predicates repeated within a block.
+  std::mt19937_64 rng(11);
+  SendOrder order;
+  for (int run = 0; run < 3000; ++run) {
+    const std::size_t blocks = rng() % 24;
+    const bool rising = rng() % 2, repeats = rng() % 4 == 0, duplicates = rng() % 4 == 0;
+    std::vector<Sent> sent;
+    for (std::size_t b = 0; b < blocks; ++b) {
+      std::uint64_t node = rising ? 10 * b + rng() % 10 : 1000 - 10 * b - rng() % 10;
+      if (repeats && b > 0 && rng() % 5 == 0) node = sent[rng() % sent.size()].node;
+      const std::size_t facts = 1 + rng() % 3;
+      for (std::size_t k = 0; k < facts; ++k) sent.push_back({node, duplicates ? rng() % 2 : k});
+    }
+    BOOST_TEST((arranged(order, sent) == definition(sent)),
+               "run " << run << " of " << sent.size() << " facts");
+  }
+}
