@@ -290,4 +290,24 @@ case_native() {
   cmp -s "$OUT" "$WORK/chain.dump" || fail "chain.meld --jit gave another dump than chain.so"
 }
 
+case_native_step_limit() {
+  # Native code counts a run's steps as the interpreter does (it begins most loops itself, from
+  # native_abi.h's meld_native_context): the fewest --max-steps a run completes under is the
+  # bytecode's for the shared object and the JIT too, and one less stops each of them.
+  printf 'type linear a(node, int).\ntype b(node, int).\n!b(@0, 1). !b(@1, 2).\na(@0, 0). a(@1, 0).\na(A, N), !b(A, K), N < 40 -o a(A, N + K).\n' >"$WORK/count.meld"
+  "$MELDC" --emit=native --no-progress "$WORK/count.meld" || fail "meldc --emit=native failed on count.meld"
+  lo=1
+  hi=100000
+  "$MELD" "$WORK/count.meld" --max-steps $hi >/dev/null 2>&1 || fail "count.meld did not end within $hi steps"
+  while [ $((hi - lo)) -gt 1 ]; do
+    mid=$(((lo + hi) / 2))
+    if "$MELD" "$WORK/count.meld" --max-steps $mid >/dev/null 2>&1; then hi=$mid; else lo=$mid; fi
+  done
+  for program in "$WORK/count.so" "$WORK/count.meld --jit"; do
+    run 0 $program --max-steps $hi
+    run 4 $program --max-steps $lo
+    has "$ERR" "stopped after $lo steps"
+  done
+}
+
 "case_$CASE"

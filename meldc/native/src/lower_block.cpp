@@ -228,12 +228,15 @@ NativeTypes::NativeTypes(llvm::Module& m) : module(m), context(m.getContext()) {
   llvm::Type* voidTy = llvm::Type::getVoidTy(context);
   llvm::Type* i64 = llvm::Type::getInt64Ty(context);
   helpersType = llvm::StructType::create(
-      context, {i32, ptr, ptr, ptr, ptr, ptr, ptr, ptr, ptr, ptr, ptr, ptr}, "meld_native_helpers");
+      context, {i32, ptr, ptr, ptr, ptr, ptr, ptr, ptr, ptr, ptr, ptr}, "meld_native_helpers");
   loopStructType =
       llvm::StructType::create(context, {ptr, ptr, ptr, ptr, i32, i32, i32, i32}, "meld_native_loop");
   slotType = llvm::StructType::create(context, {i32, i32, i32, i32, ptr}, "meld_native_slot");
+  contextType =
+      llvm::StructType::create(context, {ptr, ptr, ptr, ptr, ptr, ptr, ptr, i32, i32}, "meld_native_context");
+  tableType = llvm::StructType::create(context, {ptr, i32, i32}, "meld_native_table");
+  frameHeadType = llvm::StructType::create(context, {ptr, ptr, ptr, ptr, ptr, ptr, i32}, "meld_native_frame_head");
   loopBeginType = llvm::FunctionType::get(voidTy, {ptr, ptr, i32, ptr}, false);
-  loopEndType = llvm::FunctionType::get(voidTy, {ptr, ptr, i32, i64}, false);
   blockType = blockFunctionType(context);
   bodyType = llvm::FunctionType::get(i32, {ptr, ptr, ptr, ptr, ptr}, false);
   builtinType = llvm::FunctionType::get(i64, {ptr, ptr, i32, i32}, false);

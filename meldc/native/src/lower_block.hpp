@@ -28,8 +28,11 @@ struct NativeTypes {
   llvm::FunctionType* bodyType;      // a loop body run by native code: the block's arguments, then the loops
   llvm::StructType* loopStructType;  // meld_native_loop
   llvm::StructType* slotType;        // meld_native_slot
+  llvm::StructType* contextType;     // meld_native_context
+  llvm::StructType* tableType;       // meld_native_table
+  llvm::StructType* frameHeadType;   // meld_native_frame_head
   llvm::FunctionType *loopType, *stepType, *testType, *consumeType, *updatedType, *slotArgsType,
-      *ruleFiredType, *releaseLastType, *loopBeginType, *loopEndType, *builtinType;
+      *ruleFiredType, *releaseLastType, *loopBeginType, *builtinType;
 };
 
 // Lowers the block's code; returns its entry function, external and named `name` (the loop bodies

@@ -1,6 +1,8 @@
 // The lowering of what touches the fact store and the heap: loops (native for ITER and ITER_KEY),
 // FIRE, runs of LOAD and TEST on a slot, CALL of a built-in, reference counts. What each function
 // does is said once, at its declaration in region_lowering.hpp.
+#include <llvm/IR/MDBuilder.h>
+
 #include "region_lowering.hpp"
 
 namespace meldc::native::detail {
@@ -65,7 +67,10 @@ void RegionLowering::lowerNativeLoop(Function& f, llvm::IRBuilder<>& b, std::uin
   llvm::AllocaInst* factVar = local(f, i32, "fact");
   llvm::AllocaInst* triedVar = local(f, i64, "tried");
   llvm::AllocaInst* firedVar = local(f, b.getInt1Ty(), "fired");
-  b.CreateCall(t_.loopBeginType, helper(f, b, kLoopBegin), {f.vm, f.frame, b.getInt32(pc), info});
+  if (Opcode(code_[pc]) == Opcode::ITER && !(flags & meldvm::kIterThread))
+    beginLoop(f, b, pc, info);
+  else
+    b.CreateCall(t_.loopBeginType, helper(f, b, kLoopBegin), {f.vm, f.frame, b.getInt32(pc), info});
   b.CreateStore(info, b.CreateConstInBoundsGEP1_64(b.getPtrTy(), f.loops, slot));
   const LoopView loop = loadLoopView(b, info);
   auto field = [&](LoopField k, llvm::Type* type) { return loopField(b, info, k, type); };
@@ -127,10 +132,63 @@ void RegionLowering::lowerNativeLoop(Function& f, llvm::IRBuilder<>& b, std::uin
   if (pipe) stepListPipeline(f, b, loop, *pipe, nextWord, listField);
   b.CreateBr(header);
 
-  b.SetInsertPoint(exit);
-  b.CreateCall(t_.loopEndType, helper(f, b, kLoopEnd),
-               {f.vm, f.frame, b.getInt32(pc), b.CreateLoad(i64, triedVar)});
+  b.SetInsertPoint(exit);  // the loop's end: the facts tried counted, the slot unbound
+  llvm::Value* triedTotal = contextField(f, b, kContextFactsTried, b.getPtrTy());
+  b.CreateStore(b.CreateAdd(b.CreateLoad(i64, triedTotal), b.CreateLoad(i64, triedVar)), triedTotal);
+  b.CreateStore(b.getInt32(MELD_NATIVE_NO_FACT), slotField(b, loop.slots, slot, kSlotFact));
   endLoop(f, b, pc, b.CreateLoad(b.getInt1Ty(), firedVar), stopping());
+}
+
+void RegionLowering::beginLoop(Function& f, llvm::IRBuilder<>& b, std::uint32_t pc, llvm::Value* info) {
+  const std::uint32_t pred = code_[pc + 1], slot = code_[pc + 2], flags = code_[pc + 3];
+  llvm::Type* i32 = b.getInt32Ty();
+  llvm::Type* i64 = b.getInt64Ty();
+  llvm::Type* ptr = b.getPtrTy();
+  llvm::BasicBlock* atLimit = newBlock(f, "begin.limit");
+  llvm::BasicBlock* here = newBlock(f, "begin");
+  llvm::BasicBlock* begun = newBlock(f, "begun");
+  llvm::Value* steps = contextField(f, b, kContextStepsLeft, ptr);
+  llvm::Value* left = b.CreateLoad(i64, steps);
+  llvm::MDBuilder weights(t_.context);
+  b.CreateCondBr(b.CreateICmpEQ(left, b.getInt64(1)), atLimit, here, weights.createBranchWeights(1, 1 << 20));
+  b.SetInsertPoint(atLimit);
+  b.CreateCall(t_.loopBeginType, helper(f, b, kLoopBegin), {f.vm, f.frame, b.getInt32(pc), info});
+  b.CreateBr(begun);
+
+  b.SetInsertPoint(here);
+  b.CreateStore(b.CreateSub(left, b.getInt64(1)), steps);
+  llvm::Value* slots = b.CreateLoad(ptr, b.CreateStructGEP(t_.frameHeadType, f.frame, kFrameSlots));
+  llvm::Value* host = b.CreateLoad(i32, b.CreateStructGEP(t_.frameHeadType, f.frame, kFrameHost));
+  b.CreateStore(b.getInt32(pred), slotField(b, slots, slot, kSlotPred));
+  b.CreateStore(host, slotField(b, slots, slot, kSlotNode));
+  b.CreateStore(b.getInt32(flags), slotField(b, slots, slot, kSlotFlags));
+  b.CreateStore(llvm::ConstantPointerNull::get(b.getPtrTy()), slotField(b, slots, slot, kSlotFixed));
+  llvm::Value* table = b.CreateConstInBoundsGEP1_64(t_.tableType, contextField(f, b, kContextTables, ptr), pred);
+  auto tableField = [&](TableField k, llvm::Type* type) {
+    llvm::LoadInst* load = b.CreateLoad(type, b.CreateStructGEP(t_.tableType, table, k));
+    load->setMetadata(llvm::LLVMContext::MD_invariant_load, llvm::MDNode::get(t_.context, {}));
+    return load;
+  };
+  // The host's heads: page host >> shift of the page table, node host & mask of the page.
+  llvm::Value* pages = b.CreateLoad(ptr, contextField(f, b, kContextHeadPages, ptr));
+  llvm::Value* page = b.CreateLoad(
+      ptr, b.CreateInBoundsGEP(ptr, pages, b.CreateZExt(b.CreateLShr(host, MELD_NATIVE_HEAD_PAGE_SHIFT), i64)));
+  llvm::Value* inPage = b.CreateZExt(b.CreateAnd(host, (1u << MELD_NATIVE_HEAD_PAGE_SHIFT) - 1), i64);
+  llvm::Value* perNode = b.CreateZExt(contextField(f, b, kContextHeadsPerNode, i32), i64);
+  llvm::Value* head = b.CreateAdd(b.CreateMul(inPage, perNode), b.getInt64(pred));
+  llvm::Value* first =
+      b.CreateLoad(i32, b.CreateInBoundsGEP(i32, page, b.CreateMul(head, b.getInt64(MELD_NATIVE_HEAD_WORDS))));
+  auto set = [&](LoopField k, llvm::Value* v) { b.CreateStore(v, b.CreateStructGEP(t_.loopStructType, info, k)); };
+  set(kLoopSlots, slots);
+  set(kLoopWords, tableField(kTableWords, ptr));
+  set(kLoopStop, contextField(f, b, kContextStop, ptr));
+  set(kLoopSharedStop, contextField(f, b, kContextSharedStop, ptr));
+  set(kLoopFirst, first);
+  set(kLoopStride, tableField(kTableStride, i32));
+  set(kLoopNextWord, b.getInt32(0));
+  set(kLoopArgOffset, tableField(kTableArgOffset, i32));
+  b.CreateBr(begun);
+  b.SetInsertPoint(begun);
 }
 
 void RegionLowering::fetchListsAhead(Function& f, llvm::IRBuilder<>& b, const LoopView& loop,

@@ -34,7 +34,6 @@ enum Helper : unsigned {
   kRuleFired,
   kReleaseLast,
   kLoopBegin,
-  kLoopEnd,
   kBuiltins
 };
 // Fields of meld_native_loop and meld_native_slot, in order.
@@ -49,6 +48,31 @@ enum LoopField : unsigned {
   kLoopArgOffset
 };
 enum SlotField : unsigned { kSlotPred, kSlotNode, kSlotFact, kSlotFlags, kSlotFixed };
+// Fields of meld_native_context, meld_native_table and meld_native_frame_head, in order.
+enum ContextField : unsigned {
+  kContextInterpreter,
+  kContextTables,
+  kContextHeadPages,
+  kContextStepsLeft,
+  kContextFactsTried,
+  kContextStop,
+  kContextSharedStop,
+  kContextHeadsPerNode
+};
+enum TableField : unsigned { kTableWords, kTableStride, kTableArgOffset };
+enum FrameHeadField : unsigned { kFrameSlots = 3, kFrameHost = 6 };
+static_assert(offsetof(meld_native_context, tables) == 8 * kContextTables &&
+              offsetof(meld_native_context, head_pages) == 8 * kContextHeadPages &&
+              offsetof(meld_native_context, steps_left) == 8 * kContextStepsLeft &&
+              offsetof(meld_native_context, facts_tried) == 8 * kContextFactsTried &&
+              offsetof(meld_native_context, stop) == 8 * kContextStop &&
+              offsetof(meld_native_context, shared_stop) == 8 * kContextSharedStop &&
+              offsetof(meld_native_context, heads_per_node) == 8 * kContextHeadsPerNode &&
+              sizeof(meld_native_context) == 8 * kContextHeadsPerNode + 8);
+static_assert(offsetof(meld_native_table, stride) == 8 && offsetof(meld_native_table, arg_offset) == 12 &&
+              sizeof(meld_native_table) == 16);
+static_assert(offsetof(meld_native_frame_head, slots) == 8 * kFrameSlots &&
+              offsetof(meld_native_frame_head, host) == 8 * kFrameHost);
 enum Status : std::int32_t { kNotFired = 0, kFired = 1, kReturn = 2 };
 // The LLVM struct of the helpers ({i32, ptr, ...}) puts field k at 8 * k: so must the C one.
 static_assert(offsetof(meld_native_helpers, loop) == kLoop * 8 &&
@@ -60,7 +84,6 @@ static_assert(offsetof(meld_native_helpers, loop) == kLoop * 8 &&
               offsetof(meld_native_helpers, rule_fired) == kRuleFired * 8 &&
               offsetof(meld_native_helpers, release_last) == kReleaseLast * 8 &&
               offsetof(meld_native_helpers, loop_begin) == kLoopBegin * 8 &&
-              offsetof(meld_native_helpers, loop_end) == kLoopEnd * 8 &&
               offsetof(meld_native_helpers, builtins) == kBuiltins * 8 &&
               sizeof(meld_native_helpers) == (kBuiltins + 1) * 8);
 static_assert(offsetof(meld_native_loop, words) == 8 * kLoopWords &&
@@ -208,9 +231,19 @@ class RegionLowering {
 
   void lowerLoop(Function& f, llvm::IRBuilder<>& b, std::uint32_t pc);
 
-  // ITER and ITER_KEY: the VM binds the slot and finds the first fact (loop_begin); the facts are
-  // stepped through here, in the order, with the skips and the counts of Interpreter::loop.
+  // ITER and ITER_KEY: the slot is bound and the first fact found (by beginLoop, or the VM's
+  // loop_begin); the facts are stepped through here, in the order, with the skips and the counts
+  // of Interpreter::loop.
   void lowerNativeLoop(Function& f, llvm::IRBuilder<>& b, std::uint32_t pc);
+  // A plain ITER at the host fills `info` as loop_begin would, from meld_native_context: the slot
+  // bound, the step counted (at the limit the VM's loop_begin is called, which throws), the
+  // first fact read from the host's list head.
+  void beginLoop(Function& f, llvm::IRBuilder<>& b, std::uint32_t pc, llvm::Value* info);
+  llvm::Value* contextField(Function& f, llvm::IRBuilder<>& b, ContextField k, llvm::Type* type) {
+    llvm::LoadInst* load = b.CreateLoad(type, b.CreateStructGEP(t_.contextType, f.vm, k));
+    load->setMetadata(llvm::LLVMContext::MD_invariant_load, llvm::MDNode::get(t_.context, {}));
+    return load;
+  }
   // Before visiting `fact`, a loop that reads its facts' lists fetches the lists of the facts
   // ahead down to maxDepth (detail::listFetchDepth), as the interpreter's walkListsAhead does.
   void fetchListsAhead(Function& f, llvm::IRBuilder<>& b, const LoopView& loop, llvm::Value* fact,

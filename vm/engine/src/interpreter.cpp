@@ -39,9 +39,34 @@ Interpreter::Interpreter(Machine& machine, const Program& program, Database& db,
   regChunks_.push_back(rawChunk<Value>(kRegChunk));
   slotChunks_.push_back(rawChunk<Slot>(kSlotChunk));
   args_.resize(64);
+  if (native_) setUpNativeContext();
 }
 
 Interpreter::~Interpreter() = default;
+
+// The Machine requested its indexes before it made its interpreter: the tables' layouts are final.
+void Interpreter::setUpNativeContext() {
+  static_assert(offsetof(Frame, slots) == offsetof(meld_native_frame_head, slots) &&
+                offsetof(Frame, host) == offsetof(meld_native_frame_head, host) &&
+                sizeof(NodeId) == sizeof(std::uint32_t));
+  static_assert(sizeof(ListHead) == 4 * MELD_NATIVE_HEAD_WORDS && offsetof(ListHead, first) == 0 &&
+                NodeHeads::kShift == MELD_NATIVE_HEAD_PAGE_SHIFT);
+  static_assert(sizeof(machine_.stepsLeft_) == 8 && sizeof(machine_.stats_.factsTried) == 8);
+  for (PredId p = 0; p < program_.predicates.size(); ++p) {
+    const FactTable& t = db_.table(p);
+    nativeTables_.push_back({reinterpret_cast<const std::uint64_t* const*>(t.slotArrayAddress()), t.stride(),
+                             t.argOffset()});
+  }
+  meld_native_context& c = nativeContext_;
+  c.interpreter = this;
+  c.tables = nativeTables_.data();
+  c.head_pages = reinterpret_cast<const std::uint32_t* const* const*>(db_.nodeHeads().pageTableAddress());
+  c.heads_per_node = db_.nodeHeads().headsPerNode();
+  c.steps_left = &machine_.stepsLeft_;
+  c.facts_tried = &machine_.stats_.factsTried;
+  c.stop = reinterpret_cast<const std::uint8_t*>(&machine_.stop_);
+  c.shared_stop = machine_.stopFlag_ ? reinterpret_cast<const std::uint8_t*>(machine_.stopFlag_) : c.stop;
+}
 
 // Per register whether it is boxed, then whether any loop consumes its fact (fire() has nothing
 // to do otherwise); and the boxed registers in a list, which leave() releases.
@@ -399,7 +424,9 @@ struct NativeHelpers {
                 sizeof(ConsCell) == 8 * (MELD_NATIVE_LIST_TAIL_WORD + 1));
   static_assert(sizeof(bool) == 1 && sizeof(std::atomic<bool>) == 1 && std::atomic<bool>::is_always_lock_free,
                 "native code reads the stop flags as bytes");
-  static Interpreter& vm(meld_native_vm* v) { return *reinterpret_cast<Interpreter*>(v); }
+  static Interpreter& vm(meld_native_vm* v) {
+    return *static_cast<Interpreter*>(reinterpret_cast<meld_native_context*>(v)->interpreter);
+  }
   static Interpreter::Frame& frame(meld_native_frame* f) { return *reinterpret_cast<Interpreter::Frame*>(f); }
 
   // ITER and ITER_KEY loops run in native code: the slot is bound here, native code steps through
@@ -424,12 +451,6 @@ struct NativeHelpers {
       out->first = in.db_.first(h.at, h.pred);
       out->next_word = 0;
     }
-  }
-  static void loopEnd(meld_native_vm* v, meld_native_frame* fr, std::uint32_t pc, std::uint64_t tried) {
-    Interpreter& in = vm(v);
-    Interpreter::Frame& f = frame(fr);
-    in.machine_.stats_.factsTried += tried;
-    f.slots[f.code[pc + 2]].fact = kNoFact;
   }
   static int32_t loop(const meld_native_helpers* h, meld_native_vm* v, meld_native_frame* fr,
                       std::uint32_t pc, meld_native_block body) {
@@ -493,14 +514,13 @@ struct NativeHelpers {
       &ruleFired,
       &releaseLast,
       &loopBegin,
-      &loopEnd,
       kBuiltins,
   };
 };
 
 Interpreter::Status Interpreter::start(Frame& f, meld_native_block native) {
   if (!native) return exec(f, 0);
-  return Status(native(&NativeHelpers::kTable, reinterpret_cast<meld_native_vm*>(this),
+  return Status(native(&NativeHelpers::kTable, reinterpret_cast<meld_native_vm*>(&nativeContext_),
                        reinterpret_cast<meld_native_frame*>(&f), reinterpret_cast<std::uint64_t*>(f.regs)));
 }
 

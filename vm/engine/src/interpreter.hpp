@@ -195,6 +195,10 @@ class Interpreter {
   std::vector<Chunk<Slot>> slotChunks_;
   std::size_t regChunk_ = 0, regUsed_ = 0, slotChunk_ = 0, slotUsed_ = 0;
   const NativeCode* native_;
+  // What native code's `vm` points at (native_abi.h): it begins and ends plain loops from it.
+  meld_native_context nativeContext_{};
+  std::vector<meld_native_table> nativeTables_;
+  void setUpNativeContext();
   std::unordered_map<const CodeBlock*, BlockInfo> blocks_;
   std::vector<const BlockInfo*> ruleInfo_;  // into blocks_ (its entries never move), by rule
   BlockInfo axiomInfo_;                     // infoOf an axiom block (not cached)

@@ -14,6 +14,7 @@ void NodeHeads::addNodes(NodeId count) {
   if (!empty_) empty_ = newPage(kPageNodes);
   const std::size_t pages = (std::size_t(nodes_) + kMask) >> kShift;
   if (pages > pages_.size()) pages_.resize(pages, empty_.get());
+  pageTable_ = pages_.data();
 }
 
 std::unique_ptr<ListHead[]> NodeHeads::newPage(std::size_t nodes) {
@@ -29,6 +30,7 @@ void NodeHeads::resizeFirstPage(std::size_t nodes) {
   if (owned_.empty()) {
     owned_.push_back(std::move(page));
     pages_.assign(1, owned_[0].get());
+    pageTable_ = pages_.data();
   } else {
     owned_[0] = std::move(page);  // page 0 is the first and only page allocated so far
     pages_[0] = owned_[0].get();

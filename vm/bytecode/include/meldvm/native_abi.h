@@ -21,9 +21,9 @@ extern "C" {
 #endif
 
 /* Bumped whenever a helper, its meaning or the block signature changes. */
-#define MELD_NATIVE_ABI_VERSION 7u
+#define MELD_NATIVE_ABI_VERSION 8u
 
-typedef struct meld_native_vm meld_native_vm;       /* the interpreter running the block */
+typedef struct meld_native_vm meld_native_vm;       /* the VM's meld_native_context (below) */
 typedef struct meld_native_frame meld_native_frame; /* its frame (registers, loop slots) */
 typedef struct meld_native_helpers meld_native_helpers;
 
@@ -53,6 +53,48 @@ typedef struct meld_native_slot {
   uint32_t flags;
   const uint64_t* fixed; /* a process's trigger: pre-bound arguments instead of a stored fact */
 } meld_native_slot;
+
+/* Where a predicate's facts are (one per predicate, in meld_native_context::tables): the slot
+ * array's address (it moves when the table grows), a fact's size in words and the word of its
+ * first argument (fixed once the VM runs). */
+typedef struct meld_native_table {
+  const uint64_t* const* words;
+  uint32_t stride;
+  uint32_t arg_offset;
+} meld_native_table;
+
+/* The start of a frame (meldvm::Interpreter::Frame, same layout): the running node and the loop
+ * slots, which native code reads to begin a loop itself. */
+typedef struct meld_native_frame_head {
+  const void* block;
+  const uint32_t* code;
+  uint64_t* regs;
+  meld_native_slot* slots;
+  const uint8_t* boxed;
+  const uint8_t* slot_flags;
+  uint32_t host;
+} meld_native_frame_head;
+
+/* A node's list heads: per table, its first fact, its last fact and its size (4 bytes each). A
+ * node n's heads are at (*head_pages)[n >> MELD_NATIVE_HEAD_PAGE_SHIFT], node (n & mask) of that
+ * page, heads_per_node of them per node. */
+#define MELD_NATIVE_HEAD_PAGE_SHIFT 8u
+#define MELD_NATIVE_HEAD_WORDS 3u
+
+/* What a block's `vm` argument points at: what native code reads to begin and end an ITER loop
+ * without calling the VM (the predicate's table, the node's list heads, the step count), and the
+ * VM itself for the helpers. Constant while the VM runs (what it points at changes). */
+typedef struct meld_native_context {
+  void* interpreter;                        /* the helpers' */
+  const meld_native_table* tables;          /* per predicate */
+  const uint32_t* const* const* head_pages; /* the page table of the list heads (it moves) */
+  uint64_t* steps_left;   /* a loop counts one step: at 1, loop_begin is called (it throws) */
+  uint64_t* facts_tried;  /* the statistics' facts tried */
+  const uint8_t* stop;    /* nonzero: the run is stopping (the machine's flag) */
+  const uint8_t* shared_stop; /* nonzero: every thread is stopping (an atomic flag) */
+  uint32_t heads_per_node;
+  uint32_t reserved;
+} meld_native_context;
 
 /* What loop_begin tells native code about an ITER or ITER_KEY loop, so that it steps through the
  * facts itself. A fact f is the 8-byte words [f * stride, (f + 1) * stride) of the predicate's
@@ -96,10 +138,11 @@ struct meld_native_helpers {
    * when the count's top bit says the value is shared between threads and changes atomically). */
   void (*release_last)(meld_native_vm* vm, uint32_t type, uint64_t value);
   /* ITER or ITER_KEY at pc: binds its slot's predicate and node, counts the loop and fills `out`;
-   * native code then binds each fact to slots[slot].fact and runs the body itself. */
+   * native code then binds each fact to slots[slot].fact and runs the body itself, and at the
+   * loop's end adds the facts it visited to *facts_tried and unbinds the slot (its fact is
+   * MELD_NATIVE_NO_FACT). Native code begins a plain ITER at the host itself, from
+   * meld_native_context, and calls this for ITER_KEY, thread facts and the step at the limit. */
   void (*loop_begin)(meld_native_vm* vm, meld_native_frame* f, uint32_t pc, meld_native_loop* out);
-  /* The end of that loop: `tried` facts were visited; unbinds the slot. */
-  void (*loop_end)(meld_native_vm* vm, meld_native_frame* f, uint32_t pc, uint64_t tried);
   /* builtins[ID] runs the built-in function with that id of builtins.def: CALL calls it directly. */
   const meld_native_builtin* builtins;
 };

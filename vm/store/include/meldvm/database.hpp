@@ -157,6 +157,7 @@ class Database {
   // The node's list heads, indexed by predicate (size: its distinct facts): one look-up for a
   // caller that reads several predicates of the node.
   const ListHead* listHeads(NodeId n) const { return heads_.of(n); }
+  const NodeHeads& nodeHeads() const { return heads_; }  // for native code (native_abi.h)
   // The visible persistent fact with exactly these arguments, or kNoFact.
   FactRef find(NodeId n, PredId p, const Value* args) const;
   // Facts of the node whose indexed field equals key, in insertion order.

@@ -34,6 +34,12 @@ class NodeHeads {
     return page + std::size_t(n & kMask) * perNode_;
   }
 
+  // Where the page table is (native code finds a node's heads through it; it moves as pages are
+  // added), and the layout it needs: node n's heads are page n >> kShift, node n & kMask of it.
+  const ListHead* const* const* pageTableAddress() const { return &pageTable_; }
+  std::uint32_t headsPerNode() const { return perNode_; }
+  static constexpr std::uint32_t kShift = 8, kPageNodes = 1u << kShift, kMask = kPageNodes - 1;
+
   // The heads allocated (the empty page included) and the page table.
   std::size_t bytesReserved() const {
     return headsAllocated_ * sizeof(ListHead) + pages_.capacity() * sizeof(ListHead*) +
@@ -41,7 +47,6 @@ class NodeHeads {
   }
 
  private:
-  static constexpr std::uint32_t kShift = 8, kPageNodes = 1u << kShift, kMask = kPageNodes - 1;
   std::unique_ptr<ListHead[]> newPage(std::size_t nodes);  // empty heads, counted
   ListHead* allocate(std::size_t page);
   // Page 0 for `nodes` nodes (all of a small store, or a full page), keeping its heads.
@@ -53,6 +58,7 @@ class NodeHeads {
   std::size_t headsAllocated_ = 0;
   std::unique_ptr<ListHead[]> empty_;  // once the store has more than one page
   std::vector<ListHead*> pages_;       // empty_.get() until a node of the page is written
+  const ListHead* const* pageTable_ = nullptr;  // pages_.data(), kept at a fixed address
   std::vector<std::unique_ptr<ListHead[]>> owned_;
 };
 
