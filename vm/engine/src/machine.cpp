@@ -30,6 +30,7 @@ Machine::Machine(const Program& program, MachineOptions options)
       sched_(program.scheduling) {
   host_ = options_.host;
   shard_ = options_.shard;
+  ownGraphSerial_ = !host_ && !shard_;
   if (shard_) graphOwners_ = shard_->graphOwners();
   stopFlag_ = options_.stopFlag;
   safePointFlag_ = options_.shard ? options_.safePointFlag : nullptr;
@@ -468,8 +469,8 @@ void Machine::deriveEach(NodeId host, PredId p, const Value* args, std::uint32_t
   if (db_->deriveEach(host, p, args, count)) factAdded(host, p);
 }
 
-void Machine::send(NodeId host, NodeId dest, PredId p, const Value* args, bool negative,
-                   std::uint32_t delayMs) {
+void Machine::sendAny(NodeId host, NodeId dest, PredId p, const Value* args, bool negative,
+                      std::uint32_t delayMs) {
   // Delays need simulated time: only a host has it; on the VM's own graph a delayed fact is sent
   // at once.
   if (!host_) delayMs = 0;

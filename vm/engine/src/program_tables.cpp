@@ -21,6 +21,7 @@ void perPredicate(ProgramTables& t, const Program& program) {
     t.maxArity = std::max(t.maxArity, d.arity());
     t.queuedPersistent.push_back(!d.linear && (!t.processesOf[p].empty() || d.aggregated()));
     t.isLinear.push_back(d.linear);
+    t.plainLinear.push_back(d.linear && !d.action);
     t.arity.push_back(d.arity());
     t.listField.push_back(detail::firstListField(program, p));
     t.linearLists = t.linearLists || (d.linear && t.listField.back() >= 0);

@@ -263,7 +263,22 @@ class Machine : private SchedulerView {
   void derive(NodeId host, PredId p, const Value* args, bool negative);
   // derive(host, p, fact, false) for `count` facts stored back to back in `args` (AXIOM_FACTS).
   void deriveEach(NodeId host, PredId p, const Value* args, std::uint32_t count);
-  void send(NodeId host, NodeId dest, PredId p, const Value* args, bool negative, std::uint32_t delayMs = 0);
+  // The common case inline: a linear fact sent by a run of the VM on its own graph and one thread,
+  // which waits in a buffer for the run's end (storeSentLinear); every other case in sendAny.
+  void send(NodeId host, NodeId dest, PredId p, const Value* args, bool negative, std::uint32_t delayMs = 0) {
+    if (ownGraphSerial_ && tables_.plainLinear[p] && !negative && dest < db_->nodeCount() && db_->alive(dest)) {
+      db_->prefetchListHead(dest, p);
+      sched_.prefetch(dest);
+      ++stats_.factsDerived;
+      ++runDerived_;
+      ++stats_.factsSent;
+      sentLinear_.push_back({dest, p, false, std::uint32_t(sentArgs_.size())});
+      pushArgs(sentArgs_, p, args);
+      return;
+    }
+    sendAny(host, dest, p, args, negative, delayMs);
+  }
+  void sendAny(NodeId host, NodeId dest, PredId p, const Value* args, bool negative, std::uint32_t delayMs);
   void action(NodeId from, NodeId dest, PredId p, const Value* args);
   // A rule consumed the fact: marked now, unlinked when the rule run ends (finishRuleRun).
   void consumed(NodeId host, PredId p, FactRef f) {
@@ -420,6 +435,7 @@ class Machine : private SchedulerView {
   bool started_ = false;
   MachineHost* host_ = nullptr;
   ShardLink* shard_ = nullptr;
+  bool ownGraphSerial_ = false;  // neither a host's block nor a shard (send's inline case)
   const NodeOwners* graphOwners_ = nullptr;  // shard_'s, when it has them
   const std::atomic<bool>* stopFlag_ = nullptr;
   const std::atomic<bool>* safePointFlag_ = nullptr;

@@ -33,6 +33,7 @@ struct ProgramTables {
   std::vector<std::vector<std::uint32_t>> processesOf;  // its processes (persistent rules, §6.5)
   std::vector<std::uint8_t> queuedPersistent;           // has processes or an aggregate: derive via the queue
   std::vector<std::uint8_t> isLinear;
+  std::vector<std::uint8_t> plainLinear;  // linear and not an action: sent facts wait in a buffer
   std::vector<std::uint8_t> isThreadPred;
   std::vector<std::uint32_t> arity;  // home excluded
   // The first field holding a list, or -1 (walkListsAhead in vm/engine/src/list_pipeline.hpp).
