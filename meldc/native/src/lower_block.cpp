@@ -83,6 +83,10 @@ void RegionLowering::lowerInstruction(Function& f, llvm::IRBuilder<>& b, std::ui
     case Opcode::FIRE:
     case Opcode::CFIRE:
       return lowerFire(f, b, pc, Opcode(c[0]) == Opcode::FIRE);
+    case Opcode::DERIVE:
+    case Opcode::SEND:
+    case Opcode::UPDATE:
+      return lowerFactOut(f, b, pc);
     case Opcode::RET:
       return ret(b, kReturn);
     case Opcode::RET_IF_UPDATED: {
@@ -187,10 +191,7 @@ void RegionLowering::lowerInstruction(Function& f, llvm::IRBuilder<>& b, std::ui
     case Opcode::FIELD:
     case Opcode::CALLF:
     case Opcode::CALLX:
-    case Opcode::DERIVE:
-    case Opcode::SEND:
     case Opcode::SEND_DELAY:
-    case Opcode::UPDATE:
     case Opcode::ACTION:
     case Opcode::AXIOMS:
     case Opcode::NEWNODE:
@@ -228,7 +229,7 @@ NativeTypes::NativeTypes(llvm::Module& m) : module(m), context(m.getContext()) {
   llvm::Type* voidTy = llvm::Type::getVoidTy(context);
   llvm::Type* i64 = llvm::Type::getInt64Ty(context);
   helpersType = llvm::StructType::create(
-      context, {i32, ptr, ptr, ptr, ptr, ptr, ptr, ptr, ptr, ptr, ptr}, "meld_native_helpers");
+      context, {i32, ptr, ptr, ptr, ptr, ptr, ptr, ptr, ptr, ptr, ptr, ptr, ptr, ptr}, "meld_native_helpers");
   loopStructType =
       llvm::StructType::create(context, {ptr, ptr, ptr, ptr, i32, i32, i32, i32}, "meld_native_loop");
   slotType = llvm::StructType::create(context, {i32, i32, i32, i32, ptr}, "meld_native_slot");
@@ -248,6 +249,8 @@ NativeTypes::NativeTypes(llvm::Module& m) : module(m), context(m.getContext()) {
   slotArgsType = llvm::FunctionType::get(ptr, {ptr, ptr, i32}, false);
   releaseLastType = llvm::FunctionType::get(voidTy, {ptr, i32, i64}, false);
   ruleFiredType = llvm::FunctionType::get(voidTy, {ptr}, false);
+  deriveType = llvm::FunctionType::get(voidTy, {ptr, ptr, i32, i32, ptr}, false);
+  sendType = llvm::FunctionType::get(voidTy, {ptr, ptr, i32, i32, i32, ptr}, false);
 }
 
 llvm::Function* lowerBlock(NativeTypes& types, const meldvm::Program& program, const meldvm::CodeBlock& block,

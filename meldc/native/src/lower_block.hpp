@@ -33,6 +33,7 @@ struct NativeTypes {
   llvm::StructType* frameHeadType;   // meld_native_frame_head
   llvm::FunctionType *loopType, *stepType, *testType, *consumeType, *updatedType, *slotArgsType,
       *ruleFiredType, *releaseLastType, *loopBeginType, *builtinType;
+  llvm::FunctionType *deriveType, *sendType;  // sendType: UPDATE's helper too
 };
 
 // Lowers the block's code; returns its entry function, external and named `name` (the loop bodies

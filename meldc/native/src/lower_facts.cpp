@@ -280,15 +280,42 @@ void RegionLowering::lowerCall(Function& f, llvm::IRBuilder<>& b, std::uint32_t 
     storeBool(f, b, dest, queensViolation(f, b, loadInt(f, b, c[5]), loadReg(f, b, c[6])));
     return (void)b.CreateBr(at(f, pc + length(pc)));
   }
-  llvm::Type* argsType = llvm::ArrayType::get(b.getInt64Ty(), std::max<std::uint32_t>(count, 1));
-  llvm::AllocaInst* args = local(f, argsType, "args");
-  for (std::uint32_t i = 0; i < count; ++i)
-    b.CreateStore(loadReg(f, b, c[5 + i]), b.CreateConstInBoundsGEP2_32(argsType, args, 0, i));
+  llvm::Value* args = gatherArgs(f, b, c + 5, count);
   llvm::Value* entry = b.CreateConstInBoundsGEP1_64(b.getPtrTy(), helper(f, b, kBuiltins), id);
   llvm::Value* result = b.CreateCall(t_.builtinType, invariantLoad(b, entry),
                                      {f.vm, args, b.getInt32(count), b.getInt32(c[3])});
   if (boxed(dest)) adjustCount(f, b, loadReg(f, b, dest), false, block_.registerTypes[dest]);
   b.CreateStore(result, reg(f, b, dest));
+  b.CreateBr(at(f, pc + length(pc)));
+}
+
+llvm::Value* RegionLowering::gatherArgs(Function& f, llvm::IRBuilder<>& b, const std::uint32_t* regs,
+                                        std::uint32_t count) {
+  llvm::Type* argsType = llvm::ArrayType::get(b.getInt64Ty(), std::max<std::uint32_t>(count, 1));
+  llvm::AllocaInst* args = local(f, argsType, "args");
+  for (std::uint32_t i = 0; i < count; ++i)
+    b.CreateStore(loadReg(f, b, regs[i]), b.CreateConstInBoundsGEP2_32(argsType, args, 0, i));
+  return args;
+}
+
+void RegionLowering::lowerFactOut(Function& f, llvm::IRBuilder<>& b, std::uint32_t pc) {
+  const std::uint32_t* c = code_.data() + pc;
+  switch (Opcode(c[0])) {
+    case Opcode::DERIVE:  // P*
+      b.CreateCall(t_.deriveType, helper(f, b, kDerive),
+                   {f.vm, f.frame, b.getInt32(pc), b.getInt32(c[1]), gatherArgs(f, b, c + 3, c[2])});
+      break;
+    case Opcode::SEND:  // Pn*: the node is the register's low half (Value::asNode)
+      b.CreateCall(t_.sendType, helper(f, b, kSend),
+                   {f.vm, f.frame, b.getInt32(pc), b.getInt32(c[1]), loadInt(f, b, c[2]),
+                    gatherArgs(f, b, c + 4, c[3])});
+      break;
+    default:  // UPDATE, SX*
+      b.CreateCall(t_.sendType, helper(f, b, kUpdate),
+                   {f.vm, f.frame, b.getInt32(pc), b.getInt32(c[1]),
+                    b.getInt32((c[2] & meldvm::kUpdateMoveToBack) != 0), gatherArgs(f, b, c + 4, c[3])});
+      break;
+  }
   b.CreateBr(at(f, pc + length(pc)));
 }
 

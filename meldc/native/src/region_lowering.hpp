@@ -34,7 +34,10 @@ enum Helper : unsigned {
   kRuleFired,
   kReleaseLast,
   kLoopBegin,
-  kBuiltins
+  kBuiltins,
+  kDerive,
+  kSend,
+  kUpdate
 };
 // Fields of meld_native_loop and meld_native_slot, in order.
 enum LoopField : unsigned {
@@ -85,7 +88,10 @@ static_assert(offsetof(meld_native_helpers, loop) == kLoop * 8 &&
               offsetof(meld_native_helpers, release_last) == kReleaseLast * 8 &&
               offsetof(meld_native_helpers, loop_begin) == kLoopBegin * 8 &&
               offsetof(meld_native_helpers, builtins) == kBuiltins * 8 &&
-              sizeof(meld_native_helpers) == (kBuiltins + 1) * 8);
+              offsetof(meld_native_helpers, derive) == kDerive * 8 &&
+              offsetof(meld_native_helpers, send) == kSend * 8 &&
+              offsetof(meld_native_helpers, update) == kUpdate * 8 &&
+              sizeof(meld_native_helpers) == (kUpdate + 1) * 8);
 static_assert(offsetof(meld_native_loop, words) == 8 * kLoopWords &&
               offsetof(meld_native_loop, stop) == 8 * kLoopStop &&
               offsetof(meld_native_loop, shared_stop) == 8 * kLoopSharedStop &&
@@ -296,6 +302,12 @@ class RegionLowering {
   // Before a boxed register takes `value`: the interpreter's retain, then setReg's release of the
   // old value.
   void setBoxed(Function& f, llvm::IRBuilder<>& b, std::uint32_t r, llvm::Value* value);
+
+  // DERIVE, SEND and UPDATE: the registers' values gathered here (constant register numbers, no
+  // decoding) and handed to the helper for that opcode.
+  void lowerFactOut(Function& f, llvm::IRBuilder<>& b, std::uint32_t pc);
+  // The registers regs[0, count) stored in a stack array of the function, which is returned.
+  llvm::Value* gatherArgs(Function& f, llvm::IRBuilder<>& b, const std::uint32_t* regs, std::uint32_t count);
 
   // CALL: the built-in's implementation is called directly (builtins[id]) with the registers'
   // values; its result is owned, so a boxed register only lets go of its old value. fabs is inline.

@@ -18,6 +18,28 @@ namespace meldvm {
 
 inline void Interpreter::consumeSlot(const Slot& sl) { machine_.consumed(sl.node, sl.pred, sl.fact); }
 
+inline void Interpreter::deriveFact(const Frame& f, std::uint32_t pc, PredId p, const Value* args) {
+  if (machine_.derivations_ && !f.negative) [[unlikely]]
+    noteDerivation(f, pc, f.host, p, args);
+  machine_.derive(f.host, p, args, f.negative);
+}
+
+inline void Interpreter::sendFact(const Frame& f, std::uint32_t pc, PredId p, NodeId dest, const Value* args,
+                                  std::uint32_t delayMs) {
+  if (machine_.derivations_ && !f.negative) [[unlikely]]
+    noteDerivation(f, pc, dest, p, args);
+  machine_.send(f.host, dest, p, args, f.negative, delayMs);
+}
+
+inline void Interpreter::updateFact(Frame& f, std::uint32_t pc, std::uint32_t slot, bool moveToBack,
+                                    const Value* args) {
+  const Slot& sl = f.slots[slot];
+  if (machine_.derivations_ && !f.negative) [[unlikely]]
+    noteDerivation(f, pc, sl.node, sl.pred, args);
+  if (!f.negative) machine_.updated(sl.node, sl.pred, sl.fact, args, moveToBack);
+  f.updated = true;
+}
+
 namespace {
 constexpr std::size_t kRegChunk = 1 << 16;
 constexpr std::size_t kSlotChunk = 1 << 12;
@@ -476,6 +498,18 @@ struct NativeHelpers {
     if (in.consumable(sl)) in.consumeSlot(sl);
   }
   static int32_t updated(meld_native_frame* f) { return frame(f).updated; }
+  static void derive(meld_native_vm* v, meld_native_frame* f, std::uint32_t pc, std::uint32_t pred,
+                     const std::uint64_t* args) {
+    vm(v).deriveFact(frame(f), pc, pred, reinterpret_cast<const Value*>(args));
+  }
+  static void send(meld_native_vm* v, meld_native_frame* f, std::uint32_t pc, std::uint32_t pred,
+                   std::uint32_t dest, const std::uint64_t* args) {
+    vm(v).sendFact(frame(f), pc, pred, dest, reinterpret_cast<const Value*>(args), 0);
+  }
+  static void update(meld_native_vm* v, meld_native_frame* f, std::uint32_t pc, std::uint32_t slot,
+                     std::uint32_t moveToBack, const std::uint64_t* args) {
+    vm(v).updateFact(frame(f), pc, slot, moveToBack != 0, reinterpret_cast<const Value*>(args));
+  }
   static const std::uint64_t* slotArgs(meld_native_vm* v, meld_native_frame* f, std::uint32_t slot) {
     static_assert(sizeof(Value) == sizeof(std::uint64_t));
     return reinterpret_cast<const std::uint64_t*>(vm(v).slotArgs(frame(f), slot));
@@ -515,6 +549,9 @@ struct NativeHelpers {
       &releaseLast,
       &loopBegin,
       kBuiltins,
+      &derive,
+      &send,
+      &update,
   };
 };
 

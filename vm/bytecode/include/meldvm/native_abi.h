@@ -145,6 +145,15 @@ struct meld_native_helpers {
   void (*loop_begin)(meld_native_vm* vm, meld_native_frame* f, uint32_t pc, meld_native_loop* out);
   /* builtins[ID] runs the built-in function with that id of builtins.def: CALL calls it directly. */
   const meld_native_builtin* builtins;
+  /* DERIVE, SEND and UPDATE at pc, their arguments gathered by native code (`args`: the
+   * registers' values in the instruction's order): what the interpreter's case does once it has
+   * gathered them. `pred` the predicate, `dest` the node a fact is sent to, `slot` the loop slot
+   * of the fact UPDATE changes, `move_to_back` its flag kUpdateMoveToBack. */
+  void (*derive)(meld_native_vm* vm, meld_native_frame* f, uint32_t pc, uint32_t pred, const uint64_t* args);
+  void (*send)(meld_native_vm* vm, meld_native_frame* f, uint32_t pc, uint32_t pred, uint32_t dest,
+               const uint64_t* args);
+  void (*update)(meld_native_vm* vm, meld_native_frame* f, uint32_t pc, uint32_t slot, uint32_t move_to_back,
+                 const uint64_t* args);
 };
 
 /* What a native shared object (`meldc --emit=native`) exports: meld_native_program() returns its
