@@ -229,12 +229,13 @@ NativeTypes::NativeTypes(llvm::Module& m) : module(m), context(m.getContext()) {
   llvm::Type* voidTy = llvm::Type::getVoidTy(context);
   llvm::Type* i64 = llvm::Type::getInt64Ty(context);
   helpersType = llvm::StructType::create(
-      context, {i32, ptr, ptr, ptr, ptr, ptr, ptr, ptr, ptr, ptr, ptr, ptr, ptr, ptr}, "meld_native_helpers");
+      context, {i32, ptr, ptr, ptr, ptr, ptr, ptr, ptr, ptr, ptr, ptr, ptr, ptr}, "meld_native_helpers");
   loopStructType =
       llvm::StructType::create(context, {ptr, ptr, ptr, ptr, i32, i32, i32, i32}, "meld_native_loop");
   slotType = llvm::StructType::create(context, {i32, i32, i32, i32, ptr}, "meld_native_slot");
-  contextType =
-      llvm::StructType::create(context, {ptr, ptr, ptr, ptr, ptr, ptr, ptr, i32, i32}, "meld_native_context");
+  contextType = llvm::StructType::create(context, {ptr, ptr, ptr, ptr, ptr, ptr, ptr, ptr, ptr, ptr, ptr, i32, i32},
+                                         "meld_native_context");
+  consumedType = llvm::StructType::create(context, {ptr, i32, i32}, "meld_native_consumed");
   tableType = llvm::StructType::create(context, {ptr, i32, i32}, "meld_native_table");
   frameHeadType = llvm::StructType::create(context, {ptr, ptr, ptr, ptr, ptr, ptr, i32}, "meld_native_frame_head");
   loopBeginType = llvm::FunctionType::get(voidTy, {ptr, ptr, i32, ptr}, false);
@@ -248,7 +249,6 @@ NativeTypes::NativeTypes(llvm::Module& m) : module(m), context(m.getContext()) {
   updatedType = llvm::FunctionType::get(i32, {ptr}, false);
   slotArgsType = llvm::FunctionType::get(ptr, {ptr, ptr, i32}, false);
   releaseLastType = llvm::FunctionType::get(voidTy, {ptr, i32, i64}, false);
-  ruleFiredType = llvm::FunctionType::get(voidTy, {ptr}, false);
   deriveType = llvm::FunctionType::get(voidTy, {ptr, ptr, i32, i32, ptr}, false);
   sendType = llvm::FunctionType::get(voidTy, {ptr, ptr, i32, i32, i32, ptr}, false);
 }

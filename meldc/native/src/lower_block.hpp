@@ -31,8 +31,9 @@ struct NativeTypes {
   llvm::StructType* contextType;     // meld_native_context
   llvm::StructType* tableType;       // meld_native_table
   llvm::StructType* frameHeadType;   // meld_native_frame_head
+  llvm::StructType* consumedType;    // meld_native_consumed
   llvm::FunctionType *loopType, *stepType, *testType, *consumeType, *updatedType, *slotArgsType,
-      *ruleFiredType, *releaseLastType, *loopBeginType, *builtinType;
+      *releaseLastType, *loopBeginType, *builtinType;
   llvm::FunctionType *deriveType, *sendType;  // sendType: UPDATE's helper too
 };
 

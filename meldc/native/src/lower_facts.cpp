@@ -406,12 +406,49 @@ void RegionLowering::lowerFire(Function& f, llvm::IRBuilder<>& b, std::uint32_t 
     b.SetInsertPoint(bound);
     b.CreateCondBr(b.CreateICmpEQ(factCount(b, loop, fact), b.getInt32(0)), done, call);
     b.SetInsertPoint(call);
-    b.CreateCall(t_.consumeType, helper(f, b, kConsume), {f.vm, f.frame, slot});
+    consumeFact(f, b, loop, s, fact);
     b.CreateBr(done);
     b.SetInsertPoint(done);
   }
-  if (rule) b.CreateCall(t_.ruleFiredType, helper(f, b, kRuleFired), {f.vm});
+  if (rule) increment(b, contextField(f, b, kContextRulesFired, b.getPtrTy()));
   ret(b, rule ? kFired : kNotFired);
+}
+
+void RegionLowering::consumeFact(Function& f, llvm::IRBuilder<>& b, const LoopView& loop, std::uint32_t s,
+                                 llvm::Value* fact) {
+  llvm::Type* i32 = b.getInt32Ty();
+  llvm::Type* ptr = b.getPtrTy();
+  llvm::Value* consumed = contextField(f, b, kContextConsumed, ptr);
+  llvm::Value* sizeAt = b.CreateStructGEP(t_.consumedType, consumed, 1);
+  llvm::Value* size = b.CreateLoad(i32, sizeAt);
+  llvm::Value* capacity = b.CreateLoad(i32, b.CreateStructGEP(t_.consumedType, consumed, 2));
+  llvm::BasicBlock* full = newBlock(f, "consume.full");
+  llvm::BasicBlock* room = newBlock(f, "consume.room");
+  llvm::BasicBlock* done = newBlock(f, "consume.done");
+  b.CreateCondBr(b.CreateICmpEQ(size, capacity), full, room,
+                 llvm::MDBuilder(t_.context).createBranchWeights(1, 1 << 10));
+  b.SetInsertPoint(full);  // the VM grows the array
+  b.CreateCall(t_.consumeType, helper(f, b, kConsume), {f.vm, f.frame, b.getInt32(s)});
+  b.CreateBr(done);
+
+  b.SetInsertPoint(room);
+  const std::int64_t known = slotPredicate(s);
+  llvm::Value* pred =
+      known >= 0 ? static_cast<llvm::Value*>(b.getInt32(std::uint32_t(known)))
+                 : b.CreateLoad(i32, slotField(b, loop.slots, s, kSlotPred));
+  llvm::Value* entry = b.CreateInBoundsGEP(
+      i32, b.CreateLoad(ptr, b.CreateStructGEP(t_.consumedType, consumed, 0)),
+      b.CreateMul(b.CreateZExt(size, b.getInt64Ty()), b.getInt64(3)));
+  b.CreateStore(b.CreateLoad(i32, slotField(b, loop.slots, s, kSlotNode)), entry);
+  b.CreateStore(pred, b.CreateConstInBoundsGEP1_32(i32, entry, 1));
+  b.CreateStore(fact, b.CreateConstInBoundsGEP1_32(i32, entry, 2));
+  b.CreateStore(b.CreateAdd(size, b.getInt32(1)), sizeAt);
+  // The count, the high half of word 1, is 0: consumed (Database::markConsumed).
+  b.CreateStore(b.getInt32(0), b.CreateConstInBoundsGEP1_32(i32, factWord(b, loop, fact, b.getInt64(1)), 1));
+  increment(b, contextField(f, b, kContextFactsConsumed, ptr));
+  increment(b, contextField(f, b, kContextRunConsumed, ptr));
+  b.CreateBr(done);
+  b.SetInsertPoint(done);
 }
 
 }  // namespace meldc::native::detail

@@ -31,7 +31,6 @@ enum Helper : unsigned {
   kConsume,
   kUpdated,
   kSlotArgs,
-  kRuleFired,
   kReleaseLast,
   kLoopBegin,
   kBuiltins,
@@ -60,6 +59,10 @@ enum ContextField : unsigned {
   kContextFactsTried,
   kContextStop,
   kContextSharedStop,
+  kContextConsumed,
+  kContextFactsConsumed,
+  kContextRunConsumed,
+  kContextRulesFired,
   kContextHeadsPerNode
 };
 enum TableField : unsigned { kTableWords, kTableStride, kTableArgOffset };
@@ -70,8 +73,13 @@ static_assert(offsetof(meld_native_context, tables) == 8 * kContextTables &&
               offsetof(meld_native_context, facts_tried) == 8 * kContextFactsTried &&
               offsetof(meld_native_context, stop) == 8 * kContextStop &&
               offsetof(meld_native_context, shared_stop) == 8 * kContextSharedStop &&
+              offsetof(meld_native_context, consumed) == 8 * kContextConsumed &&
+              offsetof(meld_native_context, facts_consumed) == 8 * kContextFactsConsumed &&
+              offsetof(meld_native_context, run_consumed) == 8 * kContextRunConsumed &&
+              offsetof(meld_native_context, rules_fired) == 8 * kContextRulesFired &&
               offsetof(meld_native_context, heads_per_node) == 8 * kContextHeadsPerNode &&
               sizeof(meld_native_context) == 8 * kContextHeadsPerNode + 8);
+static_assert(offsetof(meld_native_consumed, size) == 8 && offsetof(meld_native_consumed, capacity) == 12);
 static_assert(offsetof(meld_native_table, stride) == 8 && offsetof(meld_native_table, arg_offset) == 12 &&
               sizeof(meld_native_table) == 16);
 static_assert(offsetof(meld_native_frame_head, slots) == 8 * kFrameSlots &&
@@ -84,7 +92,6 @@ static_assert(offsetof(meld_native_helpers, loop) == kLoop * 8 &&
               offsetof(meld_native_helpers, consume) == kConsume * 8 &&
               offsetof(meld_native_helpers, updated) == kUpdated * 8 &&
               offsetof(meld_native_helpers, slot_args) == kSlotArgs * 8 &&
-              offsetof(meld_native_helpers, rule_fired) == kRuleFired * 8 &&
               offsetof(meld_native_helpers, release_last) == kReleaseLast * 8 &&
               offsetof(meld_native_helpers, loop_begin) == kLoopBegin * 8 &&
               offsetof(meld_native_helpers, builtins) == kBuiltins * 8 &&
@@ -320,9 +327,16 @@ class RegionLowering {
   // a value touches the heap, not the fact store).
   void lowerSlotRun(Function& f, llvm::IRBuilder<>& b, std::uint32_t pc);
 
-  // FIRE and CFIRE: the interpreter's fire(), reading the slots of native loops in place (the VM is
-  // called only for a fact to consume, or for a slot a native loop did not bind).
+  // FIRE and CFIRE: the interpreter's fire(), reading the slots of native loops in place and
+  // consuming their facts (the VM is called for a slot a native loop did not bind, or when the
+  // array of consumed facts is full).
   void lowerFire(Function& f, llvm::IRBuilder<>& b, std::uint32_t pc, bool rule);
+  // Machine::consumed for the live fact `fact` of native loop slot s: its count set to 0, appended
+  // to the consumed facts, counted.
+  void consumeFact(Function& f, llvm::IRBuilder<>& b, const LoopView& loop, std::uint32_t s, llvm::Value* fact);
+  void increment(llvm::IRBuilder<>& b, llvm::Value* counter) {
+    b.CreateStore(b.CreateAdd(b.CreateLoad(b.getInt64Ty(), counter), b.getInt64(1)), counter);
+  }
 
   NativeTypes& t_;
   const meldvm::Program& program_;

@@ -88,6 +88,12 @@ void Interpreter::setUpNativeContext() {
   c.facts_tried = &machine_.stats_.factsTried;
   c.stop = reinterpret_cast<const std::uint8_t*>(&machine_.stop_);
   c.shared_stop = machine_.stopFlag_ ? reinterpret_cast<const std::uint8_t*>(machine_.stopFlag_) : c.stop;
+  c.consumed = machine_.consumed_.forNativeCode();
+  static_assert(sizeof(machine_.stats_.factsConsumed) == 8 && sizeof(machine_.runConsumed_) == 8 &&
+                sizeof(machine_.stats_.rulesFired) == 8);
+  c.facts_consumed = &machine_.stats_.factsConsumed;
+  c.run_consumed = &machine_.runConsumed_;
+  c.rules_fired = &machine_.stats_.rulesFired;
 }
 
 // Per register whether it is boxed, then whether any loop consumes its fact (fire() has nothing
@@ -514,7 +520,6 @@ struct NativeHelpers {
     static_assert(sizeof(Value) == sizeof(std::uint64_t));
     return reinterpret_cast<const std::uint64_t*>(vm(v).slotArgs(frame(f), slot));
   }
-  static void ruleFired(meld_native_vm* v) { vm(v).ruleFired(); }
   static void releaseLast(meld_native_vm* v, std::uint32_t type, std::uint64_t value) {
     vm(v).heap_.release(TypeId(type), Value::fromBits(value));
   }
@@ -545,7 +550,6 @@ struct NativeHelpers {
       &consume,
       &updated,
       &slotArgs,
-      &ruleFired,
       &releaseLast,
       &loopBegin,
       kBuiltins,

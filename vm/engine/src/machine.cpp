@@ -84,7 +84,7 @@ MemoryUse Machine::memoryUse() const {
   m.mailboxes = mail_->bytesReserved();
   m.scheduling =
       candidates_.capacity() * sizeof(std::uint64_t) + created_.capacity() + sched_.bytesReserved();
-  const std::size_t facts = consumed_.capacity() * sizeof(Consumed) +
+  const std::size_t facts = consumed_.bytesReserved() +
                             (heldBack_.capacity() + linearOut_.capacity() + persistentQueue_.capacity() +
                              sentPersistent_.capacity() + sentLinear_.capacity()) *
                                 sizeof(PendingFact);
@@ -349,7 +349,7 @@ void Machine::runRule(NodeId n, std::uint32_t rule) {
 void Machine::finishRuleRun() {
   for (std::size_t i = 0; i < consumed_.size(); ++i) {
     if (tables_.linearLists) fetchListsOfConsumed(i);
-    const Consumed& c = consumed_[i];
+    const ConsumedFacts::Fact& c = consumed_[i];
     db_->consumeTrusted(c.node, c.pred, c.fact);
     factRemoved(c.node, c.pred);
   }
@@ -372,7 +372,7 @@ constexpr std::size_t kFirstCellAhead = 16, kSecondCellAhead = 8, kThirdCellAhea
 void Machine::fetchListsOfConsumed(std::size_t i) const {
   auto firstCell = [&](std::size_t k) -> const ConsCell* {
     if (k >= consumed_.size()) return nullptr;
-    const Consumed& c = consumed_[k];
+    const ConsumedFacts::Fact& c = consumed_[k];
     const std::int32_t field = tables_.listField[c.pred];
     return field < 0 ? nullptr : static_cast<const ConsCell*>(db_->args(c.pred, c.fact)[field].asObject());
   };

@@ -81,9 +81,18 @@ typedef struct meld_native_frame_head {
 #define MELD_NATIVE_HEAD_PAGE_SHIFT 8u
 #define MELD_NATIVE_HEAD_WORDS 3u
 
+/* The facts a rule run consumed so far: `size` of them at `facts`, three 4-byte words each (node,
+ * predicate, fact), room for `capacity`. */
+typedef struct meld_native_consumed {
+  void* facts;
+  uint32_t size;
+  uint32_t capacity;
+} meld_native_consumed;
+
 /* What a block's `vm` argument points at: what native code reads to begin and end an ITER loop
- * without calling the VM (the predicate's table, the node's list heads, the step count), and the
- * VM itself for the helpers. Constant while the VM runs (what it points at changes). */
+ * and to fire a rule without calling the VM (the predicate's table, the node's list heads, the
+ * step count, the consumed facts, the statistics), and the VM itself for the helpers. Constant
+ * while the VM runs (what it points at changes). */
 typedef struct meld_native_context {
   void* interpreter;                        /* the helpers' */
   const meld_native_table* tables;          /* per predicate */
@@ -92,6 +101,12 @@ typedef struct meld_native_context {
   uint64_t* facts_tried;  /* the statistics' facts tried */
   const uint8_t* stop;    /* nonzero: the run is stopping (the machine's flag) */
   const uint8_t* shared_stop; /* nonzero: every thread is stopping (an atomic flag) */
+  /* A FIRE consumes a fact by setting its count to 0, appending it here and counting it in both
+   * counts (when the array is full, the consume helper does it all). */
+  meld_native_consumed* consumed;
+  uint64_t* facts_consumed; /* the statistics' */
+  uint64_t* run_consumed;   /* the node run's */
+  uint64_t* rules_fired;    /* the statistics': a FIRE adds one */
   uint32_t heads_per_node;
   uint32_t reserved;
 } meld_native_context;
@@ -131,8 +146,6 @@ struct meld_native_helpers {
   /* The arguments of the fact bound to loop slot `slot` (8 bytes each, home excluded), valid until
    * the next instruction that stores a fact: LOAD into an unboxed register reads them directly. */
   const uint64_t* (*slot_args)(meld_native_vm* vm, meld_native_frame* f, uint32_t slot);
-  /* FIRE: counts the rule (after its consumption). */
-  void (*rule_fired)(meld_native_vm* vm);
   /* Drops a reference to a boxed value of type `type` the slow way (native code counts references
    * itself: a boxed value points at its 32-bit count; this is for when it would reach zero, or
    * when the count's top bit says the value is shared between threads and changes atomically). */

@@ -19,6 +19,7 @@
 #include <vector>
 
 #include "meldvm/builtins.hpp"
+#include "meldvm/consumed_facts.hpp"
 #include "meldvm/database.hpp"
 #include "meldvm/heap.hpp"
 #include "meldvm/large_allocator.hpp"
@@ -283,7 +284,7 @@ class Machine : private SchedulerView {
   // A rule consumed the fact: marked now, unlinked when the rule run ends (finishRuleRun).
   void consumed(NodeId host, PredId p, FactRef f) {
     db_->markConsumed(p, f);
-    consumed_.push_back({host, p, f});
+    consumed_.push(host, p, f);
     ++stats_.factsConsumed;
     ++runConsumed_;
   }
@@ -471,12 +472,7 @@ class Machine : private SchedulerView {
   std::unique_ptr<Mailboxes> mail_;
 
   // Within a rule run.
-  struct Consumed {
-    NodeId node;
-    PredId pred;
-    FactRef fact;
-  };
-  std::vector<Consumed> consumed_;
+  ConsumedFacts consumed_;
   std::vector<PendingFact> linearOut_;  // linear facts derived for the host, appended after the run
   ValueBuffer linearOutArgs_;
   std::vector<PendingFact> persistentQueue_;  // FIFO (§6.5)
