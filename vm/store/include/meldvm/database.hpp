@@ -122,8 +122,9 @@ class Database {
   void updateLinearTrusted(NodeId n, PredId p, FactRef f, const Value* args, bool moveToBack) {
     releaseHeldScratch();
     FactTable& t = tables_[p];
-    if (moveToBack) t.moveToBack(head(n, p), f);
-    t.replaceArgs(head(n, p), f, args);
+    ListHead& list = head(n, p);
+    if (moveToBack) t.moveToBack(list, f);
+    t.replaceArgs(list, f, args);
   }
 
   // Persistent predicates, aggregated ones included (then args is an aggregate input).
