@@ -28,7 +28,7 @@ std::uint32_t FactTable::addIndex(KeySpec key) {
   if (!words_.empty()) throw std::logic_error("meldvm: index added to a table that already holds facts");
   if (key.first + key.count > arity()) throw std::out_of_range("meldvm: index key beyond the arity");
   if (indexCount() == kMaxIndexes) throw std::length_error("meldvm: too many indexes on one predicate");
-  indexes_.push_back(Index{key, {}});
+  indexes_.push_back(Index{key, {}, integerKey(key)});
   plain_ = false;
   argOffset_ = indexLinkWord(indexCount());  // the arguments follow the index links
   stride_ = argOffset_ + arity();
@@ -38,18 +38,13 @@ std::uint32_t FactTable::addIndex(KeySpec key) {
 std::uint64_t FactTable::hashKey(NodeId node, const Value* key, KeySpec spec) const {
   if (!integerKey(spec)) [[unlikely]]
     return hashKeyOfTypes(node, key, spec);
-  std::uint64_t h = mixHash(0x6d656c64, node);
-  for (std::uint32_t i = 0; i < spec.count; ++i) h = mixHash(h, hashIntegerLike(key[i]));
-  return h;
+  return integerHash(node, key, spec.count);
 }
 
 bool FactTable::keyEqual(FactRef f, const Value* key, KeySpec spec) const {
   if (!integerKey(spec)) [[unlikely]]
     return keyEqualOfTypes(f, key, spec);
-  const Value* a = args(f) + spec.first;
-  for (std::uint32_t i = 0; i < spec.count; ++i)
-    if (a[i].bits() != key[i].bits()) return false;
-  return true;
+  return bitsEqual(f, key, spec);
 }
 
 std::uint64_t FactTable::hashKeyOfTypes(NodeId node, const Value* key, KeySpec spec) const {
@@ -114,19 +109,13 @@ FactRef FactTable::find(NodeId n, const Value* a) const {
 }
 
 FactRef FactTable::firstWithKey(NodeId n, std::uint32_t index, const Value* key) const {
-  const KeySpec spec = indexes_[index].key;
-  return indexes_[index].heads.find(hashKey(n, key, spec),
-                                    [&](std::uint32_t f) { return node(f) == n && keyEqual(f, key, spec); });
+  std::uint64_t hash;
+  return findKey(n, index, key, hash);
 }
 
 // The first fact of f's chain in index x (kNoFact if none), and the key's hash in `hash`.
 FactRef FactTable::chainHead(FactRef f, std::uint32_t x, std::uint64_t& hash) const {
-  const NodeId n = node(f);
-  const KeySpec spec = indexes_[x].key;
-  const Value* key = args(f) + spec.first;
-  hash = hashKey(n, key, spec);
-  return indexes_[x].heads.find(hash,
-                                [&](std::uint32_t g) { return node(g) == n && keyEqual(g, key, spec); });
+  return findKey(node(f), x, args(f) + indexes_[x].key.first, hash);
 }
 
 void FactTable::linkIndexes(FactRef f, std::uint32_t fromIndex) {

@@ -22,6 +22,7 @@
 #include "meldvm/slot_hash.hpp"
 #include "meldvm/types.hpp"
 #include "meldvm/value.hpp"
+#include "meldvm/value_ops.hpp"
 
 namespace meldvm {
 
@@ -166,7 +167,31 @@ class FactTable {
   struct Index {
     KeySpec key;
     SlotHash heads;
+    bool integer = false;  // integerKey(key): firstWithKey hashes and compares the bits inline
   };
+  static std::uint64_t integerHash(NodeId node, const Value* key, std::uint32_t count) {
+    std::uint64_t h = mixHash(0x6d656c64, node);
+    for (std::uint32_t i = 0; i < count; ++i) h = mixHash(h, hashIntegerLike(key[i]));
+    return h;
+  }
+  // The first fact with this key in index `index` (kNoFact if none), and the key's hash.
+  [[gnu::always_inline]] FactRef findKey(NodeId n, std::uint32_t index, const Value* key,
+                                         std::uint64_t& hash) const {
+    const Index& x = indexes_[index];
+    const KeySpec spec = x.key;
+    if (x.integer) {  // pagerank's neighbour, every ITER_KEY on a node: no call per look-up
+      hash = integerHash(n, key, spec.count);
+      return x.heads.find(hash, [&](std::uint32_t f) { return node(f) == n && bitsEqual(f, key, spec); });
+    }
+    hash = hashKey(n, key, spec);
+    return x.heads.find(hash, [&](std::uint32_t f) { return node(f) == n && keyEqual(f, key, spec); });
+  }
+  bool bitsEqual(FactRef f, const Value* key, KeySpec spec) const {
+    const Value* a = args(f) + spec.first;
+    for (std::uint32_t i = 0; i < spec.count; ++i)
+      if (a[i].bits() != key[i].bits()) return false;
+    return true;
+  }
 
   bool integerKey(KeySpec spec) const {
     if (spec.first + spec.count > 32) return false;
