@@ -444,7 +444,8 @@ void RegionLowering::consumeFact(Function& f, llvm::IRBuilder<>& b, const LoopVi
   b.CreateStore(fact, b.CreateConstInBoundsGEP1_32(i32, entry, 2));
   b.CreateStore(b.CreateAdd(size, b.getInt32(1)), sizeAt);
   // The count, the high half of word 1, is 0: consumed (Database::markConsumed).
-  b.CreateStore(b.getInt32(0), b.CreateConstInBoundsGEP1_32(i32, factWord(b, loop, fact, b.getInt64(1)), 1));
+  llvm::Value* countWord = factWord(b, loop, fact, b.getInt64(1));
+  b.CreateStore(b.CreateAnd(b.CreateLoad(b.getInt64Ty(), countWord), b.getInt64(0xFFFFFFFFu)), countWord);
   increment(b, contextField(f, b, kContextFactsConsumed, ptr));
   increment(b, contextField(f, b, kContextRunConsumed, ptr));
   b.CreateBr(done);
