@@ -21,8 +21,10 @@
 extern "C" {
 #endif
 
-/* Bumped whenever a helper, its meaning or the block signature changes. */
-#define MELD_NATIVE_ABI_VERSION 8u
+/* Bumped whenever a helper, its meaning or the block signature changes. (9: the context and the
+ * helpers of 2026-11-29; the commits that built them up called theirs 8, with other helper tables:
+ * a shared object of one of them is refused, not misread.) */
+#define MELD_NATIVE_ABI_VERSION 9u
 
 typedef struct meld_native_vm meld_native_vm;       /* the VM's meld_native_context (below) */
 typedef struct meld_native_frame meld_native_frame; /* its frame (registers, loop slots) */
