@@ -233,11 +233,12 @@ NativeTypes::NativeTypes(llvm::Module& m) : module(m), context(m.getContext()) {
   loopStructType =
       llvm::StructType::create(context, {ptr, ptr, ptr, ptr, i32, i32, i32, i32}, "meld_native_loop");
   slotType = llvm::StructType::create(context, {i32, i32, i32, i32, ptr}, "meld_native_slot");
-  contextType = llvm::StructType::create(context, {ptr, ptr, ptr, ptr, ptr, ptr, ptr, ptr, ptr, ptr, ptr, i32, i32},
-                                         "meld_native_context");
+  contextType = llvm::StructType::create(
+      context, {ptr, ptr, ptr, ptr, ptr, ptr, ptr, ptr, ptr, ptr, ptr, i32, i32}, "meld_native_context");
   consumedType = llvm::StructType::create(context, {ptr, i32, i32}, "meld_native_consumed");
   tableType = llvm::StructType::create(context, {ptr, i32, i32}, "meld_native_table");
-  frameHeadType = llvm::StructType::create(context, {ptr, ptr, ptr, ptr, ptr, ptr, i32}, "meld_native_frame_head");
+  frameHeadType =
+      llvm::StructType::create(context, {ptr, ptr, ptr, ptr, ptr, ptr, i32}, "meld_native_frame_head");
   loopBeginType = llvm::FunctionType::get(voidTy, {ptr, ptr, i32, ptr}, false);
   blockType = blockFunctionType(context);
   bodyType = llvm::FunctionType::get(i32, {ptr, ptr, ptr, ptr, ptr}, false);

@@ -163,7 +163,8 @@ void RegionLowering::beginLoop(Function& f, llvm::IRBuilder<>& b, std::uint32_t 
   b.CreateStore(host, slotField(b, slots, slot, kSlotNode));
   b.CreateStore(b.getInt32(flags), slotField(b, slots, slot, kSlotFlags));
   b.CreateStore(llvm::ConstantPointerNull::get(b.getPtrTy()), slotField(b, slots, slot, kSlotFixed));
-  llvm::Value* table = b.CreateConstInBoundsGEP1_64(t_.tableType, contextField(f, b, kContextTables, ptr), pred);
+  llvm::Value* table =
+      b.CreateConstInBoundsGEP1_64(t_.tableType, contextField(f, b, kContextTables, ptr), pred);
   auto tableField = [&](TableField k, llvm::Type* type) {
     llvm::LoadInst* load = b.CreateLoad(type, b.CreateStructGEP(t_.tableType, table, k));
     load->setMetadata(llvm::LLVMContext::MD_invariant_load, llvm::MDNode::get(t_.context, {}));
@@ -172,13 +173,16 @@ void RegionLowering::beginLoop(Function& f, llvm::IRBuilder<>& b, std::uint32_t 
   // The host's heads: page host >> shift of the page table, node host & mask of the page.
   llvm::Value* pages = b.CreateLoad(ptr, contextField(f, b, kContextHeadPages, ptr));
   llvm::Value* page = b.CreateLoad(
-      ptr, b.CreateInBoundsGEP(ptr, pages, b.CreateZExt(b.CreateLShr(host, MELD_NATIVE_HEAD_PAGE_SHIFT), i64)));
+      ptr,
+      b.CreateInBoundsGEP(ptr, pages, b.CreateZExt(b.CreateLShr(host, MELD_NATIVE_HEAD_PAGE_SHIFT), i64)));
   llvm::Value* inPage = b.CreateZExt(b.CreateAnd(host, (1u << MELD_NATIVE_HEAD_PAGE_SHIFT) - 1), i64);
   llvm::Value* perNode = b.CreateZExt(contextField(f, b, kContextHeadsPerNode, i32), i64);
   llvm::Value* head = b.CreateAdd(b.CreateMul(inPage, perNode), b.getInt64(pred));
-  llvm::Value* first =
-      b.CreateLoad(i32, b.CreateInBoundsGEP(i32, page, b.CreateMul(head, b.getInt64(MELD_NATIVE_HEAD_WORDS))));
-  auto set = [&](LoopField k, llvm::Value* v) { b.CreateStore(v, b.CreateStructGEP(t_.loopStructType, info, k)); };
+  llvm::Value* first = b.CreateLoad(
+      i32, b.CreateInBoundsGEP(i32, page, b.CreateMul(head, b.getInt64(MELD_NATIVE_HEAD_WORDS))));
+  auto set = [&](LoopField k, llvm::Value* v) {
+    b.CreateStore(v, b.CreateStructGEP(t_.loopStructType, info, k));
+  };
   set(kLoopSlots, slots);
   set(kLoopWords, tableField(kTableWords, ptr));
   set(kLoopStop, contextField(f, b, kContextStop, ptr));
@@ -433,12 +437,11 @@ void RegionLowering::consumeFact(Function& f, llvm::IRBuilder<>& b, const LoopVi
 
   b.SetInsertPoint(room);
   const std::int64_t known = slotPredicate(s);
-  llvm::Value* pred =
-      known >= 0 ? static_cast<llvm::Value*>(b.getInt32(std::uint32_t(known)))
-                 : b.CreateLoad(i32, slotField(b, loop.slots, s, kSlotPred));
-  llvm::Value* entry = b.CreateInBoundsGEP(
-      i32, b.CreateLoad(ptr, b.CreateStructGEP(t_.consumedType, consumed, 0)),
-      b.CreateMul(b.CreateZExt(size, b.getInt64Ty()), b.getInt64(3)));
+  llvm::Value* pred = known >= 0 ? static_cast<llvm::Value*>(b.getInt32(std::uint32_t(known)))
+                                 : b.CreateLoad(i32, slotField(b, loop.slots, s, kSlotPred));
+  llvm::Value* entry =
+      b.CreateInBoundsGEP(i32, b.CreateLoad(ptr, b.CreateStructGEP(t_.consumedType, consumed, 0)),
+                          b.CreateMul(b.CreateZExt(size, b.getInt64Ty()), b.getInt64(3)));
   b.CreateStore(b.CreateLoad(i32, slotField(b, loop.slots, s, kSlotNode)), entry);
   b.CreateStore(pred, b.CreateConstInBoundsGEP1_32(i32, entry, 1));
   b.CreateStore(fact, b.CreateConstInBoundsGEP1_32(i32, entry, 2));

@@ -333,7 +333,8 @@ class RegionLowering {
   void lowerFire(Function& f, llvm::IRBuilder<>& b, std::uint32_t pc, bool rule);
   // Machine::consumed for the live fact `fact` of native loop slot s: its count set to 0, appended
   // to the consumed facts, counted.
-  void consumeFact(Function& f, llvm::IRBuilder<>& b, const LoopView& loop, std::uint32_t s, llvm::Value* fact);
+  void consumeFact(Function& f, llvm::IRBuilder<>& b, const LoopView& loop, std::uint32_t s,
+                   llvm::Value* fact);
   void increment(llvm::IRBuilder<>& b, llvm::Value* counter) {
     b.CreateStore(b.CreateAdd(b.CreateLoad(b.getInt64Ty(), counter), b.getInt64(1)), counter);
   }

@@ -76,8 +76,8 @@ void Interpreter::setUpNativeContext() {
   static_assert(sizeof(machine_.stepsLeft_) == 8 && sizeof(machine_.stats_.factsTried) == 8);
   for (PredId p = 0; p < program_.predicates.size(); ++p) {
     const FactTable& t = db_.table(p);
-    nativeTables_.push_back({reinterpret_cast<const std::uint64_t* const*>(t.slotArrayAddress()), t.stride(),
-                             t.argOffset()});
+    nativeTables_.push_back(
+        {reinterpret_cast<const std::uint64_t* const*>(t.slotArrayAddress()), t.stride(), t.argOffset()});
   }
   meld_native_context& c = nativeContext_;
   c.interpreter = this;

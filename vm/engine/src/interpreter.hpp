@@ -106,8 +106,8 @@ class Interpreter {
   // DERIVE, SEND (and SEND_DELAY) and UPDATE once their arguments are gathered, also inline there:
   // the interpreter's cases and the helpers of native code, which gathers the arguments itself.
   [[gnu::always_inline]] void deriveFact(const Frame& f, std::uint32_t pc, PredId p, const Value* args);
-  [[gnu::always_inline]] void sendFact(const Frame& f, std::uint32_t pc, PredId p, NodeId dest, const Value* args,
-                                       std::uint32_t delayMs);
+  [[gnu::always_inline]] void sendFact(const Frame& f, std::uint32_t pc, PredId p, NodeId dest,
+                                       const Value* args, std::uint32_t delayMs);
   [[gnu::always_inline]] void updateFact(Frame& f, std::uint32_t pc, std::uint32_t slot, bool moveToBack,
                                          const Value* args);
   // AXIOM_FACTS at pc (verified: whole facts of its predicate, every field an int, float, bool or

@@ -100,9 +100,9 @@ typedef struct meld_native_context {
   void* interpreter;                        /* the helpers' */
   const meld_native_table* tables;          /* per predicate */
   const uint32_t* const* const* head_pages; /* the page table of the list heads (it moves) */
-  uint64_t* steps_left;   /* a loop counts one step: at 1, loop_begin is called (it throws) */
-  uint64_t* facts_tried;  /* the statistics' facts tried */
-  const uint8_t* stop;    /* nonzero: the run is stopping (the machine's flag) */
+  uint64_t* steps_left;       /* a loop counts one step: at 1, loop_begin is called (it throws) */
+  uint64_t* facts_tried;      /* the statistics' facts tried */
+  const uint8_t* stop;        /* nonzero: the run is stopping (the machine's flag) */
   const uint8_t* shared_stop; /* nonzero: every thread is stopping (an atomic flag) */
   /* A FIRE consumes a fact by setting its count to 0, appending it here and counting it in both
    * counts (when the array is full, the consume helper does it all). */

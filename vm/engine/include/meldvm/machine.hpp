@@ -267,7 +267,8 @@ class Machine : private SchedulerView {
   // The common case inline: a linear fact sent by a run of the VM on its own graph and one thread,
   // which waits in a buffer for the run's end (storeSentLinear); every other case in sendAny.
   void send(NodeId host, NodeId dest, PredId p, const Value* args, bool negative, std::uint32_t delayMs = 0) {
-    if (ownGraphSerial_ && tables_.plainLinear[p] && !negative && dest < db_->nodeCount() && db_->alive(dest)) {
+    if (ownGraphSerial_ && tables_.plainLinear[p] && !negative && dest < db_->nodeCount() &&
+        db_->alive(dest)) {
       db_->prefetchListHead(dest, p);
       sched_.prefetch(dest);
       ++stats_.factsDerived;
@@ -436,7 +437,7 @@ class Machine : private SchedulerView {
   bool started_ = false;
   MachineHost* host_ = nullptr;
   ShardLink* shard_ = nullptr;
-  bool ownGraphSerial_ = false;  // neither a host's block nor a shard (send's inline case)
+  bool ownGraphSerial_ = false;              // neither a host's block nor a shard (send's inline case)
   const NodeOwners* graphOwners_ = nullptr;  // shard_'s, when it has them
   const std::atomic<bool>* stopFlag_ = nullptr;
   const std::atomic<bool>* safePointFlag_ = nullptr;
