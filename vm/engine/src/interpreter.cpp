@@ -463,18 +463,19 @@ struct NativeHelpers {
     Interpreter& in = vm(v);
     Interpreter::Frame& f = frame(fr);
     const Interpreter::LoopHead h = in.beginLoop(f, pc);
-    const FactTable& table = in.db_.table(h.pred);
+    // The same fields as native code's own beginLoop, from the same context.
+    const meld_native_context& c = in.nativeContext_;
+    const meld_native_table& table = c.tables[h.pred];
     out->slots = reinterpret_cast<meld_native_slot*>(f.slots);
-    out->words = reinterpret_cast<const std::uint64_t* const*>(table.slotArrayAddress());
-    out->stop = reinterpret_cast<const std::uint8_t*>(&in.machine_.stop_);
-    out->shared_stop =
-        in.machine_.stopFlag_ ? reinterpret_cast<const std::uint8_t*>(in.machine_.stopFlag_) : out->stop;
-    out->stride = table.stride();
-    out->arg_offset = table.argOffset();
+    out->words = table.words;
+    out->stop = c.stop;
+    out->shared_stop = c.shared_stop;
+    out->stride = table.stride;
+    out->arg_offset = table.arg_offset;
     if (h.op == Opcode::ITER_KEY) {
       const std::uint32_t ix = in.machine_.keyIndex(h.pred, h.keyField);
       out->first = in.db_.firstWithKey(h.at, h.pred, ix, h.key);
-      out->next_word = table.indexLinkWord(ix);
+      out->next_word = in.db_.table(h.pred).indexLinkWord(ix);
     } else {
       out->first = in.db_.first(h.at, h.pred);
       out->next_word = 0;
