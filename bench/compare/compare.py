@@ -19,7 +19,7 @@ PROG_ARGS when no ARGS are given, and its MELD_ARGS' -n (coordination instructio
 the established VM, --no-scheduling for ours. Programs run from their own folder, so their includes
 and data files are found as the established VM finds them.
 
-Modes (--modes, comma-separated; default bc,so,j2,ref1,ref2):
+Modes (--modes, separated by commas or spaces; default bc,so,j2,ref1,ref2):
   bc    meld X.mbc               (ours, bytecode)
   so    meld X.so                (ours, native code)
   jit   meld X.mbc --jit         (ours, native code compiled in memory: compile time included)
@@ -278,7 +278,7 @@ def main():
     if a.help:
         print(__doc__.strip())
         return 0
-    modes = [m.strip() for m in a.modes.split(",") if m.strip()]
+    modes = [m for m in re.split(r"[,\s]+", a.modes) if m]  # "bc,so" or "bc so", as suite.sh takes them
     unknown = [m for m in modes if m not in MODES]
     if unknown or not modes:
         p.error(f"unknown mode(s) {', '.join(unknown) or '(none)'}: choose among {', '.join(MODES)}")
