@@ -310,4 +310,31 @@ case_native_step_limit() {
   done
 }
 
+case_native_why() {
+  # Native code updates, derives and sends facts itself (native_abi.h's meld_native_context)
+  # unless derivations are being recorded: --why gives the bytecode's trees for the shared object
+  # and the JIT, for a fact updated in place (count), one derived (seen) and one sent (token).
+  cat >"$WORK/ring.meld" <<'RING'
+type route edge(node, node).
+type linear count(node, int).
+type linear token(node, int).
+type linear seen(node, int).
+!edge(@0, @1). !edge(@1, @2). !edge(@2, @0).
+count(@0, 0). count(@1, 0). count(@2, 0).
+token(@0, 0).
+token(A, N), count(A, C), N < 7, !edge(A, B) -o count(A, C + 1), seen(A, N), token(B, N + 1).
+RING
+  "$MELDC" --emit=native --no-progress "$WORK/ring.meld" || fail "meldc --emit=native failed on ring.meld"
+  "$MELDC" --emit=asm "$WORK/ring.meld" >"$WORK/ring.asm" || fail "meldc --emit=asm failed on ring.meld"
+  for op in UPDATE DERIVE SEND; do has "$WORK/ring.asm" " $op "; done
+  set -- --why 'count(@1, 3)' --why 'seen(@2, 4)' --why 'token(@2, 7)'
+  run 0 "$WORK/ring.meld" "$@"
+  has "$OUT" "sent to @2 as a message"
+  cp "$OUT" "$WORK/trees"
+  run 0 "$WORK/ring.so" "$@"
+  cmp -s "$OUT" "$WORK/trees" || { diff "$WORK/trees" "$OUT"; fail "ring.so gave other trees"; }
+  run 0 "$WORK/ring.meld" --jit "$@"
+  cmp -s "$OUT" "$WORK/trees" || { diff "$WORK/trees" "$OUT"; fail "ring.meld --jit gave other trees"; }
+}
+
 "case_$CASE"

@@ -225,6 +225,7 @@ llvm::FunctionType* blockFunctionType(llvm::LLVMContext& context) {
 
 NativeTypes::NativeTypes(llvm::Module& m) : module(m), context(m.getContext()) {
   llvm::Type* ptr = llvm::PointerType::getUnqual(context);
+  llvm::Type* i8 = llvm::Type::getInt8Ty(context);
   llvm::Type* i32 = llvm::Type::getInt32Ty(context);
   llvm::Type* voidTy = llvm::Type::getVoidTy(context);
   llvm::Type* i64 = llvm::Type::getInt64Ty(context);
@@ -233,12 +234,16 @@ NativeTypes::NativeTypes(llvm::Module& m) : module(m), context(m.getContext()) {
   loopStructType =
       llvm::StructType::create(context, {ptr, ptr, ptr, ptr, i32, i32, i32, i32}, "meld_native_loop");
   slotType = llvm::StructType::create(context, {i32, i32, i32, i32, ptr}, "meld_native_slot");
-  contextType = llvm::StructType::create(
-      context, {ptr, ptr, ptr, ptr, ptr, ptr, ptr, ptr, ptr, ptr, ptr, i32, i32}, "meld_native_context");
+  // Pointers up to heads_per_node, then heads_per_node and rule_words (region_lowering.hpp checks
+  // the C struct's offsets against the same enum).
+  std::vector<llvm::Type*> contextFields(detail::kContextHeadsPerNode, ptr);
+  contextFields.insert(contextFields.end(), {i32, i32});
+  contextType = llvm::StructType::create(context, contextFields, "meld_native_context");
   consumedType = llvm::StructType::create(context, {ptr, i32, i32}, "meld_native_consumed");
-  tableType = llvm::StructType::create(context, {ptr, i32, i32}, "meld_native_table");
-  frameHeadType =
-      llvm::StructType::create(context, {ptr, ptr, ptr, ptr, ptr, ptr, i32}, "meld_native_frame_head");
+  arrayType = llvm::StructType::create(context, {ptr, i32, i32}, "meld_native_array");
+  tableType = llvm::StructType::create(context, {ptr, i32, i32, i32, i32}, "meld_native_table");
+  frameHeadType = llvm::StructType::create(context, {ptr, ptr, ptr, ptr, ptr, ptr, i32, i8, i8},
+                                           "meld_native_frame_head");
   loopBeginType = llvm::FunctionType::get(voidTy, {ptr, ptr, i32, ptr}, false);
   blockType = blockFunctionType(context);
   bodyType = llvm::FunctionType::get(i32, {ptr, ptr, ptr, ptr, ptr}, false);

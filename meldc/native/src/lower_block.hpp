@@ -32,6 +32,7 @@ struct NativeTypes {
   llvm::StructType* tableType;       // meld_native_table
   llvm::StructType* frameHeadType;   // meld_native_frame_head
   llvm::StructType* consumedType;    // meld_native_consumed
+  llvm::StructType* arrayType;       // meld_native_array
   llvm::FunctionType *loopType, *stepType, *testType, *consumeType, *updatedType, *slotArgsType,
       *releaseLastType, *loopBeginType, *builtinType;
   llvm::FunctionType *deriveType, *sendType;  // sendType: UPDATE's helper too

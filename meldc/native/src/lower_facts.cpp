@@ -170,16 +170,7 @@ void RegionLowering::beginLoop(Function& f, llvm::IRBuilder<>& b, std::uint32_t 
     load->setMetadata(llvm::LLVMContext::MD_invariant_load, llvm::MDNode::get(t_.context, {}));
     return load;
   };
-  // The host's heads: page host >> shift of the page table, node host & mask of the page.
-  llvm::Value* pages = b.CreateLoad(ptr, contextField(f, b, kContextHeadPages, ptr));
-  llvm::Value* page = b.CreateLoad(
-      ptr,
-      b.CreateInBoundsGEP(ptr, pages, b.CreateZExt(b.CreateLShr(host, MELD_NATIVE_HEAD_PAGE_SHIFT), i64)));
-  llvm::Value* inPage = b.CreateZExt(b.CreateAnd(host, (1u << MELD_NATIVE_HEAD_PAGE_SHIFT) - 1), i64);
-  llvm::Value* perNode = b.CreateZExt(contextField(f, b, kContextHeadsPerNode, i32), i64);
-  llvm::Value* head = b.CreateAdd(b.CreateMul(inPage, perNode), b.getInt64(pred));
-  llvm::Value* first = b.CreateLoad(
-      i32, b.CreateInBoundsGEP(i32, page, b.CreateMul(head, b.getInt64(MELD_NATIVE_HEAD_WORDS))));
+  llvm::Value* first = b.CreateLoad(i32, listHead(f, b, nodeHeads(f, b, host), pred, kHeadFirst));
   auto set = [&](LoopField k, llvm::Value* v) {
     b.CreateStore(v, b.CreateStructGEP(t_.loopStructType, info, k));
   };
@@ -193,6 +184,27 @@ void RegionLowering::beginLoop(Function& f, llvm::IRBuilder<>& b, std::uint32_t 
   set(kLoopArgOffset, tableField(kTableArgOffset, i32));
   b.CreateBr(begun);
   b.SetInsertPoint(begun);
+}
+
+llvm::Value* RegionLowering::nodeHeads(Function& f, llvm::IRBuilder<>& b, llvm::Value* node) {
+  llvm::Type* i32 = b.getInt32Ty();
+  llvm::Type* i64 = b.getInt64Ty();
+  llvm::Type* ptr = b.getPtrTy();
+  // Page node >> shift of the page table, node node & mask of the page.
+  llvm::Value* pages = b.CreateLoad(ptr, contextField(f, b, kContextHeadPages, ptr));
+  llvm::Value* page = b.CreateLoad(
+      ptr,
+      b.CreateInBoundsGEP(ptr, pages, b.CreateZExt(b.CreateLShr(node, MELD_NATIVE_HEAD_PAGE_SHIFT), i64)));
+  llvm::Value* inPage = b.CreateZExt(b.CreateAnd(node, (1u << MELD_NATIVE_HEAD_PAGE_SHIFT) - 1), i64);
+  llvm::Value* perNode = b.CreateZExt(contextField(f, b, kContextHeadsPerNode, i32), i64);
+  return b.CreateInBoundsGEP(i32, page,
+                             b.CreateMul(inPage, b.CreateMul(perNode, b.getInt64(MELD_NATIVE_HEAD_WORDS))));
+}
+
+llvm::Value* RegionLowering::listHead(Function&, llvm::IRBuilder<>& b, llvm::Value* heads, std::uint32_t pred,
+                                      HeadWord w) {
+  return b.CreateConstInBoundsGEP1_64(b.getInt32Ty(), heads,
+                                      std::uint64_t(pred) * MELD_NATIVE_HEAD_WORDS + w);
 }
 
 void RegionLowering::fetchListsAhead(Function& f, llvm::IRBuilder<>& b, const LoopView& loop,
@@ -303,24 +315,14 @@ llvm::Value* RegionLowering::gatherArgs(Function& f, llvm::IRBuilder<>& b, const
 }
 
 void RegionLowering::lowerFactOut(Function& f, llvm::IRBuilder<>& b, std::uint32_t pc) {
-  const std::uint32_t* c = code_.data() + pc;
-  switch (Opcode(c[0])) {
+  switch (Opcode(code_[pc])) {
     case Opcode::DERIVE:  // P*
-      b.CreateCall(t_.deriveType, helper(f, b, kDerive),
-                   {f.vm, f.frame, b.getInt32(pc), b.getInt32(c[1]), gatherArgs(f, b, c + 3, c[2])});
-      break;
-    case Opcode::SEND:  // Pn*: the node is the register's low half (Value::asNode)
-      b.CreateCall(t_.sendType, helper(f, b, kSend),
-                   {f.vm, f.frame, b.getInt32(pc), b.getInt32(c[1]), loadInt(f, b, c[2]),
-                    gatherArgs(f, b, c + 4, c[3])});
-      break;
+      return lowerDerive(f, b, pc);
+    case Opcode::SEND:  // Pn*
+      return lowerSend(f, b, pc);
     default:  // UPDATE, SX*
-      b.CreateCall(t_.sendType, helper(f, b, kUpdate),
-                   {f.vm, f.frame, b.getInt32(pc), b.getInt32(c[1]),
-                    b.getInt32((c[2] & meldvm::kUpdateMoveToBack) != 0), gatherArgs(f, b, c + 4, c[3])});
-      break;
+      return lowerUpdate(f, b, pc);
   }
-  b.CreateBr(at(f, pc + length(pc)));
 }
 
 // builtins_lists.cpp's queens_violation, inline: the queens of the list (nearest column first)

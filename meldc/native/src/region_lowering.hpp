@@ -7,6 +7,7 @@
 #include <llvm/IR/Module.h>
 
 #include <cstddef>
+#include <functional>
 #include <map>
 #include <optional>
 #include <set>
@@ -63,10 +64,23 @@ enum ContextField : unsigned {
   kContextFactsConsumed,
   kContextRunConsumed,
   kContextRulesFired,
-  kContextHeadsPerNode
+  kContextDerivations,
+  kContextCandidates,
+  kContextFactsDerived,
+  kContextRunDerived,
+  kContextSendsBuffered,
+  kContextLiveBelow,
+  kContextSent,
+  kContextSentArgs,
+  kContextFactsSent,
+  kContextDerived,
+  kContextDerivedArgs,
+  kContextHeadsPerNode,
+  kContextRuleWords
 };
-enum TableField : unsigned { kTableWords, kTableStride, kTableArgOffset };
-enum FrameHeadField : unsigned { kFrameSlots = 3, kFrameHost = 6 };
+enum TableField : unsigned { kTableWords, kTableStride, kTableArgOffset, kTableFlags };
+enum HeadWord : unsigned { kHeadFirst, kHeadLast, kHeadSize };  // of a list head (ListHead)
+enum FrameHeadField : unsigned { kFrameSlots = 3, kFrameHost = 6, kFrameNegative, kFrameUpdated };
 static_assert(offsetof(meld_native_context, tables) == 8 * kContextTables &&
               offsetof(meld_native_context, head_pages) == 8 * kContextHeadPages &&
               offsetof(meld_native_context, steps_left) == 8 * kContextStepsLeft &&
@@ -77,13 +91,43 @@ static_assert(offsetof(meld_native_context, tables) == 8 * kContextTables &&
               offsetof(meld_native_context, facts_consumed) == 8 * kContextFactsConsumed &&
               offsetof(meld_native_context, run_consumed) == 8 * kContextRunConsumed &&
               offsetof(meld_native_context, rules_fired) == 8 * kContextRulesFired &&
+              offsetof(meld_native_context, derivations) == 8 * kContextDerivations &&
+              offsetof(meld_native_context, candidates) == 8 * kContextCandidates &&
+              offsetof(meld_native_context, facts_derived) == 8 * kContextFactsDerived &&
+              offsetof(meld_native_context, run_derived) == 8 * kContextRunDerived &&
+              offsetof(meld_native_context, sends_buffered) == 8 * kContextSendsBuffered &&
+              offsetof(meld_native_context, live_below) == 8 * kContextLiveBelow &&
+              offsetof(meld_native_context, sent) == 8 * kContextSent &&
+              offsetof(meld_native_context, sent_args) == 8 * kContextSentArgs &&
+              offsetof(meld_native_context, facts_sent) == 8 * kContextFactsSent &&
+              offsetof(meld_native_context, derived) == 8 * kContextDerived &&
+              offsetof(meld_native_context, derived_args) == 8 * kContextDerivedArgs &&
               offsetof(meld_native_context, heads_per_node) == 8 * kContextHeadsPerNode &&
+              offsetof(meld_native_context, rule_words) == 8 * kContextHeadsPerNode + 4 &&
               sizeof(meld_native_context) == 8 * kContextHeadsPerNode + 8);
 static_assert(offsetof(meld_native_consumed, size) == 8 && offsetof(meld_native_consumed, capacity) == 12);
+static_assert(offsetof(meld_native_array, size) == 8 && offsetof(meld_native_array, capacity) == 12);
+// A sent fact's fields by byte.
+enum SentFactByte : unsigned {
+  kSentNode = 0,
+  kSentPred = 4,
+  kSentNegative = 8,
+  kSentArgs = 12,
+  kSentDelay = 16,
+  kSentCancelled = 20
+};
+static_assert(offsetof(meld_native_sent_fact, pred) == kSentPred &&
+              offsetof(meld_native_sent_fact, negative) == kSentNegative &&
+              offsetof(meld_native_sent_fact, args) == kSentArgs &&
+              offsetof(meld_native_sent_fact, delay_ms) == kSentDelay &&
+              offsetof(meld_native_sent_fact, cancelled) == kSentCancelled &&
+              sizeof(meld_native_sent_fact) == 24);
 static_assert(offsetof(meld_native_table, stride) == 8 && offsetof(meld_native_table, arg_offset) == 12 &&
-              sizeof(meld_native_table) == 16);
+              offsetof(meld_native_table, flags) == 16 && sizeof(meld_native_table) == 24);
 static_assert(offsetof(meld_native_frame_head, slots) == 8 * kFrameSlots &&
-              offsetof(meld_native_frame_head, host) == 8 * kFrameHost);
+              offsetof(meld_native_frame_head, host) == 8 * kFrameHost &&
+              offsetof(meld_native_frame_head, negative) == 8 * kFrameHost + 4 &&
+              offsetof(meld_native_frame_head, updated) == 8 * kFrameHost + 5);
 enum Status : std::int32_t { kNotFired = 0, kFired = 1, kReturn = 2 };
 // The LLVM struct of the helpers ({i32, ptr, ...}) puts field k at 8 * k: so must the C one.
 static_assert(offsetof(meld_native_helpers, loop) == kLoop * 8 &&
@@ -252,6 +296,10 @@ class RegionLowering {
   // bound, the step counted (at the limit the VM's loop_begin is called, which throws), the
   // first fact read from the host's list head.
   void beginLoop(Function& f, llvm::IRBuilder<>& b, std::uint32_t pc, llvm::Value* info);
+  // The address of node's list heads (an i32 node), and of word w of its head of pred's list.
+  llvm::Value* nodeHeads(Function& f, llvm::IRBuilder<>& b, llvm::Value* node);
+  llvm::Value* listHead(Function& f, llvm::IRBuilder<>& b, llvm::Value* heads, std::uint32_t pred,
+                        HeadWord w);
   llvm::Value* contextField(Function& f, llvm::IRBuilder<>& b, ContextField k, llvm::Type* type) {
     llvm::LoadInst* load = b.CreateLoad(type, b.CreateStructGEP(t_.contextType, f.vm, k));
     load->setMetadata(llvm::LLVMContext::MD_invariant_load, llvm::MDNode::get(t_.context, {}));
@@ -313,6 +361,38 @@ class RegionLowering {
   // DERIVE, SEND and UPDATE: the registers' values gathered here (constant register numbers, no
   // decoding) and handed to the helper for that opcode.
   void lowerFactOut(Function& f, llvm::IRBuilder<>& b, std::uint32_t pc);
+  // SEND and DERIVE (lower_writes.cpp): appended to the run's sent or derived facts when
+  // meld_native_context allows it, through the send or derive helper otherwise.
+  void lowerSend(Function& f, llvm::IRBuilder<>& b, std::uint32_t pc);
+  void lowerDerive(Function& f, llvm::IRBuilder<>& b, std::uint32_t pc);
+  // A buffered fact if the conditions both share (table BUFFERED, no derivation recorded, not
+  // negative, room in both arrays) and `more` hold: the record and its arguments appended and
+  // facts_derived and run_derived counted, the builder left at the end of that path. Else the
+  // helper call made by `viaVm`, then a branch to `next`.
+  struct Buffer {
+    ContextField facts, args;
+  };
+  void appendFact(Function& f, llvm::IRBuilder<>& b, Buffer buffer, llvm::Value* node, std::uint32_t pred,
+                  llvm::Value* args, std::uint32_t count, llvm::Value* more, llvm::BasicBlock* next,
+                  const std::function<void()>& viaVm);
+  // UPDATE (lower_writes.cpp): in place when meld_native_context allows it (a plain table, the
+  // host's fact, no derivation recorded, not negative) and the predicate's rules need no thread
+  // fact; through the update helper otherwise.
+  void lowerUpdate(Function& f, llvm::IRBuilder<>& b, std::uint32_t pc);
+  // A rule over the predicate, and the other predicates of its body (ProgramTables' trigger).
+  struct RuleTrigger {
+    std::uint32_t rule;
+    std::vector<meldvm::PredId> needs;
+  };
+  // The rules whose body names pred, in rule order; none if one of them names a thread predicate.
+  std::optional<std::vector<RuleTrigger>> triggersOf(std::uint32_t pred) const;
+  // The host's fact `fact` of pred moved to the end of its list (FactTable::moveToBack);
+  // word0(g) is the address of fact g's first word.
+  void relinkLast(Function& f, llvm::IRBuilder<>& b, llvm::Value* heads, std::uint32_t pred,
+                  llvm::Value* fact, const std::function<llvm::Value*(llvm::Value*)>& word0);
+  // Machine::factAdded for the host's new fact of the triggers' predicate.
+  void wakeRules(Function& f, llvm::IRBuilder<>& b, llvm::Value* heads, llvm::Value* host,
+                 const std::vector<RuleTrigger>& triggers);
   // The registers regs[0, count) stored in a stack array of the function, which is returned.
   llvm::Value* gatherArgs(Function& f, llvm::IRBuilder<>& b, const std::uint32_t* regs, std::uint32_t count);
 

@@ -70,14 +70,18 @@ Interpreter::~Interpreter() = default;
 void Interpreter::setUpNativeContext() {
   static_assert(offsetof(Frame, slots) == offsetof(meld_native_frame_head, slots) &&
                 offsetof(Frame, host) == offsetof(meld_native_frame_head, host) &&
+                offsetof(Frame, negative) == offsetof(meld_native_frame_head, negative) &&
+                offsetof(Frame, updated) == offsetof(meld_native_frame_head, updated) && sizeof(bool) == 1 &&
                 sizeof(NodeId) == sizeof(std::uint32_t));
   static_assert(sizeof(ListHead) == 4 * MELD_NATIVE_HEAD_WORDS && offsetof(ListHead, first) == 0 &&
                 NodeHeads::kShift == MELD_NATIVE_HEAD_PAGE_SHIFT);
   static_assert(sizeof(machine_.stepsLeft_) == 8 && sizeof(machine_.stats_.factsTried) == 8);
   for (PredId p = 0; p < program_.predicates.size(); ++p) {
     const FactTable& t = db_.table(p);
+    const bool buffered = machine_.tables_.plainLinear[p] && !db_.holdsReferences(p);
     nativeTables_.push_back(
-        {reinterpret_cast<const std::uint64_t* const*>(t.slotArrayAddress()), t.stride(), t.argOffset()});
+        {reinterpret_cast<const std::uint64_t* const*>(t.slotArrayAddress()), t.stride(), t.argOffset(),
+         (t.plainWords() ? MELD_NATIVE_TABLE_PLAIN : 0u) | (buffered ? MELD_NATIVE_TABLE_BUFFERED : 0u), 0});
   }
   meld_native_context& c = nativeContext_;
   c.interpreter = this;
@@ -94,6 +98,39 @@ void Interpreter::setUpNativeContext() {
   c.facts_consumed = &machine_.stats_.factsConsumed;
   c.run_consumed = &machine_.runConsumed_;
   c.rules_fired = &machine_.stats_.rulesFired;
+  static_assert(sizeof(machine_.stats_.factsDerived) == 8 && sizeof(machine_.runDerived_) == 8);
+  c.derivations = reinterpret_cast<const void* const*>(&machine_.derivations_);
+  c.candidates = &machine_.candidatesData_;
+  c.facts_derived = &machine_.stats_.factsDerived;
+  c.run_derived = &machine_.runDerived_;
+  c.rule_words = machine_.tables_.ruleWords;
+  setUpNativeBuffers(c);
+}
+
+void Interpreter::setUpNativeBuffers(meld_native_context& c) {
+  using Sent = Machine::PendingFact;
+  static_assert(sizeof(Sent) == sizeof(meld_native_sent_fact) &&
+                offsetof(Sent, pred) == offsetof(meld_native_sent_fact, pred) &&
+                offsetof(Sent, negative) == offsetof(meld_native_sent_fact, negative) &&
+                offsetof(Sent, args) == offsetof(meld_native_sent_fact, args) &&
+                offsetof(Sent, delayMs) == offsetof(meld_native_sent_fact, delay_ms) &&
+                offsetof(Sent, cancelled) == offsetof(meld_native_sent_fact, cancelled));
+  using SentState = NativeArray<Sent>::State;
+  using ArgsState = ValueBuffer::State;
+  static_assert(sizeof(SentState) == sizeof(meld_native_array) &&
+                sizeof(ArgsState) == sizeof(meld_native_array) &&
+                offsetof(SentState, size) == offsetof(meld_native_array, size) &&
+                offsetof(ArgsState, size) == offsetof(meld_native_array, size) &&
+                offsetof(SentState, capacity) == offsetof(meld_native_array, capacity) &&
+                offsetof(ArgsState, capacity) == offsetof(meld_native_array, capacity));
+  static_assert(sizeof(machine_.ownGraphSerial_) == 1 && sizeof(machine_.stats_.factsSent) == 8);
+  c.sends_buffered = reinterpret_cast<const std::uint8_t*>(&machine_.ownGraphSerial_);
+  c.live_below = db_.liveBelowAddress();
+  c.sent = reinterpret_cast<meld_native_array*>(machine_.sentLinear_.forNativeCode());
+  c.sent_args = reinterpret_cast<meld_native_array*>(machine_.sentArgs_.forNativeCode());
+  c.facts_sent = &machine_.stats_.factsSent;
+  c.derived = reinterpret_cast<meld_native_array*>(machine_.linearOut_.forNativeCode());
+  c.derived_args = reinterpret_cast<meld_native_array*>(machine_.linearOutArgs_.forNativeCode());
 }
 
 // Per register whether it is boxed, then whether any loop consumes its fact (fire() has nothing

@@ -206,6 +206,7 @@ class Interpreter {
   meld_native_context nativeContext_{};
   std::vector<meld_native_table> nativeTables_;
   void setUpNativeContext();
+  void setUpNativeBuffers(meld_native_context& c);  // the sent and derived facts' arrays
   std::unordered_map<const CodeBlock*, BlockInfo> blocks_;
   std::vector<const BlockInfo*> ruleInfo_;  // into blocks_ (its entries never move), by rule
   BlockInfo axiomInfo_;                     // infoOf an axiom block (not cached)

@@ -113,6 +113,7 @@ void Machine::start() {
   if (tables_.hasThreads) threadNode_ = n + placement_.self;
   db_->addNodes(all);
   candidates_.assign(std::size_t(all) * tables_.ruleWords, 0);
+  candidatesData_ = candidates_.data();
   mail_->addNodes(all);
   created_.assign(all, 0);
   recycling_.grow(all);
@@ -535,8 +536,7 @@ void Machine::sendAny(NodeId host, NodeId dest, PredId p, const Value* args, boo
     ++runDerived_;
   }
   ++stats_.factsSent;
-  (d.linear ? sentLinear_ : sentPersistent_)
-      .push_back({dest, p, negative, std::uint32_t(sentArgs_.size()), delayMs});
+  bufferSent(d.linear, {dest, p, negative, std::uint32_t(sentArgs_.size()), delayMs});
   pushArgs(sentArgs_, p, args);
 }
 
@@ -560,8 +560,7 @@ void Machine::sendThread(NodeId host, ThreadId t, PredId p, const Value* args, b
   if (t != placement_.self) {  // another thread's node: sent like a fact for a node of its own
     if (d.linear && negative) return;
     ++stats_.factsSent;
-    (d.linear ? sentLinear_ : sentPersistent_)
-        .push_back({initialNodes_ + t, p, negative, std::uint32_t(sentArgs_.size())});
+    bufferSent(d.linear, {initialNodes_ + t, p, negative, std::uint32_t(sentArgs_.size())});
     pushArgs(sentArgs_, p, args);
     return;
   }
@@ -606,6 +605,7 @@ void Machine::growNodes(NodeId end) {
   const NodeId count = end - db_->nodeCount();
   db_->addNodes(count);
   candidates_.resize(std::size_t(end) * tables_.ruleWords, 0);
+  candidatesData_ = candidates_.data();
   mail_->addNodes(count);
   created_.resize(end, 0);
   recycling_.grow(end);

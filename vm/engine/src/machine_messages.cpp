@@ -26,8 +26,10 @@ void Machine::postOrRoute(const PendingFact& e, const Value* args) {
 
 void Machine::flushOutgoing() {
   if (host_) {
-    for (const auto* list : {&sentPersistent_, &sentLinear_})
-      for (const PendingFact& e : *list) {
+    for (const std::span<const PendingFact> list :
+         {std::span<const PendingFact>(sentPersistent_),
+          std::span<const PendingFact>(sentLinear_.begin(), sentLinear_.end())})
+      for (const PendingFact& e : list) {
         const Value* args = sentArgs_.data() + e.args;
         host_->transmit(running_, e.node, e.pred, args, e.negative, e.delayMs);
         releaseArgs(e.pred, args);
@@ -39,7 +41,7 @@ void Machine::flushOutgoing() {
         sentLinear_.size(), [&](std::size_t i) { return sentLinear_[i].node; },
         [&](std::size_t i) { return sentLinear_[i].pred; });
     if (shard_)
-      postAll(sentLinear_, &order);
+      postAll({sentLinear_.begin(), sentLinear_.end()}, &order);
     else
       storeSentLinear(order);
   }
@@ -48,7 +50,7 @@ void Machine::flushOutgoing() {
   sentArgs_.clear();
 }
 
-void Machine::postAll(const std::vector<PendingFact>& facts, const std::vector<std::uint32_t>* order) {
+void Machine::postAll(std::span<const PendingFact> facts, const std::vector<std::uint32_t>* order) {
   // send() fetched each destination's mailbox entry and scheduler record when the fact was
   // derived; here the last chunk of each mailbox is fetched a few posts ahead (the first ones
   // before the loop), since its address is only known from the entry.

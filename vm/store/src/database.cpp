@@ -68,6 +68,7 @@ void Database::badPredicate(PredId p) const {
 NodeId Database::addNodes(NodeId count) {
   const NodeId firstNew = nodeCount();
   alive_.resize(alive_.size() + count, 1);
+  noteLiveNodes();
   heads_.addNodes(count);
   for (GroupInputs& g : nodeInputs_) g.addNodes(count);
   return firstNew;
@@ -77,12 +78,14 @@ void Database::removeNode(NodeId n) {
   clearNode(n);
   alive_[n] = 0;
   ++removedNodes_;
+  noteLiveNodes();
 }
 
 void Database::reviveNode(NodeId n) {
   if (n >= alive_.size() || alive_[n]) throw std::logic_error("meldvm: revived a node that is not removed");
   alive_[n] = 1;
   --removedNodes_;
+  noteLiveNodes();
 }
 
 void Database::clearNode(NodeId n) {

@@ -23,8 +23,9 @@ extern "C" {
 
 /* Bumped whenever a helper, its meaning or the block signature changes. (9: the context and the
  * helpers of 2026-11-29; the commits that built them up called theirs 8, with other helper tables:
- * a shared object of one of them is refused, not misread.) */
-#define MELD_NATIVE_ABI_VERSION 9u
+ * a shared object of one of them is refused, not misread. 10: UPDATE, SEND and DERIVE in native
+ * code.) */
+#define MELD_NATIVE_ABI_VERSION 10u
 
 typedef struct meld_native_vm meld_native_vm;       /* the VM's meld_native_context (below) */
 typedef struct meld_native_frame meld_native_frame; /* its frame (registers, loop slots) */
@@ -64,7 +65,17 @@ typedef struct meld_native_table {
   const uint64_t* const* words;
   uint32_t stride;
   uint32_t arg_offset;
+  uint32_t flags; /* MELD_NATIVE_TABLE_* */
+  uint32_t reserved;
 } meld_native_table;
+
+/* The table's facts are plain words: no index, no de-duplication, no argument that holds a
+ * reference. Native code may then write a fact's arguments and relink it in its list itself. */
+#define MELD_NATIVE_TABLE_PLAIN 1u
+/* The predicate is linear, not an action, and holds no reference: a fact of it derived at the host
+ * waits in the derived buffer until the rule run ends, one sent to another node in the sent buffer
+ * until the node run ends (meld_native_context::derived, sent). */
+#define MELD_NATIVE_TABLE_BUFFERED 2u
 
 /* The start of a frame (meldvm::Interpreter::Frame, same layout): the running node and the loop
  * slots, which native code reads to begin a loop itself. */
@@ -76,6 +87,8 @@ typedef struct meld_native_frame_head {
   const uint8_t* boxed;
   const uint8_t* slot_flags;
   uint32_t host;
+  uint8_t negative; /* the block retracts what it derives (a retraction's run) */
+  uint8_t updated;  /* an UPDATE ran in this frame (RET_IF_UPDATED reads it) */
 } meld_native_frame_head;
 
 /* A node's list heads: per table, its first fact, its last fact and its size (4 bytes each). A
@@ -91,6 +104,27 @@ typedef struct meld_native_consumed {
   uint32_t size;
   uint32_t capacity;
 } meld_native_consumed;
+
+/* A growing array of the VM (meldvm::NativeArray, meldvm::ValueBuffer): `size` elements at
+ * `data`, room for `capacity`. Native code appends while there is room, and calls the VM when
+ * there is none. */
+typedef struct meld_native_array {
+  void* data;
+  uint32_t size;
+  uint32_t capacity;
+} meld_native_array;
+
+/* A fact sent during a rule run, delivered when the node run ends, or derived at the host, stored
+ * when the rule run ends (meldvm::Machine::PendingFact): its node, its predicate, and the word of
+ * the arguments' array (meld_native_context::sent_args, derived_args) its arguments start at. */
+typedef struct meld_native_sent_fact {
+  uint32_t node;
+  uint32_t pred;
+  uint8_t negative;
+  uint32_t args;
+  uint32_t delay_ms;
+  uint8_t cancelled;
+} meld_native_sent_fact;
 
 /* What a block's `vm` argument points at: what native code reads to begin and end an ITER loop
  * and to fire a rule without calling the VM (the predicate's table, the node's list heads, the
@@ -110,8 +144,32 @@ typedef struct meld_native_context {
   uint64_t* facts_consumed; /* the statistics' */
   uint64_t* run_consumed;   /* the node run's */
   uint64_t* rules_fired;    /* the statistics': a FIRE adds one */
+  /* An UPDATE changes the fact in place when derivations are not recorded (*derivations is
+   * null), the frame is not negative, the table is MELD_NATIVE_TABLE_PLAIN and the fact is the
+   * host's; it then makes the rules over the predicate candidates again as the VM's factAdded
+   * does (node n's candidate bits: rule_words 64-bit words at (*candidates) + n * rule_words),
+   * counts the fact in both counts and sets the frame's `updated`. */
+  const void* const* derivations;
+  uint64_t* const* candidates; /* (the array moves when nodes are added) */
+  uint64_t* facts_derived;     /* the statistics' */
+  uint64_t* run_derived;       /* the node run's */
+  /* A SEND appends its fact to `sent` and its arguments to `sent_args` (words), and counts it in
+   * facts_derived, run_derived and facts_sent, when *sends_buffered is nonzero (the VM runs on
+   * its own graph and one thread), derivations are not recorded, the frame is not negative, the
+   * predicate's table is MELD_NATIVE_TABLE_BUFFERED, the destination is below *live_below and
+   * both arrays have room; the send helper does it otherwise. A DERIVE likewise appends to
+   * `derived` and `derived_args` (the host's fact), counted in facts_derived and run_derived, when
+   * derivations are not recorded, the frame is not negative, the table is BUFFERED and both
+   * arrays have room. */
+  const uint8_t* sends_buffered;
+  const uint32_t* live_below;
+  meld_native_array* sent; /* of meld_native_sent_fact */
+  meld_native_array* sent_args;
+  uint64_t* facts_sent;       /* the statistics' */
+  meld_native_array* derived; /* of meld_native_sent_fact */
+  meld_native_array* derived_args;
   uint32_t heads_per_node;
-  uint32_t reserved;
+  uint32_t rule_words;
 } meld_native_context;
 
 /* What loop_begin tells native code about an ITER or ITER_KEY loop, so that it steps through the

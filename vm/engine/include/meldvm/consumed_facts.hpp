@@ -1,15 +1,14 @@
 // The facts a rule run consumed: marked when a rule fires, unlinked when the run ends
-// (Machine::finishRuleRun). A plain array whose state is native_abi.h's meld_native_consumed, so
+// (Machine::finishRuleRun). A NativeArray whose state is native_abi.h's meld_native_consumed, so
 // that native code appends to it without a call (and calls the VM when it is full).
 #pragma once
 
-#include <algorithm>
 #include <cstddef>
 #include <cstdint>
-#include <vector>
 
 #include "meldvm/fact_table.hpp"
 #include "meldvm/native_abi.h"
+#include "meldvm/native_array.hpp"
 #include "meldvm/predicate.hpp"
 #include "meldvm/value.hpp"
 
@@ -25,31 +24,21 @@ class ConsumedFacts {
   static_assert(sizeof(Fact) == 12 && sizeof(NodeId) == 4 && sizeof(PredId) == 4 && sizeof(FactRef) == 4,
                 "native code appends three 32-bit words per fact");
 
-  ConsumedFacts() = default;
-  ConsumedFacts(const ConsumedFacts&) = delete;  // native code holds the state's address
-  ConsumedFacts& operator=(const ConsumedFacts&) = delete;
-
-  void push(NodeId n, PredId p, FactRef f) {
-    if (state_.size == state_.capacity) [[unlikely]]
-      grow();
-    facts()[state_.size++] = {n, p, f};
+  void push(NodeId n, PredId p, FactRef f) { facts_.push_back({n, p, f}); }
+  std::size_t size() const { return facts_.size(); }
+  const Fact& operator[](std::size_t i) const { return facts_[i]; }
+  void clear() { facts_.clear(); }
+  std::size_t bytesReserved() const { return facts_.bytesReserved(); }
+  meld_native_consumed* forNativeCode() {
+    using State = NativeArray<Fact>::State;
+    static_assert(sizeof(State) == sizeof(meld_native_consumed) &&
+                  offsetof(State, size) == offsetof(meld_native_consumed, size) &&
+                  offsetof(State, capacity) == offsetof(meld_native_consumed, capacity));
+    return reinterpret_cast<meld_native_consumed*>(facts_.forNativeCode());
   }
-  std::size_t size() const { return state_.size; }
-  const Fact& operator[](std::size_t i) const { return facts()[i]; }
-  void clear() { state_.size = 0; }
-  std::size_t bytesReserved() const { return storage_.capacity() * sizeof(Fact); }
-  meld_native_consumed* forNativeCode() { return &state_; }
 
  private:
-  Fact* facts() const { return static_cast<Fact*>(state_.facts); }
-  void grow() {  // as a std::vector grows (the memory a robot's VM reports stays the same)
-    storage_.resize(std::max<std::size_t>(1, storage_.size() * 2));
-    state_.facts = storage_.data();
-    state_.capacity = std::uint32_t(storage_.size());
-  }
-
-  std::vector<Fact> storage_;
-  meld_native_consumed state_{};
+  NativeArray<Fact> facts_;
 };
 
 }  // namespace meldvm

@@ -14,6 +14,7 @@
 #include <iosfwd>
 #include <memory>
 #include <memory_resource>
+#include <span>
 #include <string>
 #include <unordered_map>
 #include <vector>
@@ -24,6 +25,7 @@
 #include "meldvm/heap.hpp"
 #include "meldvm/large_allocator.hpp"
 #include "meldvm/mailboxes.hpp"
+#include "meldvm/native_array.hpp"
 #include "meldvm/node_recycling.hpp"
 #include "meldvm/program.hpp"
 #include "meldvm/program_tables.hpp"
@@ -390,6 +392,12 @@ class Machine : private SchedulerView {
     bool cancelled = false;     // queued: met its retraction before it ran (processPersistent)
   };
   bool cancelledByLaterRetraction(const PendingFact& e);
+  void bufferSent(bool linear, const PendingFact& e) {
+    if (linear)
+      sentLinear_.push_back(e);
+    else
+      sentPersistent_.push_back(e);
+  }
   void queuePersistent(NodeId n, PredId p, const Value* args, bool negative) {
     persistentQueue_.push_back({n, p, negative, std::uint32_t(persistentArgs_.size())});
     pushArgs(persistentArgs_, p, args);
@@ -469,12 +477,13 @@ class Machine : private SchedulerView {
 
   // Candidate rules per node: a bitset of rulesWords_ words per node.
   LargeVector<std::uint64_t> candidates_;
+  std::uint64_t* candidatesData_ = nullptr;  // candidates_.data(), read by native code (native_abi.h)
 
   std::unique_ptr<Mailboxes> mail_;
 
   // Within a rule run.
   ConsumedFacts consumed_;
-  std::vector<PendingFact> linearOut_;  // linear facts derived for the host, appended after the run
+  NativeArray<PendingFact> linearOut_;  // linear facts derived for the host, appended after the run
   ValueBuffer linearOutArgs_;
   std::vector<PendingFact> persistentQueue_;  // FIFO (§6.5)
   std::size_t persistentHead_ = 0;
@@ -484,9 +493,10 @@ class Machine : private SchedulerView {
   // (the established VM posts them at once, so they precede every linear fact of the same run,
   // §6.4.4), each kind in sending order. Nothing can read a mailbox before the run ends, so
   // posting them together is unobservable, and it lets the posts prefetch their mailboxes.
-  std::vector<PendingFact> sentPersistent_, sentLinear_;
+  std::vector<PendingFact> sentPersistent_;
+  NativeArray<PendingFact> sentLinear_;  // native code appends to it (and to sentArgs_)
   ValueBuffer sentArgs_;
-  void postAll(const std::vector<PendingFact>& facts, const std::vector<std::uint32_t>* order);
+  void postAll(std::span<const PendingFact> facts, const std::vector<std::uint32_t>* order);
   std::unique_ptr<detail::SendOrder> sendOrder_;
   // set-priority requests of the node run, applied when it ends (§5.7). The established VM keeps
   // them in a std::unordered_map keyed by node id (identity hash) and applies them in its

@@ -49,6 +49,8 @@ class Database {
   // Until a node is removed every node is alive: no look-up in the byte array, whose random reads
   // (one per message sent) are a cache miss each on large graphs.
   bool alive(NodeId n) const { return removedNodes_ == 0 || alive_[n] != 0; }
+  // For native code: the address of a bound below which every node exists and is alive.
+  const std::uint32_t* liveBelowAddress() const { return &liveBelow_; }
   // Drops every fact of the node (created nodes collected by the GC, §6.10); the dump skips it.
   void removeNode(NodeId n);
   // Whether p's facts hold references (a boxed field, or a node the Heap counts): copies of its
@@ -239,6 +241,7 @@ class Database {
   void checkNode(NodeId n) const {
     if (n >= alive_.size() || !alive(n)) badNode(n);
   }
+  void noteLiveNodes() { liveBelow_ = removedNodes_ == 0 ? std::uint32_t(alive_.size()) : 0; }
   [[noreturn]] void badPredicate(PredId p) const;
   [[noreturn]] void badNode(NodeId n) const;
   // Releases what the previous Change kept alive.
@@ -283,6 +286,7 @@ class Database {
   NodeHeads heads_{0};                       // set up once tableCount_ is known
   std::vector<std::uint8_t> alive_;
   std::uint32_t removedNodes_ = 0;
+  std::uint32_t liveBelow_ = 0;  // every node below it is alive (the node count, or 0 once one is removed)
   std::vector<std::uint8_t> grouped_;  // per predicate: new persistent facts join their first-field group
 
   // Scratch of the last change (reserved once, so changes allocate nothing).

@@ -141,6 +141,8 @@ class FactTable {
   // array is (the array moves when the table grows; this address does not) and words per slot.
   const Value* const* slotArrayAddress() const { return &slotArray_; }
   std::uint32_t stride() const { return stride_; }
+  // No index, no de-duplication, no argument holding a reference: a fact is words anyone may write.
+  bool plainWords() const { return plain_ && references_.empty(); }
   std::uint32_t argOffset() const { return argOffset_; }
   // The slot word of index `index`'s chain (after the list links and the count): its high half
   // links a fact to the next one, its low half to the previous (the head's: to the tail).

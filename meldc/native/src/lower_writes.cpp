@@ -1,0 +1,259 @@
+// UPDATE and SEND in native code, without the VM when meld_native_context allows it. UPDATE: the
+// fact changed in place and the rules over its predicate made candidates again; through the
+// update helper it cost heat-transfer about 200 instructions per update, most of them in finding
+// again what the block already knows (the table, the list, the rules to wake). SEND and DERIVE:
+// the fact appended to the run's sent or derived facts, as Machine::send's and derive's common
+// case does.
+#include <llvm/IR/MDBuilder.h>
+
+#include <algorithm>
+
+#include "region_lowering.hpp"
+
+namespace meldc::native::detail {
+
+std::optional<std::vector<RegionLowering::RuleTrigger>> RegionLowering::triggersOf(std::uint32_t pred) const {
+  std::vector<RuleTrigger> triggers;
+  for (std::uint32_t r = 0; r < program_.rules.size(); ++r) {
+    const std::vector<meldvm::PredId>& body = program_.rules[r].bodyPredicates;
+    if (std::find(body.begin(), body.end(), pred) == body.end()) continue;
+    RuleTrigger t{r, {}};
+    for (meldvm::PredId q : body) {
+      if (program_.predicates[q].thread) return std::nullopt;  // the VM looks at the thread's node
+      if (q != pred && std::find(t.needs.begin(), t.needs.end(), q) == t.needs.end()) t.needs.push_back(q);
+    }
+    triggers.push_back(std::move(t));
+  }
+  return triggers;
+}
+
+void RegionLowering::lowerUpdate(Function& f, llvm::IRBuilder<>& b, std::uint32_t pc) {
+  const std::uint32_t* c = code_.data() + pc;
+  const std::uint32_t s = c[1], count = c[3];
+  const bool moveToBack = (c[2] & meldvm::kUpdateMoveToBack) != 0;
+  llvm::Value* args = gatherArgs(f, b, c + 4, count);
+  llvm::BasicBlock* next = at(f, pc + length(pc));
+  auto callVm = [&] {
+    b.CreateCall(t_.sendType, helper(f, b, kUpdate),
+                 {f.vm, f.frame, b.getInt32(pc), b.getInt32(s), b.getInt32(moveToBack), args});
+    b.CreateBr(next);
+  };
+  const std::int64_t pred = slotPredicate(s);
+  const auto triggers = pred >= 0 ? triggersOf(std::uint32_t(pred)) : std::nullopt;
+  if (!triggers) return callVm();
+
+  llvm::Type* i8 = b.getInt8Ty();
+  llvm::Type* i32 = b.getInt32Ty();
+  llvm::Type* i64 = b.getInt64Ty();
+  llvm::Type* ptr = b.getPtrTy();
+  llvm::Value* slots = b.CreateLoad(ptr, b.CreateStructGEP(t_.frameHeadType, f.frame, kFrameSlots));
+  llvm::Value* host = b.CreateLoad(i32, b.CreateStructGEP(t_.frameHeadType, f.frame, kFrameHost));
+  llvm::Value* negative = b.CreateLoad(i8, b.CreateStructGEP(t_.frameHeadType, f.frame, kFrameNegative));
+  llvm::Value* node = b.CreateLoad(i32, slotField(b, slots, s, kSlotNode));
+  llvm::Value* fact = b.CreateLoad(i32, slotField(b, slots, s, kSlotFact));
+  llvm::Value* table = b.CreateConstInBoundsGEP1_64(t_.tableType, contextField(f, b, kContextTables, ptr),
+                                                    std::uint64_t(pred));
+  auto tableField = [&](TableField k, llvm::Type* type) {
+    return b.CreateLoad(type, b.CreateStructGEP(t_.tableType, table, k));
+  };
+  llvm::Value* plain = b.CreateICmpNE(
+      b.CreateAnd(tableField(kTableFlags, i32), b.getInt32(MELD_NATIVE_TABLE_PLAIN)), b.getInt32(0));
+  llvm::Value* recording = b.CreateIsNotNull(b.CreateLoad(ptr, contextField(f, b, kContextDerivations, ptr)));
+  llvm::Value* here =
+      b.CreateAnd(b.CreateAnd(plain, b.CreateNot(recording)),
+                  b.CreateAnd(b.CreateICmpEQ(negative, b.getInt8(0)), b.CreateICmpEQ(node, host)));
+  llvm::BasicBlock* inPlace = newBlock(f, "update.here");
+  llvm::BasicBlock* vm = newBlock(f, "update.vm");
+  b.CreateCondBr(here, inPlace, vm, llvm::MDBuilder(t_.context).createBranchWeights(1 << 10, 1));
+  b.SetInsertPoint(vm);
+  callVm();
+
+  b.SetInsertPoint(inPlace);
+  llvm::Value* words = b.CreateLoad(ptr, tableField(kTableWords, ptr));
+  llvm::Value* stride = b.CreateZExt(tableField(kTableStride, i32), i64);
+  auto word0 = [&](llvm::Value* fct) {
+    return b.CreateInBoundsGEP(i64, words, b.CreateMul(b.CreateZExt(fct, i64), stride));
+  };
+  llvm::Value* heads = nodeHeads(f, b, host);
+  if (moveToBack) relinkLast(f, b, heads, std::uint32_t(pred), fact, word0);
+  llvm::Value* argsAt =
+      b.CreateInBoundsGEP(i64, word0(fact), b.CreateZExt(tableField(kTableArgOffset, i32), i64));
+  llvm::Type* argsType = llvm::ArrayType::get(i64, std::max<std::uint32_t>(count, 1));
+  for (std::uint32_t i = 0; i < count; ++i)
+    b.CreateStore(b.CreateLoad(i64, b.CreateConstInBoundsGEP2_32(argsType, args, 0, i)),
+                  b.CreateConstInBoundsGEP1_64(i64, argsAt, i));
+  wakeRules(f, b, heads, host, *triggers);
+  increment(b, contextField(f, b, kContextFactsDerived, ptr));
+  increment(b, contextField(f, b, kContextRunDerived, ptr));
+  b.CreateStore(b.getInt8(1), b.CreateStructGEP(t_.frameHeadType, f.frame, kFrameUpdated));
+  b.CreateBr(next);
+}
+
+void RegionLowering::lowerSend(Function& f, llvm::IRBuilder<>& b, std::uint32_t pc) {
+  const std::uint32_t* c = code_.data() + pc;
+  const std::uint32_t pred = c[1], count = c[3];
+  llvm::Type* i8 = b.getInt8Ty();
+  llvm::Type* i32 = b.getInt32Ty();
+  llvm::Type* ptr = b.getPtrTy();
+  llvm::Value* dest = loadInt(f, b, c[2]);  // the node is the register's low half (Value::asNode)
+  llvm::Value* args = gatherArgs(f, b, c + 4, count);
+  llvm::Value* more = b.CreateAnd(
+      b.CreateICmpNE(b.CreateLoad(i8, contextField(f, b, kContextSendsBuffered, ptr)), b.getInt8(0)),
+      b.CreateICmpULT(dest, b.CreateLoad(i32, contextField(f, b, kContextLiveBelow, ptr))));
+  llvm::BasicBlock* next = at(f, pc + length(pc));
+  appendFact(f, b, {kContextSent, kContextSentArgs}, dest, pred, args, count, more, next, [&] {
+    b.CreateCall(t_.sendType, helper(f, b, kSend),
+                 {f.vm, f.frame, b.getInt32(pc), b.getInt32(pred), dest, args});
+  });
+  increment(b, contextField(f, b, kContextFactsSent, ptr));
+  // The receiver's list head is written when the run ends: fetched now, as Machine::send does.
+  b.CreateIntrinsic(
+      llvm::Intrinsic::prefetch, {ptr},
+      {listHead(f, b, nodeHeads(f, b, dest), pred, kHeadFirst), b.getInt32(1), b.getInt32(3), b.getInt32(1)});
+  b.CreateBr(next);
+}
+
+void RegionLowering::lowerDerive(Function& f, llvm::IRBuilder<>& b, std::uint32_t pc) {
+  const std::uint32_t* c = code_.data() + pc;
+  const std::uint32_t pred = c[1], count = c[2];
+  llvm::Value* args = gatherArgs(f, b, c + 3, count);
+  llvm::BasicBlock* next = at(f, pc + length(pc));
+  auto viaVm = [&] {
+    b.CreateCall(t_.deriveType, helper(f, b, kDerive),
+                 {f.vm, f.frame, b.getInt32(pc), b.getInt32(pred), args});
+  };
+  const meldvm::PredicateDesc& d = program_.predicates[pred];
+  if (!d.linear || d.action || d.thread) {  // persistent facts, actions and thread facts: the VM's
+    viaVm();
+    return (void)b.CreateBr(next);
+  }
+  llvm::Value* host = b.CreateLoad(b.getInt32Ty(), b.CreateStructGEP(t_.frameHeadType, f.frame, kFrameHost));
+  appendFact(f, b, {kContextDerived, kContextDerivedArgs}, host, pred, args, count, b.getTrue(), next, viaVm);
+  b.CreateBr(next);
+}
+
+void RegionLowering::appendFact(Function& f, llvm::IRBuilder<>& b, Buffer buffer, llvm::Value* node,
+                                std::uint32_t pred, llvm::Value* args, std::uint32_t count, llvm::Value* more,
+                                llvm::BasicBlock* next, const std::function<void()>& viaVm) {
+  llvm::Type* i8 = b.getInt8Ty();
+  llvm::Type* i32 = b.getInt32Ty();
+  llvm::Type* i64 = b.getInt64Ty();
+  llvm::Type* ptr = b.getPtrTy();
+  llvm::Value* table =
+      b.CreateConstInBoundsGEP1_64(t_.tableType, contextField(f, b, kContextTables, ptr), pred);
+  llvm::Value* flags = b.CreateLoad(i32, b.CreateStructGEP(t_.tableType, table, kTableFlags));
+  llvm::Value* facts = contextField(f, b, buffer.facts, ptr);
+  llvm::Value* words = contextField(f, b, buffer.args, ptr);
+  auto arrayField = [&](llvm::Value* array, unsigned k) { return b.CreateStructGEP(t_.arrayType, array, k); };
+  llvm::Value* size = b.CreateLoad(i32, arrayField(facts, 1));
+  llvm::Value* wordsSize = b.CreateLoad(i32, arrayField(words, 1));
+  llvm::Value* conditions[] = {
+      more,
+      b.CreateICmpNE(b.CreateAnd(flags, b.getInt32(MELD_NATIVE_TABLE_BUFFERED)), b.getInt32(0)),
+      b.CreateIsNull(b.CreateLoad(ptr, contextField(f, b, kContextDerivations, ptr))),
+      b.CreateICmpEQ(b.CreateLoad(i8, b.CreateStructGEP(t_.frameHeadType, f.frame, kFrameNegative)),
+                     b.getInt8(0)),
+      b.CreateICmpULT(size, b.CreateLoad(i32, arrayField(facts, 2))),
+      b.CreateICmpULE(b.CreateAdd(wordsSize, b.getInt32(count)), b.CreateLoad(i32, arrayField(words, 2)))};
+  llvm::Value* buffered = b.getTrue();
+  for (llvm::Value* c : conditions) buffered = b.CreateAnd(buffered, c);
+  llvm::BasicBlock* append = newBlock(f, "append");
+  llvm::BasicBlock* vm = newBlock(f, "append.vm");
+  b.CreateCondBr(buffered, append, vm, llvm::MDBuilder(t_.context).createBranchWeights(1 << 10, 1));
+  b.SetInsertPoint(vm);
+  viaVm();
+  b.CreateBr(next);
+
+  b.SetInsertPoint(append);
+  llvm::Value* entry =
+      b.CreateInBoundsGEP(i8, b.CreateLoad(ptr, arrayField(facts, 0)),
+                          b.CreateMul(b.CreateZExt(size, i64), b.getInt64(sizeof(meld_native_sent_fact))));
+  auto field = [&](SentFactByte k) { return b.CreateConstInBoundsGEP1_64(i8, entry, k); };
+  b.CreateStore(node, field(kSentNode));
+  b.CreateStore(b.getInt32(pred), field(kSentPred));
+  b.CreateStore(b.getInt8(0), field(kSentNegative));
+  b.CreateStore(wordsSize, field(kSentArgs));
+  b.CreateStore(b.getInt32(0), field(kSentDelay));
+  b.CreateStore(b.getInt8(0), field(kSentCancelled));
+  llvm::Value* argsAt =
+      b.CreateInBoundsGEP(i64, b.CreateLoad(ptr, arrayField(words, 0)), b.CreateZExt(wordsSize, i64));
+  llvm::Type* argsType = llvm::ArrayType::get(i64, std::max<std::uint32_t>(count, 1));
+  for (std::uint32_t i = 0; i < count; ++i)
+    b.CreateStore(b.CreateLoad(i64, b.CreateConstInBoundsGEP2_32(argsType, args, 0, i)),
+                  b.CreateConstInBoundsGEP1_64(i64, argsAt, i));
+  b.CreateStore(b.CreateAdd(size, b.getInt32(1)), arrayField(facts, 1));
+  b.CreateStore(b.CreateAdd(wordsSize, b.getInt32(count)), arrayField(words, 1));
+  increment(b, contextField(f, b, kContextFactsDerived, ptr));
+  increment(b, contextField(f, b, kContextRunDerived, ptr));
+}
+
+// FactTable::moveToBack: word 0 of a fact links it, its previous fact in the low half and its next
+// one in the high half (MELD_NATIVE_NO_FACT at either end).
+void RegionLowering::relinkLast(Function& f, llvm::IRBuilder<>& b, llvm::Value* heads, std::uint32_t pred,
+                                llvm::Value* fact, const std::function<llvm::Value*(llvm::Value*)>& word0) {
+  llvm::Type* i32 = b.getInt32Ty();
+  llvm::Type* i64 = b.getInt64Ty();
+  llvm::Value* lastAt = listHead(f, b, heads, pred, kHeadLast);
+  llvm::Value* last = b.CreateLoad(i32, lastAt);
+  llvm::BasicBlock* move = newBlock(f, "update.move");
+  llvm::BasicBlock* atFirst = newBlock(f, "update.wasfirst");
+  llvm::BasicBlock* inside = newBlock(f, "update.inside");
+  llvm::BasicBlock* unlinked = newBlock(f, "update.unlinked");
+  llvm::BasicBlock* done = newBlock(f, "update.moved");
+  b.CreateCondBr(b.CreateICmpEQ(last, fact), done, move);
+  b.SetInsertPoint(move);
+  llvm::Value* links = b.CreateLoad(i64, word0(fact));
+  llvm::Value* prev = b.CreateTrunc(links, i32);
+  llvm::Value* next = b.CreateTrunc(b.CreateLShr(links, 32), i32);  // a fact: this one is not the last
+  auto setHalf = [&](llvm::Value* at, llvm::Value* v, bool high) {
+    llvm::Value* w = b.CreateLoad(i64, at);
+    llvm::Value* v64 = b.CreateZExt(v, i64);
+    llvm::Value* kept = b.CreateAnd(w, b.getInt64(high ? 0xFFFFFFFFull : 0xFFFFFFFF00000000ull));
+    b.CreateStore(b.CreateOr(kept, high ? b.CreateShl(v64, 32) : v64), at);
+  };
+  b.CreateCondBr(b.CreateICmpEQ(prev, b.getInt32(MELD_NATIVE_NO_FACT)), atFirst, inside);
+  b.SetInsertPoint(atFirst);
+  b.CreateStore(next, listHead(f, b, heads, pred, kHeadFirst));
+  b.CreateBr(unlinked);
+  b.SetInsertPoint(inside);
+  setHalf(word0(prev), next, true);
+  b.CreateBr(unlinked);
+  b.SetInsertPoint(unlinked);
+  setHalf(word0(next), prev, false);
+  setHalf(word0(last), fact, true);
+  b.CreateStore(b.CreateOr(b.CreateZExt(last, i64), b.getInt64(std::uint64_t(MELD_NATIVE_NO_FACT) << 32)),
+                word0(fact));
+  b.CreateStore(fact, lastAt);
+  b.CreateBr(done);
+  b.SetInsertPoint(done);
+}
+
+// Machine::factAdded for a fact of the host: each rule over the predicate becomes a candidate if
+// the host has a fact of every predicate of its body.
+void RegionLowering::wakeRules(Function& f, llvm::IRBuilder<>& b, llvm::Value* heads, llvm::Value* host,
+                               const std::vector<RuleTrigger>& triggers) {
+  if (triggers.empty()) return;
+  llvm::Type* i32 = b.getInt32Ty();
+  llvm::Type* i64 = b.getInt64Ty();
+  llvm::Type* ptr = b.getPtrTy();
+  llvm::Value* ruleWords = b.CreateZExt(contextField(f, b, kContextRuleWords, i32), i64);
+  llvm::Value* candidates =
+      b.CreateInBoundsGEP(i64, b.CreateLoad(ptr, contextField(f, b, kContextCandidates, ptr)),
+                          b.CreateMul(b.CreateZExt(host, i64), ruleWords));
+  for (const RuleTrigger& t : triggers) {
+    llvm::BasicBlock* wake = newBlock(f, "wake" + std::to_string(t.rule));
+    llvm::BasicBlock* done = newBlock(f, "woken" + std::to_string(t.rule));
+    llvm::Value* present = b.getTrue();
+    for (meldvm::PredId q : t.needs)
+      present = b.CreateAnd(
+          present, b.CreateICmpNE(b.CreateLoad(i32, listHead(f, b, heads, q, kHeadSize)), b.getInt32(0)));
+    b.CreateCondBr(present, wake, done);
+    b.SetInsertPoint(wake);
+    llvm::Value* word = b.CreateConstInBoundsGEP1_64(i64, candidates, t.rule / 64);
+    b.CreateStore(b.CreateOr(b.CreateLoad(i64, word), b.getInt64(std::uint64_t(1) << (t.rule % 64))), word);
+    b.CreateBr(done);
+    b.SetInsertPoint(done);
+  }
+}
+
+}  // namespace meldc::native::detail

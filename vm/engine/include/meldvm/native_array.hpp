@@ -1,0 +1,54 @@
+// A growing array whose state (where it is, how many elements, room for how many) is a plain
+// struct that native code appends to without a call (native_abi.h's meld_native_array), calling
+// the VM only when the array is full. The Machine's buffers that native code fills are these.
+#pragma once
+
+#include <algorithm>
+#include <cstddef>
+#include <cstdint>
+#include <vector>
+
+namespace meldvm {
+
+template <class T>
+class NativeArray {
+ public:
+  struct State {  // meld_native_array's layout
+    T* data = nullptr;
+    std::uint32_t size = 0;
+    std::uint32_t capacity = 0;
+  };
+
+  NativeArray() = default;
+  NativeArray(const NativeArray&) = delete;  // native code holds the state's address
+  NativeArray& operator=(const NativeArray&) = delete;
+
+  void push_back(const T& v) {
+    if (state_.size == state_.capacity) [[unlikely]]
+      grow(1);
+    state_.data[state_.size++] = v;
+  }
+  std::size_t size() const { return state_.size; }
+  bool empty() const { return state_.size == 0; }
+  std::size_t capacity() const { return state_.capacity; }
+  const T& operator[](std::size_t i) const { return state_.data[i]; }
+  T& operator[](std::size_t i) { return state_.data[i]; }
+  const T* begin() const { return state_.data; }
+  const T* end() const { return state_.data + state_.size; }
+  void clear() { state_.size = 0; }
+  std::size_t bytesReserved() const { return storage_.capacity() * sizeof(T); }
+  State* forNativeCode() { return &state_; }
+
+ private:
+  // As a std::vector grows (the memory a robot's VM reports stays the same), out of line.
+  [[gnu::noinline]] void grow(std::size_t more) {
+    storage_.resize(std::max<std::size_t>(state_.size + more, storage_.size() * 2));
+    state_.data = storage_.data();
+    state_.capacity = std::uint32_t(storage_.size());
+  }
+
+  std::vector<T> storage_;  // its size is the capacity
+  State state_{};
+};
+
+}  // namespace meldvm
