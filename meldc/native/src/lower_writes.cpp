@@ -42,13 +42,11 @@ void RegionLowering::lowerUpdate(Function& f, llvm::IRBuilder<>& b, std::uint32_
   const auto triggers = pred >= 0 ? triggersOf(std::uint32_t(pred)) : std::nullopt;
   if (!triggers) return callVm();
 
-  llvm::Type* i8 = b.getInt8Ty();
   llvm::Type* i32 = b.getInt32Ty();
   llvm::Type* i64 = b.getInt64Ty();
   llvm::Type* ptr = b.getPtrTy();
   llvm::Value* slots = b.CreateLoad(ptr, b.CreateStructGEP(t_.frameHeadType, f.frame, kFrameSlots));
   llvm::Value* host = b.CreateLoad(i32, b.CreateStructGEP(t_.frameHeadType, f.frame, kFrameHost));
-  llvm::Value* negative = b.CreateLoad(i8, b.CreateStructGEP(t_.frameHeadType, f.frame, kFrameNegative));
   llvm::Value* node = b.CreateLoad(i32, slotField(b, slots, s, kSlotNode));
   llvm::Value* fact = b.CreateLoad(i32, slotField(b, slots, s, kSlotFact));
   llvm::Value* table = b.CreateConstInBoundsGEP1_64(t_.tableType, contextField(f, b, kContextTables, ptr),
@@ -56,19 +54,9 @@ void RegionLowering::lowerUpdate(Function& f, llvm::IRBuilder<>& b, std::uint32_
   auto tableField = [&](TableField k, llvm::Type* type) {
     return b.CreateLoad(type, b.CreateStructGEP(t_.tableType, table, k));
   };
-  llvm::Value* plain = b.CreateICmpNE(
-      b.CreateAnd(tableField(kTableFlags, i32), b.getInt32(MELD_NATIVE_TABLE_PLAIN)), b.getInt32(0));
-  llvm::Value* recording = b.CreateIsNotNull(b.CreateLoad(ptr, contextField(f, b, kContextDerivations, ptr)));
-  llvm::Value* here =
-      b.CreateAnd(b.CreateAnd(plain, b.CreateNot(recording)),
-                  b.CreateAnd(b.CreateICmpEQ(negative, b.getInt8(0)), b.CreateICmpEQ(node, host)));
-  llvm::BasicBlock* inPlace = newBlock(f, "update.here");
-  llvm::BasicBlock* vm = newBlock(f, "update.vm");
-  b.CreateCondBr(here, inPlace, vm, llvm::MDBuilder(t_.context).createBranchWeights(1 << 10, 1));
-  b.SetInsertPoint(vm);
-  callVm();
-
-  b.SetInsertPoint(inPlace);
+  llvm::Value* conditions[] = {writesHere(f, b, std::uint32_t(pred), MELD_NATIVE_TABLE_PLAIN),
+                               b.CreateICmpEQ(node, host)};
+  hereOrVm(f, b, conditions, "update", callVm);
   llvm::Value* words = b.CreateLoad(ptr, tableField(kTableWords, ptr));
   llvm::Value* stride = b.CreateZExt(tableField(kTableStride, i32), i64);
   auto word0 = [&](llvm::Value* fct) {
@@ -139,32 +127,19 @@ void RegionLowering::appendFact(Function& f, llvm::IRBuilder<>& b, Buffer buffer
   llvm::Type* i32 = b.getInt32Ty();
   llvm::Type* i64 = b.getInt64Ty();
   llvm::Type* ptr = b.getPtrTy();
-  llvm::Value* table =
-      b.CreateConstInBoundsGEP1_64(t_.tableType, contextField(f, b, kContextTables, ptr), pred);
-  llvm::Value* flags = b.CreateLoad(i32, b.CreateStructGEP(t_.tableType, table, kTableFlags));
   llvm::Value* facts = contextField(f, b, buffer.facts, ptr);
   llvm::Value* words = contextField(f, b, buffer.args, ptr);
   auto arrayField = [&](llvm::Value* array, unsigned k) { return b.CreateStructGEP(t_.arrayType, array, k); };
   llvm::Value* size = b.CreateLoad(i32, arrayField(facts, 1));
   llvm::Value* wordsSize = b.CreateLoad(i32, arrayField(words, 1));
   llvm::Value* conditions[] = {
-      more,
-      b.CreateICmpNE(b.CreateAnd(flags, b.getInt32(MELD_NATIVE_TABLE_BUFFERED)), b.getInt32(0)),
-      b.CreateIsNull(b.CreateLoad(ptr, contextField(f, b, kContextDerivations, ptr))),
-      b.CreateICmpEQ(b.CreateLoad(i8, b.CreateStructGEP(t_.frameHeadType, f.frame, kFrameNegative)),
-                     b.getInt8(0)),
+      more, writesHere(f, b, pred, MELD_NATIVE_TABLE_BUFFERED),
       b.CreateICmpULT(size, b.CreateLoad(i32, arrayField(facts, 2))),
       b.CreateICmpULE(b.CreateAdd(wordsSize, b.getInt32(count)), b.CreateLoad(i32, arrayField(words, 2)))};
-  llvm::Value* buffered = b.getTrue();
-  for (llvm::Value* c : conditions) buffered = b.CreateAnd(buffered, c);
-  llvm::BasicBlock* append = newBlock(f, "append");
-  llvm::BasicBlock* vm = newBlock(f, "append.vm");
-  b.CreateCondBr(buffered, append, vm, llvm::MDBuilder(t_.context).createBranchWeights(1 << 10, 1));
-  b.SetInsertPoint(vm);
-  viaVm();
-  b.CreateBr(next);
-
-  b.SetInsertPoint(append);
+  hereOrVm(f, b, conditions, "append", [&] {
+    viaVm();
+    b.CreateBr(next);
+  });
   llvm::Value* entry =
       b.CreateInBoundsGEP(i8, b.CreateLoad(ptr, arrayField(facts, 0)),
                           b.CreateMul(b.CreateZExt(size, i64), b.getInt64(sizeof(meld_native_sent_fact))));
@@ -185,6 +160,30 @@ void RegionLowering::appendFact(Function& f, llvm::IRBuilder<>& b, Buffer buffer
   b.CreateStore(b.CreateAdd(wordsSize, b.getInt32(count)), arrayField(words, 1));
   increment(b, contextField(f, b, kContextFactsDerived, ptr));
   increment(b, contextField(f, b, kContextRunDerived, ptr));
+}
+
+llvm::Value* RegionLowering::writesHere(Function& f, llvm::IRBuilder<>& b, std::uint32_t pred, std::uint32_t flag) {
+  llvm::Type* i32 = b.getInt32Ty();
+  llvm::Type* ptr = b.getPtrTy();
+  llvm::Value* table = b.CreateConstInBoundsGEP1_64(t_.tableType, contextField(f, b, kContextTables, ptr), pred);
+  llvm::Value* flags = b.CreateLoad(i32, b.CreateStructGEP(t_.tableType, table, kTableFlags));
+  llvm::Value* negative = b.CreateLoad(b.getInt8Ty(), b.CreateStructGEP(t_.frameHeadType, f.frame, kFrameNegative));
+  return b.CreateAnd(
+      b.CreateAnd(b.CreateICmpNE(b.CreateAnd(flags, b.getInt32(flag)), b.getInt32(0)),
+                  b.CreateIsNull(b.CreateLoad(ptr, contextField(f, b, kContextDerivations, ptr)))),
+      b.CreateICmpEQ(negative, b.getInt8(0)));
+}
+
+void RegionLowering::hereOrVm(Function& f, llvm::IRBuilder<>& b, std::span<llvm::Value* const> conditions,
+                              const std::string& name, const std::function<void()>& viaVm) {
+  llvm::Value* here = b.getTrue();
+  for (llvm::Value* c : conditions) here = b.CreateAnd(here, c);
+  llvm::BasicBlock* native = newBlock(f, name);
+  llvm::BasicBlock* vm = newBlock(f, name + ".vm");
+  b.CreateCondBr(here, native, vm, llvm::MDBuilder(t_.context).createBranchWeights(1 << 10, 1));
+  b.SetInsertPoint(vm);
+  viaVm();
+  b.SetInsertPoint(native);
 }
 
 // FactTable::moveToBack: word 0 of a fact links it, its previous fact in the low half and its next

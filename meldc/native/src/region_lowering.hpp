@@ -11,6 +11,7 @@
 #include <map>
 #include <optional>
 #include <set>
+#include <span>
 #include <string>
 #include <utility>
 #include <vector>
@@ -365,6 +366,13 @@ class RegionLowering {
   // meld_native_context allows it, through the send or derive helper otherwise.
   void lowerSend(Function& f, llvm::IRBuilder<>& b, std::uint32_t pc);
   void lowerDerive(Function& f, llvm::IRBuilder<>& b, std::uint32_t pc);
+  // Whether native code may write a fact of pred itself: its table has `flag`
+  // (MELD_NATIVE_TABLE_*), no derivation is being recorded, the frame is not negative.
+  llvm::Value* writesHere(Function& f, llvm::IRBuilder<>& b, std::uint32_t pred, std::uint32_t flag);
+  // If every condition holds, on in a new block named `name`, where the builder is left; else
+  // `viaVm` (which ends its block: the helper's call, then a branch on).
+  void hereOrVm(Function& f, llvm::IRBuilder<>& b, std::span<llvm::Value* const> conditions,
+                const std::string& name, const std::function<void()>& viaVm);
   // A buffered fact if the conditions both share (table BUFFERED, no derivation recorded, not
   // negative, room in both arrays) and `more` hold: the record and its arguments appended and
   // facts_derived and run_derived counted, the builder left at the end of that path. Else the
