@@ -355,7 +355,7 @@ void Machine::finishRuleRun() {
     factRemoved(c.node, c.pred);
   }
   consumed_.clear();
-  storeDerivedLinear();
+  if (!linearOut_.empty()) storeDerivedLinear();  // (many rule runs derive no linear fact here)
   processPersistent();
 }
 

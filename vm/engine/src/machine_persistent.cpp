@@ -6,7 +6,7 @@
 
 namespace meldvm {
 
-void Machine::processPersistent() {
+void Machine::processQueuedPersistent() {
   constexpr std::size_t kAhead = 4;
   for (std::size_t i = persistentHead_; i < persistentQueue_.size() && i < persistentHead_ + kAhead - 1; ++i)
     db_->prefetchDerive(persistentQueue_[i].node, persistentQueue_[i].pred,
