@@ -3,10 +3,11 @@
  * The LLVM backend (meldc/native) lowers the verified bytecode of a code block to functions of type
  * meld_native_block: one for the block's start and one for the body of each of its loops. Register
  * arithmetic, moves of unboxed values, jumps, the beginning and stepping of loops through a
- * predicate's facts (meld_native_context, meld_native_loop), reading facts in place, consuming them
- * and counting become machine code; the rest of what changes the fact store, the heap, messages or
- * the scheduler is a call to one of the helpers below, which run the interpreter's own code for
- * that instruction. Where native code does the VM's work itself, the tests keep the two in
+ * predicate's facts (meld_native_context, meld_native_loop), reading facts in place, consuming
+ * them, updating them in place, appending the facts a rule derives or sends to the run's buffers,
+ * and counting become machine code, in the common cases that meld_native_context describes; the
+ * rest of what changes the fact store, the heap, messages or the scheduler is a call to one of the
+ * helpers below, which run the interpreter's own code for that instruction. Where native code does the VM's work itself, the tests keep the two in
  * agreement (every conformance golden in every mode, the differential fuzz).
  *
  * A block function returns what the interpreter's exec() returns for the same code: 0 the body did
