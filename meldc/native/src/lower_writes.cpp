@@ -1,9 +1,9 @@
-// UPDATE and SEND in native code, without the VM when meld_native_context allows it. UPDATE: the
-// fact changed in place and the rules over its predicate made candidates again; through the
-// update helper it cost heat-transfer about 200 instructions per update, most of them in finding
-// again what the block already knows (the table, the list, the rules to wake). SEND and DERIVE:
-// the fact appended to the run's sent or derived facts, as Machine::send's and derive's common
-// case does.
+// UPDATE, SEND and DERIVE in native code, without the VM when meld_native_context allows it.
+// UPDATE: the fact changed in place and the rules over its predicate made candidates again;
+// through the update helper it cost heat-transfer about 200 instructions per update, most of them
+// in finding again what the block already knows (the table, the list, the rules to wake). SEND and
+// DERIVE: the fact appended to the run's sent or derived facts, as Machine::send's and derive's
+// common case does.
 #include <llvm/IR/MDBuilder.h>
 
 #include <algorithm>
@@ -162,12 +162,15 @@ void RegionLowering::appendFact(Function& f, llvm::IRBuilder<>& b, Buffer buffer
   increment(b, contextField(f, b, kContextRunDerived, ptr));
 }
 
-llvm::Value* RegionLowering::writesHere(Function& f, llvm::IRBuilder<>& b, std::uint32_t pred, std::uint32_t flag) {
+llvm::Value* RegionLowering::writesHere(Function& f, llvm::IRBuilder<>& b, std::uint32_t pred,
+                                        std::uint32_t flag) {
   llvm::Type* i32 = b.getInt32Ty();
   llvm::Type* ptr = b.getPtrTy();
-  llvm::Value* table = b.CreateConstInBoundsGEP1_64(t_.tableType, contextField(f, b, kContextTables, ptr), pred);
+  llvm::Value* table =
+      b.CreateConstInBoundsGEP1_64(t_.tableType, contextField(f, b, kContextTables, ptr), pred);
   llvm::Value* flags = b.CreateLoad(i32, b.CreateStructGEP(t_.tableType, table, kTableFlags));
-  llvm::Value* negative = b.CreateLoad(b.getInt8Ty(), b.CreateStructGEP(t_.frameHeadType, f.frame, kFrameNegative));
+  llvm::Value* negative =
+      b.CreateLoad(b.getInt8Ty(), b.CreateStructGEP(t_.frameHeadType, f.frame, kFrameNegative));
   return b.CreateAnd(
       b.CreateAnd(b.CreateICmpNE(b.CreateAnd(flags, b.getInt32(flag)), b.getInt32(0)),
                   b.CreateIsNull(b.CreateLoad(ptr, contextField(f, b, kContextDerivations, ptr)))),
