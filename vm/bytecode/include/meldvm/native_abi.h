@@ -7,8 +7,9 @@
  * them, updating them in place, appending the facts a rule derives or sends to the run's buffers,
  * and counting become machine code, in the common cases that meld_native_context describes; the
  * rest of what changes the fact store, the heap, messages or the scheduler is a call to one of the
- * helpers below, which run the interpreter's own code for that instruction. Where native code does the VM's work itself, the tests keep the two in
- * agreement (every conformance golden in every mode, the differential fuzz).
+ * helpers below, which run the interpreter's own code for that instruction. Where native code does
+ * the VM's work itself, the tests keep the two in agreement (every conformance golden in every
+ * mode, the differential fuzz).
  *
  * A block function returns what the interpreter's exec() returns for the same code: 0 the body did
  * not fire, 1 it fired, 2 return (RET, or the run is stopping). `regs` are the frame's registers,
@@ -127,10 +128,11 @@ typedef struct meld_native_sent_fact {
   uint8_t cancelled;
 } meld_native_sent_fact;
 
-/* What a block's `vm` argument points at: what native code reads to begin and end an ITER loop
- * and to fire a rule without calling the VM (the predicate's table, the node's list heads, the
- * step count, the consumed facts, the statistics), and the VM itself for the helpers. Constant
- * while the VM runs (what it points at changes). */
+/* What a block's `vm` argument points at: what native code reads to begin and end an ITER loop,
+ * to fire a rule, to update a fact and to derive or send one without calling the VM (the
+ * predicate's table, the node's list heads, the step count, the consumed facts, the candidate
+ * rules, the buffers of derived and sent facts, the statistics), and the VM itself for the
+ * helpers. Constant while the VM runs (what it points at changes). */
 typedef struct meld_native_context {
   void* interpreter;                        /* the helpers' */
   const meld_native_table* tables;          /* per predicate */
