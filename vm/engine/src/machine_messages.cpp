@@ -27,8 +27,7 @@ void Machine::postOrRoute(const PendingFact& e, const Value* args) {
 void Machine::flushOutgoing() {
   if (host_) {
     for (const std::span<const PendingFact> list :
-         {std::span<const PendingFact>(sentPersistent_),
-          std::span<const PendingFact>(sentLinear_.begin(), sentLinear_.end())})
+         {std::span<const PendingFact>(sentPersistent_), sentLinear_.items()})
       for (const PendingFact& e : list) {
         const Value* args = sentArgs_.data() + e.args;
         host_->transmit(running_, e.node, e.pred, args, e.negative, e.delayMs);
@@ -41,7 +40,7 @@ void Machine::flushOutgoing() {
         sentLinear_.size(), [&](std::size_t i) { return sentLinear_[i].node; },
         [&](std::size_t i) { return sentLinear_[i].pred; });
     if (shard_)
-      postAll({sentLinear_.begin(), sentLinear_.end()}, &order);
+      postAll(sentLinear_.items(), &order);
     else
       storeSentLinear(order);
   }

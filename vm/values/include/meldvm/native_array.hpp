@@ -1,11 +1,13 @@
 // A growing array whose state (where it is, how many elements, room for how many) is a plain
 // struct that native code appends to without a call (native_abi.h's meld_native_array), calling
-// the VM only when the array is full. The Machine's buffers that native code fills are these.
+// the VM only when the array is full. The Machine's buffers that native code fills are these, and
+// the ValueBuffers of their arguments are built on one.
 #pragma once
 
 #include <algorithm>
 #include <cstddef>
 #include <cstdint>
+#include <span>
 #include <vector>
 
 namespace meldvm {
@@ -28,6 +30,16 @@ class NativeArray {
       grow(1);
     state_.data[state_.size++] = v;
   }
+  // Room for n elements in all, exactly (no more than n is taken when the array grows here).
+  void reserve(std::size_t n) {
+    if (n > state_.capacity) resize(n);
+  }
+  // k more elements, uninitialised, at the end (there must be room: reserve first); their start.
+  T* extend(std::uint32_t k) {
+    T* at = state_.data + state_.size;
+    state_.size += k;
+    return at;
+  }
   std::size_t size() const { return state_.size; }
   bool empty() const { return state_.size == 0; }
   std::size_t capacity() const { return state_.capacity; }
@@ -35,6 +47,7 @@ class NativeArray {
   T& operator[](std::size_t i) { return state_.data[i]; }
   const T* begin() const { return state_.data; }
   const T* end() const { return state_.data + state_.size; }
+  std::span<const T> items() const { return {state_.data, state_.size}; }
   void clear() { state_.size = 0; }
   std::size_t bytesReserved() const { return storage_.capacity() * sizeof(T); }
   State* forNativeCode() { return &state_; }
@@ -42,9 +55,12 @@ class NativeArray {
  private:
   // As a std::vector grows (the memory a robot's VM reports stays the same), out of line.
   [[gnu::noinline]] void grow(std::size_t more) {
-    storage_.resize(std::max<std::size_t>(state_.size + more, storage_.size() * 2));
+    resize(std::max<std::size_t>(state_.size + more, storage_.size() * 2));
+  }
+  void resize(std::size_t n) {
+    storage_.resize(n);
     state_.data = storage_.data();
-    state_.capacity = std::uint32_t(storage_.size());
+    state_.capacity = std::uint32_t(n);
   }
 
   std::vector<T> storage_;  // its size is the capacity
