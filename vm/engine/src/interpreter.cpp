@@ -244,11 +244,25 @@ void Interpreter::run(const CodeBlock& block, NodeId host, bool negative, PredId
 }
 
 void Interpreter::runRule(std::uint32_t rule, NodeId host) {
+  if (rules_.empty()) rules_.resize(program_.rules.size());
+  RuleRun& r = rules_[rule];
+  if (!r.info) prepareRule(rule, r);
   const CodeBlock& block = program_.rules[rule].block;
-  if (ruleInfo_.empty()) ruleInfo_.assign(program_.rules.size(), nullptr);
-  const BlockInfo*& info = ruleInfo_[rule];
-  if (!info) info = &infoOf(block);
-  runWith(block, *info, host, false, 0, nullptr);
+  if (r.regs)
+    runNativeRule(block, r, host);
+  else
+    runWith(block, *r.info, host, false, 0, nullptr);
+}
+
+void Interpreter::prepareRule(std::uint32_t rule, RuleRun& r) {
+  const CodeBlock& block = program_.rules[rule].block;
+  r.info = &infoOf(block);
+  r.regCount = std::uint32_t(block.registerTypes.size());
+  r.slotCount = block.slots;
+  // A block too large for a chunk stays on runWith, whose enter() reports it.
+  if (!r.info->native || r.regCount > kRegChunk || r.slotCount > kSlotChunk) return;
+  r.regs = rawChunk<Value>(std::max<std::size_t>(r.regCount, 1));
+  r.slots = rawChunk<Slot>(std::max<std::size_t>(r.slotCount, 1));
 }
 
 void Interpreter::runWith(const CodeBlock& block, const BlockInfo& info, NodeId host, bool negative,
@@ -601,6 +615,28 @@ Interpreter::Status Interpreter::start(Frame& f, meld_native_block native) {
   if (!native) return exec(f, 0);
   return Status(native(&NativeHelpers::kTable, reinterpret_cast<meld_native_vm*>(&nativeContext_),
                        reinterpret_cast<meld_native_frame*>(&f), reinterpret_cast<std::uint64_t*>(f.regs)));
+}
+
+// What runWith does, less the chunk stack: the frame is the rule's own, written afresh as enter()
+// writes one (registers zero, slots unbound), and its boxed registers released after the run.
+void Interpreter::runNativeRule(const CodeBlock& block, RuleRun& r, NodeId host) {
+  Value* regs = r.regs.get();
+  Slot* slots = r.slots.get();
+  for (std::uint32_t i = 0; i < r.regCount; ++i) regs[i] = Value();
+  for (std::uint32_t s = 0; s < r.slotCount; ++s) slots[s] = Slot{0, 0, kNoFact, 0, nullptr};
+  const BlockInfo& info = *r.info;
+  Frame f{&block, block.code.data(), regs, slots, info.boxed.data(), info.slotFlags.data(), host, false};
+  auto releaseBoxed = [&] {
+    for (std::uint32_t reg : info.boxedRegs) heap_.releaseObject(regs[reg]);
+  };
+  try {
+    info.native(&NativeHelpers::kTable, reinterpret_cast<meld_native_vm*>(&nativeContext_),
+                reinterpret_cast<meld_native_frame*>(&f), reinterpret_cast<std::uint64_t*>(regs));
+  } catch (...) {
+    releaseBoxed();
+    throw;
+  }
+  releaseBoxed();
 }
 
 Value Interpreter::callFunction(std::uint32_t fn, const Value* args, NodeId host) {

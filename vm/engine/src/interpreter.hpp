@@ -208,7 +208,19 @@ class Interpreter {
   void setUpNativeContext();
   void setUpNativeBuffers(meld_native_context& c);  // the sent and derived facts' arrays
   std::unordered_map<const CodeBlock*, BlockInfo> blocks_;
-  std::vector<const BlockInfo*> ruleInfo_;  // into blocks_ (its entries never move), by rule
+  // A rule's block info, found by number (into blocks_, whose entries never move), and, when the
+  // block runs as native code, the registers and slots it keeps between its runs: rules never
+  // nest, so a rule's frame needs none of the chunk stack's bookkeeping (enter/leave was a fifth
+  // of the VM's own instructions per native rule run of heat-transfer).
+  struct RuleRun {
+    const BlockInfo* info = nullptr;
+    Chunk<Value> regs;  // null: the block runs in the interpreter
+    Chunk<Slot> slots;
+    std::uint32_t regCount = 0, slotCount = 0;
+  };
+  std::vector<RuleRun> rules_;
+  void prepareRule(std::uint32_t rule, RuleRun& r);
+  void runNativeRule(const CodeBlock& block, RuleRun& r, NodeId host);
   BlockInfo axiomInfo_;                     // infoOf an axiom block (not cached)
   const CodeBlock* lastBlock_ = nullptr;    // the processes of a program run the same few blocks
   const BlockInfo* lastInfo_ = nullptr;
