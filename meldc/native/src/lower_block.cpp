@@ -17,7 +17,7 @@ namespace detail {
 llvm::Function* RegionLowering::region(std::uint32_t start, const std::set<std::uint32_t>& bound,
                                        bool nativeBody) {
   if (auto it = regions_.find(start); it != regions_.end()) return it->second;
-  const bool entry = start == 0;
+  const bool entry = start == 0 && !wrapsEntry_;
   auto* fn = llvm::Function::Create(nativeBody ? t_.bodyType : t_.blockType,
                                     entry ? llvm::Function::ExternalLinkage : llvm::Function::InternalLinkage,
                                     entry ? prefix_ : prefix_ + "_at" + std::to_string(start), t_.module);
@@ -241,7 +241,7 @@ NativeTypes::NativeTypes(llvm::Module& m) : module(m), context(m.getContext()) {
   contextType = llvm::StructType::create(context, contextFields, "meld_native_context");
   consumedType = llvm::StructType::create(context, {ptr, i32, i32}, "meld_native_consumed");
   arrayType = llvm::StructType::create(context, {ptr, i32, i32}, "meld_native_array");
-  tableType = llvm::StructType::create(context, {ptr, i32, i32, i32, i32}, "meld_native_table");
+  tableType = llvm::StructType::create(context, {ptr, i32, i32, i32, i32, ptr, ptr}, "meld_native_table");
   frameHeadType = llvm::StructType::create(context, {ptr, ptr, ptr, ptr, ptr, ptr, i32, i8, i8},
                                            "meld_native_frame_head");
   loopBeginType = llvm::FunctionType::get(voidTy, {ptr, ptr, i32, ptr}, false);
@@ -260,8 +260,8 @@ NativeTypes::NativeTypes(llvm::Module& m) : module(m), context(m.getContext()) {
 }
 
 llvm::Function* lowerBlock(NativeTypes& types, const meldvm::Program& program, const meldvm::CodeBlock& block,
-                           const std::string& name, bool process) {
-  return RegionLowering(types, program, block, name, process).region(0);
+                           const std::string& name, BlockKind kind) {
+  return RegionLowering(types, program, block, name, kind).entry();
 }
 
 }  // namespace meldc::native

@@ -38,10 +38,13 @@ struct NativeTypes {
   llvm::FunctionType *deriveType, *sendType;  // sendType: UPDATE's helper too
 };
 
+// What a block is run as: a rule (Machine::runRule), a persistent process (its slot 0 holds the
+// triggering fact), or anything else (a function, the globals' initialiser).
+enum class BlockKind { Rule, Process, Other };
+
 // Lowers the block's code; returns its entry function, external and named `name` (the loop bodies
-// are internal functions named after it). `process`: a persistent process's block (its slot 0 holds
-// the triggering fact).
+// are internal functions named after it).
 llvm::Function* lowerBlock(NativeTypes& types, const meldvm::Program& program, const meldvm::CodeBlock& block,
-                           const std::string& name, bool process);
+                           const std::string& name, BlockKind kind);
 
 }  // namespace meldc::native

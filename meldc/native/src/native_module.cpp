@@ -119,7 +119,10 @@ std::unique_ptr<llvm::Module> buildModule(const meldvm::Program& program,
   const std::size_t processesFrom = program.rules.size(),
                     processesTo = processesFrom + program.processes.size();
   for (std::size_t k = range.first; k < range.last; ++k)
-    lowerBlock(types, program, *blocks[k], blockSymbol(k), k >= processesFrom && k < processesTo);
+    lowerBlock(types, program, *blocks[k], blockSymbol(k),
+               k < processesFrom ? BlockKind::Rule
+               : k < processesTo ? BlockKind::Process
+                                 : BlockKind::Other);
   std::string problems;
   llvm::raw_string_ostream out(problems);
   if (llvm::verifyModule(*module, &out))

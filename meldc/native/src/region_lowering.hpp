@@ -79,7 +79,15 @@ enum ContextField : unsigned {
   kContextHeadsPerNode,
   kContextRuleWords
 };
-enum TableField : unsigned { kTableWords, kTableStride, kTableArgOffset, kTableFlags };
+enum TableField : unsigned {
+  kTableWords,
+  kTableStride,
+  kTableArgOffset,
+  kTableFlags,
+  kTableReserved,
+  kTableFreeList,
+  kTableLive
+};
 enum HeadWord : unsigned { kHeadFirst, kHeadLast, kHeadSize };  // of a list head (ListHead)
 enum FrameHeadField : unsigned { kFrameSlots = 3, kFrameHost = 6, kFrameNegative, kFrameUpdated };
 static_assert(offsetof(meld_native_context, tables) == 8 * kContextTables &&
@@ -124,7 +132,8 @@ static_assert(offsetof(meld_native_sent_fact, pred) == kSentPred &&
               offsetof(meld_native_sent_fact, cancelled) == kSentCancelled &&
               sizeof(meld_native_sent_fact) == 24);
 static_assert(offsetof(meld_native_table, stride) == 8 && offsetof(meld_native_table, arg_offset) == 12 &&
-              offsetof(meld_native_table, flags) == 16 && sizeof(meld_native_table) == 24);
+              offsetof(meld_native_table, flags) == 16 && offsetof(meld_native_table, free_list) == 24 &&
+              offsetof(meld_native_table, live) == 32 && sizeof(meld_native_table) == 40);
 static_assert(offsetof(meld_native_frame_head, slots) == 8 * kFrameSlots &&
               offsetof(meld_native_frame_head, host) == 8 * kFrameHost &&
               offsetof(meld_native_frame_head, negative) == 8 * kFrameHost + 4 &&
@@ -158,8 +167,13 @@ static_assert(offsetof(meld_native_slot, fact) == 4 * kSlotFact && offsetof(meld
 class RegionLowering {
  public:
   RegionLowering(NativeTypes& t, const meldvm::Program& program, const meldvm::CodeBlock& block,
-                 std::string prefix, bool process)
-      : t_(t), program_(program), block_(block), code_(block.code), prefix_(std::move(prefix)) {
+                 std::string prefix, BlockKind kind)
+      : t_(t),
+        program_(program),
+        block_(block),
+        code_(block.code),
+        prefix_(std::move(prefix)),
+        rule_(kind == BlockKind::Rule) {
     // Which loop slots consume the fact they bind (FIRE has nothing to consume past the last).
     meldvm::detail::forEachInstruction(code_, [&](std::size_t pc) {
       if (!meldvm::detail::isLoop(code_[pc])) return;
@@ -171,7 +185,7 @@ class RegionLowering {
       if (!fresh && it->second != pred) it->second = -1;
     });
     // A persistent process's slot 0 holds the fact that triggered it (any predicate it names).
-    if (process) slotPreds_.erase(0);
+    if (kind == BlockKind::Process) slotPreds_.erase(0);
   }
 
   // The function for the code entered at `start` (created on first request, lowered at once).
@@ -180,6 +194,9 @@ class RegionLowering {
   // (what loop_begin said about each loop slot bound natively: `bound` lists them).
   llvm::Function* region(std::uint32_t start, const std::set<std::uint32_t>& bound = {},
                          bool nativeBody = false);
+  // The block's external entry: region(0), or for a rule that consumes facts of known predicates,
+  // a function that runs region(0) and then unlinks the facts consumed (lower_unlink.cpp).
+  llvm::Function* entry();
 
  private:
   struct Function {
@@ -427,6 +444,22 @@ class RegionLowering {
     b.CreateStore(b.CreateAdd(b.CreateLoad(b.getInt64Ty(), counter), b.getInt64(1)), counter);
   }
 
+  // A predicate whose consumed facts the rule unlinks itself, and the rules over it.
+  struct Unlinked {
+    std::uint32_t pred;
+    std::vector<RuleTrigger> triggers;
+  };
+  std::vector<Unlinked> unlinkedPredicates() const;
+  // From the start of the consumed facts' array (`size` of them): a loop that unlinks each one
+  // and stops at the first it does not handle (another predicate, a table that is not plain),
+  // leaving that one and the rest to the VM. Ends in a branch to `done`.
+  void unlinkConsumed(Function& f, llvm::IRBuilder<>& b, const std::vector<Unlinked>& unlinked,
+                      llvm::Value* consumed, llvm::Value* size, llvm::BasicBlock* done);
+  // FactTable::erase and Machine::factRemoved for the node's fact of u.pred; to `vm` if its table
+  // is not plain (the builder is left after the unlinking otherwise).
+  void unlinkFact(Function& f, llvm::IRBuilder<>& b, const Unlinked& u, llvm::Value* node, llvm::Value* fact,
+                  llvm::BasicBlock* vm);
+
   NativeTypes& t_;
   const meldvm::Program& program_;
   std::set<std::uint32_t> consumingSlots_;  // slots some loop binds with kIterConsume
@@ -437,6 +470,8 @@ class RegionLowering {
   std::span<const std::uint32_t> code_;
   std::string prefix_;
   std::map<std::uint32_t, llvm::Function*> regions_;  // by the pc each function starts at
+  const bool rule_;          // a rule's block (Machine::runRule runs it, then finishRuleRun)
+  bool wrapsEntry_ = false;  // region(0) is internal, run by entry()'s function
 };
 
 }  // namespace meldc::native::detail

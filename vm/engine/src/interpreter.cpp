@@ -77,11 +77,13 @@ void Interpreter::setUpNativeContext() {
                 NodeHeads::kShift == MELD_NATIVE_HEAD_PAGE_SHIFT);
   static_assert(sizeof(machine_.stepsLeft_) == 8 && sizeof(machine_.stats_.factsTried) == 8);
   for (PredId p = 0; p < program_.predicates.size(); ++p) {
-    const FactTable& t = db_.table(p);
+    FactTable& t = db_.tableForNativeCode(p);
     const bool buffered = machine_.tables_.plainLinear[p] && !db_.holdsReferences(p);
+    static_assert(sizeof(FactRef) == sizeof(std::uint32_t));
     nativeTables_.push_back(
         {reinterpret_cast<const std::uint64_t* const*>(t.slotArrayAddress()), t.stride(), t.argOffset(),
-         (t.plainWords() ? MELD_NATIVE_TABLE_PLAIN : 0u) | (buffered ? MELD_NATIVE_TABLE_BUFFERED : 0u), 0});
+         (t.plainWords() ? MELD_NATIVE_TABLE_PLAIN : 0u) | (buffered ? MELD_NATIVE_TABLE_BUFFERED : 0u), 0,
+         t.freeListAddress(), t.liveAddress()});
   }
   meld_native_context& c = nativeContext_;
   c.interpreter = this;
@@ -248,7 +250,7 @@ void Interpreter::runRule(std::uint32_t rule, NodeId host) {
   RuleRun& r = rules_[rule];
   if (!r.info) prepareRule(rule, r);
   const CodeBlock& block = program_.rules[rule].block;
-  if (r.regs)
+  if (r.regs && !r.running)
     runNativeRule(block, r, host);
   else
     runWith(block, *r.info, host, false, 0, nullptr);
@@ -629,14 +631,17 @@ void Interpreter::runNativeRule(const CodeBlock& block, RuleRun& r, NodeId host)
   auto releaseBoxed = [&] {
     for (std::uint32_t reg : info.boxedRegs) heap_.releaseObject(regs[reg]);
   };
+  r.running = true;
   try {
     info.native(&NativeHelpers::kTable, reinterpret_cast<meld_native_vm*>(&nativeContext_),
                 reinterpret_cast<meld_native_frame*>(&f), reinterpret_cast<std::uint64_t*>(regs));
   } catch (...) {
     releaseBoxed();
+    r.running = false;
     throw;
   }
   releaseBoxed();
+  r.running = false;
 }
 
 Value Interpreter::callFunction(std::uint32_t fn, const Value* args, NodeId host) {

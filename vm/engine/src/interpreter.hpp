@@ -217,6 +217,7 @@ class Interpreter {
     Chunk<Value> regs;  // null: the block runs in the interpreter
     Chunk<Slot> slots;
     std::uint32_t regCount = 0, slotCount = 0;
+    bool running = false;  // (were a rule ever run inside its own run, the inner one takes the chunk stack)
   };
   std::vector<RuleRun> rules_;
   void prepareRule(std::uint32_t rule, RuleRun& r);

@@ -26,8 +26,8 @@ extern "C" {
 /* Bumped whenever a helper, its meaning or the block signature changes. (9: the context and the
  * helpers of 2026-11-29; the commits that built them up called theirs 8, with other helper tables:
  * a shared object of one of them is refused, not misread. 10: UPDATE, SEND and DERIVE in native
- * code.) */
-#define MELD_NATIVE_ABI_VERSION 10u
+ * code. 11: a rule's consumed facts unlinked by native code, the table's free list and count.) */
+#define MELD_NATIVE_ABI_VERSION 11u
 
 typedef struct meld_native_vm meld_native_vm;       /* the VM's meld_native_context (below) */
 typedef struct meld_native_frame meld_native_frame; /* its frame (registers, loop slots) */
@@ -69,10 +69,16 @@ typedef struct meld_native_table {
   uint32_t arg_offset;
   uint32_t flags; /* MELD_NATIVE_TABLE_* */
   uint32_t reserved;
+  uint32_t* free_list; /* the first free fact (a free fact's word 0 links the next in its high half) */
+  uint32_t* live;      /* how many facts the table holds */
 } meld_native_table;
 
 /* The table's facts are plain words: no index, no de-duplication, no argument that holds a
- * reference. Native code may then write a fact's arguments and relink it in its list itself. */
+ * reference. Native code may then write a fact's arguments and relink it in its list itself, and
+ * unlink a fact a rule run consumed when the run ends, as meldvm::FactTable::erase does: out of
+ * its list (the list head's size one less), its word 1 zero, its word 0 the free list's head in
+ * the high half and its previous fact in the low half, the free list's head the fact, `live` one
+ * less. */
 #define MELD_NATIVE_TABLE_PLAIN 1u
 /* The predicate is linear, not an action, and holds no reference: a fact of it derived at the host
  * waits in the derived buffer until the rule run ends, one sent to another node in the sent buffer
@@ -100,7 +106,11 @@ typedef struct meld_native_frame_head {
 #define MELD_NATIVE_HEAD_WORDS 3u
 
 /* The facts a rule run consumed so far: `size` of them at `facts`, three 4-byte words each (node,
- * predicate, fact), room for `capacity`. */
+ * predicate, fact), room for `capacity`. The VM unlinks them when the rule run ends, in this
+ * order: a rule's native code may unlink the first ones itself before it returns (those of
+ * MELD_NATIVE_TABLE_PLAIN tables, in order, each rule over the predicate no longer a candidate at
+ * the node when its list is empty, as meldvm::Machine::factRemoved does) and leave the others at
+ * the front of the array, for the VM. */
 typedef struct meld_native_consumed {
   void* facts;
   uint32_t size;

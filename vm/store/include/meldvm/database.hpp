@@ -153,6 +153,7 @@ class Database {
   // Aggregate values: one per group, a changed value moves to the end; compact: insertion order.
   FactRef first(NodeId n, PredId p) const { return head(n, p).first; }
   const FactTable& table(PredId p) const { return tables_[p]; }  // its layout, for native code
+  FactTable& tableForNativeCode(PredId p) { return tables_[p]; }  // which writes plain tables
   FactRef next(PredId p, FactRef f) const { return tables_[p].next(f); }
   const Value* args(PredId p, FactRef f) const { return tables_[p].args(f); }
   std::uint32_t copies(PredId p, FactRef f) const { return tables_[p].count(f); }

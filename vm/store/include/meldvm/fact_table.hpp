@@ -144,6 +144,10 @@ class FactTable {
   // No index, no de-duplication, no argument holding a reference: a fact is words anyone may write.
   bool plainWords() const { return plain_ && references_.empty(); }
   std::uint32_t argOffset() const { return argOffset_; }
+  // Native code unlinks the consumed facts of a table of plain words itself (native_abi.h): it
+  // writes the free list's head and the count of live facts.
+  FactRef* freeListAddress() { return &freeList_; }
+  std::uint32_t* liveAddress() { return &live_; }
   // The slot word of index `index`'s chain (after the list links and the count): its high half
   // links a fact to the next one, its low half to the previous (the head's: to the tail).
   static constexpr std::uint32_t indexLinkWord(std::uint32_t index) { return 2 + index; }
