@@ -444,21 +444,32 @@ class RegionLowering {
     b.CreateStore(b.CreateAdd(b.CreateLoad(b.getInt64Ty(), counter), b.getInt64(1)), counter);
   }
 
-  // A predicate whose consumed facts the rule unlinks itself, and the rules over it.
-  struct Unlinked {
+  // At the end of a rule run (lower_rule_end.cpp): a predicate whose consumed facts the rule
+  // unlinks itself, or whose derived facts it stores itself, and the rules over it.
+  struct PredicateRules {
     std::uint32_t pred;
     std::vector<RuleTrigger> triggers;
   };
-  std::vector<Unlinked> unlinkedPredicates() const;
+  std::vector<PredicateRules> unlinkedPredicates() const;
+  std::vector<PredicateRules> derivedPredicates() const;
   // From the start of the consumed facts' array (`size` of them): a loop that unlinks each one
   // and stops at the first it does not handle (another predicate, a table that is not plain),
-  // leaving that one and the rest to the VM. Ends in a branch to `done`.
-  void unlinkConsumed(Function& f, llvm::IRBuilder<>& b, const std::vector<Unlinked>& unlinked,
-                      llvm::Value* consumed, llvm::Value* size, llvm::BasicBlock* done);
+  // leaving that one and the rest to the VM. Ends in a branch to `all` when it unlinked them all,
+  // to `done` otherwise.
+  void unlinkConsumed(Function& f, llvm::IRBuilder<>& b, const std::vector<PredicateRules>& unlinked,
+                      llvm::Value* consumed, llvm::Value* size, llvm::BasicBlock* all,
+                      llvm::BasicBlock* done);
   // FactTable::erase and Machine::factRemoved for the node's fact of u.pred; to `vm` if its table
   // is not plain (the builder is left after the unlinking otherwise).
-  void unlinkFact(Function& f, llvm::IRBuilder<>& b, const Unlinked& u, llvm::Value* node, llvm::Value* fact,
-                  llvm::BasicBlock* vm);
+  void unlinkFact(Function& f, llvm::IRBuilder<>& b, const PredicateRules& u, llvm::Value* node,
+                  llvm::Value* fact, llvm::BasicBlock* vm);
+  // Machine::storeDerivedLinear likewise, the same stop; then a branch to `done`.
+  void storeDerived(Function& f, llvm::IRBuilder<>& b, const std::vector<PredicateRules>& stored,
+                    llvm::BasicBlock* done);
+  // Database::addLinearTrusted and Machine::factAdded for a fact of u.pred at the node, its
+  // arguments at `args`; to `vm` if its table is not plain or has no free slot.
+  void storeFact(Function& f, llvm::IRBuilder<>& b, const PredicateRules& u, llvm::Value* node,
+                 llvm::Value* args, llvm::BasicBlock* vm);
 
   NativeTypes& t_;
   const meldvm::Program& program_;
