@@ -19,7 +19,27 @@ RegionLowering::LoopView RegionLowering::loadLoopView(llvm::IRBuilder<>& b, llvm
 }
 
 RegionLowering::LoopView RegionLowering::loopView(Function& f, llvm::IRBuilder<>& b, std::uint32_t s) {
+  if (const std::int64_t pred = slotPredicate(s); pred >= 0) return tableView(f, b, std::uint32_t(pred));
   return loadLoopView(b, b.CreateLoad(b.getPtrTy(), b.CreateConstInBoundsGEP1_64(b.getPtrTy(), f.loops, s)));
+}
+
+RegionLowering::LoopView RegionLowering::tableView(Function& f, llvm::IRBuilder<>& b, std::uint32_t pred) {
+  llvm::Type* i32 = b.getInt32Ty();
+  llvm::Type* i64 = b.getInt64Ty();
+  llvm::Type* ptr = b.getPtrTy();
+  llvm::Value* table =
+      b.CreateConstInBoundsGEP1_64(t_.tableType, contextField(f, b, kContextTables, ptr), pred);
+  auto invariant = [&](llvm::Type* type, llvm::Value* at) {
+    llvm::LoadInst* load = b.CreateLoad(type, at);
+    load->setMetadata(llvm::LLVMContext::MD_invariant_load, llvm::MDNode::get(t_.context, {}));
+    return load;
+  };
+  auto tableField = [&](TableField k, llvm::Type* type) {
+    return invariant(type, b.CreateStructGEP(t_.tableType, table, k));
+  };
+  return {invariant(ptr, b.CreateStructGEP(t_.frameHeadType, f.frame, kFrameSlots)),
+          tableField(kTableWords, ptr), b.CreateZExt(tableField(kTableStride, i32), i64),
+          b.CreateZExt(tableField(kTableArgOffset, i32), i64)};
 }
 
 llvm::Value* RegionLowering::factWord(llvm::IRBuilder<>& b, const LoopView& loop, llvm::Value* fact,
@@ -67,17 +87,24 @@ void RegionLowering::lowerNativeLoop(Function& f, llvm::IRBuilder<>& b, std::uin
   llvm::AllocaInst* factVar = local(f, i32, "fact");
   llvm::AllocaInst* triedVar = local(f, i64, "tried");
   llvm::AllocaInst* firedVar = local(f, b.getInt1Ty(), "fired");
-  if (Opcode(code_[pc]) == Opcode::ITER && !(flags & meldvm::kIterThread))
-    beginLoop(f, b, pc, info);
-  else
+  // What the loop reads of its table and of the stopping flags is the context's (loop_begin copies
+  // it): only a slot that loops of several predicates bind has its view read from `info` by the
+  // code inside, so only there is `info` kept in f.loops. (Read back from `info`, which the helper
+  // calls see, the view was reloaded again and again in the loops of heat-transfer.)
+  const bool viewInMemory = slotPredicate(slot) < 0;
+  llvm::Value *first = nullptr, *nextWord = b.getInt64(0);
+  if (Opcode(code_[pc]) == Opcode::ITER && !(flags & meldvm::kIterThread)) {
+    first = beginLoop(f, b, pc, info, viewInMemory);
+  } else {
     b.CreateCall(t_.loopBeginType, helper(f, b, kLoopBegin), {f.vm, f.frame, b.getInt32(pc), info});
-  b.CreateStore(info, b.CreateConstInBoundsGEP1_64(b.getPtrTy(), f.loops, slot));
-  const LoopView loop = loadLoopView(b, info);
-  auto field = [&](LoopField k, llvm::Type* type) { return loopField(b, info, k, type); };
-  llvm::Value* stopFlag = field(kLoopStop, b.getPtrTy());
-  llvm::Value* sharedStop = field(kLoopSharedStop, b.getPtrTy());
-  llvm::Value* nextWord = b.CreateZExt(field(kLoopNextWord, i32), i64);
-  b.CreateStore(field(kLoopFirst, i32), factVar);
+    first = loopField(b, info, kLoopFirst, i32);
+    nextWord = b.CreateZExt(loopField(b, info, kLoopNextWord, i32), i64);
+  }
+  if (viewInMemory) b.CreateStore(info, b.CreateConstInBoundsGEP1_64(b.getPtrTy(), f.loops, slot));
+  const LoopView loop = tableView(f, b, pred);
+  llvm::Value* stopFlag = contextField(f, b, kContextStop, b.getPtrTy());
+  llvm::Value* sharedStop = contextField(f, b, kContextSharedStop, b.getPtrTy());
+  b.CreateStore(first, factVar);
   const int fetchDepth = meldvm::detail::listFetchDepth(program_, code_, pc);
   const auto listField = std::uint32_t(fetchDepth >= 0 ? meldvm::detail::firstListField(program_, pred) : 0);
   std::optional<ListPipe> pipe;
@@ -139,7 +166,8 @@ void RegionLowering::lowerNativeLoop(Function& f, llvm::IRBuilder<>& b, std::uin
   endLoop(f, b, pc, b.CreateLoad(b.getInt1Ty(), firedVar), stopping());
 }
 
-void RegionLowering::beginLoop(Function& f, llvm::IRBuilder<>& b, std::uint32_t pc, llvm::Value* info) {
+llvm::Value* RegionLowering::beginLoop(Function& f, llvm::IRBuilder<>& b, std::uint32_t pc, llvm::Value* info,
+                                       bool fillInfo) {
   const std::uint32_t pred = code_[pc + 1], slot = code_[pc + 2], flags = code_[pc + 3];
   llvm::Type* i32 = b.getInt32Ty();
   llvm::Type* i64 = b.getInt64Ty();
@@ -153,6 +181,7 @@ void RegionLowering::beginLoop(Function& f, llvm::IRBuilder<>& b, std::uint32_t 
   b.CreateCondBr(b.CreateICmpEQ(left, b.getInt64(1)), atLimit, here, weights.createBranchWeights(1, 1 << 20));
   b.SetInsertPoint(atLimit);
   b.CreateCall(t_.loopBeginType, helper(f, b, kLoopBegin), {f.vm, f.frame, b.getInt32(pc), info});
+  llvm::Value* helperFirst = loopField(b, info, kLoopFirst, i32);
   b.CreateBr(begun);
 
   b.SetInsertPoint(here);
@@ -163,27 +192,28 @@ void RegionLowering::beginLoop(Function& f, llvm::IRBuilder<>& b, std::uint32_t 
   b.CreateStore(host, slotField(b, slots, slot, kSlotNode));
   b.CreateStore(b.getInt32(flags), slotField(b, slots, slot, kSlotFlags));
   b.CreateStore(llvm::ConstantPointerNull::get(b.getPtrTy()), slotField(b, slots, slot, kSlotFixed));
-  llvm::Value* table =
-      b.CreateConstInBoundsGEP1_64(t_.tableType, contextField(f, b, kContextTables, ptr), pred);
-  auto tableField = [&](TableField k, llvm::Type* type) {
-    llvm::LoadInst* load = b.CreateLoad(type, b.CreateStructGEP(t_.tableType, table, k));
-    load->setMetadata(llvm::LLVMContext::MD_invariant_load, llvm::MDNode::get(t_.context, {}));
-    return load;
-  };
   llvm::Value* first = b.CreateLoad(i32, listHead(f, b, nodeHeads(f, b, host), pred, kHeadFirst));
-  auto set = [&](LoopField k, llvm::Value* v) {
-    b.CreateStore(v, b.CreateStructGEP(t_.loopStructType, info, k));
-  };
-  set(kLoopSlots, slots);
-  set(kLoopWords, tableField(kTableWords, ptr));
-  set(kLoopStop, contextField(f, b, kContextStop, ptr));
-  set(kLoopSharedStop, contextField(f, b, kContextSharedStop, ptr));
-  set(kLoopFirst, first);
-  set(kLoopStride, tableField(kTableStride, i32));
-  set(kLoopNextWord, b.getInt32(0));
-  set(kLoopArgOffset, tableField(kTableArgOffset, i32));
+  if (fillInfo) {
+    const LoopView view = tableView(f, b, pred);
+    auto set = [&](LoopField k, llvm::Value* v) {
+      b.CreateStore(v, b.CreateStructGEP(t_.loopStructType, info, k));
+    };
+    set(kLoopSlots, slots);
+    set(kLoopWords, view.words);
+    set(kLoopStop, contextField(f, b, kContextStop, ptr));
+    set(kLoopSharedStop, contextField(f, b, kContextSharedStop, ptr));
+    set(kLoopFirst, first);
+    set(kLoopStride, b.CreateTrunc(view.stride, i32));
+    set(kLoopNextWord, b.getInt32(0));
+    set(kLoopArgOffset, b.CreateTrunc(view.argOffset, i32));
+  }
+  llvm::BasicBlock* nativeEnd = b.GetInsertBlock();
   b.CreateBr(begun);
   b.SetInsertPoint(begun);
+  llvm::PHINode* phi = b.CreatePHI(i32, 2, "first");
+  phi->addIncoming(helperFirst, atLimit);
+  phi->addIncoming(first, nativeEnd);
+  return phi;
 }
 
 llvm::Value* RegionLowering::nodeHeads(Function& f, llvm::IRBuilder<>& b, llvm::Value* node) {

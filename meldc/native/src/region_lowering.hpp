@@ -292,6 +292,8 @@ class RegionLowering {
   LoopView loadLoopView(llvm::IRBuilder<>& b, llvm::Value* info);
   // The loop that bound slot s around this code (s is in f.bound).
   LoopView loopView(Function& f, llvm::IRBuilder<>& b, std::uint32_t s);
+  // The view of a loop over pred, from the context and the frame (invariant loads).
+  LoopView tableView(Function& f, llvm::IRBuilder<>& b, std::uint32_t pred);
   llvm::Value* slotField(llvm::IRBuilder<>& b, llvm::Value* slots, std::uint32_t s, SlotField k) {
     return b.CreateStructGEP(t_.slotType, b.CreateConstInBoundsGEP1_64(t_.slotType, slots, s), k);
   }
@@ -310,10 +312,12 @@ class RegionLowering {
   // loop_begin); the facts are stepped through here, in the order, with the skips and the counts
   // of Interpreter::loop.
   void lowerNativeLoop(Function& f, llvm::IRBuilder<>& b, std::uint32_t pc);
-  // A plain ITER at the host fills `info` as loop_begin would, from meld_native_context: the slot
-  // bound, the step counted (at the limit the VM's loop_begin is called, which throws), the
-  // first fact read from the host's list head.
-  void beginLoop(Function& f, llvm::IRBuilder<>& b, std::uint32_t pc, llvm::Value* info);
+  // A plain ITER at the host begins as loop_begin would, from meld_native_context: the slot bound,
+  // the step counted (at the limit the VM's loop_begin is called, which throws), the first fact
+  // read from the host's list head and returned. `info` is filled as loop_begin fills it only when
+  // fillInfo (the code inside reads that loop's view from f.loops).
+  llvm::Value* beginLoop(Function& f, llvm::IRBuilder<>& b, std::uint32_t pc, llvm::Value* info,
+                         bool fillInfo);
   // The address of node's list heads (an i32 node), and of word w of its head of pred's list.
   llvm::Value* nodeHeads(Function& f, llvm::IRBuilder<>& b, llvm::Value* node);
   llvm::Value* listHead(Function& f, llvm::IRBuilder<>& b, llvm::Value* heads, std::uint32_t pred,
