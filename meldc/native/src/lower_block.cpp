@@ -124,6 +124,11 @@ void RegionLowering::lowerInstruction(Function& f, llvm::IRBuilder<>& b, std::ui
     case Opcode::MOVN:
       b.CreateStore(b.getInt64(c[2]), reg(f, b, c[1]));
       return (void)b.CreateBr(at(f, next));
+    case Opcode::HOST: {  // Value::fromNode(host): every rule's first instruction
+      llvm::Value* host = b.CreateLoad(b.getInt32Ty(), b.CreateStructGEP(t_.frameHeadType, f.frame, kFrameHost));
+      b.CreateStore(b.CreateZExt(host, b.getInt64Ty()), reg(f, b, c[1]));
+      return (void)b.CreateBr(at(f, next));
+    }
     case Opcode::ADDI:  // wrapping 32-bit arithmetic (arith.hpp)
       return intOp([&](llvm::Value* x, llvm::Value* y) { return b.CreateAdd(x, y); });
     case Opcode::SUBI:
@@ -175,7 +180,6 @@ void RegionLowering::lowerInstruction(Function& f, llvm::IRBuilder<>& b, std::ui
     case Opcode::NIL:
     case Opcode::GLOBAL:
     case Opcode::SETGLOBAL:
-    case Opcode::HOST:
     case Opcode::WORLD:
     case Opcode::CPUS:
     case Opcode::THREAD:
