@@ -45,8 +45,12 @@ std::vector<std::uint32_t> definition(const std::vector<Sent>& sent) {
 }
 
 std::vector<std::uint32_t> arranged(SendOrder& order, const std::vector<Sent>& sent) {
-  return order.arrange(
+  const std::vector<std::uint32_t>* got = order.arrange(
       sent.size(), [&](std::size_t i) { return sent[i].node; }, [&](std::size_t i) { return sent[i].pred; });
+  if (got) return *got;
+  std::vector<std::uint32_t> sendingOrder(sent.size());  // nullptr: the sending order
+  for (std::uint32_t i = 0; i < sent.size(); ++i) sendingOrder[i] = i;
+  return sendingOrder;
 }
 
 }  // namespace

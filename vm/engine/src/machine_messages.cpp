@@ -36,13 +36,15 @@ void Machine::flushOutgoing() {
   } else {
     postAll(sentPersistent_, nullptr);
     // The linear ones in the established VM's delivery order (send_order.hpp).
-    const auto& order = sendOrder_->arrange(
+    const std::vector<std::uint32_t>* order = sendOrder_->arrange(
         sentLinear_.size(), [&](std::size_t i) { return sentLinear_[i].node; },
         [&](std::size_t i) { return sentLinear_[i].pred; });
     if (shard_)
-      postAll(sentLinear_.items(), &order);
+      postAll(sentLinear_.items(), order);
+    else if (order)
+      storeSentLinear([&](std::size_t i) -> const PendingFact& { return sentLinear_[(*order)[i]]; });
     else
-      storeSentLinear(order);
+      storeSentLinear([&](std::size_t i) -> const PendingFact& { return sentLinear_[i]; });
   }
   sentPersistent_.clear();
   sentLinear_.clear();
@@ -75,10 +77,14 @@ void Machine::postAll(std::span<const PendingFact> facts, const std::vector<std:
 // linear facts in mailboxes too, where a node takes its messages in slices and moves to another
 // thread with them as a chain of chunks (stored on arrival, 8queens-12 at -j 2 took 3.3-3.6 s and
 // 53-83 MB instead of 2.2-2.4 s and 35-39 MB).
-void Machine::storeSentLinear(const std::vector<std::uint32_t>& order) {
+// at(i): the i-th fact in delivery order. Each receiver's list heads are looked up once, for the
+// fact and for the rules it wakes; storing linear facts takes no scratch value, so what the store
+// held from before is released once.
+template <class At>
+void Machine::storeSentLinear(At at) {
   constexpr std::size_t kTailAhead = 4;  // send() fetched the list heads: now their last facts
-  const std::size_t n = order.size();
-  auto at = [&](std::size_t i) -> const PendingFact& { return sentLinear_[order[i]]; };
+  const std::size_t n = sentLinear_.size();
+  db_->releaseHeldScratch();
   for (std::size_t i = 0; i < n && i < kTailAhead; ++i) db_->prefetchListTail(at(i).node, at(i).pred);
   for (std::size_t i = 0; i < n; ++i) {
     if (i + kTailAhead < n) db_->prefetchListTail(at(i + kTailAhead).node, at(i + kTailAhead).pred);
@@ -88,8 +94,9 @@ void Machine::storeSentLinear(const std::vector<std::uint32_t>& order) {
       post(e.node, e.pred, args, false, /*adopt=*/true);
       continue;
     }
-    db_->addLinearTrusted(e.node, e.pred, args);  // the buffer's references go to the fact
-    factAdded(e.node, e.pred);
+    ListHead* heads = db_->listHeadsForWrite(e.node);
+    db_->addLinearTrustedAt(heads, e.node, e.pred, args);  // the buffer's references go to the fact
+    factAdded(e.node, e.pred, heads);
     if (nodeRunning_ && e.node == running_)
       sentItself_ = true;
     else

@@ -340,13 +340,14 @@ class Machine : private SchedulerView {
   [[gnu::noinline]] void publishChange(NodeId n, PredId p, const Change& c);
   void runProcesses(NodeId n, PredId p, const Value* args, bool negative);
   void flushOutgoing();
-  void storeSentLinear(const std::vector<std::uint32_t>& order);
+  template <class At>
+  void storeSentLinear(At at);
   void applyPriorityRequests();
   // Candidate rules (§6.4.2). A rule that is a candidate already needs no look at its other
   // predicates (most adds). Inline: called for every fact stored.
-  void factAdded(NodeId n, PredId p) {
+  void factAdded(NodeId n, PredId p) { factAdded(n, p, db_->listHeads(n)); }
+  void factAdded(NodeId n, PredId p, const ListHead* heads) {  // heads: the node's list heads
     std::uint64_t* cand = candidates_.data() + std::size_t(n) * tables_.ruleWords;
-    const ListHead* heads = db_->listHeads(n);
     const ProgramTables::RuleTrigger* t = tables_.triggers.data() + tables_.triggersFrom[p];
     const ProgramTables::RuleTrigger* const end = tables_.triggers.data() + tables_.triggersFrom[p + 1];
     for (; t != end; ++t)

@@ -109,6 +109,19 @@ class Database {
     releaseHeldScratch();
     return tables_[p].insertAdopted(head(n, p), n, args);
   }
+  // The same for a caller that stores many facts (Machine::storeSentLinear): it releases the held
+  // scratch once before (releaseHeldScratch) and looks the node's heads up once
+  // (listHeadsForWrite), for the fact and for the rules it wakes.
+  FactRef addLinearTrustedAt(ListHead* heads, NodeId n, PredId p, const Value* args) {
+    return tables_[p].insertAdopted(heads[p], n, args);
+  }
+  ListHead* listHeadsForWrite(NodeId n) { return heads_.forWrite(n); }
+  // What an aggregate's evaluation left the store holding (values of retracted or summed
+  // inputs), released before the store changes.
+  void releaseHeldScratch() {
+    if (holdsRemoved_ || holdsInput_ || !sumList_.isNil()) [[unlikely]]
+      releaseScratch();
+  }
   void consumeTrusted(NodeId n, PredId p, FactRef f) {
     releaseHeldScratch();
     tables_[p].erase(head(n, p), f);
@@ -250,10 +263,6 @@ class Database {
     releaseHeldScratch();
     removed_.clear();
     added_.clear();
-  }
-  void releaseHeldScratch() {
-    if (holdsRemoved_ || holdsInput_ || !sumList_.isNil()) [[unlikely]]
-      releaseScratch();
   }
   void releaseScratch();
   // v = a[0..n) without a library call (the scratch vectors hold a few values, reserved once).
