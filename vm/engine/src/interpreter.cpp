@@ -61,6 +61,7 @@ Interpreter::Interpreter(Machine& machine, const Program& program, Database& db,
   regChunks_.push_back(rawChunk<Value>(kRegChunk));
   slotChunks_.push_back(rawChunk<Slot>(kSlotChunk));
   args_.resize(64);
+  rules_.resize(program_.rules.size());
   if (native_) setUpNativeContext();
 }
 
@@ -245,17 +246,6 @@ void Interpreter::run(const CodeBlock& block, NodeId host, bool negative, PredId
   runWith(block, infoOf(block), host, negative, triggerPred, trigger);
 }
 
-void Interpreter::runRule(std::uint32_t rule, NodeId host) {
-  if (rules_.empty()) rules_.resize(program_.rules.size());
-  RuleRun& r = rules_[rule];
-  if (!r.info) prepareRule(rule, r);
-  const CodeBlock& block = program_.rules[rule].block;
-  if (r.regs && !r.running)
-    runNativeRule(block, r, host);
-  else
-    runWith(block, *r.info, host, false, 0, nullptr);
-}
-
 void Interpreter::prepareRule(std::uint32_t rule, RuleRun& r) {
   const CodeBlock& block = program_.rules[rule].block;
   r.info = &infoOf(block);
@@ -265,6 +255,14 @@ void Interpreter::prepareRule(std::uint32_t rule, RuleRun& r) {
   if (!r.info->native || r.regCount > kRegChunk || r.slotCount > kSlotChunk) return;
   r.regs = rawChunk<Value>(std::max<std::size_t>(r.regCount, 1));
   r.slots = rawChunk<Slot>(std::max<std::size_t>(r.slotCount, 1));
+  r.frame = Frame{&block,
+                  block.code.data(),
+                  r.regs.get(),
+                  r.slots.get(),
+                  r.info->boxed.data(),
+                  r.info->slotFlags.data(),
+                  0,
+                  false};
 }
 
 void Interpreter::runWith(const CodeBlock& block, const BlockInfo& info, NodeId host, bool negative,
@@ -621,13 +619,15 @@ Interpreter::Status Interpreter::start(Frame& f, meld_native_block native) {
 
 // What runWith does, less the chunk stack: the frame is the rule's own, written afresh as enter()
 // writes one (registers zero, slots unbound), and its boxed registers released after the run.
-void Interpreter::runNativeRule(const CodeBlock& block, RuleRun& r, NodeId host) {
+void Interpreter::runNativeRule(RuleRun& r, NodeId host) {
   Value* regs = r.regs.get();
   Slot* slots = r.slots.get();
   for (std::uint32_t i = 0; i < r.regCount; ++i) regs[i] = Value();
   for (std::uint32_t s = 0; s < r.slotCount; ++s) slots[s] = Slot{0, 0, kNoFact, 0, nullptr};
   const BlockInfo& info = *r.info;
-  Frame f{&block, block.code.data(), regs, slots, info.boxed.data(), info.slotFlags.data(), host, false};
+  Frame& f = r.frame;
+  f.host = host;
+  f.updated = false;
   auto releaseBoxed = [&] {
     for (std::uint32_t reg : info.boxedRegs) heap_.releaseObject(regs[reg]);
   };
