@@ -89,51 +89,80 @@ llvm::Function* RegionLowering::entry() {
   return fn;
 }
 
-void RegionLowering::unlinkConsumed(Function& f, llvm::IRBuilder<>& b,
-                                    const std::vector<PredicateRules>& unlinked, llvm::Value* consumed,
-                                    llvm::Value* size, llvm::BasicBlock* all, llvm::BasicBlock* done) {
+void RegionLowering::recordLoop(Function& f, llvm::IRBuilder<>& b, const Records& records,
+                                const std::vector<PredicateRules>& preds, const HandleRecord& handle,
+                                const AtEnd& atEnd, llvm::BasicBlock* allDone, llvm::BasicBlock* done) {
+  llvm::Type* i8 = b.getInt8Ty();
   llvm::Type* i32 = b.getInt32Ty();
   llvm::Type* i64 = b.getInt64Ty();
-  llvm::Type* ptr = b.getPtrTy();
-  llvm::Value* sizeAt = b.CreateStructGEP(t_.consumedType, consumed, 1);
-  llvm::Value* facts = b.CreateLoad(ptr, b.CreateStructGEP(t_.consumedType, consumed, 0));
   llvm::BasicBlock* from = b.GetInsertBlock();
-  llvm::BasicBlock* header = newBlock(f, "unlink.next");
-  llvm::BasicBlock* visit = newBlock(f, "unlink.fact");
-  llvm::BasicBlock* unlinkedAll = newBlock(f, "unlink.all");
-  llvm::BasicBlock* rest = newBlock(f, "unlink.rest");
+  llvm::BasicBlock* header = newBlock(f, records.name + ".next");
+  llvm::BasicBlock* visit = newBlock(f, records.name + ".record");
+  llvm::BasicBlock* all = newBlock(f, records.name + ".all");
+  llvm::BasicBlock* rest = newBlock(f, records.name + ".rest");
+  auto byteOf = [&](llvm::Value* i) { return b.CreateMul(b.CreateZExt(i, i64), b.getInt64(records.bytes)); };
   b.CreateBr(header);
   b.SetInsertPoint(header);
   llvm::PHINode* i = b.CreatePHI(i32, 2, "i");
   i->addIncoming(b.getInt32(0), from);
-  b.CreateCondBr(b.CreateICmpEQ(i, size), unlinkedAll, visit);
+  b.CreateCondBr(b.CreateICmpEQ(i, records.size), all, visit);
   b.SetInsertPoint(visit);
-  llvm::Value* entry = b.CreateInBoundsGEP(i32, facts, b.CreateMul(b.CreateZExt(i, i64), b.getInt64(3)));
-  llvm::Value* node = b.CreateLoad(i32, entry);
-  llvm::Value* pred = b.CreateLoad(i32, b.CreateConstInBoundsGEP1_32(i32, entry, 1));
-  llvm::Value* fact = b.CreateLoad(i32, b.CreateConstInBoundsGEP1_32(i32, entry, 2));
-  llvm::SwitchInst* which = b.CreateSwitch(pred, rest, unsigned(unlinked.size()));
-  for (const PredicateRules& u : unlinked) {
-    llvm::BasicBlock* here = newBlock(f, "unlink.pred" + std::to_string(u.pred));
+  llvm::Value* record = b.CreateInBoundsGEP(i8, records.data, byteOf(i));
+  llvm::Value* pred = b.CreateLoad(i32, b.CreateConstInBoundsGEP1_64(i8, record, records.predByte));
+  llvm::SwitchInst* which = b.CreateSwitch(pred, rest, unsigned(preds.size()));
+  for (const PredicateRules& u : preds) {
+    llvm::BasicBlock* here = newBlock(f, records.name + ".pred" + std::to_string(u.pred));
     which->addCase(b.getInt32(u.pred), here);
     b.SetInsertPoint(here);
-    unlinkFact(f, b, u, node, fact, rest);
+    handle(u, record, rest);
     i->addIncoming(b.CreateAdd(i, b.getInt32(1)), b.GetInsertBlock());
     b.CreateBr(header);
   }
-  b.SetInsertPoint(unlinkedAll);
-  b.CreateStore(b.getInt32(0), sizeAt);
-  b.CreateBr(all);
-  // Fact i and those after it are the VM's: moved to the front of the array.
-  b.SetInsertPoint(rest);
-  llvm::Value* stopped = i;
-  llvm::Value* left = b.CreateSub(size, stopped);
-  llvm::Value* bytes = b.CreateMul(b.CreateZExt(left, i64), b.getInt64(3 * 4));
-  b.CreateMemMove(facts, llvm::MaybeAlign(4),
-                  b.CreateInBoundsGEP(i32, facts, b.CreateMul(b.CreateZExt(stopped, i64), b.getInt64(3))),
-                  llvm::MaybeAlign(4), bytes);
-  b.CreateStore(left, sizeAt);
+  b.SetInsertPoint(all);
+  b.CreateStore(b.getInt32(0), records.sizeAt);
+  atEnd(true, records.size);
+  b.CreateBr(allDone);
+  b.SetInsertPoint(rest);  // record i and those after it are the VM's: moved to the front
+  llvm::Value* left = b.CreateSub(records.size, i);
+  b.CreateMemMove(records.data, llvm::MaybeAlign(4), b.CreateInBoundsGEP(i8, records.data, byteOf(i)),
+                  llvm::MaybeAlign(4), byteOf(left));
+  b.CreateStore(left, records.sizeAt);
+  atEnd(false, i);
   b.CreateBr(done);
+}
+
+void RegionLowering::unlinkConsumed(Function& f, llvm::IRBuilder<>& b,
+                                    const std::vector<PredicateRules>& unlinked, llvm::Value* consumed,
+                                    llvm::Value* size, llvm::BasicBlock* all, llvm::BasicBlock* done) {
+  llvm::Type* i8 = b.getInt8Ty();
+  llvm::Type* i32 = b.getInt32Ty();
+  llvm::Value* sizeAt = b.CreateStructGEP(t_.consumedType, consumed, 1);
+  const Records records{"unlink", b.CreateLoad(b.getPtrTy(), b.CreateStructGEP(t_.consumedType, consumed, 0)),
+                        size,     sizeAt,
+                        3 * 4,    4};
+  recordLoop(
+      f, b, records, unlinked,
+      [&](const PredicateRules& u, llvm::Value* record, llvm::BasicBlock* vm) {
+        llvm::Value* node = b.CreateLoad(i32, record);
+        llvm::Value* fact = b.CreateLoad(i32, b.CreateConstInBoundsGEP1_64(i8, record, 8));
+        unlinkFact(f, b, u, node, fact, vm);
+      },
+      [](bool, llvm::Value*) {}, all, done);
+}
+
+RegionLowering::PlainTable RegionLowering::plainTableOrVm(Function& f, llvm::IRBuilder<>& b,
+                                                          std::uint32_t pred, llvm::BasicBlock* vm) {
+  llvm::Value* table =
+      b.CreateConstInBoundsGEP1_64(t_.tableType, contextField(f, b, kContextTables, b.getPtrTy()), pred);
+  PlainTable t{b, t_.tableType, table};
+  llvm::Value* plain = b.CreateICmpNE(
+      b.CreateAnd(t.field(kTableFlags, b.getInt32Ty()), b.getInt32(MELD_NATIVE_TABLE_PLAIN)), b.getInt32(0));
+  llvm::BasicBlock* here = newBlock(f, "plain.table");
+  b.CreateCondBr(plain, here, vm, llvm::MDBuilder(t_.context).createBranchWeights(1 << 10, 1));
+  b.SetInsertPoint(here);
+  t.words = b.CreateLoad(b.getPtrTy(), t.field(kTableWords, b.getPtrTy()));
+  t.stride = b.CreateZExt(t.field(kTableStride, b.getInt32Ty()), b.getInt64Ty());
+  return t;
 }
 
 void RegionLowering::unlinkFact(Function& f, llvm::IRBuilder<>& b, const PredicateRules& u, llvm::Value* node,
@@ -141,21 +170,9 @@ void RegionLowering::unlinkFact(Function& f, llvm::IRBuilder<>& b, const Predica
   llvm::Type* i32 = b.getInt32Ty();
   llvm::Type* i64 = b.getInt64Ty();
   llvm::Type* ptr = b.getPtrTy();
-  llvm::Value* table =
-      b.CreateConstInBoundsGEP1_64(t_.tableType, contextField(f, b, kContextTables, ptr), u.pred);
-  auto tableField = [&](TableField k, llvm::Type* type) {
-    return b.CreateLoad(type, b.CreateStructGEP(t_.tableType, table, k));
-  };
-  llvm::Value* plain = b.CreateICmpNE(
-      b.CreateAnd(tableField(kTableFlags, i32), b.getInt32(MELD_NATIVE_TABLE_PLAIN)), b.getInt32(0));
-  llvm::BasicBlock* here = newBlock(f, "unlink.plain");
-  b.CreateCondBr(plain, here, vm, llvm::MDBuilder(t_.context).createBranchWeights(1 << 10, 1));
-  b.SetInsertPoint(here);
-  llvm::Value* words = b.CreateLoad(ptr, tableField(kTableWords, ptr));
-  llvm::Value* stride = b.CreateZExt(tableField(kTableStride, i32), i64);
-  auto word0 = [&](llvm::Value* g) {
-    return b.CreateInBoundsGEP(i64, words, b.CreateMul(b.CreateZExt(g, i64), stride));
-  };
+  const PlainTable table = plainTableOrVm(f, b, u.pred, vm);
+  auto tableField = [&](TableField k, llvm::Type* type) { return table.field(k, type); };
+  auto word0 = [&](llvm::Value* g) { return table.word0(g); };
   llvm::Value* heads = nodeHeads(f, b, node);
   llvm::Value* at = word0(fact);
   llvm::Value* links = b.CreateLoad(i64, at);
@@ -235,48 +252,27 @@ void RegionLowering::storeDerived(Function& f, llvm::IRBuilder<>& b,
       b.CreateAnd(b.CreateICmpNE(size, b.getInt32(0)), b.CreateICmpULT(b.CreateZExt(size, i64), steps)), from,
       done);
   b.SetInsertPoint(from);
-  llvm::Value* facts = b.CreateLoad(ptr, b.CreateStructGEP(t_.arrayType, derived, 0));
   llvm::Value* words = b.CreateLoad(ptr, b.CreateStructGEP(t_.arrayType, derivedArgs, 0));
-  llvm::BasicBlock* header = newBlock(f, "store.next");
-  llvm::BasicBlock* visit = newBlock(f, "store.fact");
-  llvm::BasicBlock* all = newBlock(f, "store.all");
-  llvm::BasicBlock* rest = newBlock(f, "store.rest");
-  b.CreateBr(header);
-  b.SetInsertPoint(header);
-  llvm::PHINode* i = b.CreatePHI(i32, 2, "i");
-  i->addIncoming(b.getInt32(0), from);
-  b.CreateCondBr(b.CreateICmpEQ(i, size), all, visit);
-  b.SetInsertPoint(visit);
-  llvm::Value* entry = b.CreateInBoundsGEP(
-      i8, facts, b.CreateMul(b.CreateZExt(i, i64), b.getInt64(sizeof(meld_native_sent_fact))));
-  auto field = [&](SentFactByte k) { return b.CreateLoad(i32, b.CreateConstInBoundsGEP1_64(i8, entry, k)); };
-  llvm::Value* node = field(kSentNode);
-  llvm::Value* args = b.CreateInBoundsGEP(i64, words, b.CreateZExt(field(kSentArgs), i64));
-  llvm::SwitchInst* which = b.CreateSwitch(field(kSentPred), rest, unsigned(stored.size()));
-  for (const PredicateRules& u : stored) {
-    llvm::BasicBlock* here = newBlock(f, "store.pred" + std::to_string(u.pred));
-    which->addCase(b.getInt32(u.pred), here);
-    b.SetInsertPoint(here);
-    storeFact(f, b, u, node, args, rest);
-    i->addIncoming(b.CreateAdd(i, b.getInt32(1)), b.GetInsertBlock());
-    b.CreateBr(header);
-  }
-  b.SetInsertPoint(all);  // every fact stored: both arrays empty, as the VM leaves them
-  b.CreateStore(b.getInt32(0), sizeAt);
-  b.CreateStore(b.getInt32(0), b.CreateStructGEP(t_.arrayType, derivedArgs, 1));
-  b.CreateStore(b.CreateSub(steps, b.CreateZExt(size, i64)), stepsAt);
-  b.CreateBr(done);
-  // Fact i and those after it are the VM's: moved to the front (their arguments stay where they are).
-  b.SetInsertPoint(rest);
-  llvm::Value* left = b.CreateSub(size, i);
-  b.CreateStore(b.CreateSub(steps, b.CreateZExt(i, i64)), stepsAt);
-  b.CreateMemMove(
-      facts, llvm::MaybeAlign(8),
-      b.CreateInBoundsGEP(i8, facts,
-                          b.CreateMul(b.CreateZExt(i, i64), b.getInt64(sizeof(meld_native_sent_fact)))),
-      llvm::MaybeAlign(8), b.CreateMul(b.CreateZExt(left, i64), b.getInt64(sizeof(meld_native_sent_fact))));
-  b.CreateStore(left, sizeAt);
-  b.CreateBr(done);
+  const Records records{"store",
+                        b.CreateLoad(ptr, b.CreateStructGEP(t_.arrayType, derived, 0)),
+                        size,
+                        sizeAt,
+                        sizeof(meld_native_sent_fact),
+                        kSentPred};
+  recordLoop(
+      f, b, records, stored,
+      [&](const PredicateRules& u, llvm::Value* record, llvm::BasicBlock* vm) {
+        llvm::Value* node = b.CreateLoad(i32, b.CreateConstInBoundsGEP1_64(i8, record, kSentNode));
+        llvm::Value* argsWord = b.CreateLoad(i32, b.CreateConstInBoundsGEP1_64(i8, record, kSentArgs));
+        storeFact(f, b, u, node, b.CreateInBoundsGEP(i64, words, b.CreateZExt(argsWord, i64)), vm);
+      },
+      [&](bool all, llvm::Value* stored) {
+        b.CreateStore(b.CreateSub(steps, b.CreateZExt(stored, i64)), stepsAt);
+        // All stored: the arguments' array is empty too, as the VM leaves it (the records left to
+        // the VM keep theirs where they are).
+        if (all) b.CreateStore(b.getInt32(0), b.CreateStructGEP(t_.arrayType, derivedArgs, 1));
+      },
+      done, done);
 }
 
 void RegionLowering::storeFact(Function& f, llvm::IRBuilder<>& b, const PredicateRules& u, llvm::Value* node,
@@ -284,29 +280,17 @@ void RegionLowering::storeFact(Function& f, llvm::IRBuilder<>& b, const Predicat
   llvm::Type* i32 = b.getInt32Ty();
   llvm::Type* i64 = b.getInt64Ty();
   llvm::Type* ptr = b.getPtrTy();
-  llvm::Value* table =
-      b.CreateConstInBoundsGEP1_64(t_.tableType, contextField(f, b, kContextTables, ptr), u.pred);
-  auto tableField = [&](TableField k, llvm::Type* type) {
-    return b.CreateLoad(type, b.CreateStructGEP(t_.tableType, table, k));
-  };
   // FactTable::insertAdopted's common case: a plain table with a free slot (else the VM grows it).
-  llvm::Value* plain = b.CreateICmpNE(
-      b.CreateAnd(tableField(kTableFlags, i32), b.getInt32(MELD_NATIVE_TABLE_PLAIN)), b.getInt32(0));
+  const PlainTable table = plainTableOrVm(f, b, u.pred, vm);
+  auto tableField = [&](TableField k, llvm::Type* type) { return table.field(k, type); };
   llvm::Value* freeList = tableField(kTableFreeList, ptr);
-  llvm::BasicBlock* checked = newBlock(f, "store.plain");
   llvm::BasicBlock* here = newBlock(f, "store.free");
   llvm::MDBuilder weights(t_.context);
-  b.CreateCondBr(plain, checked, vm, weights.createBranchWeights(1 << 10, 1));
-  b.SetInsertPoint(checked);
   llvm::Value* fact = b.CreateLoad(i32, freeList);
   b.CreateCondBr(b.CreateICmpNE(fact, b.getInt32(MELD_NATIVE_NO_FACT)), here, vm,
                  weights.createBranchWeights(1 << 10, 1));
   b.SetInsertPoint(here);
-  llvm::Value* words = b.CreateLoad(ptr, tableField(kTableWords, ptr));
-  llvm::Value* stride = b.CreateZExt(tableField(kTableStride, i32), i64);
-  auto word0 = [&](llvm::Value* g) {
-    return b.CreateInBoundsGEP(i64, words, b.CreateMul(b.CreateZExt(g, i64), stride));
-  };
+  auto word0 = [&](llvm::Value* g) { return table.word0(g); };
   llvm::Value* at = word0(fact);
   b.CreateStore(b.CreateTrunc(b.CreateLShr(b.CreateLoad(i64, at), 32), i32), freeList);
   llvm::Value* argsAt = b.CreateInBoundsGEP(i64, at, b.CreateZExt(tableField(kTableArgOffset, i32), i64));

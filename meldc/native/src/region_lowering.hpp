@@ -456,6 +456,25 @@ class RegionLowering {
   };
   std::vector<PredicateRules> unlinkedPredicates() const;
   std::vector<PredicateRules> derivedPredicates() const;
+  // An array of records the VM reads after the rule run: `size` of them at `data`, `bytes` each,
+  // the predicate's 32-bit id at byte `predByte`, the array's size stored at `sizeAt`.
+  struct Records {
+    std::string name;
+    llvm::Value *data, *size, *sizeAt;
+    std::uint32_t bytes, predByte;
+  };
+  // handle(u, record, vm): the record of u.pred handled, the builder left where the loop goes on
+  // (or a branch to vm, where the loop stops).
+  using HandleRecord = std::function<void(const PredicateRules&, llvm::Value*, llvm::BasicBlock*)>;
+  // atEnd(all handled, how many were handled), with the array's new size stored.
+  using AtEnd = std::function<void(bool, llvm::Value*)>;
+  // A loop over the records in order, handling each whose predicate is one of `preds`; at the
+  // first other one (or at a branch to `vm`) it stops, and that record and those after it are
+  // moved to the front of the array for the VM. Then atEnd and a branch to `allDone` when all
+  // were handled, to `done` otherwise.
+  void recordLoop(Function& f, llvm::IRBuilder<>& b, const Records& records,
+                  const std::vector<PredicateRules>& preds, const HandleRecord& handle, const AtEnd& atEnd,
+                  llvm::BasicBlock* allDone, llvm::BasicBlock* done);
   // From the start of the consumed facts' array (`size` of them): a loop that unlinks each one
   // and stops at the first it does not handle (another predicate, a table that is not plain),
   // leaving that one and the rest to the VM. Ends in a branch to `all` when it unlinked them all,
@@ -463,6 +482,23 @@ class RegionLowering {
   void unlinkConsumed(Function& f, llvm::IRBuilder<>& b, const std::vector<PredicateRules>& unlinked,
                       llvm::Value* consumed, llvm::Value* size, llvm::BasicBlock* all,
                       llvm::BasicBlock* done);
+  // pred's meld_native_table, on in a new block when the table is MELD_NATIVE_TABLE_PLAIN (else a
+  // branch to vm).
+  struct PlainTable {
+    llvm::IRBuilder<>& b;
+    llvm::StructType* type;
+    llvm::Value* table;
+    llvm::Value* words = nullptr;   // the slot array now
+    llvm::Value* stride = nullptr;  // i64
+    llvm::Value* field(TableField k, llvm::Type* t) const {
+      return b.CreateLoad(t, b.CreateStructGEP(type, table, k));
+    }
+    llvm::Value* word0(llvm::Value* fact) const {  // the address of the fact's first word
+      return b.CreateInBoundsGEP(b.getInt64Ty(), words,
+                                 b.CreateMul(b.CreateZExt(fact, b.getInt64Ty()), stride));
+    }
+  };
+  PlainTable plainTableOrVm(Function& f, llvm::IRBuilder<>& b, std::uint32_t pred, llvm::BasicBlock* vm);
   // FactTable::erase and Machine::factRemoved for the node's fact of u.pred; to `vm` if its table
   // is not plain (the builder is left after the unlinking otherwise).
   void unlinkFact(Function& f, llvm::IRBuilder<>& b, const PredicateRules& u, llvm::Value* node,
