@@ -173,7 +173,12 @@ typedef struct meld_native_context {
    * both arrays have room; the send helper does it otherwise. A DERIVE likewise appends to
    * `derived` and `derived_args` (the host's fact), counted in facts_derived and run_derived, when
    * derivations are not recorded, the frame is not negative, the table is BUFFERED and both
-   * arrays have room. */
+   * arrays have room. The VM stores the derived facts when the rule run ends, in order; a rule's
+   * native code may store the first ones itself before it returns (MELD_NATIVE_TABLE_PLAIN tables
+   * with a free slot: the slot taken off the free list, the fact linked at the end of the node's
+   * list, `live` one more, the rules over the predicate made candidates), each counted as a step
+   * (steps_left), and leave the others at the front of `derived` (their arguments where they are;
+   * both arrays empty when it stored them all). */
   const uint8_t* sends_buffered;
   const uint32_t* live_below;
   meld_native_array* sent; /* of meld_native_sent_fact */
