@@ -125,7 +125,8 @@ void RegionLowering::lowerInstruction(Function& f, llvm::IRBuilder<>& b, std::ui
       b.CreateStore(b.getInt64(c[2]), reg(f, b, c[1]));
       return (void)b.CreateBr(at(f, next));
     case Opcode::HOST: {  // Value::fromNode(host): every rule's first instruction
-      llvm::Value* host = b.CreateLoad(b.getInt32Ty(), b.CreateStructGEP(t_.frameHeadType, f.frame, kFrameHost));
+      llvm::Value* host =
+          b.CreateLoad(b.getInt32Ty(), b.CreateStructGEP(t_.frameHeadType, f.frame, kFrameHost));
       b.CreateStore(b.CreateZExt(host, b.getInt64Ty()), reg(f, b, c[1]));
       return (void)b.CreateBr(at(f, next));
     }
