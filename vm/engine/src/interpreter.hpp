@@ -40,7 +40,7 @@ class Interpreter {
   void run(const CodeBlock& block, NodeId host, bool negative = false, PredId triggerPred = 0,
            const Value* trigger = nullptr);
   // Runs rule `rule`'s block: its BlockInfo found by number, not by hashing the block's address.
-  // (Inline: a node run runs a rule for a few facts, heat-transfer's 162 K rule runs for 540 K.)
+  // (Inline: rule runs are short; heat-transfer 20 x 20 makes 162 K of them for 537 K facts derived.)
   void runRule(std::uint32_t rule, NodeId host) {
     RuleRun& r = rules_[rule];
     if (!r.info) [[unlikely]]
@@ -227,7 +227,7 @@ class Interpreter {
     Chunk<Slot> slots;
     std::uint32_t regCount = 0, slotCount = 0;
     bool running = false;  // (were a rule ever run inside its own run, the inner one takes the chunk stack)
-    Frame frame{};         // all but the host, `negative` (false) and `updated` set once
+    Frame frame{};         // set once; a run sets its host and clears `updated` (`negative` stays false)
   };
   std::vector<RuleRun> rules_;  // one per rule, from the start
   void prepareRule(std::uint32_t rule, RuleRun& r);
