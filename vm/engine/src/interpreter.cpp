@@ -252,7 +252,7 @@ void Interpreter::prepareRule(std::uint32_t rule, RuleRun& r) {
   r.regCount = std::uint32_t(block.registerTypes.size());
   r.slotCount = block.slots;
   // A block too large for a chunk stays on runWith, whose enter() reports it.
-  if (!r.info->native || r.regCount > kRegChunk || r.slotCount > kSlotChunk) return;
+  if (r.regCount > kRegChunk || r.slotCount > kSlotChunk) return;
   r.regs = rawChunk<Value>(std::max<std::size_t>(r.regCount, 1));
   r.slots = rawChunk<Slot>(std::max<std::size_t>(r.slotCount, 1));
   r.frame = Frame{&block,
@@ -618,8 +618,9 @@ Interpreter::Status Interpreter::start(Frame& f, meld_native_block native) {
 }
 
 // What runWith does, less the chunk stack: the frame is the rule's own, written afresh as enter()
-// writes one (registers zero, slots unbound), and its boxed registers released after the run.
-void Interpreter::runNativeRule(RuleRun& r, NodeId host) {
+// writes one (registers zero, slots unbound), its block run (native code, else the interpreter)
+// and its boxed registers released after the run.
+void Interpreter::runInOwnFrame(RuleRun& r, NodeId host) {
   Value* regs = r.regs.get();
   Slot* slots = r.slots.get();
   for (std::uint32_t i = 0; i < r.regCount; ++i) regs[i] = Value();
@@ -633,8 +634,11 @@ void Interpreter::runNativeRule(RuleRun& r, NodeId host) {
   };
   r.running = true;
   try {
-    info.native(&NativeHelpers::kTable, reinterpret_cast<meld_native_vm*>(&nativeContext_),
-                reinterpret_cast<meld_native_frame*>(&f), reinterpret_cast<std::uint64_t*>(regs));
+    if (info.native)
+      info.native(&NativeHelpers::kTable, reinterpret_cast<meld_native_vm*>(&nativeContext_),
+                  reinterpret_cast<meld_native_frame*>(&f), reinterpret_cast<std::uint64_t*>(regs));
+    else
+      exec(f, 0);
   } catch (...) {
     releaseBoxed();
     r.running = false;
