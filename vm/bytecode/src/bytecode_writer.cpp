@@ -52,6 +52,29 @@ class Writer {
   }
 };
 
+// The order the axiom blocks are written in: the reader keeps a block whose code is only literal
+// facts (literalAxiomCode) as a literal axiom, numbered after the others, so the file has them
+// there too, or reading it back and writing it again would give other bytes (meldc's axiom blocks
+// are all CodeBlocks, literal ones among the others). order[k]: the block written k-th;
+// number[b]: where block b (axiomBlocks, then literalAxioms) is written.
+struct AxiomOrder {
+  std::vector<std::uint32_t> order, number;
+  explicit AxiomOrder(const Program& p) {
+    const auto blocks = std::uint32_t(p.axiomBlocks.size());
+    auto literal = [&](std::uint32_t b) {
+      const CodeBlock& c = p.axiomBlocks[b];
+      return c.registerTypes.empty() && c.slots == 0 && literalAxiomCode(c.code);
+    };
+    for (std::uint32_t b = 0; b < blocks; ++b)
+      if (!literal(b)) order.push_back(b);
+    for (std::uint32_t b = 0; b < blocks; ++b)
+      if (literal(b)) order.push_back(b);
+    for (std::uint32_t i = 0; i < p.literalAxioms.size(); ++i) order.push_back(blocks + i);
+    number.resize(order.size());
+    for (std::uint32_t k = 0; k < order.size(); ++k) number[order[k]] = k;
+  }
+};
+
 void writeTypes(Writer& w, const TypeTable& types) {
   // In id order, each type after the ones it refers to, so the reader can re-intern them and get
   // the same ids.
@@ -88,6 +111,8 @@ void writePredicates(Writer& w, const Program& p) {
 
 std::vector<std::uint8_t> writeBytecode(const Program& p) {
   Writer w;
+  const AxiomOrder axioms(p);
+  const auto blocks = std::uint32_t(p.axiomBlocks.size());
   // Byte by byte: GCC 12 warns of a bogus overflow for a range insert into the empty vector.
   for (const char ch : kMagic) w.bytes.push_back(std::uint8_t(ch));
   w.word(kBytecodeVersion);
@@ -156,14 +181,18 @@ std::vector<std::uint8_t> writeBytecode(const Program& p) {
   w.end(s);
 
   s = w.begin(kSecAxioms);
-  w.words(p.nodeAxioms);
+  w.word(std::uint32_t(p.nodeAxioms.size()));
+  for (const std::uint32_t b : p.nodeAxioms) w.word(b < axioms.number.size() ? axioms.number[b] : b);
   w.word(std::uint32_t(p.axiomBlockCount()));
-  for (const CodeBlock& b : p.axiomBlocks) w.block(b);
-  for (std::size_t i = 0; i < p.literalAxioms.size(); ++i) {
-    w.str(p.literalAxioms.label(i));
+  for (const std::uint32_t b : axioms.order) {
+    if (b < blocks) {
+      w.block(p.axiomBlocks[b]);
+      continue;
+    }
+    w.str(p.literalAxioms.label(b - blocks));
     w.word(0);  // no registers
     w.word(0);  // no slots
-    w.words(p.literalAxioms.code(i));
+    w.words(p.literalAxioms.code(b - blocks));
   }
   w.end(s);
 
@@ -199,8 +228,9 @@ std::vector<std::uint8_t> writeBytecode(const Program& p) {
     }
   };
   forEachCodeBlockBeforeAxioms(p, [&](const CodeBlock& b) { lines(b.lines); });
-  for (const CodeBlock& b : p.axiomBlocks) lines(b.lines);
-  for (std::size_t i = 0; i < p.literalAxioms.size(); ++i) lines(p.literalAxioms.lines(i));
+  for (const std::uint32_t b : axioms.order)
+    lines(b < blocks ? std::span<const SourceLine>(p.axiomBlocks[b].lines)
+                     : p.literalAxioms.lines(b - blocks));
   w.end(s);
 
   return std::move(w.bytes);
