@@ -16,9 +16,10 @@
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
   const std::unique_ptr<meldvm::Program> program = meldfuzz::readOrNull(data, size);
   if (!program) return 0;
-  // What loads must be what the writer writes: the format has exactly one encoding (an older
-  // version's file is written back as the current version: its version word, its section count
-  // and an empty sources section differ, all at fixed places).
+  // What loads must be what the writer writes: the format has one encoding (an older version's
+  // file is written back as the current version: its version word, its section count and an
+  // empty sources section differ, all at fixed places), but for the order of the axiom blocks,
+  // which files of earlier meldc builds have otherwise (axiom_order.hpp).
   auto again = meldvm::writeBytecode(*program);
   std::uint32_t version = 0;
   std::memcpy(&version, data + 4, 4);
