@@ -27,8 +27,7 @@ RegionLowering::LoopView RegionLowering::tableView(Function& f, llvm::IRBuilder<
   llvm::Type* i32 = b.getInt32Ty();
   llvm::Type* i64 = b.getInt64Ty();
   llvm::Type* ptr = b.getPtrTy();
-  llvm::Value* table =
-      b.CreateConstInBoundsGEP1_64(t_.tableType, contextField(f, b, kContextTables, ptr), pred);
+  llvm::Value* table = tableOf(f, b, pred);
   auto invariant = [&](llvm::Type* type, llvm::Value* at) {
     llvm::LoadInst* load = b.CreateLoad(type, at);
     load->setMetadata(llvm::LLVMContext::MD_invariant_load, llvm::MDNode::get(t_.context, {}));

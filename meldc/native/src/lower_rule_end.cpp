@@ -150,19 +150,15 @@ void RegionLowering::unlinkConsumed(Function& f, llvm::IRBuilder<>& b,
       [](bool, llvm::Value*) {}, all, done);
 }
 
-RegionLowering::PlainTable RegionLowering::plainTableOrVm(Function& f, llvm::IRBuilder<>& b,
+RegionLowering::TableWords RegionLowering::plainTableOrVm(Function& f, llvm::IRBuilder<>& b,
                                                           std::uint32_t pred, llvm::BasicBlock* vm) {
-  llvm::Value* table =
-      b.CreateConstInBoundsGEP1_64(t_.tableType, contextField(f, b, kContextTables, b.getPtrTy()), pred);
-  PlainTable t{b, t_.tableType, table};
-  llvm::Value* plain = b.CreateICmpNE(
-      b.CreateAnd(t.field(kTableFlags, b.getInt32Ty()), b.getInt32(MELD_NATIVE_TABLE_PLAIN)), b.getInt32(0));
+  llvm::Value* flags =
+      b.CreateLoad(b.getInt32Ty(), b.CreateStructGEP(t_.tableType, tableOf(f, b, pred), kTableFlags));
+  llvm::Value* plain = b.CreateICmpNE(b.CreateAnd(flags, b.getInt32(MELD_NATIVE_TABLE_PLAIN)), b.getInt32(0));
   llvm::BasicBlock* here = newBlock(f, "plain.table");
   b.CreateCondBr(plain, here, vm, llvm::MDBuilder(t_.context).createBranchWeights(1 << 10, 1));
   b.SetInsertPoint(here);
-  t.words = b.CreateLoad(b.getPtrTy(), t.field(kTableWords, b.getPtrTy()));
-  t.stride = b.CreateZExt(t.field(kTableStride, b.getInt32Ty()), b.getInt64Ty());
-  return t;
+  return tableWords(f, b, pred);
 }
 
 void RegionLowering::unlinkFact(Function& f, llvm::IRBuilder<>& b, const PredicateRules& u, llvm::Value* node,
@@ -170,39 +166,13 @@ void RegionLowering::unlinkFact(Function& f, llvm::IRBuilder<>& b, const Predica
   llvm::Type* i32 = b.getInt32Ty();
   llvm::Type* i64 = b.getInt64Ty();
   llvm::Type* ptr = b.getPtrTy();
-  const PlainTable table = plainTableOrVm(f, b, u.pred, vm);
+  const TableWords table = plainTableOrVm(f, b, u.pred, vm);
   auto tableField = [&](TableField k, llvm::Type* type) { return table.field(k, type); };
-  auto word0 = [&](llvm::Value* g) { return table.word0(g); };
   llvm::Value* heads = nodeHeads(f, b, node);
-  llvm::Value* at = word0(fact);
+  llvm::Value* at = table.word0(fact);
   llvm::Value* links = b.CreateLoad(i64, at);
   llvm::Value* prev = b.CreateTrunc(links, i32);
-  llvm::Value* next = b.CreateTrunc(b.CreateLShr(links, 32), i32);
-  auto setHalf = [&](llvm::Value* where, llvm::Value* v, bool high) {
-    llvm::Value* w = b.CreateLoad(i64, where);
-    llvm::Value* v64 = b.CreateZExt(v, i64);
-    llvm::Value* kept = b.CreateAnd(w, b.getInt64(high ? 0xFFFFFFFFull : 0xFFFFFFFF00000000ull));
-    b.CreateStore(b.CreateOr(kept, high ? b.CreateShl(v64, 32) : v64), where);
-  };
-  // FactTable::connect(list, prev, next): each end is the list head's or the neighbour's link.
-  auto link = [&](llvm::Value* end, HeadWord headWord, const std::function<void()>& neighbour,
-                  const std::string& name) {
-    llvm::BasicBlock* atHead = newBlock(f, name + ".head");
-    llvm::BasicBlock* inside = newBlock(f, name + ".inside");
-    llvm::BasicBlock* linked = newBlock(f, name + ".linked");
-    b.CreateCondBr(b.CreateICmpEQ(end, b.getInt32(MELD_NATIVE_NO_FACT)), atHead, inside);
-    b.SetInsertPoint(atHead);
-    b.CreateStore(headWord == kHeadFirst ? next : prev, listHead(f, b, heads, u.pred, headWord));
-    b.CreateBr(linked);
-    b.SetInsertPoint(inside);
-    neighbour();
-    b.CreateBr(linked);
-    b.SetInsertPoint(linked);
-  };
-  link(
-      prev, kHeadFirst, [&] { setHalf(word0(prev), next, true); }, "unlink.prev");
-  link(
-      next, kHeadLast, [&] { setHalf(word0(next), prev, false); }, "unlink.after");
+  connect(f, b, heads, u.pred, table, prev, b.CreateTrunc(b.CreateLShr(links, 32), i32));
   llvm::Value* sizeAt = listHead(f, b, heads, u.pred, kHeadSize);
   llvm::Value* left = b.CreateSub(b.CreateLoad(i32, sizeAt), b.getInt32(1));
   b.CreateStore(left, sizeAt);
@@ -281,7 +251,7 @@ void RegionLowering::storeFact(Function& f, llvm::IRBuilder<>& b, const Predicat
   llvm::Type* i64 = b.getInt64Ty();
   llvm::Type* ptr = b.getPtrTy();
   // FactTable::insertAdopted's common case: a plain table with a free slot (else the VM grows it).
-  const PlainTable table = plainTableOrVm(f, b, u.pred, vm);
+  const TableWords table = plainTableOrVm(f, b, u.pred, vm);
   auto tableField = [&](TableField k, llvm::Type* type) { return table.field(k, type); };
   llvm::Value* freeList = tableField(kTableFreeList, ptr);
   llvm::BasicBlock* here = newBlock(f, "store.free");
@@ -290,8 +260,7 @@ void RegionLowering::storeFact(Function& f, llvm::IRBuilder<>& b, const Predicat
   b.CreateCondBr(b.CreateICmpNE(fact, b.getInt32(MELD_NATIVE_NO_FACT)), here, vm,
                  weights.createBranchWeights(1 << 10, 1));
   b.SetInsertPoint(here);
-  auto word0 = [&](llvm::Value* g) { return table.word0(g); };
-  llvm::Value* at = word0(fact);
+  llvm::Value* at = table.word0(fact);
   b.CreateStore(b.CreateTrunc(b.CreateLShr(b.CreateLoad(i64, at), 32), i32), freeList);
   llvm::Value* argsAt = b.CreateInBoundsGEP(i64, at, b.CreateZExt(tableField(kTableArgOffset, i32), i64));
   const std::size_t arity = program_.predicates[u.pred].fields.size();
@@ -302,25 +271,7 @@ void RegionLowering::storeFact(Function& f, llvm::IRBuilder<>& b, const Predicat
                 b.CreateConstInBoundsGEP1_64(i64, at, 1));  // one copy, at the node
   // Linked at the end of the node's list (FactTable::fill).
   llvm::Value* heads = nodeHeads(f, b, node);
-  llvm::Value* lastAt = listHead(f, b, heads, u.pred, kHeadLast);
-  llvm::Value* last = b.CreateLoad(i32, lastAt);
-  llvm::BasicBlock* first = newBlock(f, "store.first");
-  llvm::BasicBlock* after = newBlock(f, "store.after");
-  llvm::BasicBlock* linked = newBlock(f, "store.linked");
-  b.CreateCondBr(b.CreateICmpEQ(last, b.getInt32(MELD_NATIVE_NO_FACT)), first, after);
-  b.SetInsertPoint(first);
-  b.CreateStore(fact, listHead(f, b, heads, u.pred, kHeadFirst));
-  b.CreateBr(linked);
-  b.SetInsertPoint(after);
-  llvm::Value* lastWord = word0(last);
-  b.CreateStore(b.CreateOr(b.CreateAnd(b.CreateLoad(i64, lastWord), b.getInt64(0xFFFFFFFFull)),
-                           b.CreateShl(b.CreateZExt(fact, i64), 32)),
-                lastWord);
-  b.CreateBr(linked);
-  b.SetInsertPoint(linked);
-  b.CreateStore(b.CreateOr(b.CreateZExt(last, i64), b.getInt64(std::uint64_t(MELD_NATIVE_NO_FACT) << 32)),
-                at);
-  b.CreateStore(fact, lastAt);
+  linkLast(f, b, heads, u.pred, table, fact);
   llvm::Value* sizeAt = listHead(f, b, heads, u.pred, kHeadSize);
   b.CreateStore(b.CreateAdd(b.CreateLoad(i32, sizeAt), b.getInt32(1)), sizeAt);
   llvm::Value* live = tableField(kTableLive, ptr);

@@ -30,12 +30,12 @@ std::optional<std::vector<RegionLowering::RuleTrigger>> RegionLowering::triggers
 void RegionLowering::lowerUpdate(Function& f, llvm::IRBuilder<>& b, std::uint32_t pc) {
   const std::uint32_t* c = code_.data() + pc;
   const std::uint32_t s = c[1], count = c[3];
-  const bool moveToBack = (c[2] & meldvm::kUpdateMoveToBack) != 0;
+  const bool toBack = (c[2] & meldvm::kUpdateMoveToBack) != 0;
   llvm::Value* args = gatherArgs(f, b, c + 4, count);
   llvm::BasicBlock* next = at(f, pc + length(pc));
   auto callVm = [&] {
     b.CreateCall(t_.sendType, helper(f, b, kUpdate),
-                 {f.vm, f.frame, b.getInt32(pc), b.getInt32(s), b.getInt32(moveToBack), args});
+                 {f.vm, f.frame, b.getInt32(pc), b.getInt32(s), b.getInt32(toBack), args});
     b.CreateBr(next);
   };
   const std::int64_t pred = slotPredicate(s);
@@ -49,23 +49,14 @@ void RegionLowering::lowerUpdate(Function& f, llvm::IRBuilder<>& b, std::uint32_
   llvm::Value* host = b.CreateLoad(i32, b.CreateStructGEP(t_.frameHeadType, f.frame, kFrameHost));
   llvm::Value* node = b.CreateLoad(i32, slotField(b, slots, s, kSlotNode));
   llvm::Value* fact = b.CreateLoad(i32, slotField(b, slots, s, kSlotFact));
-  llvm::Value* table = b.CreateConstInBoundsGEP1_64(t_.tableType, contextField(f, b, kContextTables, ptr),
-                                                    std::uint64_t(pred));
-  auto tableField = [&](TableField k, llvm::Type* type) {
-    return b.CreateLoad(type, b.CreateStructGEP(t_.tableType, table, k));
-  };
   llvm::Value* conditions[] = {writesHere(f, b, std::uint32_t(pred), MELD_NATIVE_TABLE_PLAIN),
                                b.CreateICmpEQ(node, host)};
   hereOrVm(f, b, conditions, "update", callVm);
-  llvm::Value* words = b.CreateLoad(ptr, tableField(kTableWords, ptr));
-  llvm::Value* stride = b.CreateZExt(tableField(kTableStride, i32), i64);
-  auto word0 = [&](llvm::Value* fct) {
-    return b.CreateInBoundsGEP(i64, words, b.CreateMul(b.CreateZExt(fct, i64), stride));
-  };
+  const TableWords table = tableWords(f, b, std::uint32_t(pred));
   llvm::Value* heads = nodeHeads(f, b, host);
-  if (moveToBack) relinkLast(f, b, heads, std::uint32_t(pred), fact, word0);
+  if (toBack) moveToBack(f, b, heads, std::uint32_t(pred), table, fact);
   llvm::Value* argsAt =
-      b.CreateInBoundsGEP(i64, word0(fact), b.CreateZExt(tableField(kTableArgOffset, i32), i64));
+      b.CreateInBoundsGEP(i64, table.word0(fact), b.CreateZExt(table.field(kTableArgOffset, i32), i64));
   llvm::Type* argsType = llvm::ArrayType::get(i64, std::max<std::uint32_t>(count, 1));
   for (std::uint32_t i = 0; i < count; ++i)
     b.CreateStore(b.CreateLoad(i64, b.CreateConstInBoundsGEP2_32(argsType, args, 0, i)),
@@ -166,9 +157,7 @@ llvm::Value* RegionLowering::writesHere(Function& f, llvm::IRBuilder<>& b, std::
                                         std::uint32_t flag) {
   llvm::Type* i32 = b.getInt32Ty();
   llvm::Type* ptr = b.getPtrTy();
-  llvm::Value* table =
-      b.CreateConstInBoundsGEP1_64(t_.tableType, contextField(f, b, kContextTables, ptr), pred);
-  llvm::Value* flags = b.CreateLoad(i32, b.CreateStructGEP(t_.tableType, table, kTableFlags));
+  llvm::Value* flags = b.CreateLoad(i32, b.CreateStructGEP(t_.tableType, tableOf(f, b, pred), kTableFlags));
   llvm::Value* negative =
       b.CreateLoad(b.getInt8Ty(), b.CreateStructGEP(t_.frameHeadType, f.frame, kFrameNegative));
   return b.CreateAnd(
@@ -187,47 +176,6 @@ void RegionLowering::hereOrVm(Function& f, llvm::IRBuilder<>& b, std::span<llvm:
   b.SetInsertPoint(vm);
   viaVm();
   b.SetInsertPoint(native);
-}
-
-// FactTable::moveToBack: word 0 of a fact links it, its previous fact in the low half and its next
-// one in the high half (MELD_NATIVE_NO_FACT at either end).
-void RegionLowering::relinkLast(Function& f, llvm::IRBuilder<>& b, llvm::Value* heads, std::uint32_t pred,
-                                llvm::Value* fact, const std::function<llvm::Value*(llvm::Value*)>& word0) {
-  llvm::Type* i32 = b.getInt32Ty();
-  llvm::Type* i64 = b.getInt64Ty();
-  llvm::Value* lastAt = listHead(f, b, heads, pred, kHeadLast);
-  llvm::Value* last = b.CreateLoad(i32, lastAt);
-  llvm::BasicBlock* move = newBlock(f, "update.move");
-  llvm::BasicBlock* atFirst = newBlock(f, "update.wasfirst");
-  llvm::BasicBlock* inside = newBlock(f, "update.inside");
-  llvm::BasicBlock* unlinked = newBlock(f, "update.unlinked");
-  llvm::BasicBlock* done = newBlock(f, "update.moved");
-  b.CreateCondBr(b.CreateICmpEQ(last, fact), done, move);
-  b.SetInsertPoint(move);
-  llvm::Value* links = b.CreateLoad(i64, word0(fact));
-  llvm::Value* prev = b.CreateTrunc(links, i32);
-  llvm::Value* next = b.CreateTrunc(b.CreateLShr(links, 32), i32);  // a fact: this one is not the last
-  auto setHalf = [&](llvm::Value* at, llvm::Value* v, bool high) {
-    llvm::Value* w = b.CreateLoad(i64, at);
-    llvm::Value* v64 = b.CreateZExt(v, i64);
-    llvm::Value* kept = b.CreateAnd(w, b.getInt64(high ? 0xFFFFFFFFull : 0xFFFFFFFF00000000ull));
-    b.CreateStore(b.CreateOr(kept, high ? b.CreateShl(v64, 32) : v64), at);
-  };
-  b.CreateCondBr(b.CreateICmpEQ(prev, b.getInt32(MELD_NATIVE_NO_FACT)), atFirst, inside);
-  b.SetInsertPoint(atFirst);
-  b.CreateStore(next, listHead(f, b, heads, pred, kHeadFirst));
-  b.CreateBr(unlinked);
-  b.SetInsertPoint(inside);
-  setHalf(word0(prev), next, true);
-  b.CreateBr(unlinked);
-  b.SetInsertPoint(unlinked);
-  setHalf(word0(next), prev, false);
-  setHalf(word0(last), fact, true);
-  b.CreateStore(b.CreateOr(b.CreateZExt(last, i64), b.getInt64(std::uint64_t(MELD_NATIVE_NO_FACT) << 32)),
-                word0(fact));
-  b.CreateStore(fact, lastAt);
-  b.CreateBr(done);
-  b.SetInsertPoint(done);
 }
 
 // Machine::factAdded for a fact of the host: each rule over the predicate becomes a candidate if

@@ -276,10 +276,41 @@ class RegionLowering {
   };
   // The rules whose body names pred, in rule order; none if one of them names a thread predicate.
   std::optional<std::vector<RuleTrigger>> triggersOf(std::uint32_t pred) const;
-  // The host's fact `fact` of pred moved to the end of its list (FactTable::moveToBack);
-  // word0(g) is the address of fact g's first word.
-  void relinkLast(Function& f, llvm::IRBuilder<>& b, llvm::Value* heads, std::uint32_t pred,
-                  llvm::Value* fact, const std::function<llvm::Value*(llvm::Value*)>& word0);
+  // The address of pred's meld_native_table.
+  llvm::Value* tableOf(Function& f, llvm::IRBuilder<>& b, std::uint32_t pred) {
+    return b.CreateConstInBoundsGEP1_64(t_.tableType, contextField(f, b, kContextTables, b.getPtrTy()), pred);
+  }
+  // pred's table as native code that writes facts sees it (lower_lists.cpp): its fields, and its
+  // slot array and stride as they are where this is made.
+  struct TableWords {
+    llvm::IRBuilder<>& b;
+    llvm::StructType* type;
+    llvm::Value* table;
+    llvm::Value* words = nullptr;   // the slot array
+    llvm::Value* stride = nullptr;  // i64
+    llvm::Value* field(TableField k, llvm::Type* t) const {
+      return b.CreateLoad(t, b.CreateStructGEP(type, table, k));
+    }
+    llvm::Value* word0(llvm::Value* fact) const {  // the address of the fact's first word
+      return b.CreateInBoundsGEP(b.getInt64Ty(), words,
+                                 b.CreateMul(b.CreateZExt(fact, b.getInt64Ty()), stride));
+    }
+  };
+  TableWords tableWords(Function& f, llvm::IRBuilder<>& b, std::uint32_t pred);
+  // The list primitives of FactTable on a node's list of pred (its heads at `heads`): word 0 of a
+  // fact links it, its previous fact in the low half and its next one in the high half
+  // (MELD_NATIVE_NO_FACT at either end, where the list head's first or last is written instead).
+  // connect: p and nx become neighbours (FactTable::connect); moveToBack (FactTable::moveToBack);
+  // linkLast: a fact linked at the end (FactTable::fill's links). setHalf writes one half of a word.
+  void setHalf(llvm::IRBuilder<>& b, llvm::Value* word, llvm::Value* v, bool high);
+  void connect(Function& f, llvm::IRBuilder<>& b, llvm::Value* heads, std::uint32_t pred, const TableWords& t,
+               llvm::Value* p, llvm::Value* nx);
+  void connectEnd(Function& f, llvm::IRBuilder<>& b, llvm::Value* heads, std::uint32_t pred,
+                  const TableWords& t, llvm::Value* at, HeadWord headWord, llvm::Value* other);
+  void moveToBack(Function& f, llvm::IRBuilder<>& b, llvm::Value* heads, std::uint32_t pred,
+                  const TableWords& t, llvm::Value* fact);
+  void linkLast(Function& f, llvm::IRBuilder<>& b, llvm::Value* heads, std::uint32_t pred,
+                const TableWords& t, llvm::Value* fact);
   // Machine::factAdded for the host's new fact of the triggers' predicate.
   void wakeRules(Function& f, llvm::IRBuilder<>& b, llvm::Value* heads, llvm::Value* host,
                  const std::vector<RuleTrigger>& triggers);
@@ -343,23 +374,9 @@ class RegionLowering {
   void unlinkConsumed(Function& f, llvm::IRBuilder<>& b, const std::vector<PredicateRules>& unlinked,
                       llvm::Value* consumed, llvm::Value* size, llvm::BasicBlock* all,
                       llvm::BasicBlock* done);
-  // pred's meld_native_table, on in a new block when the table is MELD_NATIVE_TABLE_PLAIN (else a
-  // branch to vm).
-  struct PlainTable {
-    llvm::IRBuilder<>& b;
-    llvm::StructType* type;
-    llvm::Value* table;
-    llvm::Value* words = nullptr;   // the slot array now
-    llvm::Value* stride = nullptr;  // i64
-    llvm::Value* field(TableField k, llvm::Type* t) const {
-      return b.CreateLoad(t, b.CreateStructGEP(type, table, k));
-    }
-    llvm::Value* word0(llvm::Value* fact) const {  // the address of the fact's first word
-      return b.CreateInBoundsGEP(b.getInt64Ty(), words,
-                                 b.CreateMul(b.CreateZExt(fact, b.getInt64Ty()), stride));
-    }
-  };
-  PlainTable plainTableOrVm(Function& f, llvm::IRBuilder<>& b, std::uint32_t pred, llvm::BasicBlock* vm);
+  // tableWords(pred), on in a new block when the table is MELD_NATIVE_TABLE_PLAIN (else a branch
+  // to vm).
+  TableWords plainTableOrVm(Function& f, llvm::IRBuilder<>& b, std::uint32_t pred, llvm::BasicBlock* vm);
   // FactTable::erase and Machine::factRemoved for the node's fact of u.pred; to `vm` if its table
   // is not plain (the builder is left after the unlinking otherwise).
   void unlinkFact(Function& f, llvm::IRBuilder<>& b, const PredicateRules& u, llvm::Value* node,

@@ -228,13 +228,12 @@ Interpreter::Alloc Interpreter::enter(const CodeBlock& b) {
   a.slots = slotChunks_[slotChunk_].get() + slotUsed_;
   regUsed_ += regs;
   slotUsed_ += slots;
-  std::fill(a.regs, a.regs + regs, Value());
-  for (std::size_t s = 0; s < slots; ++s) a.slots[s] = Slot{0, 0, kNoFact, 0, nullptr};
+  clearFrame(a.regs, regs, a.slots, slots);
   return a;
 }
 
 void Interpreter::leave(const Frame& f, const Alloc& a, const BlockInfo& info) {
-  for (std::uint32_t r : info.boxedRegs) heap_.releaseObject(f.regs[r]);
+  releaseBoxedRegs(f, info);
   regChunk_ = a.regMark / kRegChunk;
   regUsed_ = a.regMark % kRegChunk;
   slotChunk_ = a.slotMark / kSlotChunk;
@@ -622,16 +621,11 @@ Interpreter::Status Interpreter::start(Frame& f, meld_native_block native) {
 // and its boxed registers released after the run.
 void Interpreter::runInOwnFrame(RuleRun& r, NodeId host) {
   Value* regs = r.regs.get();
-  Slot* slots = r.slots.get();
-  for (std::uint32_t i = 0; i < r.regCount; ++i) regs[i] = Value();
-  for (std::uint32_t s = 0; s < r.slotCount; ++s) slots[s] = Slot{0, 0, kNoFact, 0, nullptr};
+  clearFrame(regs, r.regCount, r.slots.get(), r.slotCount);
   const BlockInfo& info = *r.info;
   Frame& f = r.frame;
   f.host = host;
   f.updated = false;
-  auto releaseBoxed = [&] {
-    for (std::uint32_t reg : info.boxedRegs) heap_.releaseObject(regs[reg]);
-  };
   r.running = true;
   try {
     if (info.native)
@@ -640,11 +634,11 @@ void Interpreter::runInOwnFrame(RuleRun& r, NodeId host) {
     else
       exec(f, 0);
   } catch (...) {
-    releaseBoxed();
+    releaseBoxedRegs(f, info);
     r.running = false;
     throw;
   }
-  releaseBoxed();
+  releaseBoxedRegs(f, info);
   r.running = false;
 }
 

@@ -8,6 +8,7 @@
 // unlinks them afterwards), so every loop can step to its successor after its body ran.
 #pragma once
 
+#include <algorithm>
 #include <cstdint>
 #include <memory>
 #include <new>
@@ -174,6 +175,15 @@ class Interpreter {
   };
   Alloc enter(const CodeBlock& b);
   void leave(const Frame& f, const Alloc& a, const BlockInfo& info);
+  // A frame as a block's run begins (registers zero, slots unbound) and as it ends (the boxed
+  // registers' references let go): enter/leave's frames and a rule's own (runInOwnFrame).
+  static void clearFrame(Value* regs, std::size_t regCount, Slot* slots, std::size_t slotCount) {
+    std::fill(regs, regs + regCount, Value());
+    for (std::size_t s = 0; s < slotCount; ++s) slots[s] = Slot{0, 0, kNoFact, 0, nullptr};
+  }
+  void releaseBoxedRegs(const Frame& f, const BlockInfo& info) {
+    for (std::uint32_t r : info.boxedRegs) heap_.releaseObject(f.regs[r]);
+  }
   const BlockInfo& infoOf(const CodeBlock& b);
   void runWith(const CodeBlock& block, const BlockInfo& info, NodeId host, bool negative, PredId triggerPred,
                const Value* trigger);
