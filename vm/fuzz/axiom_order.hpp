@@ -146,11 +146,10 @@ inline bool sameButAxiomOrder(std::span<const std::uint8_t> data, std::span<cons
     dp[b].first = da->blocks[b];
     cp[b].first = ca->blocks[b];
   }
-  for (const Section& d : *ds)
-    if (d.tag == meldvm::detail::kSecSources) {
-      const Section& c = (*cs)[std::size_t(&d - ds->data())];
-      const auto dt = sourceTables(d.bytes, blocksBeforeAxioms, n),
-                 ct = sourceTables(c.bytes, blocksBeforeAxioms, n);
+  for (std::size_t i = 0; i < ds->size(); ++i)  // (the tags of both were compared above)
+    if ((*ds)[i].tag == meldvm::detail::kSecSources) {
+      const auto dt = sourceTables((*ds)[i].bytes, blocksBeforeAxioms, n),
+                 ct = sourceTables((*cs)[i].bytes, blocksBeforeAxioms, n);
       if (!dt || !ct || dt->first != ct->first) return false;
       for (std::size_t b = 0; b < n; ++b) {
         dp[b].second = dt->second[b];
