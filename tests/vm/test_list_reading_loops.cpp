@@ -124,3 +124,38 @@ BOOST_AUTO_TEST_CASE(lists_stay_put_unless_the_block_updates_a_fact) {
   });
   BOOST_TEST(!meldvm::detail::listsStayPut(updates.code));
 }
+
+BOOST_AUTO_TEST_CASE(written_register_is_the_computed_one) {
+  Preds t;
+  CodeBlock b;
+  emit(b, Opcode::MOVF, {3, 0, 0});                          // fD: the D takes two words
+  emit(b, Opcode::CALL, {2, 0, TypeTable::kBool, 2, 0, 1});  // r2 = builtin 0 (r0, r1)
+  emit(b, Opcode::LOAD, {0, 1, 4});                          // r4 = field 1 of slot 0
+  emit(b, Opcode::SEND, {t.count, 0, 1, 2});                 // writes none
+  BOOST_TEST(meldvm::detail::writtenRegister(b.code, 0) == 3);
+  BOOST_TEST(meldvm::detail::writtenRegister(b.code, 4) == 2);
+  BOOST_TEST(meldvm::detail::writtenRegister(b.code, 11) == 4);
+  BOOST_TEST(meldvm::detail::writtenRegister(b.code, 15) == -1);
+}
+
+// Two loops around a call that reads r1: the outer one loads r1 in its body, the inner one does
+// not. So only the inner one keeps r1 (its runs see one value); r2, written by the call itself,
+// is kept by no loop; r0, written before both, by the outer one.
+BOOST_AUTO_TEST_CASE(the_outermost_loop_that_keeps_a_register) {
+  Preds t;
+  std::size_t callAt = 0, innerAt = 0;
+  const CodeBlock nested = oneLoop(Opcode::ITER, t.placed, kLinConsume, [&](CodeBlock& b) {
+    emit(b, Opcode::LOAD, {0, 1, 1});
+    innerAt = b.code.size();
+    loop(b, Opcode::ITER, {t.count, 1, kIterLinear}, [&] {
+      callAt = b.code.size();
+      emit(b, Opcode::CALL, {2, 0, TypeTable::kBool, 2, 0, 1});
+    });
+  });
+  using meldvm::detail::outermostLoopKeeping;
+  BOOST_TEST(outermostLoopKeeping(nested.code, callAt, 1) == std::int64_t(innerAt));
+  BOOST_TEST(outermostLoopKeeping(nested.code, callAt, 0) == 0);
+  BOOST_TEST(outermostLoopKeeping(nested.code, callAt, 2) == -1);
+  // An instruction after the loops' end is in none of them.
+  BOOST_TEST(outermostLoopKeeping(nested.code, nested.code.size() - 1, 0) == -1);
+}

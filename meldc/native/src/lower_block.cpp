@@ -38,9 +38,13 @@ void RegionLowering::lowerRegion(Function& f, std::uint32_t start, bool nativeBo
   f.vm = &*arg++;
   f.frame = &*arg++;
   f.regs = &*arg++;
-  f.loops = nativeBody
-                ? static_cast<llvm::Value*>(&*arg)
-                : b.CreateAlloca(b.getPtrTy(), b.getInt32(std::max<std::uint32_t>(block_.slots, 1)), "loops");
+  // A body that native code loops over shares its caller's loops' array (and the queens_violation
+  // masks after it); the block's start and a body the VM's loop helper calls have their own.
+  f.loops = nativeBody ? static_cast<llvm::Value*>(&*arg)
+                       : b.CreateAlloca(b.getPtrTy(),
+                                        b.getInt32(std::max<std::uint32_t>(block_.slots + queensWords_, 1)),
+                                        "loops");
+  if (!nativeBody) forgetAllQueensRows(f, b);
   f.lastFired = b.CreateAlloca(b.getInt1Ty(), nullptr, "lastFired");
   b.CreateStore(b.getFalse(), f.lastFired);
   b.CreateBr(at(f, start));
@@ -55,6 +59,9 @@ void RegionLowering::lowerRegion(Function& f, std::uint32_t start, bool nativeBo
 void RegionLowering::lowerInstruction(Function& f, llvm::IRBuilder<>& b, std::uint32_t pc) {
   const std::uint32_t* c = code_.data() + pc;
   const std::uint32_t next = pc + length(pc);
+  // (A run of LOADs forgets the masks of the registers it writes itself: lowerSlotRun.)
+  if (!queensSites_.empty() && Opcode(c[0]) != Opcode::LOAD && Opcode(c[0]) != Opcode::TEST)
+    forgetQueensRows(f, b, meldvm::detail::writtenRegister(code_, pc));
   auto intOp = [&](auto&& op) {
     storeInt(f, b, c[1], op(loadInt(f, b, c[2]), loadInt(f, b, c[3])));
     b.CreateBr(at(f, next));

@@ -322,7 +322,11 @@ void RegionLowering::lowerCall(Function& f, llvm::IRBuilder<>& b, std::uint32_t 
     return (void)b.CreateBr(at(f, pc + length(pc)));
   }
   if (id == queensId_) {
-    storeBool(f, b, dest, queensViolation(f, b, loadInt(f, b, c[5]), loadReg(f, b, c[6])));
+    llvm::Value *row = loadInt(f, b, c[5]), *list = loadReg(f, b, c[6]);
+    const auto site = queensSites_.find(pc);
+    storeBool(f, b, dest,
+              site == queensSites_.end() ? queensViolation(f, b, row, list)
+                                         : cachedQueensViolation(f, b, site->second, row, list));
     return (void)b.CreateBr(at(f, pc + length(pc)));
   }
   llvm::Value* args = gatherArgs(f, b, c + 5, count);
@@ -354,48 +358,6 @@ void RegionLowering::lowerFactOut(Function& f, llvm::IRBuilder<>& b, std::uint32
   }
 }
 
-// builtins_lists.cpp's queens_violation, inline: the queens of the list (nearest column first)
-// against a new one in `row` (i32), true if one shares its row or a diagonal. n-queens calls it
-// for every cell of the next column: through the builtins table it was a fifth of the native run
-// (the span of arguments, the call, the walk behind an opaque call).
-llvm::Value* RegionLowering::queensViolation(Function& f, llvm::IRBuilder<>& b, llvm::Value* row,
-                                             llvm::Value* list) {
-  llvm::BasicBlock* from = b.GetInsertBlock();
-  llvm::BasicBlock* walk = newBlock(f, "queens.walk");
-  llvm::BasicBlock* cell = newBlock(f, "queens.cell");
-  llvm::BasicBlock* next = newBlock(f, "queens.next");
-  llvm::BasicBlock* done = newBlock(f, "queens.done");
-  b.CreateBr(walk);
-  b.SetInsertPoint(walk);
-  llvm::PHINode* at = b.CreatePHI(b.getInt64Ty(), 2, "queens.list");
-  llvm::PHINode* distance = b.CreatePHI(b.getInt32Ty(), 2, "queens.d");
-  at->addIncoming(list, from);
-  distance->addIncoming(b.getInt32(1), from);
-  b.CreateCondBr(b.CreateICmpEQ(at, b.getInt64(0)), done, cell);  // the empty list: no conflict
-  b.SetInsertPoint(cell);
-  llvm::Value* address = b.CreateIntToPtr(at, b.getPtrTy());
-  llvm::Value* queen = b.CreateTrunc(
-      b.CreateLoad(b.getInt64Ty(),
-                   b.CreateConstInBoundsGEP1_64(b.getInt64Ty(), address, MELD_NATIVE_LIST_HEAD_WORD)),
-      b.getInt32Ty());
-  // Wrapping sums, as the interpreter's intAdd and intSub.
-  llvm::Value* conflict =
-      b.CreateOr(b.CreateICmpEQ(queen, row), b.CreateOr(b.CreateICmpEQ(queen, b.CreateAdd(row, distance)),
-                                                        b.CreateICmpEQ(queen, b.CreateSub(row, distance))));
-  b.CreateCondBr(conflict, done, next);
-  b.SetInsertPoint(next);
-  llvm::Value* tail = b.CreateLoad(
-      b.getInt64Ty(), b.CreateConstInBoundsGEP1_64(b.getInt64Ty(), address, MELD_NATIVE_LIST_TAIL_WORD));
-  at->addIncoming(tail, next);
-  distance->addIncoming(b.CreateAdd(distance, b.getInt32(1)), next);
-  b.CreateBr(walk);
-  b.SetInsertPoint(done);
-  llvm::PHINode* result = b.CreatePHI(b.getInt1Ty(), 2, "queens.conflict");
-  result->addIncoming(b.getFalse(), walk);
-  result->addIncoming(b.getTrue(), cell);
-  return result;
-}
-
 void RegionLowering::lowerSlotRun(Function& f, llvm::IRBuilder<>& b, std::uint32_t pc) {
   const std::uint32_t slot = code_[pc + 1];
   llvm::Value* args;
@@ -410,6 +372,7 @@ void RegionLowering::lowerSlotRun(Function& f, llvm::IRBuilder<>& b, std::uint32
     llvm::Value* field =
         b.CreateLoad(b.getInt64Ty(), b.CreateConstInBoundsGEP1_64(b.getInt64Ty(), args, code_[pc + 2]));
     if (Opcode(code_[pc]) == Opcode::LOAD) {
+      forgetQueensRows(f, b, code_[pc + 3]);
       if (boxed(code_[pc + 3])) setBoxed(f, b, code_[pc + 3], field);
       b.CreateStore(field, reg(f, b, code_[pc + 3]));
       continue;

@@ -47,6 +47,7 @@ class RegionLowering {
     });
     // A persistent process's slot 0 holds the fact that triggered it (any predicate it names).
     if (kind == BlockKind::Process) slotPreds_.erase(0);
+    planQueensSites();
   }
 
   // The function for the code entered at `start` (created on first request, lowered at once).
@@ -320,8 +321,31 @@ class RegionLowering {
   // CALL: the built-in's implementation is called directly (builtins[id]) with the registers'
   // values; its result is owned, so a boxed register only lets go of its old value. fabs is inline.
   void lowerCall(Function& f, llvm::IRBuilder<>& b, std::uint32_t pc);
-  // queens_violation(Y, L) as a loop over L's cells in the block itself.
+  // queens_violation(Y, L) as a loop over L's cells in the block itself (lower_queens.cpp).
   llvm::Value* queensViolation(Function& f, llvm::IRBuilder<>& b, llvm::Value* row, llvm::Value* list);
+  // A call of queens_violation whose list register some loop around it keeps: the rows its list
+  // rules out are gathered once into a mask, in two words after the loops' array (`word`: the
+  // state, kRows*; then the mask), until the register is written again.
+  struct QueensSite {
+    std::uint32_t word;     // index of the state word in f.loops, in 8-byte words
+    std::uint32_t listReg;  // L's register
+  };
+  static constexpr std::uint64_t kRowsUnknown = 0, kRowsMasked = 1, kRowsWalked = 2;  // too long a list
+  void planQueensSites();  // fills queensSites_ and queensWords_
+  llvm::Value* queensWord(Function& f, llvm::IRBuilder<>& b, const QueensSite& site, std::uint32_t k) {
+    return b.CreateConstInBoundsGEP1_64(b.getInt64Ty(), f.loops, site.word + k);
+  }
+  // The state words of the sites whose list is register `written` (-1: none) back to unknown: an
+  // instruction that writes it is lowered next.
+  void forgetQueensRows(Function& f, llvm::IRBuilder<>& b, std::int64_t written);
+  void forgetAllQueensRows(Function& f, llvm::IRBuilder<>& b);  // a loops' array of the function's own
+  // One walk of the list: the mask of the rows in [0, 64) its queens rule out, and whether the
+  // whole list was walked (false for a list of kLongestMaskedList cells or more).
+  std::pair<llvm::Value*, llvm::Value*> queensRows(Function& f, llvm::IRBuilder<>& b, llvm::Value* list);
+  // queens_violation(row, list) from the site's mask (gathered at its first call), or from the walk
+  // for a row outside [0, 64) or a list too long for the mask.
+  llvm::Value* cachedQueensViolation(Function& f, llvm::IRBuilder<>& b, const QueensSite& site,
+                                     llvm::Value* row, llvm::Value* list);
 
   // LOADs and TESTs of integer-like fields, one after the other on the same slot: its arguments
   // are looked up once and read in place (nothing stores a fact in between: a release that frees
@@ -394,6 +418,8 @@ class RegionLowering {
   std::set<std::uint32_t> consumingSlots_;  // slots some loop binds with kIterConsume
   const std::uint32_t fabsId_ = meldvm::findBuiltin("fabs")->id;
   const std::uint32_t queensId_ = meldvm::findBuiltin("queens_violation")->id;
+  std::map<std::uint32_t, QueensSite> queensSites_;  // by the CALL's pc
+  std::uint32_t queensWords_ = 0;                    // their words after the loops' array
   std::map<std::uint32_t, std::int64_t> slotPreds_;  // slot -> predicate of every loop binding it
   const meldvm::CodeBlock& block_;
   std::span<const std::uint32_t> code_;

@@ -1,6 +1,8 @@
 // Which loops read the lists of the facts they visit (bytecode_internal.hpp): the interpreter and
-// native code fetch those lists ahead.
+// native code fetch those lists ahead; and which registers a loop keeps (native code computes what
+// depends on them once per run of the loop).
 #include <algorithm>
+#include <string_view>
 #include <vector>
 
 #include "meldvm/bytecode_internal.hpp"
@@ -42,6 +44,35 @@ bool listsStayPut(std::span<const std::uint32_t> code) {
   bool put = true;
   forEachInstruction(code, [&](std::size_t pc) { put = put && Opcode(code[pc]) != Opcode::UPDATE; });
   return put;
+}
+
+std::int64_t writtenRegister(std::span<const std::uint32_t> code, std::size_t pos) {
+  const auto op = Opcode(code[pos]);
+  const int operand = writtenRegisterOperand(op);
+  if (operand < 0) return -1;
+  // The written register comes before any variable-length operand list ('*').
+  const std::string_view letters = opcodeInfo(op).operands;
+  std::size_t w = pos + 1;
+  for (int i = 0; i < operand; ++i) w += letters[std::size_t(i)] == 'D' ? 2 : 1;
+  return code[w];
+}
+
+std::int64_t outermostLoopKeeping(std::span<const std::uint32_t> code, std::size_t pos, std::uint32_t r) {
+  // Loops nest, so the loops around pos that keep r are the innermost ones: the outermost of
+  // them is the first loop around pos (in code order) that keeps it.
+  std::string why;
+  std::int64_t found = -1;
+  forEachInstruction(code, [&](std::size_t loop) {
+    if (found >= 0 || loop >= pos || !isLoop(code[loop])) return;
+    const std::size_t len = instructionLength(code, loop, why);
+    const std::size_t end = std::min<std::size_t>(code[loop + len - 1], code.size());  // after its NEXT
+    if (end <= pos) return;
+    bool keeps = true;
+    for (std::size_t at = loop; at < end && keeps; at += instructionLength(code, at, why))
+      keeps = writtenRegister(code, at) != std::int64_t(r);
+    if (keeps) found = std::int64_t(loop);
+  });
+  return found;
 }
 
 }  // namespace meldvm::detail

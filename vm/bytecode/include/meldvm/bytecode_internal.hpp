@@ -166,6 +166,13 @@ inline constexpr int kListPipelineAhead = 9;
 // cells it fetched from one visit to the next, one cell deeper each time (ListPipeline), instead
 // of walking every list again from its first cell.
 bool listsStayPut(std::span<const std::uint32_t> code);
+// The register the instruction at `pos` of verified code computes (writtenRegisterOperand), or -1.
+std::int64_t writtenRegister(std::span<const std::uint32_t> code, std::size_t pos);
+// The outermost loop around the instruction at `pos` of verified code whose body (to its end)
+// never writes register r, as the position of its loop instruction; -1 when there is none. While
+// one run of that loop lasts, r holds one value: what an instruction at `pos` computes from r
+// alone may be computed once per run of the loop (native code's queens_violation).
+std::int64_t outermostLoopKeeping(std::span<const std::uint32_t> code, std::size_t pos, std::uint32_t r);
 
 // TypeTable::name with the nesting depth capped: a file can chain thousands of `list` types, and
 // the unbounded recursion of TypeTable::name would then overflow the stack.
