@@ -3,7 +3,10 @@
 // through the update helper it cost heat-transfer about 200 instructions per update, most of them
 // in finding again what the block already knows (the table, the list, the rules to wake). SEND and
 // DERIVE: the fact appended to the run's sent or derived facts, as Machine::send's and derive's
-// common case does.
+// common case does; a persistent fact sent (or retracted: shortest-path sends both) to the node
+// run's persistent sent facts, as Machine::sendAny does (through the send helper, Machine::send
+// and sendAny it cost shortest-path 130 instructions a message more: 2.06 G -> 1.77 G natively for
+// 20,000 nodes, before postAll fetched the mailbox entries that sendAny used to fetch).
 #include <llvm/IR/MDBuilder.h>
 
 #include <algorithm>
@@ -76,19 +79,32 @@ void RegionLowering::lowerSend(Function& f, llvm::IRBuilder<>& b, std::uint32_t 
   llvm::Type* ptr = b.getPtrTy();
   llvm::Value* dest = loadInt(f, b, c[2]);  // the node is the register's low half (Value::asNode)
   llvm::Value* args = gatherArgs(f, b, c + 4, count);
+  llvm::BasicBlock* next = at(f, pc + length(pc));
+  auto viaVm = [&] {
+    b.CreateCall(t_.sendType, helper(f, b, kSend),
+                 {f.vm, f.frame, b.getInt32(pc), b.getInt32(pred), dest, args});
+  };
+  const meldvm::PredicateDesc& d = program_.predicates[pred];
+  if (d.action || d.thread) {  // run or stored elsewhere: the VM's
+    viaVm();
+    return (void)b.CreateBr(next);
+  }
   llvm::Value* more = b.CreateAnd(
       b.CreateICmpNE(b.CreateLoad(i8, contextField(f, b, kContextSendsBuffered, ptr)), b.getInt8(0)),
       b.CreateICmpULT(dest, b.CreateLoad(i32, contextField(f, b, kContextLiveBelow, ptr))));
-  llvm::BasicBlock* next = at(f, pc + length(pc));
-  appendFact(f, b, {kContextSent, kContextSentArgs}, dest, pred, args, count, more, next, [&] {
-    b.CreateCall(t_.sendType, helper(f, b, kSend),
-                 {f.vm, f.frame, b.getInt32(pc), b.getInt32(pred), dest, args});
-  });
+  // A persistent fact (or its retraction) waits for the node run's end in its own buffer: the VM
+  // posts those before the linear ones (Machine::flushOutgoing).
+  const Buffer buffer =
+      d.linear ? Buffer{kContextSent, kContextSentArgs}
+               : Buffer{kContextSentPersistent, kContextSentArgs, MELD_NATIVE_TABLE_PERSISTENT_SENT, true};
+  appendFact(f, b, buffer, dest, pred, args, count, more, next, viaVm);
   increment(b, contextField(f, b, kContextFactsSent, ptr));
-  // The receiver's list head is written when the run ends: fetched now, as Machine::send does.
-  b.CreateIntrinsic(
-      llvm::Intrinsic::prefetch, {ptr},
-      {listHead(f, b, nodeHeads(f, b, dest), pred, kHeadFirst), b.getInt32(1), b.getInt32(3), b.getInt32(1)});
+  // A linear fact's receiver's list head is written when the run ends: fetched now, as
+  // Machine::send does.
+  if (d.linear)
+    b.CreateIntrinsic(llvm::Intrinsic::prefetch, {ptr},
+                      {listHead(f, b, nodeHeads(f, b, dest), pred, kHeadFirst), b.getInt32(1), b.getInt32(3),
+                       b.getInt32(1)});
   b.CreateBr(next);
 }
 
@@ -124,7 +140,7 @@ void RegionLowering::appendFact(Function& f, llvm::IRBuilder<>& b, Buffer buffer
   llvm::Value* size = b.CreateLoad(i32, arrayField(facts, 1));
   llvm::Value* wordsSize = b.CreateLoad(i32, arrayField(words, 1));
   llvm::Value* conditions[] = {
-      more, writesHere(f, b, pred, MELD_NATIVE_TABLE_BUFFERED),
+      more, writesHere(f, b, pred, buffer.flag, buffer.withSign),
       b.CreateICmpULT(size, b.CreateLoad(i32, arrayField(facts, 2))),
       b.CreateICmpULE(b.CreateAdd(wordsSize, b.getInt32(count)), b.CreateLoad(i32, arrayField(words, 2)))};
   hereOrVm(f, b, conditions, "append", [&] {
@@ -137,7 +153,10 @@ void RegionLowering::appendFact(Function& f, llvm::IRBuilder<>& b, Buffer buffer
   auto field = [&](SentFactByte k) { return b.CreateConstInBoundsGEP1_64(i8, entry, k); };
   b.CreateStore(node, field(kSentNode));
   b.CreateStore(b.getInt32(pred), field(kSentPred));
-  b.CreateStore(b.getInt8(0), field(kSentNegative));
+  llvm::Value* negative = b.getInt8(0);
+  if (buffer.withSign)
+    negative = b.CreateLoad(i8, b.CreateStructGEP(t_.frameHeadType, f.frame, kFrameNegative));
+  b.CreateStore(negative, field(kSentNegative));
   b.CreateStore(wordsSize, field(kSentArgs));
   b.CreateStore(b.getInt32(0), field(kSentDelay));
   b.CreateStore(b.getInt8(0), field(kSentCancelled));
@@ -149,21 +168,26 @@ void RegionLowering::appendFact(Function& f, llvm::IRBuilder<>& b, Buffer buffer
                   b.CreateConstInBoundsGEP1_64(i64, argsAt, i));
   b.CreateStore(b.CreateAdd(size, b.getInt32(1)), arrayField(facts, 1));
   b.CreateStore(b.CreateAdd(wordsSize, b.getInt32(count)), arrayField(words, 1));
-  increment(b, contextField(f, b, kContextFactsDerived, ptr));
-  increment(b, contextField(f, b, kContextRunDerived, ptr));
+  // A retraction derives nothing (Machine::sendAny).
+  llvm::Value* derived = b.CreateZExt(b.CreateICmpEQ(negative, b.getInt8(0)), i64);
+  for (ContextField counter : {kContextFactsDerived, kContextRunDerived}) {
+    llvm::Value* at = contextField(f, b, counter, ptr);
+    b.CreateStore(b.CreateAdd(b.CreateLoad(i64, at), derived), at);
+  }
 }
 
 llvm::Value* RegionLowering::writesHere(Function& f, llvm::IRBuilder<>& b, std::uint32_t pred,
-                                        std::uint32_t flag) {
+                                        std::uint32_t flag, bool anySign) {
   llvm::Type* i32 = b.getInt32Ty();
   llvm::Type* ptr = b.getPtrTy();
   llvm::Value* flags = b.CreateLoad(i32, b.CreateStructGEP(t_.tableType, tableOf(f, b, pred), kTableFlags));
+  llvm::Value* here =
+      b.CreateAnd(b.CreateICmpNE(b.CreateAnd(flags, b.getInt32(flag)), b.getInt32(0)),
+                  b.CreateIsNull(b.CreateLoad(ptr, contextField(f, b, kContextDerivations, ptr))));
+  if (anySign) return here;
   llvm::Value* negative =
       b.CreateLoad(b.getInt8Ty(), b.CreateStructGEP(t_.frameHeadType, f.frame, kFrameNegative));
-  return b.CreateAnd(
-      b.CreateAnd(b.CreateICmpNE(b.CreateAnd(flags, b.getInt32(flag)), b.getInt32(0)),
-                  b.CreateIsNull(b.CreateLoad(ptr, contextField(f, b, kContextDerivations, ptr)))),
-      b.CreateICmpEQ(negative, b.getInt8(0)));
+  return b.CreateAnd(here, b.CreateICmpEQ(negative, b.getInt8(0)));
 }
 
 void RegionLowering::hereOrVm(Function& f, llvm::IRBuilder<>& b, std::span<llvm::Value* const> conditions,

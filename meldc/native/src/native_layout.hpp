@@ -62,6 +62,7 @@ enum ContextField : unsigned {
   kContextFactsSent,
   kContextDerived,
   kContextDerivedArgs,
+  kContextSentPersistent,
   kContextHeadsPerNode,
   kContextRuleWords
 };
@@ -97,6 +98,7 @@ static_assert(offsetof(meld_native_context, tables) == 8 * kContextTables &&
               offsetof(meld_native_context, facts_sent) == 8 * kContextFactsSent &&
               offsetof(meld_native_context, derived) == 8 * kContextDerived &&
               offsetof(meld_native_context, derived_args) == 8 * kContextDerivedArgs &&
+              offsetof(meld_native_context, sent_persistent) == 8 * kContextSentPersistent &&
               offsetof(meld_native_context, heads_per_node) == 8 * kContextHeadsPerNode &&
               offsetof(meld_native_context, rule_words) == 8 * kContextHeadsPerNode + 4 &&
               sizeof(meld_native_context) == 8 * kContextHeadsPerNode + 8);

@@ -250,18 +250,23 @@ class RegionLowering {
   void lowerSend(Function& f, llvm::IRBuilder<>& b, std::uint32_t pc);
   void lowerDerive(Function& f, llvm::IRBuilder<>& b, std::uint32_t pc);
   // Whether native code may write a fact of pred itself: its table has `flag`
-  // (MELD_NATIVE_TABLE_*), no derivation is being recorded, the frame is not negative.
-  llvm::Value* writesHere(Function& f, llvm::IRBuilder<>& b, std::uint32_t pred, std::uint32_t flag);
+  // (MELD_NATIVE_TABLE_*), no derivation is being recorded, the frame is not negative (unless
+  // anySign).
+  llvm::Value* writesHere(Function& f, llvm::IRBuilder<>& b, std::uint32_t pred, std::uint32_t flag,
+                          bool anySign = false);
   // If every condition holds, on in a new block named `name`, where the builder is left; else
   // `viaVm` (which ends its block: the helper's call, then a branch on).
   void hereOrVm(Function& f, llvm::IRBuilder<>& b, std::span<llvm::Value* const> conditions,
                 const std::string& name, const std::function<void()>& viaVm);
-  // A buffered fact if the conditions both share (table BUFFERED, no derivation recorded, not
+  // A buffered fact if the conditions both share (the table's flag, no derivation recorded, not
   // negative, room in both arrays) and `more` hold: the record and its arguments appended and
   // facts_derived and run_derived counted, the builder left at the end of that path. Else the
-  // helper call made by `viaVm`, then a branch to `next`.
+  // helper call made by `viaVm`, then a branch to `next`. A buffer `withSign` (persistent facts
+  // sent) takes negative frames too: the record keeps the sign, and a retraction is not counted.
   struct Buffer {
     ContextField facts, args;
+    std::uint32_t flag = MELD_NATIVE_TABLE_BUFFERED;
+    bool withSign = false;
   };
   void appendFact(Function& f, llvm::IRBuilder<>& b, Buffer buffer, llvm::Value* node, std::uint32_t pred,
                   llvm::Value* args, std::uint32_t count, llvm::Value* more, llvm::BasicBlock* next,

@@ -80,11 +80,14 @@ void Interpreter::setUpNativeContext() {
   for (PredId p = 0; p < program_.predicates.size(); ++p) {
     FactTable& t = db_.tableForNativeCode(p);
     const bool buffered = machine_.tables_.plainLinear[p] && !db_.holdsReferences(p);
+    const PredicateDesc& d = program_.predicates[p];
+    const bool persistentSent = !d.linear && !d.action && !d.thread && !db_.holdsReferences(p);
     static_assert(sizeof(FactRef) == sizeof(std::uint32_t));
     nativeTables_.push_back(
         {reinterpret_cast<const std::uint64_t* const*>(t.slotArrayAddress()), t.stride(), t.argOffset(),
-         (t.plainWords() ? MELD_NATIVE_TABLE_PLAIN : 0u) | (buffered ? MELD_NATIVE_TABLE_BUFFERED : 0u), 0,
-         t.freeListAddress(), t.liveAddress()});
+         (t.plainWords() ? MELD_NATIVE_TABLE_PLAIN : 0u) | (buffered ? MELD_NATIVE_TABLE_BUFFERED : 0u) |
+             (persistentSent ? MELD_NATIVE_TABLE_PERSISTENT_SENT : 0u),
+         0, t.freeListAddress(), t.liveAddress()});
   }
   meld_native_context& c = nativeContext_;
   c.interpreter = this;
@@ -134,6 +137,7 @@ void Interpreter::setUpNativeBuffers(meld_native_context& c) {
   c.facts_sent = &machine_.stats_.factsSent;
   c.derived = reinterpret_cast<meld_native_array*>(machine_.linearOut_.forNativeCode());
   c.derived_args = reinterpret_cast<meld_native_array*>(machine_.linearOutArgs_.forNativeCode());
+  c.sent_persistent = reinterpret_cast<meld_native_array*>(machine_.sentPersistent_.forNativeCode());
 }
 
 // Per register whether it is boxed, then whether any loop consumes its fact (fire() has nothing

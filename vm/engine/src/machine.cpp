@@ -56,6 +56,16 @@ Machine::Machine(const Program& program, MachineOptions options)
   sendOrder_ = std::make_unique<detail::SendOrder>();
   linearOutArgs_.reserve(1024);
   persistentArgs_.reserve(1024);
+  // Native code appends to these while they have room (and calls the VM when they have none): room
+  // from the first fact on, so that a short run's facts take the same path as a long run's. (Only
+  // on the VM's own graph and one thread do its sends go there: a robot's block keeps its
+  // footprint.)
+  if (ownGraphSerial_) {
+    sentLinear_.reserve(16);
+    sentPersistent_.reserve(16);
+    sentArgs_.reserve(64);
+    linearOut_.reserve(16);
+  }
 }
 
 Machine::~Machine() { releaseAll(); }

@@ -26,15 +26,14 @@ void Machine::postOrRoute(const PendingFact& e, const Value* args) {
 
 void Machine::flushOutgoing() {
   if (host_) {
-    for (const std::span<const PendingFact> list :
-         {std::span<const PendingFact>(sentPersistent_), sentLinear_.items()})
+    for (const std::span<const PendingFact> list : {sentPersistent_.items(), sentLinear_.items()})
       for (const PendingFact& e : list) {
         const Value* args = sentArgs_.data() + e.args;
         host_->transmit(running_, e.node, e.pred, args, e.negative, e.delayMs);
         releaseArgs(e.pred, args);
       }
   } else {
-    postAll(sentPersistent_, nullptr);
+    postAll(sentPersistent_.items(), nullptr);
     // The linear ones in the established VM's delivery order (send_order.hpp).
     const std::vector<std::uint32_t>* order = sendOrder_->arrange(
         sentLinear_.size(), [&](std::size_t i) { return sentLinear_[i].node; },
@@ -52,17 +51,22 @@ void Machine::flushOutgoing() {
 }
 
 void Machine::postAll(std::span<const PendingFact> facts, const std::vector<std::uint32_t>* order) {
-  // send() fetched each destination's mailbox entry and scheduler record when the fact was
-  // derived; here the last chunk of each mailbox is fetched a few posts ahead (the first ones
-  // before the loop), since its address is only known from the entry.
-  constexpr std::size_t kTailAhead = 4;
+  // Each destination's mailbox entry and scheduler record are fetched a few posts ahead, then,
+  // fewer posts ahead, the last chunk of its mailbox, whose address is only known from the entry
+  // (the first ones before the loop). (send() fetched the entries of the facts the VM sent when
+  // they were derived; native code's persistent facts come without: shortest-path's posts then
+  // waited for the entries, a fifth of its native run.)
+  constexpr std::size_t kEntryAhead = 8, kTailAhead = 4;
   const std::size_t n = facts.size();
   // (A shard's facts may name nodes of other threads beyond its own arrays: no prefetch there.)
-  const NodeId nodes = shard_ ? db_->nodeCount() : ~NodeId(0);
+  const NodeId nodes = db_->nodeCount();
   auto at = [&](std::size_t i) -> const PendingFact& { return facts[order ? (*order)[i] : i]; };
+  for (std::size_t i = 0; i < n && i < kEntryAhead; ++i)
+    if (at(i).node < nodes) prefetchMailEntry(at(i).node);
   for (std::size_t i = 0; i < n && i < kTailAhead; ++i)
     if (at(i).node < nodes) mail_->prefetchTail(at(i).node);
   for (std::size_t i = 0; i < n; ++i) {
+    if (i + kEntryAhead < n && at(i + kEntryAhead).node < nodes) prefetchMailEntry(at(i + kEntryAhead).node);
     if (i + kTailAhead < n && at(i + kTailAhead).node < nodes) mail_->prefetchTail(at(i + kTailAhead).node);
     const PendingFact& e = at(i);
     postOrRoute(e, sentArgs_.data() + e.args);  // takes the buffer's references

@@ -27,7 +27,7 @@ extern "C" {
  * helpers of 2026-11-29; the commits that built them up called theirs 8, with other helper tables:
  * a shared object of one of them is refused, not misread. 10: UPDATE, SEND and DERIVE in native
  * code. 11: a rule's consumed facts unlinked by native code, the table's free list and count.) */
-#define MELD_NATIVE_ABI_VERSION 11u
+#define MELD_NATIVE_ABI_VERSION 12u
 
 typedef struct meld_native_vm meld_native_vm;       /* the VM's meld_native_context (below) */
 typedef struct meld_native_frame meld_native_frame; /* its frame (registers, loop slots) */
@@ -84,6 +84,10 @@ typedef struct meld_native_table {
  * waits in the derived buffer until the rule run ends, one sent to another node in the sent buffer
  * until the node run ends (meld_native_context::derived, sent). */
 #define MELD_NATIVE_TABLE_BUFFERED 2u
+/* The predicate is persistent, not an action or a thread predicate, and holds no reference: a fact
+ * of it sent to a node, or a retraction of one, waits in the persistent sent buffer until the node
+ * run ends (meld_native_context::sent_persistent). */
+#define MELD_NATIVE_TABLE_PERSISTENT_SENT 4u
 
 /* The start of a frame (meldvm::Interpreter::Frame, same layout): the running node and the loop
  * slots, which native code reads to begin a loop itself. */
@@ -186,6 +190,11 @@ typedef struct meld_native_context {
   uint64_t* facts_sent;       /* the statistics' */
   meld_native_array* derived; /* of meld_native_sent_fact */
   meld_native_array* derived_args;
+  /* A SEND of a MELD_NATIVE_TABLE_PERSISTENT_SENT predicate appends its fact to `sent_persistent`
+   * (negative when the frame is: a retraction) and its arguments to `sent_args` under the same
+   * conditions as a linear one's, but for the frame's sign; it counts facts_sent, and
+   * facts_derived and run_derived when it is not a retraction. */
+  meld_native_array* sent_persistent; /* of meld_native_sent_fact */
   uint32_t heads_per_node;
   uint32_t rule_words;
 } meld_native_context;

@@ -499,7 +499,7 @@ class Machine : private SchedulerView {
   // (the established VM posts them at once, so they precede every linear fact of the same run,
   // §6.4.4), each kind in sending order. Nothing can read a mailbox before the run ends, so
   // posting them together is unobservable, and it lets the posts prefetch their mailboxes.
-  std::vector<PendingFact> sentPersistent_;
+  NativeArray<PendingFact> sentPersistent_;  // native code appends to it too (and to sentArgs_)
   NativeArray<PendingFact> sentLinear_;  // native code appends to it (and to sentArgs_)
   ValueBuffer sentArgs_;
   void postAll(std::span<const PendingFact> facts, const std::vector<std::uint32_t>* order);
