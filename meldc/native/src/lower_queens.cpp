@@ -41,46 +41,59 @@ void RegionLowering::forgetAllQueensRows(Function& f, llvm::IRBuilder<>& b) {
     b.CreateStore(b.getInt64(kRowsUnknown), queensWord(f, b, site, 0));
 }
 
+RegionLowering::CellWalk RegionLowering::beginCellWalk(Function& f, llvm::IRBuilder<>& b, llvm::Value* list,
+                                                       llvm::Type* distanceType, const std::string& name) {
+  llvm::BasicBlock* from = b.GetInsertBlock();
+  CellWalk w{newBlock(f, name + ".walk"), nullptr, nullptr};
+  b.CreateBr(w.head);
+  b.SetInsertPoint(w.head);
+  w.at = b.CreatePHI(b.getInt64Ty(), 2, name + ".list");
+  w.distance = b.CreatePHI(distanceType, 2, name + ".d");
+  w.at->addIncoming(list, from);
+  w.distance->addIncoming(llvm::ConstantInt::get(distanceType, 1), from);
+  return w;
+}
+
+llvm::Value* RegionLowering::cellWord(llvm::IRBuilder<>& b, llvm::Value* cell, unsigned word) {
+  return b.CreateLoad(b.getInt64Ty(), b.CreateConstInBoundsGEP1_64(
+                                          b.getInt64Ty(), b.CreateIntToPtr(cell, b.getPtrTy()), word));
+}
+
+void RegionLowering::stepCellWalk(llvm::IRBuilder<>& b, const CellWalk& w) {
+  llvm::BasicBlock* here = b.GetInsertBlock();
+  w.at->addIncoming(cellWord(b, w.at, MELD_NATIVE_LIST_TAIL_WORD), here);
+  w.distance->addIncoming(b.CreateAdd(w.distance, llvm::ConstantInt::get(w.distance->getType(), 1)), here);
+  b.CreateBr(w.head);
+}
+
 std::pair<llvm::Value*, llvm::Value*> RegionLowering::queensRows(Function& f, llvm::IRBuilder<>& b,
                                                                  llvm::Value* list) {
   llvm::Type* i64 = b.getInt64Ty();
   llvm::BasicBlock* from = b.GetInsertBlock();
-  llvm::BasicBlock* walk = newBlock(f, "rows.walk");
+  const CellWalk w = beginCellWalk(f, b, list, i64, "rows");
+  llvm::PHINode* mask = b.CreatePHI(i64, 2, "rows.mask");
+  mask->addIncoming(b.getInt64(0), from);
   llvm::BasicBlock* more = newBlock(f, "rows.more");
   llvm::BasicBlock* cell = newBlock(f, "rows.cell");
   llvm::BasicBlock* done = newBlock(f, "rows.done");
-  b.CreateBr(walk);
-  b.SetInsertPoint(walk);
-  llvm::PHINode* at = b.CreatePHI(i64, 2, "rows.list");
-  llvm::PHINode* distance = b.CreatePHI(i64, 2, "rows.d");
-  llvm::PHINode* mask = b.CreatePHI(i64, 2, "rows.mask");
-  at->addIncoming(list, from);
-  distance->addIncoming(b.getInt64(1), from);
-  mask->addIncoming(b.getInt64(0), from);
-  b.CreateCondBr(b.CreateICmpEQ(at, b.getInt64(0)), done, more);
+  b.CreateCondBr(b.CreateICmpEQ(w.at, b.getInt64(0)), done, more);
   b.SetInsertPoint(more);
-  b.CreateCondBr(b.CreateICmpUGE(distance, b.getInt64(kLongestMaskedList)), done, cell);
+  b.CreateCondBr(b.CreateICmpUGE(w.distance, b.getInt64(kLongestMaskedList)), done, cell);
   b.SetInsertPoint(cell);
-  llvm::Value* address = b.CreateIntToPtr(at, b.getPtrTy());
-  llvm::Value* queen = b.CreateSExt(
-      b.CreateTrunc(b.CreateLoad(i64, b.CreateConstInBoundsGEP1_64(i64, address, MELD_NATIVE_LIST_HEAD_WORD)),
-                    b.getInt32Ty()),
-      i64);
+  llvm::Value* queen =
+      b.CreateSExt(b.CreateTrunc(cellWord(b, w.at, MELD_NATIVE_LIST_HEAD_WORD), b.getInt32Ty()), i64);
   // A queen in row q at distance d rules out rows q, q - d and q + d of the next column (those
   // in [0, 64) are the mask's bits).
   llvm::Value* rows = mask;
-  for (llvm::Value* row : {queen, b.CreateSub(queen, distance), b.CreateAdd(queen, distance)}) {
+  for (llvm::Value* row : {queen, b.CreateSub(queen, w.distance), b.CreateAdd(queen, w.distance)}) {
     llvm::Value* bit = b.CreateShl(b.getInt64(1), b.CreateAnd(row, b.getInt64(63)));
     rows = b.CreateOr(rows, b.CreateSelect(b.CreateICmpULT(row, b.getInt64(64)), bit, b.getInt64(0)));
   }
-  at->addIncoming(b.CreateLoad(i64, b.CreateConstInBoundsGEP1_64(i64, address, MELD_NATIVE_LIST_TAIL_WORD)),
-                  cell);
-  distance->addIncoming(b.CreateAdd(distance, b.getInt64(1)), cell);
   mask->addIncoming(rows, cell);
-  b.CreateBr(walk);
+  stepCellWalk(b, w);
   b.SetInsertPoint(done);
   llvm::PHINode* known = b.CreatePHI(b.getInt1Ty(), 2, "rows.known");
-  known->addIncoming(b.getTrue(), walk);
+  known->addIncoming(b.getTrue(), w.head);
   known->addIncoming(b.getFalse(), more);
   return {mask, known};
 }
@@ -127,38 +140,23 @@ llvm::Value* RegionLowering::cachedQueensViolation(Function& f, llvm::IRBuilder<
 // (the span of arguments, the call, the walk behind an opaque call).
 llvm::Value* RegionLowering::queensViolation(Function& f, llvm::IRBuilder<>& b, llvm::Value* row,
                                              llvm::Value* list) {
-  llvm::BasicBlock* from = b.GetInsertBlock();
-  llvm::BasicBlock* walk = newBlock(f, "queens.walk");
+  const CellWalk w = beginCellWalk(f, b, list, b.getInt32Ty(), "queens");
   llvm::BasicBlock* cell = newBlock(f, "queens.cell");
   llvm::BasicBlock* next = newBlock(f, "queens.next");
   llvm::BasicBlock* done = newBlock(f, "queens.done");
-  b.CreateBr(walk);
-  b.SetInsertPoint(walk);
-  llvm::PHINode* at = b.CreatePHI(b.getInt64Ty(), 2, "queens.list");
-  llvm::PHINode* distance = b.CreatePHI(b.getInt32Ty(), 2, "queens.d");
-  at->addIncoming(list, from);
-  distance->addIncoming(b.getInt32(1), from);
-  b.CreateCondBr(b.CreateICmpEQ(at, b.getInt64(0)), done, cell);  // the empty list: no conflict
+  b.CreateCondBr(b.CreateICmpEQ(w.at, b.getInt64(0)), done, cell);  // the empty list: no conflict
   b.SetInsertPoint(cell);
-  llvm::Value* address = b.CreateIntToPtr(at, b.getPtrTy());
-  llvm::Value* queen = b.CreateTrunc(
-      b.CreateLoad(b.getInt64Ty(),
-                   b.CreateConstInBoundsGEP1_64(b.getInt64Ty(), address, MELD_NATIVE_LIST_HEAD_WORD)),
-      b.getInt32Ty());
+  llvm::Value* queen = b.CreateTrunc(cellWord(b, w.at, MELD_NATIVE_LIST_HEAD_WORD), b.getInt32Ty());
   // Wrapping sums, as the interpreter's intAdd and intSub.
   llvm::Value* conflict =
-      b.CreateOr(b.CreateICmpEQ(queen, row), b.CreateOr(b.CreateICmpEQ(queen, b.CreateAdd(row, distance)),
-                                                        b.CreateICmpEQ(queen, b.CreateSub(row, distance))));
+      b.CreateOr(b.CreateICmpEQ(queen, row), b.CreateOr(b.CreateICmpEQ(queen, b.CreateAdd(row, w.distance)),
+                                                        b.CreateICmpEQ(queen, b.CreateSub(row, w.distance))));
   b.CreateCondBr(conflict, done, next);
   b.SetInsertPoint(next);
-  llvm::Value* tail = b.CreateLoad(
-      b.getInt64Ty(), b.CreateConstInBoundsGEP1_64(b.getInt64Ty(), address, MELD_NATIVE_LIST_TAIL_WORD));
-  at->addIncoming(tail, next);
-  distance->addIncoming(b.CreateAdd(distance, b.getInt32(1)), next);
-  b.CreateBr(walk);
+  stepCellWalk(b, w);
   b.SetInsertPoint(done);
   llvm::PHINode* result = b.CreatePHI(b.getInt1Ty(), 2, "queens.conflict");
-  result->addIncoming(b.getFalse(), walk);
+  result->addIncoming(b.getFalse(), w.head);
   result->addIncoming(b.getTrue(), cell);
   return result;
 }

@@ -326,6 +326,18 @@ class RegionLowering {
   // CALL: the built-in's implementation is called directly (builtins[id]) with the registers'
   // values; its result is owned, so a boxed register only lets go of its old value. fabs is inline.
   void lowerCall(Function& f, llvm::IRBuilder<>& b, std::uint32_t pc);
+  // A loop over a list's cells (lower_queens.cpp): `head`, entered from the block the builder was
+  // in, has phis for the cell (`at`, 0 at the list's end) and its distance (1 for the first cell,
+  // of the type asked); stepCellWalk goes on with the cell's tail, the distance one more.
+  struct CellWalk {
+    llvm::BasicBlock* head;
+    llvm::PHINode* at;
+    llvm::PHINode* distance;
+  };
+  CellWalk beginCellWalk(Function& f, llvm::IRBuilder<>& b, llvm::Value* list, llvm::Type* distanceType,
+                         const std::string& name);
+  void stepCellWalk(llvm::IRBuilder<>& b, const CellWalk& w);
+  llvm::Value* cellWord(llvm::IRBuilder<>& b, llvm::Value* cell, unsigned word);  // MELD_NATIVE_LIST_*_WORD
   // queens_violation(Y, L) as a loop over L's cells in the block itself (lower_queens.cpp).
   llvm::Value* queensViolation(Function& f, llvm::IRBuilder<>& b, llvm::Value* row, llvm::Value* list);
   // A call of queens_violation whose list register some loop around it keeps: the rows its list
