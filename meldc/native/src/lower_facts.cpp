@@ -260,8 +260,7 @@ void RegionLowering::fetchListsAhead(Function& f, llvm::IRBuilder<>& b, const Lo
       llvm::BasicBlock* more = newBlock(f, "ahead.cell");
       b.CreateCondBr(b.CreateICmpEQ(cell, b.getInt64(0)), next, more);
       b.SetInsertPoint(more);
-      cell = b.CreateLoad(i64, b.CreateConstInBoundsGEP1_64(i64, b.CreateIntToPtr(cell, b.getPtrTy()),
-                                                            MELD_NATIVE_LIST_TAIL_WORD));
+      cell = cellWord(b, cell, MELD_NATIVE_LIST_TAIL_WORD);
     }
     // read, high locality, data (a prefetch of address 0 is harmless)
     b.CreateIntrinsic(llvm::Intrinsic::prefetch, {b.getPtrTy()},

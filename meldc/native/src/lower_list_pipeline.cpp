@@ -15,9 +15,7 @@ llvm::Value* RegionLowering::tailOrNull(Function& f, llvm::IRBuilder<>& b, llvm:
   llvm::BasicBlock* done = newBlock(f, "tail.done");
   b.CreateCondBr(b.CreateICmpEQ(cell, b.getInt64(0)), done, load);
   b.SetInsertPoint(load);
-  llvm::Value* tail = b.CreateLoad(
-      b.getInt64Ty(), b.CreateConstInBoundsGEP1_64(b.getInt64Ty(), b.CreateIntToPtr(cell, b.getPtrTy()),
-                                                   MELD_NATIVE_LIST_TAIL_WORD));
+  llvm::Value* tail = cellWord(b, cell, MELD_NATIVE_LIST_TAIL_WORD);
   b.CreateBr(done);
   b.SetInsertPoint(done);
   llvm::PHINode* phi = b.CreatePHI(b.getInt64Ty(), 2);

@@ -54,11 +54,6 @@ RegionLowering::CellWalk RegionLowering::beginCellWalk(Function& f, llvm::IRBuil
   return w;
 }
 
-llvm::Value* RegionLowering::cellWord(llvm::IRBuilder<>& b, llvm::Value* cell, unsigned word) {
-  return b.CreateLoad(b.getInt64Ty(), b.CreateConstInBoundsGEP1_64(
-                                          b.getInt64Ty(), b.CreateIntToPtr(cell, b.getPtrTy()), word));
-}
-
 void RegionLowering::stepCellWalk(llvm::IRBuilder<>& b, const CellWalk& w) {
   llvm::BasicBlock* here = b.GetInsertBlock();
   w.at->addIncoming(cellWord(b, w.at, MELD_NATIVE_LIST_TAIL_WORD), here);

@@ -337,7 +337,11 @@ class RegionLowering {
   CellWalk beginCellWalk(Function& f, llvm::IRBuilder<>& b, llvm::Value* list, llvm::Type* distanceType,
                          const std::string& name);
   void stepCellWalk(llvm::IRBuilder<>& b, const CellWalk& w);
-  llvm::Value* cellWord(llvm::IRBuilder<>& b, llvm::Value* cell, unsigned word);  // MELD_NATIVE_LIST_*_WORD
+  // Word MELD_NATIVE_LIST_HEAD_WORD or _TAIL_WORD of the list cell at address `cell` (an i64).
+  llvm::Value* cellWord(llvm::IRBuilder<>& b, llvm::Value* cell, unsigned word) {
+    return b.CreateLoad(b.getInt64Ty(), b.CreateConstInBoundsGEP1_64(
+                                            b.getInt64Ty(), b.CreateIntToPtr(cell, b.getPtrTy()), word));
+  }
   // queens_violation(Y, L) as a loop over L's cells in the block itself (lower_queens.cpp).
   llvm::Value* queensViolation(Function& f, llvm::IRBuilder<>& b, llvm::Value* row, llvm::Value* list);
   // A call of queens_violation whose list register some loop around it keeps: the rows its list

@@ -57,9 +57,10 @@ Machine::Machine(const Program& program, MachineOptions options)
   linearOutArgs_.reserve(1024);
   persistentArgs_.reserve(1024);
   // Native code appends to these while they have room (and calls the VM when they have none): room
-  // from the first fact on, so that a short run's facts take the same path as a long run's. (Only
-  // on the VM's own graph and one thread do its sends go there: a robot's block keeps its
-  // footprint.)
+  // from the first fact on, so that a short run's facts take the same path as a long run's. Only
+  // on the VM's own graph and one thread, where native code's sends go there: a robot's block and a
+  // thread's shard keep their footprint (their derived facts take the VM's path until it grew the
+  // array).
   if (ownGraphSerial_) {
     sentLinear_.reserve(16);
     sentPersistent_.reserve(16);
