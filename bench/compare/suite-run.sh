@@ -14,9 +14,10 @@ meldc="${MELDC:-$repo/build/release/meldc/meldc}"
 [ $# -ge 2 ] || { echo "usage: suite-run.sh bc|jit|so|j2|ref1|ref2 NAME.meld [-- ARGS]" >&2; exit 2; }
 mode=$1 program=$2
 shift 2
-flags=()
+# -n, the established VM's "no coordination": ours is --no-scheduling (ref1/ref2 pass -n itself).
+flags=() ref=()
 for a in ${MELD_ARGS:-}; do
-  [ "$a" = -n ] && flags+=(--no-scheduling)
+  [ "$a" = -n ] && flags+=(--no-scheduling) && ref+=(-n)
 done
 case "$mode" in
   bc) exec "$meld" "$program" --dump "${flags[@]}" "$@" ;;
@@ -36,10 +37,6 @@ case "$mode" in
     trap 'rm -rf "$tmp"' EXIT
     MELDC_REF_NO_CPP=1 "$anchors/meldc-ref" "$program" "$tmp/program" > "$tmp/meldc.log" 2>&1 ||
       { cat "$tmp/meldc.log" >&2; exit 1; }
-    ref=()
-    for a in ${MELD_ARGS:-}; do
-      [ "$a" = -n ] && ref+=(-n)
-    done
     "$anchors/meld-ref" -f "$tmp/program.m" -c "th${mode#ref}" "${ref[@]}" -d "$@"
     ;;
   *) echo "suite-run.sh: unknown mode '$mode'" >&2; exit 2 ;;
