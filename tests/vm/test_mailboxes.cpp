@@ -1,6 +1,7 @@
 // Mailboxes: messages come back in arrival order with the arguments they were posted with, narrow
-// records (all 32-bit scalars) included, across chained chunks and recycled chunks, and across the
-// mailboxes of shards that share their chunks (MailSlabs).
+// records (all 32-bit scalars) and mixed ones included, across chained chunks (a small one first,
+// then big ones) and recycled chunks, and across the mailboxes of shards that share their chunks
+// (MailSlabs).
 #define BOOST_TEST_MODULE vm_mailboxes
 #include <boost/test/unit_test.hpp>
 #include <cstdint>
@@ -29,10 +30,15 @@ const std::vector<std::vector<ArgWidth>> kShapes = {
     {},                                                     // 0: no argument
     {ArgWidth::Int32},                                      // 1: p(node, min int)
     {ArgWidth::Uint32, ArgWidth::Int32, ArgWidth::Uint32},  // 2: node, int, bool
-    {ArgWidth::Word, ArgWidth::Int32},                      // 3: a float and an int: whole words
+    {ArgWidth::Word, ArgWidth::Int32},                      // 3: a float and an int: mixed
     std::vector<ArgWidth>(17, ArgWidth::Int32),             // 4: too wide to pack
     std::vector<ArgWidth>(16, ArgWidth::Int32),             // 5: the widest narrow record
+    {ArgWidth::Uint32, ArgWidth::Word},                     // 6: node, float: two words
+    // 7: the int waits in the half the first float skipped, the bool takes the next half
+    {ArgWidth::Word, ArgWidth::Int32, ArgWidth::Word, ArgWidth::Uint32, ArgWidth::Int32},
+    {ArgWidth::Word, ArgWidth::Word},  // 8: whole words
 };
+const std::vector<PredId> kAll = {0, 1, 2, 3, 4, 5, 6, 7, 8};
 
 void post(Mailboxes& m, NodeId n, const Message& msg) {
   std::vector<Value> args;
@@ -40,8 +46,7 @@ void post(Mailboxes& m, NodeId n, const Message& msg) {
   m.post(n, msg.pred, msg.negative, args.data());
 }
 
-std::vector<Message> taken(const Mailboxes& m, NodeId n,
-                           const std::vector<PredId>& shown = {0, 1, 2, 3, 4, 5},
+std::vector<Message> taken(const Mailboxes& m, NodeId n, const std::vector<PredId>& shown = kAll,
                            std::uint32_t maxChunks = Mailboxes::kAllChunks) {
   std::vector<Message> out;
   auto select = [&](PredId p) {
@@ -80,6 +85,13 @@ BOOST_AUTO_TEST_CASE(every_shape_round_trips_in_arrival_order) {
       {3, false, {Value::fromFloat(-0.25).bits(), I(-3)}},
       {4, true, wide},
       {5, false, widest},
+      {6, false, {Value::fromNode(0xFFFFFFFEu).bits(), Value::fromFloat(1e300).bits()}},
+      {7,
+       true,
+       {Value::fromFloat(-2.5).bits(), I(-2147483647 - 1), Value::fromBits(0xFFFFFFFFFFFFFFFFull).bits(),
+        Value::fromBool(true).bits(), I(-1)}},
+      {8, false, {Value::fromFloat(3.0).bits(), Value::fromBits(0x8000000000000001ull).bits()}},
+      {6, true, {Value::fromNode(7).bits(), Value::fromFloat(-0.0).bits()}},
   };
   BOOST_TEST(m.empty(1));
   for (const Message& msg : sent) post(m, 1, msg);
@@ -179,19 +191,21 @@ BOOST_AUTO_TEST_CASE(a_shard_with_plenty_of_free_chunks_leaves_more_to_the_shard
 
 BOOST_AUTO_TEST_CASE(the_first_chunks_come_out_and_go_alone_and_later_posts_queue_behind_the_rest) {
   // A shard's node run takes in only the first chunks of its box (Machine::deliverIncoming).
-  // One-word records: 31 to a 256-byte chunk, so 100 messages fill three chunks and start a fourth.
+  // kShapes' widest record (18 words) makes cells of 19 words: one-word records, 18 to the box's
+  // first chunk (one cell), 37 to each next (two cells), so 100 messages fill three chunks and
+  // start a fourth.
   Mailboxes m(kShapes);
   m.addNodes(1);
   std::vector<Message> sent;
   for (int i = 0; i < 100; ++i) sent.push_back({1, false, {I(i)}});
   for (const Message& msg : sent) post(m, 0, msg);
-  const std::vector<Message> first(sent.begin(), sent.begin() + 62);
-  BOOST_TEST(taken(m, 0, {0, 1, 2, 3, 4, 5}, 2) == first, boost::test_tools::per_element());
+  const std::vector<Message> first(sent.begin(), sent.begin() + 55);
+  BOOST_TEST(taken(m, 0, kAll, 2) == first, boost::test_tools::per_element());
   m.release(0, 2);
   BOOST_TEST(!m.empty(0));
   const Message late{1, true, {I(-7)}};
   post(m, 0, late);
-  std::vector<Message> rest(sent.begin() + 62, sent.end());
+  std::vector<Message> rest(sent.begin() + 55, sent.end());
   rest.push_back(late);
   BOOST_TEST(taken(m, 0) == rest, boost::test_tools::per_element());
   m.release(0, 2);  // the last two chunks: nothing is left
@@ -201,7 +215,7 @@ BOOST_AUTO_TEST_CASE(the_first_chunks_come_out_and_go_alone_and_later_posts_queu
 }
 
 BOOST_AUTO_TEST_CASE(narrow_records_take_less_room) {
-  // 300,000 one-int messages take one word each instead of two: four 2 MiB slabs instead of five.
+  // 300,000 one-int messages take one word each instead of two.
   Mailboxes narrow({{ArgWidth::Int32}});
   Mailboxes wide({{ArgWidth::Word}});
   narrow.addNodes(1);
@@ -219,6 +233,62 @@ BOOST_AUTO_TEST_CASE(narrow_records_take_less_room) {
       0, [](PredId) { return true; },
       [&](PredId, bool, const Value* args) { seen += args[0].asInt() == 42; });
   BOOST_TEST(seen == 300000u);
+}
+
+BOOST_AUTO_TEST_CASE(mixed_records_take_less_room) {
+  // (node, float): the node in the first word's free half, two words instead of three.
+  Mailboxes mixed({{ArgWidth::Uint32, ArgWidth::Word}});
+  Mailboxes whole({{ArgWidth::Word, ArgWidth::Word}});
+  mixed.addNodes(1);
+  whole.addNodes(1);
+  const std::vector<Value> v = {Value::fromNode(3), Value::fromFloat(0.5)};
+  for (int i = 0; i < 300000; ++i) {
+    mixed.post(0, 0, false, v.data());
+    whole.post(0, 0, false, v.data());
+  }
+  BOOST_TEST(mixed.bytesReserved() < whole.bytesReserved() * 3 / 4);
+  std::size_t seen = 0;
+  mixed.forEach(
+      0, [](PredId) { return true; },
+      [&](PredId, bool, const Value* args) { seen += args[0].bits() == 3 && args[1].asFloat() == 0.5; });
+  BOOST_TEST(seen == 300000u);
+}
+
+BOOST_AUTO_TEST_CASE(a_box_with_few_messages_takes_one_small_chunk) {
+  // 2,000 nodes with a message or two each: 2,000 cells of 128 bytes, all in the first two slabs
+  // (2,080 cells), where chunks of 256 bytes took a third slab.
+  Mailboxes m({{ArgWidth::Int32}});
+  m.addNodes(2000);
+  const std::vector<Value> v(2, Value::fromInt(-9));
+  for (NodeId n = 0; n < 2000; ++n)
+    for (NodeId k = 0; k <= n % 2; ++k) m.post(n, 0, false, v.data());
+  BOOST_TEST(m.bytesReserved() < 2000u * 256);
+  std::size_t seen = 0;
+  for (NodeId n = 0; n < 2000; ++n)
+    m.forEach(
+        n, [](PredId) { return true; },
+        [&](PredId, bool, const Value* args) { seen += args[0].asInt() == -9; });
+  BOOST_TEST(seen == 3000u);
+}
+
+BOOST_AUTO_TEST_CASE(spare_chunks_of_one_size_wait_for_a_shard_that_needs_that_size) {
+  MailSlabs slabs(2);
+  const std::vector<std::vector<ArgWidth>> shapes = {{ArgWidth::Int32}};
+  Mailboxes a(shapes, &slabs, 0), b(shapes, &slabs, 1);
+  a.addNodes(8000);
+  b.addNodes(1);
+  const std::vector<Value> v(2, Value::fromInt(1));
+  auto oneEach = [&] {  // 8,000 small chunks
+    for (NodeId n = 0; n < 8000; ++n) a.post(n, 0, false, v.data());
+  };
+  oneEach();
+  for (NodeId n = 0; n < 8000; ++n) a.release(n);  // beyond what a keeps, to the spares
+  const std::size_t reservedA = a.bytesReserved();
+  // b needs big chunks only: it maps its own and leaves the small spares alone.
+  for (int i = 0; i < 20000; ++i) b.post(0, 0, false, v.data());
+  oneEach();
+  BOOST_TEST(a.bytesReserved() == reservedA);
+  BOOST_TEST(taken(b, 0).size() == 20000u);
 }
 
 BOOST_AUTO_TEST_CASE(argument_widths_follow_the_field_types) {

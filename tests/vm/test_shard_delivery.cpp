@@ -49,7 +49,8 @@ struct Shard {
 
 }  // namespace
 
-// `a(node, int)` is narrow: a message takes one word, 31 of them to a 256-byte chunk.
+// `a(node, int)` is narrow: a message takes one word, 15 of them to the box's first chunk (128
+// bytes), 31 to each next one (256 bytes).
 constexpr int kFactsPerChunk = 31, kChunksPerRun = 16;
 
 BOOST_AUTO_TEST_CASE(a_shard_node_takes_in_sixteen_chunks_per_run_and_runs_again_for_the_rest) {
@@ -74,7 +75,8 @@ BOOST_AUTO_TEST_CASE(the_serial_vm_takes_in_the_whole_mailbox_in_one_run) {
 
 BOOST_AUTO_TEST_CASE(a_node_taking_in_hundreds_of_facts_reaches_a_safe_point_every_256) {
   Shard s;
-  const int perRun = kFactsPerChunk * kChunksPerRun;  // 496: one safe point each run
+  // 496: one safe point each run (the first run takes 480, the second 496, the last 16)
+  const int perRun = kFactsPerChunk * kChunksPerRun;
   for (int i = 0; i < 2 * perRun; ++i) s.send(0, i);
   BOOST_REQUIRE(s.machine->runNext());
   BOOST_TEST(s.link.safePoints == 2);

@@ -20,63 +20,103 @@ Mailboxes::Mailboxes(const std::vector<std::vector<ArgWidth>>& shapes, MailSlabs
   if (shapes.size() > 0x80000000u) throw std::length_error("meldvm: too many predicates for the mailboxes");
   std::uint32_t widest = 0;
   for (const std::vector<ArgWidth>& fields : shapes) {
-    Shape s{std::uint32_t(fields.size()), 0, 0, fields.size() <= kMaxNarrowArity};
-    for (std::uint32_t i = 0; i < fields.size(); ++i) {
-      if (fields[i] == ArgWidth::Word) s.narrow = false;
-      if (fields[i] == ArgWidth::Int32) s.signMask |= std::uint32_t(1) << (i % 32);
-    }
-    s.words = s.narrow ? 1 + s.arity / 2 : 1 + s.arity;
-    widest = std::max(widest, s.words);
-    shape_.push_back(s);
+    shape_.push_back(shapeOf(fields, places_));
+    widest = std::max(widest, shape_.back().words);
   }
-  // 32 words (four cache lines), or one record of the widest predicate when that is larger.
-  chunkWords_ = std::max<std::uint32_t>(32, 1 + widest);
+  // 16 words (two cache lines), or one record of the widest predicate when that is larger.
+  cellWords_ = std::max<std::uint32_t>(16, 1 + widest);
+}
+
+Mailboxes::Shape Mailboxes::shapeOf(const std::vector<ArgWidth>& fields, std::vector<Place>& places) {
+  const std::uint32_t arity = std::uint32_t(fields.size());
+  Shape s{arity, 1 + arity, 0, 0, Layout::Whole};
+  const auto words = std::count(fields.begin(), fields.end(), ArgWidth::Word);
+  if (arity > kMaxNarrowArity || (words == arity && arity > 0)) return s;
+  if (words == 0) {
+    s.layout = Layout::Narrow;
+    s.words = 1 + arity / 2;
+    for (std::uint32_t i = 0; i < arity; ++i)
+      if (fields[i] == ArgWidth::Int32) s.signMask |= std::uint32_t(1) << i;
+    return s;
+  }
+  // 4-byte arguments fill the halves in order, a word argument skips to a whole word; the half it
+  // skipped (one at most waits) takes the next 4-byte argument.
+  s.layout = Layout::Mixed;
+  s.firstPlace = std::uint32_t(places.size());
+  std::uint16_t next = 1, hole = 0;
+  for (const ArgWidth w : fields) {
+    if (w != ArgWidth::Word) {
+      places.push_back({hole ? hole : next++, w});
+      hole = 0;
+    } else {
+      if (next % 2) {
+        if (!hole) hole = next;
+        ++next;
+      }
+      places.push_back({next, w});
+      next += 2;
+    }
+  }
+  s.words = (next + 1u) / 2;
+  return s;
 }
 
 Mailboxes::~Mailboxes() {
   for (std::uint32_t s = 0; s < slabCount_; ++s)
-    LargeAllocator<Value>().deallocate(table_[firstSlab_ + s], std::size_t(slabCapacity(s)) * chunkWords_);
+    LargeAllocator<Value>().deallocate(table_[firstSlab_ + s], std::size_t(slabCapacity(s)) * cellWords_);
 }
 
-std::uint32_t Mailboxes::newChunk() {
+std::uint32_t Mailboxes::newChunk(bool big) {
+  FreeChain& f = free_.of[big];
   std::uint32_t c;
-  if (free_ != kNone || (spares_ && takeSpares())) {
-    c = free_;
-    free_ = std::uint32_t(chunk(c)[0].bits());
-    --freeChunks_;
+  if (f.head != kNone || (spares_ && takeSpares(big))) {
+    c = f.head;
+    f.head = std::uint32_t(chunk(c)[0].bits());
+    if (f.head == kNone) f.tail = kNone;
+    --f.chunks;
   } else {
-    if (slabCount_ == 0 || slabUsed_ == slabCapacity(slabCount_ - 1)) {
-      const std::uint32_t slab = firstSlab_ + slabCount_;
-      // (The table's last slab is never used: its last chunk's id would be kNone.)
-      if (slab >= endSlab_ || slab == MailSlabs::kSlabs - 1)
-        throw std::length_error("meldvm: too many messages in transit");
-      table_[slab] = LargeAllocator<Value>().allocate(std::size_t(slabCapacity(slabCount_)) * chunkWords_);
-      ++slabCount_;
-      slabUsed_ = 0;
-    }
-    c = ((firstSlab_ + slabCount_ - 1) << kSlabShift) | slabUsed_++;
+    c = freshCells(big ? 2 : 1);
   }
-  chunk(c)[0] = Value::fromBits(kNone);  // next = none, no words used
+  chunk(c)[0] = Value::fromBits(kNone | (big ? kBigBit : 0));  // next = none, no words used
   return c;
 }
 
-void Mailboxes::giveSpares(std::uint32_t head, std::uint32_t tail, std::uint32_t chunks) {
-  std::lock_guard<std::mutex> lock(spares_->lock);
-  chunk(tail)[0] = Value::fromBits(spares_->head);
-  spares_->head = head;
-  spares_->chunks += chunks;
-  spares_->any.store(true, std::memory_order_relaxed);
+std::uint32_t Mailboxes::freshCells(std::uint32_t cells) {
+  if (slabCount_ == 0 || slabUsed_ + cells > slabCapacity(slabCount_ - 1)) {
+    const std::uint32_t slab = firstSlab_ + slabCount_;
+    // (The table's last slab is never used: its last cell's id would be kNone.)
+    if (slab >= endSlab_ || slab == MailSlabs::kSlabs - 1)
+      throw std::length_error("meldvm: too many messages in transit");
+    if (slabCount_ && slabUsed_ < slabCapacity(slabCount_ - 1))  // the last cell: a small chunk
+      push(free_, ((slab - 1) << kSlabShift) | slabUsed_, false);
+    table_[slab] = LargeAllocator<Value>().allocate(std::size_t(slabCapacity(slabCount_)) * cellWords_);
+    ++slabCount_;
+    slabUsed_ = 0;
+  }
+  const std::uint32_t c = ((firstSlab_ + slabCount_ - 1) << kSlabShift) | slabUsed_;
+  slabUsed_ += cells;
+  return c;
 }
 
-bool Mailboxes::takeSpares() {
-  if (!spares_->any.load(std::memory_order_relaxed)) return false;  // a hint: the lock decides
+void Mailboxes::giveSpares(FreeChains& chains) {
   std::lock_guard<std::mutex> lock(spares_->lock);
-  if (spares_->head == kNone) return false;
-  free_ = spares_->head;  // (this one's list is empty)
-  freeChunks_ = spares_->chunks;
-  spares_->head = kNone;
-  spares_->chunks = 0;
-  spares_->any.store(false, std::memory_order_relaxed);
+  for (int big = 0; big < 2; ++big) {
+    if (chains.of[big].head == kNone) continue;
+    std::vector<FreeChain>& batches = spares_->batches[big];
+    if (batches.empty() || batches.back().chunks >= MailSlabs::kSpareBatchChunks) batches.emplace_back();
+    splice(batches.back(), chains.of[big]);
+    spares_->any[big].store(true, std::memory_order_relaxed);
+  }
+}
+
+bool Mailboxes::takeSpares(bool big) {
+  if (!spares_->any[big].load(std::memory_order_relaxed)) return false;
+  std::lock_guard<std::mutex> lock(spares_->lock);
+  std::vector<FreeChain>& batches = spares_->batches[big];
+  if (batches.empty()) return false;
+  splice(free_.of[big], batches.back());  // (this one's list is empty)
+  batches.pop_back();
+  spares_->any[big].store(!batches.empty(), std::memory_order_relaxed);
   return true;
 }
 

@@ -19,6 +19,7 @@
 #include <mutex>
 #include <new>
 #include <stdexcept>
+#include <vector>
 
 #include "meldvm/value.hpp"
 
@@ -26,18 +27,19 @@ namespace meldvm {
 
 class MailSlabs {
  public:
-  // Chunk ids are 32 bits: [slab | chunk in slab], kChunkBits of the latter.
-  static constexpr std::uint32_t kChunkBits = 13;
-  static constexpr std::uint32_t kSlabs = std::uint32_t(1) << (32 - kChunkBits);
+  // Chunk ids are 32 bits: [slab | cell in slab] (a chunk is one or two cells), kCellBits of the
+  // latter.
+  static constexpr std::uint32_t kCellBits = 14;
+  static constexpr std::uint32_t kSlabs = std::uint32_t(1) << (32 - kCellBits);
   static constexpr std::uint32_t kNoChunk = 0xFFFFFFFFu;  // the end of a chain
 
   explicit MailSlabs(std::uint32_t shards) {
     std::uint32_t bits = 0;
     while ((std::uint32_t(1) << bits) < shards) ++bits;
-    if (bits >= 32 - kChunkBits) throw std::length_error("meldvm: too many shards for the mailboxes");
+    if (bits >= 32 - kCellBits) throw std::length_error("meldvm: too many shards for the mailboxes");
     slabsPerShard_ = kSlabs >> bits;
     // calloc: the pages of the table are the system's zero pages until a shard writes its first
-    // entries (a serial run touches one page of the 4 MiB).
+    // entries (a serial run touches one page of the 2 MiB).
     table_.reset(static_cast<Value**>(std::calloc(kSlabs, sizeof(Value*))));
     if (!table_) throw std::bad_alloc();
   }
@@ -47,10 +49,16 @@ class MailSlabs {
   // Free chunks that a shard had too many of, for whichever shard runs out (Mailboxes::release,
   // newChunk): chunks that move with nodes would otherwise gather on the taker's free list while
   // the giver maps new slabs. A shard takes the lock only when it has plenty or none.
+  struct FreeChain {  // through the chunks' first words
+    std::uint32_t head = kNoChunk, tail = kNoChunk, chunks = 0;
+  };
+  // Per size (small chunks, big chunks), chains of about kSpareBatchChunks chunks: a shard takes
+  // one chain at a time, so a shard that needs one chunk does not take all of them.
+  static constexpr std::uint32_t kSpareBatchChunks = 1024;
   struct Spares {
     std::mutex lock;
-    std::uint32_t head = kNoChunk, chunks = 0;  // a chain through the chunks' first words
-    std::atomic<bool> any{false};
+    std::vector<FreeChain> batches[2];  // the last one is being filled
+    std::atomic<bool> any[2] = {};      // batches[i] is not empty (a hint: the lock decides)
   };
   Spares& spares() { return spares_; }
   // The range of slab numbers of `shard`.

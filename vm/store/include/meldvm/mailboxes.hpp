@@ -1,17 +1,25 @@
 // Facts in transit to nodes (spec §6.6): per node, the messages not yet taken in, in arrival
-// order. A node's messages live in chains of fixed-size chunks (256 bytes), so taking in a run's
-// worth of messages touches a few cache lines in a row instead of one scattered record per
-// message. A record takes only the words its own predicate needs, so small facts pack densely: a
-// wide flood keeps millions of messages in flight, and every word of them is written and read
-// back from memory. Chunks come from slabs that never move (growing copies nothing) and are
-// recycled through a free list, so the steady state allocates nothing (the shards of a threaded
-// run share their chunks: mail_slabs.hpp).
+// order. A node's messages live in chains of chunks, so taking in a run's worth of messages
+// touches a few cache lines in a row instead of one scattered record per message. Chunks are
+// small (128 bytes) or big (256 bytes): at -j 2 nearly every node of a grid or a graph has a few
+// messages waiting at any time (one chunk a node: 256-byte chunks were 2.6 of heat-transfer's 6
+// MB above the serial run's), while a node that takes in thousands at once (n-queens) gets them
+// in big chunks (128-byte ones throughout made it 7-12 % slower). A box starts with a small chunk
+// unless its last messages overflowed one (a pagerank node's eight: two chunks a run instead of
+// one cost 4 % at -j 2); the chunks after the first are big. A record takes only the words its
+// own predicate needs, so small facts pack densely: a wide flood keeps millions of messages in
+// flight, and every word of them is written and read back from memory. Chunks come from slabs that never move
+// (growing copies nothing) and are recycled through a free list, so the steady state allocates nothing (the
+// shards of a threaded run share their chunks: mail_slabs.hpp).
 //
 // Record layout, in 8-byte words. The first word holds the predicate (low 31 bits) and the sign
 // (bit 31) in its low half. A predicate whose arguments are all 32-bit scalars (int, bool, node,
 // thread) is "narrow": its arguments take 4 bytes each, the first one in the high half of the first
-// word, the others two to a word after it (so `p(node, min int)` takes one word, not two). Other
-// predicates keep one word per argument after the first word.
+// word, the others two to a word after it (so `p(node, min int)` takes one word, not two). One
+// with both kinds is "mixed": its 32-bit arguments take the free halves in that order, its other
+// arguments a word each (so `p(node, float)` takes two words, not three: a grid's or a graph's
+// messages in flight, one chunk a node at -j 2, fit in half the chunks). Predicates of 32-bit-wide
+// arguments only or of more than 16 arguments keep one word per argument after the first word.
 #pragma once
 
 #include <cstdint>
@@ -52,23 +60,36 @@ class Mailboxes {
     const Shape& s = shape_[p];
     Box& b = boxes_[dest];
     std::uint32_t c = b.last;
-    if (c == kNone || b.used + s.words > chunkWords_ - 1) {
-      const std::uint32_t fresh = newChunk();
+    if (c == kNone || b.words() + s.words > capacity(b.lastIsBig()) - 1) {
+      const bool big = c != kNone || (b.used & Chain::kStartBig);
+      const std::uint32_t fresh = newChunk(big);
       if (c == kNone)
         b.first = fresh;
       else
-        chunk(c)[0] = Value::fromBits(fresh | (std::uint64_t(b.used) << 32));  // closed: link and length
+        close(c, b, fresh);
       b.last = c = fresh;
-      b.used = 0;
+      b.used = big ? Chain::kLastIsBig : 0;
     }
-    Value* r = chunk(c) + 1 + b.used;
+    Value* r = chunk(c) + 1 + b.words();
     b.used += s.words;
     const std::uint64_t tag = std::uint64_t(p) | (std::uint64_t(negative) << 31);
-    if (s.narrow) {
+    if (s.layout == Layout::Narrow) {
       r[0] = Value::fromBits(tag | (s.arity ? args[0].bits() << 32 : 0));
       for (std::uint32_t i = 1; i < s.arity; ++i) {
         Value& w = r[1 + (i - 1) / 2];
         w = Value::fromBits(i % 2 ? std::uint32_t(args[i].bits()) : w.bits() | args[i].bits() << 32);
+      }
+    } else if (s.layout == Layout::Mixed) {
+      r[0] = Value::fromBits(tag);
+      for (std::uint32_t w = 1; w < s.words; ++w) r[w] = Value::fromBits(0);
+      const Place* place = &places_[s.firstPlace];
+      for (std::uint32_t i = 0; i < s.arity; ++i) {
+        Value& w = r[place[i].half / 2];
+        if (place[i].width == ArgWidth::Word)
+          w = args[i];
+        else
+          w = Value::fromBits(w.bits() | std::uint64_t(std::uint32_t(args[i].bits()))
+                                             << (place[i].half % 2 * 32));
       }
     } else {
       r[0] = Value::fromBits(tag);
@@ -79,9 +100,13 @@ class Mailboxes {
 
   // A node's waiting messages as they stand, for another shard's mailboxes of the same MailSlabs.
   struct Chain {
+    // kStartBig: an empty box's next chain starts with a big chunk (its last one outgrew a small one).
+    static constexpr std::uint32_t kLastIsBig = 0x80000000u, kStartBig = 0x40000000u;
     std::uint32_t first = kNone, last = kNone;
-    std::uint32_t used = 0;  // words of records in the last chunk
+    std::uint32_t used = 0;  // words of records in the last chunk, and the flags
     bool empty() const { return first == kNone; }
+    std::uint32_t words() const { return used & ~(kLastIsBig | kStartBig); }
+    bool lastIsBig() const { return used & kLastIsBig; }
   };
   // Node n's messages leave its box, which is left empty; the chunks and the messages' references
   // go with the chain.
@@ -98,7 +123,7 @@ class Mailboxes {
       b = c;
       return;
     }
-    chunk(b.last)[0] = Value::fromBits(c.first | (std::uint64_t(b.used) << 32));  // closed: link and length
+    close(b.last, b, c.first);
     b.last = c.last;
     b.used = c.used;
   }
@@ -114,7 +139,7 @@ class Mailboxes {
     for (std::uint32_t c = b.first; c != kNone && chunks++ < maxChunks;) {
       const Value* head = chunk(c);
       const std::uint32_t next = std::uint32_t(head[0].bits());
-      if (next != kNone) prefetchChunk(next);
+      if (next != kNone) prefetchChunk(next, true);  // (a box's chunks after the first are big)
       forEachRecord(head, wordsUsed(b, c), select, f);
       c = next;
     }
@@ -124,23 +149,20 @@ class Mailboxes {
   void release(NodeId n, std::uint32_t maxChunks = kAllChunks) {
     // A shard with plenty of free chunks gives the box's to the run's spares (chunks that moved
     // here with nodes would otherwise pile up here while the giver maps new slabs).
-    const bool spare = spares_ && freeChunks_ >= kKeptFreeChunks;
-    std::uint32_t c = boxes_[n].first, head = spare ? kNone : free_, tail = kNone, chunks = 0;
-    for (; c != kNone && chunks < maxChunks; ++chunks) {
-      const std::uint32_t next = std::uint32_t(chunk(c)[0].bits());
-      chunk(c)[0] = Value::fromBits(head);
-      if (tail == kNone) tail = c;
-      head = c;
-      c = next;
+    const bool spare[2] = {spares_ && free_.of[0].chunks >= kKeptFreeCells,
+                           spares_ && free_.of[1].chunks * 2 >= kKeptFreeCells};
+    FreeChains freed;
+    const Box b = boxes_[n];
+    std::uint32_t c = b.first;
+    for (std::uint32_t chunks = 0; c != kNone && chunks < maxChunks; ++chunks) {
+      const std::uint64_t header = chunk(c)[0].bits();
+      const bool big = header & kBigBit;
+      push(spare[big] ? freed : free_, c, big);
+      c = std::uint32_t(header);
     }
-    if (spare) {
-      if (chunks) giveSpares(head, tail, chunks);
-    } else {
-      free_ = head;
-      freeChunks_ += chunks;
-    }
+    if (spare[0] || spare[1]) giveSpares(freed);
     if (c == kNone)
-      boxes_[n] = Box{};
+      boxes_[n] = Box{kNone, kNone, b.first != b.last || b.words() >= cellWords_ ? Chain::kStartBig : 0};
     else
       boxes_[n].first = c;
   }
@@ -158,51 +180,68 @@ class Mailboxes {
   // only effect is a prefetch).
   [[gnu::always_inline]] void prefetchBox(NodeId n) const { __builtin_prefetch(&boxes_[n]); }
   [[gnu::always_inline]] void prefetchMessages(NodeId n) const {
-    if (boxes_[n].first != kNone) prefetchChunk(boxes_[n].first);
+    if (boxes_[n].first != kNone) prefetchChunk(boxes_[n].first, false);
   }
   [[gnu::always_inline]] void prefetchTail(NodeId n) const {
     const Box& b = boxes_[n];
-    if (b.last != kNone) __builtin_prefetch(chunk(b.last) + 1 + b.used, 1);
+    if (b.last != kNone) __builtin_prefetch(chunk(b.last) + 1 + b.words(), 1);
   }
   // The slabs this one allocated (chunks move between the shards' mailboxes; slabs do not).
   std::size_t bytesReserved() const {
-    std::size_t chunks = 0;
-    for (std::uint32_t s = 0; s < slabCount_; ++s) chunks += slabCapacity(s);
-    return chunks * chunkWords_ * sizeof(Value) + boxes_.capacity() * sizeof(Box);
+    std::size_t cells = 0;
+    for (std::uint32_t s = 0; s < slabCount_; ++s) cells += slabCapacity(s);
+    return cells * cellWords_ * sizeof(Value) + boxes_.capacity() * sizeof(Box);
   }
 
  private:
   static constexpr std::uint32_t kNone = MailSlabs::kNoChunk;
-  // Chunk ids are [slab | chunk in slab] (MailSlabs). Slabs hold up to kSlabChunks chunks (2 MiB);
-  // a shard's first four are smaller, so that a small program or robot world keeps a small
-  // footprint: a slab of 2 MiB gets huge pages (LargeAllocator), all of it resident at its first
-  // message, and on belief-propagation-50 at -j 2 the two shards' first such slabs were 4 MB of
-  // 14 (serially 8.4). The next two (1 MiB each) get small pages, resident as they fill.
-  static constexpr std::uint32_t kSlabShift = MailSlabs::kChunkBits, kSlabChunks = 1u << kSlabShift;
+  // Chunks are made of cells (cellWords_ words: 128 bytes, or one record of the widest predicate
+  // when that is larger); a small chunk is one cell, a big one two cells in a row. Chunk ids are
+  // the id of their first cell, [slab | cell in slab] (MailSlabs). A shard's first two slabs are
+  // small, so that a small program or robot world keeps a small footprint; the others hold up to
+  // kSlabCells / 2 cells (1 MiB), which get small pages, resident as they fill (2 MiB slabs got
+  // huge pages, all of a slab resident at its first message: on pagerank at -j 2 each shard's last
+  // slab was a sixth used, 3.2 MB of the run's 44.5).
+  static constexpr std::uint32_t kSlabShift = MailSlabs::kCellBits, kSlabCells = 1u << kSlabShift;
   static std::uint32_t slabCapacity(std::uint32_t ownSlab) {
-    return ownSlab == 0 ? 16 : ownSlab == 1 ? 1024 : ownSlab < 4 ? kSlabChunks / 2 : kSlabChunks;
+    return ownSlab == 0 ? 32 : ownSlab == 1 ? 2048 : kSlabCells / 2;
   }
-  // The last chunk's length is kept here, not in the chunk: a post then writes its record without
-  // first reading the chunk (a cache miss per message on a large graph). A chunk's head gets its
-  // final length when the next chunk is linked.
+  std::uint32_t capacity(bool big) const { return big ? 2 * cellWords_ : cellWords_; }
+  // The last chunk's length and size are kept here, not in the chunk: a post then writes its record
+  // without first reading the chunk (a cache miss per message on a large graph). A chunk's head
+  // gets its final length when the next chunk is linked.
   using Box = Chain;
+  enum class Layout : std::uint8_t { Narrow, Mixed, Whole };
   struct Shape {
     std::uint32_t arity;
-    std::uint32_t words;     // the record's length
-    std::uint32_t signMask;  // narrow: bit i set when argument i is an int (sign-extended)
-    bool narrow;
+    std::uint32_t words;       // the record's length
+    std::uint32_t signMask;    // narrow: bit i set when argument i is an int (sign-extended)
+    std::uint32_t firstPlace;  // mixed: the arguments' places start at places_[firstPlace]
+    Layout layout;
+  };
+  // Where a mixed record keeps an argument: the 4-byte half of the record it starts at (half 1 is
+  // the first word's high half), and its width.
+  struct Place {
+    std::uint16_t half;
+    ArgWidth width;
   };
   static constexpr std::uint32_t kMaxNarrowArity = 16;  // wider predicates keep whole words
-  // A chunk: [next | words used (once closed)] then the records.
+  static Shape shapeOf(const std::vector<ArgWidth>& fields, std::vector<Place>& places);
+  // A chunk: [next (low half) | words used (once closed) | big (the top bit)] then the records.
   Value* chunk(std::uint32_t c) const {
-    return table_[c >> kSlabShift] + std::size_t(c & (kSlabChunks - 1)) * chunkWords_;
+    return table_[c >> kSlabShift] + std::size_t(c & (kSlabCells - 1)) * cellWords_;
   }
+  static constexpr std::uint64_t kBigBit = std::uint64_t(1) << 63;
   std::uint32_t wordsUsed(const Box& b, std::uint32_t c) const {
-    return c == b.last ? b.used : std::uint32_t(chunk(c)[0].bits() >> 32);
+    return c == b.last ? b.words() : std::uint32_t((chunk(c)[0].bits() & ~kBigBit) >> 32);
   }
-  [[gnu::always_inline]] void prefetchChunk(std::uint32_t c) const {
+  // Chunk c, the last of box b, is full: `next` follows it.
+  void close(std::uint32_t c, const Box& b, std::uint32_t next) {
+    chunk(c)[0] = Value::fromBits(next | std::uint64_t(b.words()) << 32 | (b.lastIsBig() ? kBigBit : 0));
+  }
+  [[gnu::always_inline]] void prefetchChunk(std::uint32_t c, bool big) const {
     const char* p = reinterpret_cast<const char*>(chunk(c));
-    for (std::size_t off = 0; off < chunkWords_ * sizeof(Value); off += 64) __builtin_prefetch(p + off);
+    for (std::size_t off = 0; off < capacity(big) * sizeof(Value); off += 64) __builtin_prefetch(p + off);
   }
   static Value widen(std::uint32_t half, bool isSigned) {
     return isSigned ? Value::fromInt(std::int32_t(half)) : Value::fromBits(half);
@@ -219,11 +258,21 @@ class Mailboxes {
       w += s.words;
       if (!select(p)) continue;
       const bool negative = (tag >> 31) & 1;
-      if (s.narrow) {
+      if (s.layout == Layout::Narrow) {
         if (s.arity) args[0] = widen(std::uint32_t(tag >> 32), s.signMask & 1);
         for (std::uint32_t i = 1; i < s.arity; ++i) {
           const std::uint64_t word = r[1 + (i - 1) / 2].bits();
           args[i] = widen(std::uint32_t(i % 2 ? word : word >> 32), (s.signMask >> i) & 1);
+        }
+        f(p, negative, static_cast<const Value*>(args));
+      } else if (s.layout == Layout::Mixed) {
+        const Place* place = &places_[s.firstPlace];
+        for (std::uint32_t i = 0; i < s.arity; ++i) {
+          const Value w = r[place[i].half / 2];
+          args[i] = place[i].width == ArgWidth::Word
+                        ? w
+                        : widen(std::uint32_t(w.bits() >> (place[i].half % 2 * 32)),
+                                place[i].width == ArgWidth::Int32);
         }
         f(p, negative, static_cast<const Value*>(args));
       } else {
@@ -231,23 +280,47 @@ class Mailboxes {
       }
     }
   }
-  std::uint32_t newChunk();
-  // The run's spare chunks (MailSlabs): a chain of `chunks` free chunks, head to tail, joins them;
-  // takeSpares moves them all to this one's free list (false: there were none).
-  void giveSpares(std::uint32_t head, std::uint32_t tail, std::uint32_t chunks);
-  bool takeSpares();
-  static constexpr std::uint32_t kKeptFreeChunks = 1024;  // 256 KiB
+  std::uint32_t newChunk(bool big);
+  std::uint32_t freshCells(std::uint32_t cells);  // from the last slab, or a new one
+
+  // Free chunks, small and big: chains through their first words.
+  using FreeChain = MailSlabs::FreeChain;
+  struct FreeChains {
+    FreeChain of[2];  // [big]
+  };
+  void push(FreeChains& chains, std::uint32_t c, bool big) {
+    FreeChain& f = chains.of[big];
+    chunk(c)[0] = Value::fromBits(f.head);
+    if (f.tail == kNone) f.tail = c;
+    f.head = c;
+    ++f.chunks;
+  }
+  void splice(FreeChain& into, FreeChain& from) {  // from's chunks go before into's
+    if (from.head == kNone) return;
+    chunk(from.tail)[0] = Value::fromBits(into.head);
+    if (into.tail == kNone) into.tail = from.tail;
+    into.head = from.head;
+    into.chunks += from.chunks;
+    from = FreeChain{};
+  }
+  // The run's spare chunks (MailSlabs): giveSpares adds chains to them; takeSpares moves all those
+  // of one size to this one's free list (false: there were none). Each size apart: a shard that
+  // took both kept the small ones it did not need while the other one mapped new slabs for them
+  // (pagerank at -j 2: 520,000 free small chunks on one side, 250,000 big ones on the other).
+  void giveSpares(FreeChains& chains);
+  bool takeSpares(bool big);
+  static constexpr std::uint32_t kKeptFreeCells = 2048;  // 256 KiB
 
   std::vector<Shape> shape_;
-  std::uint32_t chunkWords_;
+  std::vector<Place> places_;
+  std::uint32_t cellWords_;
   std::unique_ptr<MailSlabs> ownSlabs_;  // a serial machine's
   MailSlabs::Spares* spares_ = nullptr;  // a shard's: the run's
   Value** table_;                        // the MailSlabs' table
   std::uint32_t firstSlab_, endSlab_;    // this one's range of it
   std::uint32_t slabCount_ = 0;          // slabs allocated (LargeAllocator), freed by the destructor
-  std::uint32_t slabUsed_ = 0;           // chunks handed out of the last slab
-  std::uint32_t free_ = kNone;
-  std::uint32_t freeChunks_ = 0;  // on free_
+  std::uint32_t slabUsed_ = 0;           // cells handed out of the last slab
+  FreeChains free_;
   std::vector<Box> boxes_;
 };
 
