@@ -71,6 +71,15 @@ inline void* allocateLarge(std::size_t bytes) {
   return aligned;
 }
 
+// Gives back the memory of whole pages inside a block of allocateLarge(blockBytes) (offset and
+// length page-aligned): they read as zeros afterwards and take memory again when written. Blocks
+// below kMappedFrom (operator new) keep theirs; returns whether the pages were given back.
+inline bool discardPages(void* block, std::size_t blockBytes, std::size_t offset,
+                         std::size_t length) noexcept {
+  if (blockBytes < kMappedFrom) return false;
+  return madvise(static_cast<char*>(block) + offset, length, MADV_DONTNEED) == 0;
+}
+
 inline void freeLarge(void* p, std::size_t bytes) noexcept {
   if (bytes < kMappedFrom)
     ::operator delete(p);
@@ -94,6 +103,7 @@ inline void* growLarge(void* p, std::size_t oldBytes, std::size_t newBytes, std:
 #else
 inline void* allocateLarge(std::size_t bytes) { return ::operator new(bytes); }
 inline void freeLarge(void* p, std::size_t) noexcept { ::operator delete(p); }
+inline bool discardPages(void*, std::size_t, std::size_t, std::size_t) noexcept { return false; }
 inline void* growLarge(void* p, std::size_t oldBytes, std::size_t newBytes, std::size_t usedBytes) {
   return copyToLarger(p, oldBytes, newBytes, usedBytes);
 }

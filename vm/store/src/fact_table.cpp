@@ -85,6 +85,62 @@ void FactTable::growFor(std::size_t facts) {
   slotArray_ = words_.data();
 }
 
+std::size_t FactTable::releaseFreePages() {
+  const std::size_t slotBytes = std::size_t(stride_) * sizeof(Value);
+  std::size_t releasedBefore = 0;
+  if (released_)
+    for (const SlotRange& r : *released_) releasedBefore += r.end - r.first;
+  const std::size_t freeSlots = slots_ - live_ - releasedBefore;  // on the free list
+  constexpr std::size_t kPage = 4096, kWorthIt = 256 * 1024;
+  if (freeSlots * slotBytes < kWorthIt || freeSlots * 4 < slots_ ||
+      words_.capacity() * sizeof(Value) < support::kMappedFrom)
+    return 0;
+  // 1: free; 2: on a page given back now; 3: given back before
+  std::vector<std::uint8_t> state(slots_, 0);
+  for (FactRef f = freeList_; f != kNoFact; f = next(f)) state[f] = 1;
+  if (released_)
+    for (const SlotRange& r : *released_)
+      for (FactRef f = r.first; f < r.end; ++f) state[f] = 3;
+  std::size_t given = 0;
+  const std::size_t end = std::size_t(slots_) * slotBytes / kPage * kPage;
+  for (std::size_t page = 0; page < end;) {
+    std::size_t run = page;  // the pages from `page` on whose slots are all free
+    for (;; run += kPage) {
+      if (run == end) break;
+      const std::size_t first = run / slotBytes, last = (run + kPage - 1) / slotBytes;
+      bool allFree = true;
+      for (std::size_t f = first; f <= last && allFree; ++f) allFree = state[f] != 0;
+      if (!allFree) break;
+    }
+    if (run > page &&
+        support::discardPages(words_.data(), words_.capacity() * sizeof(Value), page, run - page)) {
+      for (std::size_t f = page / slotBytes; f <= (run - 1) / slotBytes; ++f) {
+        if (state[f] == 1) given += slotBytes;
+        state[f] = 2;
+      }
+    }
+    page = run == end ? end : run + kPage;
+  }
+  // The free list anew, lowest slots first; the released slots as ranges.
+  freeList_ = kNoFact;
+  std::vector<SlotRange> released;
+  for (FactRef f = slots_; f-- > 0;) {
+    if (state[f] == 1) {
+      Value* w = words_.data() + base(f);
+      w[0] = Value::fromBits(std::uint64_t(freeList_) << 32);
+      freeList_ = f;
+    } else if (state[f] >= 2) {
+      if (!released.empty() && released.back().first == f + 1)
+        released.back().first = f;
+      else
+        released.push_back({f, f + 1});
+    }
+  }
+  if (!released.empty() || released_)
+    released_ = std::make_unique<std::vector<SlotRange>>(std::move(released));
+  return given;
+}
+
 std::uint64_t FactTable::dedupHash(NodeId n, const Value* key) const {
   // Only unboxed keys: a boxed value's bits are a pointer, which may be reused for another value.
   const std::uint32_t k = arity();
@@ -197,6 +253,10 @@ FactRef FactTable::place(ListHead& list, NodeId n, const Value* a, std::uint32_t
   if (freeList_ != kNoFact) {
     f = freeList_;
     freeList_ = next(f);
+  } else if (released_ && !released_->empty()) [[unlikely]] {
+    SlotRange& r = released_->back();
+    f = r.first++;
+    if (r.first == r.end) released_->pop_back();
   } else {
     if (slots_ >= kNoFact - 1) throw std::length_error("meldvm: too many facts");
     f = slots_++;  // counted, not words_.size() / stride_: a division per new fact

@@ -285,7 +285,10 @@ void Worker::rebalance(bool midRun) {
   shared_.perThread[self_].midRun.store(midRun);
   publishIdleShare(start, allThere);
   if (!shared_.arriveAndWait()) return;  // 2
+  const std::uint64_t givenBefore = stats_.nodesGiven;
   planMoves();
+  // Before the takers store what they were given: the run's peak memory is both shards' together.
+  if (!midRun && stats_.nodesGiven != givenBefore) machine_->releaseFreePages();
   flush();
   if (!shared_.arriveAndWait()) return;  // 3
   takeGivenNodes();

@@ -227,6 +227,9 @@ class Machine : private SchedulerView {
     Mailboxes::Chain waiting;
   };
   GivenNode giveNode(NodeId n, const StoredFactVisitor& stored, const WaitingFactVisitor& waiting);
+  // After giving nodes away, between node runs: the memory of fact slots they left free
+  // (FactTable::releaseFreePages); the bytes given back.
+  std::size_t releaseFreePages() { return db_->releaseFreePages(); }
   void takeNode(NodeId n, const SerialScheduler::Carried& state, const Mailboxes::Chain& waiting);
   // The taker's side of a move: takes over the references of the boxed arguments (true) or takes
   // its own (false: the caller keeps its references).

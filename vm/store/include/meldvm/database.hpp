@@ -94,6 +94,12 @@ class Database {
     return b;
   }
   std::size_t headBytes() const { return heads_.bytesReserved() + alive_.capacity(); }
+  // FactTable::releaseFreePages on every table (a shard that gave nodes away); the bytes given back.
+  std::size_t releaseFreePages() {
+    std::size_t b = 0;
+    for (FactTable& t : tables_) b += t.releaseFreePages();
+    return b;
+  }
   // Room for that many facts of p (all nodes together) without growing.
   void reserve(PredId p, std::size_t facts) { tables_[p].reserve(facts); }
 
