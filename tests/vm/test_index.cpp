@@ -219,3 +219,21 @@ BOOST_AUTO_TEST_CASE(slot_hash_agrees_with_a_map) {
   }
   BOOST_TEST(h.capacity() == cap);
 }
+
+BOOST_AUTO_TEST_CASE(slot_hash_shrinks_to_a_quarter_full_and_keeps_every_key) {
+  SlotHash h;
+  const auto hashOf = [](std::uint32_t k) { return std::uint64_t(k) * 0x9e3779b97f4a7c15ull; };
+  for (std::uint32_t k = 0; k < 10000; ++k) h.insert(hashOf(k), k);
+  BOOST_TEST(h.shrink() == 0u);  // over a quarter full already
+  const std::size_t full = h.capacity();
+  for (std::uint32_t k = 0; k < 10000; ++k)
+    if (k % 10 != 0) BOOST_REQUIRE(h.erase(hashOf(k), k));
+  BOOST_TEST(h.shrink() == (full - 4096) * 8);  // 1,000 keys: 4,096 entries
+  BOOST_TEST(h.capacity() == 4096u);
+  for (std::uint32_t k = 0; k < 10000; ++k)
+    BOOST_REQUIRE_EQUAL(h.find(hashOf(k), [&](std::uint32_t slot) { return slot == k; }) == k, k % 10 == 0);
+  for (std::uint32_t k = 0; k < 1000; ++k)
+    if (k % 10 != 0) h.insert(hashOf(k), k);  // 1,900 keys: it grows again at half full
+  BOOST_TEST(h.capacity() == 4096u);
+  BOOST_TEST(h.size() == 1900u);
+}

@@ -92,16 +92,17 @@ std::size_t FactTable::releaseFreePages() {
     for (const SlotRange& r : *released_) releasedBefore += r.end - r.first;
   const std::size_t freeSlots = slots_ - live_ - releasedBefore;  // on the free list
   constexpr std::size_t kPage = 4096, kWorthIt = 256 * 1024;
+  std::size_t given = facts_.shrink();
+  for (Index& x : indexes_) given += x.heads.shrink();
   if (freeSlots * slotBytes < kWorthIt || freeSlots * 4 < slots_ ||
       words_.capacity() * sizeof(Value) < support::kMappedFrom)
-    return 0;
+    return given;
   // 1: free; 2: on a page given back now; 3: given back before
   std::vector<std::uint8_t> state(slots_, 0);
   for (FactRef f = freeList_; f != kNoFact; f = next(f)) state[f] = 1;
   if (released_)
     for (const SlotRange& r : *released_)
       for (FactRef f = r.first; f < r.end; ++f) state[f] = 3;
-  std::size_t given = 0;
   const std::size_t end = std::size_t(slots_) * slotBytes / kPage * kPage;
   for (std::size_t page = 0; page < end;) {
     std::size_t run = page;  // the pages from `page` on whose slots are all free

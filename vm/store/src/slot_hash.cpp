@@ -26,6 +26,15 @@ void SlotHash::grow(std::size_t capacity) {
   }
 }
 
+std::size_t SlotHash::shrink() {
+  std::size_t cap = entries_.size();
+  while (cap / 2 >= 16 && std::size_t(size_) * 4 <= cap / 2) cap /= 2;
+  if (cap == entries_.size()) return 0;
+  const std::size_t before = entries_.size();
+  grow(cap);
+  return (before - cap) * sizeof(Entry);
+}
+
 void SlotHash::insert(std::uint64_t hash, std::uint32_t slot) {
   if (entries_.empty() || overloaded(size_ + 1, entries_.size())) grow();
   const std::uint32_t h = fold(hash);

@@ -160,7 +160,8 @@ class FactTable {
   // 256 KiB are free: a shard that gave most of its nodes to another keeps their slots otherwise
   // (heat-transfer at -j 2: one shard gave 4,300 of its 5,000 nodes and kept 3 MB of free slots
   // while the other filled as much). Those slots leave the free list; they are taken again,
-  // zeroed, when it is empty, before the array grows. Returns the bytes of the slots given back.
+  // zeroed, when it is empty, before the array grows. Its hash tables shrink while they stay at
+  // most a quarter full. Returns the bytes given back.
   std::size_t releaseFreePages();
   // Memory held: the slot array and the hash tables (de-duplication and indexes).
   std::size_t bytesReserved() const {

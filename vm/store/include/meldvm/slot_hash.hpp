@@ -1,7 +1,8 @@
 // An open-addressing hash set of fact slots (linear probing, backward-shift deletion). It stores
 // only (hash, slot) pairs: the key lives in the fact itself and the caller's predicate compares it.
 // One table serves all nodes of a predicate (the node id is part of the key), which keeps memory
-// per node small. It never shrinks, so after a warm-up inserting and erasing allocates nothing.
+// per node small. It shrinks only when asked (shrink), so after a warm-up inserting and erasing
+// allocates nothing.
 #pragma once
 
 #include <cstdint>
@@ -33,6 +34,9 @@ class SlotHash {
   void reserve(std::uint32_t entries);                  // room for that many without growing
   bool erase(std::uint64_t hash, std::uint32_t slot);   // removes that exact slot
   bool replace(std::uint64_t hash, std::uint32_t oldSlot, std::uint32_t newSlot);  // same key
+  // Halves the table while it stays at most a quarter full (a shard gave most of its nodes
+  // away); the bytes given back.
+  std::size_t shrink();
   std::uint32_t size() const { return size_; }
   std::size_t capacity() const { return entries_.size(); }
 
