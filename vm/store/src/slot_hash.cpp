@@ -27,6 +27,8 @@ void SlotHash::grow(std::size_t capacity) {
 }
 
 std::size_t SlotHash::shrink() {
+  // A table below kMappedFrom came from operator new: its memory would stay with the process.
+  if (entries_.size() * sizeof(Entry) < support::kMappedFrom) return 0;
   std::size_t cap = entries_.size();
   while (cap / 2 >= 16 && std::size_t(size_) * 4 <= cap / 2) cap /= 2;
   if (cap == entries_.size()) return 0;

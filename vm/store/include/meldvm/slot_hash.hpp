@@ -35,7 +35,7 @@ class SlotHash {
   bool erase(std::uint64_t hash, std::uint32_t slot);   // removes that exact slot
   bool replace(std::uint64_t hash, std::uint32_t oldSlot, std::uint32_t newSlot);  // same key
   // Halves the table while it stays at most a quarter full (a shard gave most of its nodes
-  // away); the bytes given back.
+  // away), if it is a mapping of its own (support::kMappedFrom); the bytes given back.
   std::size_t shrink();
   std::uint32_t size() const { return size_; }
   std::size_t capacity() const { return entries_.size(); }
