@@ -8,9 +8,9 @@
 // unless its last messages overflowed one (a pagerank node's eight: two chunks a run instead of
 // one cost 4 % at -j 2); the chunks after the first are big. A record takes only the words its
 // own predicate needs, so small facts pack densely: a wide flood keeps millions of messages in
-// flight, and every word of them is written and read back from memory. Chunks come from slabs that never move
-// (growing copies nothing) and are recycled through a free list, so the steady state allocates nothing (the
-// shards of a threaded run share their chunks: mail_slabs.hpp).
+// flight, and every word of them is written and read back from memory. Chunks come from slabs
+// that never move (growing copies nothing) and are recycled through free lists, so the steady
+// state allocates nothing (the shards of a threaded run share their chunks: mail_slabs.hpp).
 //
 // Record layout, in 8-byte words. The first word holds the predicate (low 31 bits) and the sign
 // (bit 31) in its low half. A predicate whose arguments are all 32-bit scalars (int, bool, node,
