@@ -5,6 +5,8 @@
 #define BOOST_TEST_MODULE vm_mailboxes
 #include <boost/test/unit_test.hpp>
 #include <cstdint>
+#include <deque>
+#include <random>
 #include <vector>
 
 #include "meldvm/mailboxes.hpp"
@@ -299,4 +301,58 @@ BOOST_AUTO_TEST_CASE(argument_widths_follow_the_field_types) {
   BOOST_TEST((argWidth(TypeKind::Float) == ArgWidth::Word));   // a double needs 8 bytes
   BOOST_TEST((argWidth(TypeKind::String) == ArgWidth::Word));  // a pointer
   BOOST_TEST((argWidth(TypeKind::List) == ArgWidth::Word));
+}
+
+// Random posts, partial and whole releases, and boxes moving between two shards, against a
+// model of one queue per node: every message comes back once, in order, with its arguments,
+// whatever sizes of chunk its box went through and whichever shard's free lists they came from.
+BOOST_AUTO_TEST_CASE(random_traffic_between_two_shards_agrees_with_a_queue_per_node) {
+  MailSlabs slabs(2);
+  Mailboxes shard[2] = {Mailboxes(kShapes, &slabs, 0), Mailboxes(kShapes, &slabs, 1)};
+  constexpr NodeId kNodes = 64;
+  for (Mailboxes& m : shard) m.addNodes(kNodes);
+  std::vector<std::deque<Message>> model(kNodes);
+  std::vector<int> owner(kNodes);
+  for (NodeId n = 0; n < kNodes; ++n) owner[n] = int(n % 2);
+  std::mt19937 rng(11);
+  auto randomMessage = [&] {
+    const PredId p = PredId(rng() % kAll.size());
+    Message msg{p, rng() % 2 == 0, {}};
+    for (ArgWidth w : kShapes[p]) {
+      const std::uint32_t r = std::uint32_t(rng());
+      msg.bits.push_back(w == ArgWidth::Word    ? (std::uint64_t(rng()) << 32 | r)
+                         : w == ArgWidth::Int32 ? Value::fromInt(std::int32_t(r)).bits()
+                                                : Value::fromNode(r).bits());
+    }
+    return msg;
+  };
+  for (int step = 0; step < 200000; ++step) {
+    const NodeId n = NodeId(rng() % kNodes);
+    Mailboxes& m = shard[owner[n]];
+    const unsigned what = rng() % 100;
+    if (what < 80) {  // bursts of one to a few dozen messages, rarely of thousands (spare chunks)
+      const unsigned burst = rng() % 4000 == 0 ? 20000 : 1 + (rng() % 4 == 0 ? rng() % 40 : 0);
+      for (unsigned k = burst; k > 0; --k) {
+        model[n].push_back(randomMessage());
+        post(m, n, model[n].back());
+      }
+    } else if (what < 95) {  // taken in: the whole box or its first chunks
+      const std::uint32_t chunks = rng() % 2 ? Mailboxes::kAllChunks : 1 + rng() % 3;
+      const std::vector<Message> got = taken(m, n, kAll, chunks);
+      BOOST_REQUIRE_LE(got.size(), model[n].size());
+      for (std::size_t i = 0; i < got.size(); ++i) BOOST_REQUIRE(got[i] == model[n][i]);
+      if (chunks == Mailboxes::kAllChunks) BOOST_REQUIRE_EQUAL(got.size(), model[n].size());
+      m.release(n, chunks);
+      model[n].erase(model[n].begin(), model[n].begin() + std::ptrdiff_t(got.size()));
+      BOOST_REQUIRE_EQUAL(m.empty(n), model[n].empty());
+    } else {  // the node moves to the other shard, its messages along
+      const int to = 1 - owner[n];
+      shard[to].attach(n, m.detach(n));
+      owner[n] = to;
+    }
+  }
+  for (NodeId n = 0; n < kNodes; ++n) {
+    const std::vector<Message> rest(model[n].begin(), model[n].end());
+    BOOST_REQUIRE(taken(shard[owner[n]], n) == rest);
+  }
 }
