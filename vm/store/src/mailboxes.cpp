@@ -61,6 +61,30 @@ Mailboxes::Shape Mailboxes::shapeOf(const std::vector<ArgWidth>& fields, std::ve
   return s;
 }
 
+void Mailboxes::writeMixed(Value* r, const Shape& s, std::uint64_t tag, const Value* args) const {
+  r[0] = Value::fromBits(tag);
+  for (std::uint32_t w = 1; w < s.words; ++w) r[w] = Value::fromBits(0);
+  const Place* place = &places_[s.firstPlace];
+  for (std::uint32_t i = 0; i < s.arity; ++i) {
+    Value& w = r[place[i].half / 2];
+    if (place[i].width == ArgWidth::Word)
+      w = args[i];
+    else
+      w = Value::fromBits(w.bits() | std::uint64_t(std::uint32_t(args[i].bits()))
+                                         << (place[i].half % 2 * 32));
+  }
+}
+
+void Mailboxes::readMixed(const Value* r, const Shape& s, Value* args) const {
+  const Place* place = &places_[s.firstPlace];
+  for (std::uint32_t i = 0; i < s.arity; ++i) {
+    const Value w = r[place[i].half / 2];
+    args[i] = place[i].width == ArgWidth::Word ? w
+                                               : widen(std::uint32_t(w.bits() >> (place[i].half % 2 * 32)),
+                                                       place[i].width == ArgWidth::Int32);
+  }
+}
+
 Mailboxes::~Mailboxes() {
   for (std::uint32_t s = 0; s < slabCount_; ++s)
     LargeAllocator<Value>().deallocate(table_[firstSlab_ + s], std::size_t(slabCapacity(s)) * cellWords_);
