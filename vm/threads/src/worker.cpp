@@ -288,6 +288,7 @@ void Worker::rebalance(bool midRun) {
   const std::uint64_t givenBefore = stats_.nodesGiven;
   planMoves();
   // Before the takers store what they were given: the run's peak memory is both shards' together.
+  // Between node runs only: a run stopped at a safe point may hold slots it has just freed.
   if (!midRun && stats_.nodesGiven != givenBefore) machine_->releaseFreePages();
   flush();
   if (!shared_.arriveAndWait()) return;  // 3
