@@ -137,6 +137,7 @@ class Mailboxes {
   // Empties node n's box, or its first maxChunks chunks; the messages' references must have been
   // taken over or released.
   void release(NodeId n, std::uint32_t maxChunks = kAllChunks) {
+    if (boxes_[n].first == kNone) return;  // (every node run of the serial VM asks)
     // A shard with plenty of free chunks gives the box's to the run's spares (chunks that moved
     // here with nodes would otherwise pile up here while the giver maps new slabs).
     const bool spare[2] = {spares_ && free_.of[0].chunks >= kKeptFreeCells,
