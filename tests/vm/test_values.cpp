@@ -1,9 +1,11 @@
 // Values: the type table, scalar encoding, reference-counted objects, equality/hash/order, and the
 // dump text of every type (spec §3.1, §8).
 #define BOOST_TEST_MODULE vm_values
+#include <algorithm>
 #include <boost/test/unit_test.hpp>
 #include <cmath>
 #include <limits>
+#include <random>
 #include <string>
 #include <vector>
 
@@ -105,6 +107,47 @@ BOOST_AUTO_TEST_CASE(objects_are_counted_and_recycled) {
   BOOST_TEST(e.heap.liveObjects() == 200000u);
   e.heap.release(li, big);
   BOOST_TEST(e.heap.liveObjects() == 0u);
+}
+
+// A dead cell's tail is dropped some deaths later (Heap::destroy puts it off): a tree of lists
+// sharing their tails, as n-queens builds, released in random order, with lists inside structs
+// (a death inside a death), must keep every live list whole and free every cell in the end.
+BOOST_AUTO_TEST_CASE(deferred_tails_free_each_cell_once) {
+  Env e;
+  const TypeId li = e.types.list(TypeTable::kInt);
+  const TypeId fields[] = {TypeTable::kInt, li};
+  const TypeId st = e.types.structOf(fields);
+  std::vector<Value> lists{Value::nil()};
+  std::vector<std::string> texts{"[]"};
+  for (int i = 0; i < 600; ++i) {  // each new list conses onto an earlier one
+    const std::size_t parent = std::size_t(i * 7919) % lists.size();
+    lists.push_back(e.heap.cons(li, Value::fromInt(i), lists[parent]));
+    texts.push_back(e.text(li, lists.back()));
+  }
+  std::vector<std::pair<Value, std::size_t>> held;  // every third list also held by a struct
+  for (std::size_t i = 1; i < lists.size(); i += 3)
+    held.emplace_back(e.heap.makeTuple(st, std::vector<Value>{Value::fromInt(0), lists[i]}), i);
+  std::vector<std::size_t> order(lists.size() - 1);
+  for (std::size_t i = 0; i < order.size(); ++i) order[i] = i + 1;
+  std::shuffle(order.begin(), order.end(), std::mt19937(7));
+  std::vector<bool> released(lists.size());
+  for (std::size_t k = 0; k < order.size(); ++k) {
+    e.heap.release(li, lists[order[k]]);
+    released[order[k]] = true;
+    if (k % 50 == 0 && !held.empty()) {  // a struct dies: its list may die inside its death
+      e.heap.release(st, held.back().first);
+      held.pop_back();
+    }
+    if (k % 37 == 0)  // the lists still held read back whole
+      for (std::size_t i = 1; i < lists.size(); ++i)
+        if (!released[i]) BOOST_TEST(e.text(li, lists[i]) == texts[i]);
+  }
+  for (const auto& [tuple, i] : held) {
+    BOOST_TEST(e.text(li, tupleItems(tuple)[1]) == texts[i]);
+    e.heap.release(st, tuple);
+  }
+  BOOST_TEST(e.heap.liveObjects() == 0u);
+  BOOST_TEST(e.heap.bytesInUse() == 0u);
 }
 
 BOOST_AUTO_TEST_CASE(equality_hash_and_order) {

@@ -15,7 +15,9 @@
 // object is reachable from its own thread alone and keeps its plain, non-atomic count (the serial
 // VM never shares anything). The thread that drops a shared object's last reference destroys it;
 // its block goes back to the heap that allocated it (found from the block's address) through that
-// heap's remote-free stack, which the owner drains when it allocates.
+// heap's remote-free stack, which the owner drains when it allocates. (A dead list cell's tail is
+// dropped a few deaths later, by the same thread: destroy(). So a block another thread frees may
+// come back only when that thread's ring comes round, or when it counts its own objects.)
 #pragma once
 
 #include <atomic>
@@ -72,7 +74,8 @@ inline std::span<const Value> tupleItems(Value v) {
 class Heap {
  public:
   // nodes: where the node references of stored values are counted (node_references.hpp), if any.
-  explicit Heap(const TypeTable& types, NodeReferences* nodes = nullptr) : types_(types), nodes_(nodes) {}
+  explicit Heap(const TypeTable& types, NodeReferences* nodes = nullptr)
+      : types_(types), nodes_(nodes), deferTails_(nodes == nullptr) {}
   ~Heap();
   Heap(const Heap&) = delete;
   Heap& operator=(const Heap&) = delete;
@@ -133,12 +136,17 @@ class Heap {
   // some objects ahead, and a list's second cell halfway there.
   void shareAll(std::span<Object* const> objects);
 
+  // Drops the references to the tails of dead list cells that destroy() put off (below).
+  void dropDeferredTails();
+
   // Objects and bytes of this heap's blocks (the blocks other threads freed count once drained).
   std::size_t liveObjects() {
+    dropDeferredTails();
     drainRemote();
     return live_;
   }
   std::size_t bytesInUse() {
+    dropDeferredTails();
     drainRemote();
     return bytesInUse_;
   }
@@ -200,6 +208,9 @@ class Heap {
   void drainRemote();
   static std::size_t objectBytes(TypeKind k, const Object* o);  // k: the kind of o's type
   void destroy(Object* o);  // count reached zero: release children, recycle the block
+  // A dead cell's tail, whose count is read kDeferredTails deaths later, fetched meanwhile; returns
+  // the tail whose turn it is (null while the ring fills).
+  Object* deferTail(Object* tail);
   // Whether the items of a struct, array or set type hold no references (nothing to retain or
   // release: they copy as plain words). Worked out once per type.
   bool plainItems(TypeId t) {
@@ -219,6 +230,12 @@ class Heap {
   char* bumpEnd_ = nullptr;
   std::size_t live_ = 0, bytesInUse_ = 0, bytesReserved_ = 0;
   std::atomic<RemoteBlock*> remote_{nullptr};
+  // The tails destroy() put off. Not used where node references are counted (a created node's
+  // deletion waits for its count to drop: node_recycling.hpp), so that is never late.
+  static constexpr std::size_t kDeferredTails = 16;
+  Object* deferredTails_[kDeferredTails] = {};
+  std::size_t nextDeferred_ = 0;
+  bool deferTails_;
 };
 
 }  // namespace meldvm
