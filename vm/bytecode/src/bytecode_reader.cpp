@@ -260,6 +260,7 @@ void readSources(Cursor& c, Program& p, const ReadState& st) {
   forEachCodeBlockBeforeAxioms(p,
                                [&](CodeBlock& b) { readLines(c, files, b.code.size(), b.label, b.lines); });
   std::size_t general = 0, literal = 0;
+  if (!p.literalAxioms.empty()) p.literalAxioms.reserveLines(c.left() / sizeof(SourceLine));
   std::vector<SourceLine> lines;
   for (const Cursor::AxiomKind kind : st.axiomKinds) {
     if (kind == Cursor::AxiomKind::General) {

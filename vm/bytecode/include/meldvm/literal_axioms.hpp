@@ -28,6 +28,10 @@ class LiteralAxioms {
   void addLines(std::span<const SourceLine> lines);
   // For the reader: makes room for `words` more code words.
   void reserveCode(std::size_t words) { code_.reserve(code_.size() + words); }
+  // For the reader: makes room for `lines` more source lines (a bound: the pages of the room
+  // not used are never touched, while growing by doubling copied the lines and faulted in about
+  // twice their size).
+  void reserveLines(std::size_t lines) { lines_.reserve(lines_.size() + lines); }
 
   std::span<const std::uint32_t> code(std::size_t i) const {
     return {code_.data() + codeStart_[i], codeStart_[i + 1] - codeStart_[i]};
