@@ -48,6 +48,29 @@ BOOST_AUTO_TEST_CASE(a_shared_list_freed_by_another_heap_goes_back_to_its_own) {
   a.release(li, again);
 }
 
+// A big heap's later slabs are cut from chunks of huge pages (Heap::newSlab): a block there finds
+// its owner from its address as well, and comes back to it from another thread.
+BOOST_AUTO_TEST_CASE(blocks_cut_from_huge_chunks_go_back_to_their_own_heap) {
+  TypeTable types;
+  const TypeId li = types.list(TypeTable::kInt);
+  Heap a(types), b(types);
+  const int cells = 300000;  // 7 MB of cells: past the slabs a heap takes one by one (2 MiB)
+  const Value list = intList(a, li, 0, cells);
+  const std::size_t reserved = a.bytesReserved();
+  BOOST_TEST(reserved > std::size_t(4) << 20);
+  a.share(li, list);
+  b.retain(li, list);
+  a.release(li, list);
+  b.release(li, list);  // b frees them all, each through a's remote-free stack
+  BOOST_TEST(b.liveObjects() == 0u);
+  BOOST_TEST(a.liveObjects() == 0u);
+  BOOST_TEST(a.bytesInUse() == 0u);
+  const Value again = intList(a, li, 0, cells);  // the same blocks again: no new chunk
+  BOOST_TEST(a.bytesReserved() == reserved);
+  a.release(li, again);
+  BOOST_TEST(a.liveObjects() == 0u);
+}
+
 BOOST_AUTO_TEST_CASE(sharing_marks_what_a_value_reaches_and_stops_at_what_is_shared) {
   TypeTable types;
   const TypeId ls = types.list(TypeTable::kString);

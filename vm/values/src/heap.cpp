@@ -49,6 +49,7 @@ Heap::~Heap() {
   // that shared objects with each other go together, after every reference is released:
   // threads/README.md.)
   for (void* p : slabs_) ::operator delete(p, std::align_val_t(kSlabBytes));
+  for (char* c : chunks_) support::freeLarge(c, kChunkBytes);
   for (void* p : large_) ::operator delete(p);
 }
 
@@ -90,12 +91,10 @@ void* Heap::allocateSlow(std::size_t bytes) {
       // The unused end of the previous slab is abandoned; at most kSmallMax bytes per slab. A
       // slab is aligned to its size and starts with its owner, so a block's owner is found from
       // its address alone.
-      char* slab = static_cast<char*>(::operator new(kSlabBytes, std::align_val_t(kSlabBytes)));
+      char* slab = newSlab();
       *reinterpret_cast<Heap**>(slab) = this;
       bump_ = slab + kOwnerBytes;
       bumpEnd_ = slab + kSlabBytes;
-      slabs_.push_back(slab);
-      bytesReserved_ += kSlabBytes;
     }
     p = bump_;
     bump_ += size;
@@ -119,6 +118,25 @@ void* Heap::allocateSlow(std::size_t bytes) {
   --live_;
   bytesInUse_ -= classBytes(cls);
   free_[cls] = new (static_cast<void*>(o)) FreeBlock{free_[cls]};
+}
+
+char* Heap::newSlab() {
+  if (slabs_.size() < kSlabsAlone) {
+    char* slab = static_cast<char*>(::operator new(kSlabBytes, std::align_val_t(kSlabBytes)));
+    slabs_.push_back(slab);
+    bytesReserved_ += kSlabBytes;
+    return slab;
+  }
+  if (chunkNext_ == chunkEnd_) {  // a chunk is aligned to 2 MiB: its slabs to their size
+    static_assert(kChunkBytes % kSlabBytes == 0);
+    chunkNext_ = static_cast<char*>(support::allocateLarge(kChunkBytes));
+    chunkEnd_ = chunkNext_ + kChunkBytes;
+    chunks_.push_back(chunkNext_);
+    bytesReserved_ += kChunkBytes;
+  }
+  char* slab = chunkNext_;
+  chunkNext_ += kSlabBytes;
+  return slab;
 }
 
 Heap* Heap::ownerOf(const Object* o, std::size_t bytes) const {

@@ -30,6 +30,7 @@
 #include "meldvm/node_references.hpp"
 #include "meldvm/types.hpp"
 #include "meldvm/value.hpp"
+#include "support/large_allocator.hpp"
 
 namespace meldvm {
 
@@ -154,6 +155,11 @@ class Heap {
 
  private:
   static constexpr std::size_t kSlabBytes = 64 * 1024;
+  // A heap past kSlabsAlone slabs (2 MiB) takes them from chunks of huge pages (support's large
+  // allocator): the list cells of a big run are walked at random, and with 4 KiB pages nearly
+  // every step also missed the TLB. Small heaps (a robot's) keep small slabs.
+  static constexpr std::size_t kSlabsAlone = 32;
+  static constexpr std::size_t kChunkBytes = support::kHugePage;
   static constexpr std::size_t kSmallMax = 512;  // small blocks: 8-byte size classes
   static constexpr std::size_t kSmallClasses = kSmallMax / 8;
   static constexpr std::size_t kLargeClasses = 40;  // large blocks: power-of-two classes
@@ -197,6 +203,7 @@ class Heap {
   // are made and dropped millions of times), else allocateSlow.
   void* allocate(std::size_t bytes);
   void* allocateSlow(std::size_t bytes);
+  char* newSlab();  // a slab of kSlabBytes, aligned to its size, its owner not yet written
   ConsCell* newCell(TypeId listType);
   // A struct, array or set object (kind k) with room for `size` items, counted once; the builder
   // writes the items (a struct's field count is checked here).
@@ -224,7 +231,10 @@ class Heap {
   NodeReferences* nodes_;
   std::vector<std::uint8_t> plain_;  // per type: plainItems, once known
   FreeBlock* free_[kSmallClasses + kLargeClasses] = {};
-  std::vector<void*> slabs_;
+  std::vector<void*> slabs_;   // operator new's, the first kSlabsAlone
+  std::vector<char*> chunks_;  // then kChunkBytes at a time, cut into slabs
+  char* chunkNext_ = nullptr;
+  char* chunkEnd_ = nullptr;
   std::vector<void*> large_;
   char* bump_ = nullptr;
   char* bumpEnd_ = nullptr;
