@@ -318,8 +318,10 @@ inline Object* Heap::deferTail(Object* tail) {
 // count of the next cell: consed long before, at another node, and cold by now. n-queens 13 spent a
 // sixth of its native run waiting there, one cell at a time. So a dead cell's tail joins a ring of
 // kDeferredTails and its count is read when the ring comes round to it, fetched meanwhile; the
-// waits of many lists overlap. Only the moment of freeing moves (nothing reads a count but the
-// heap); liveObjects() and bytesInUse() drop the ring first.
+// waits of many lists overlap. Only the moment of freeing moves: a count decides nothing but when
+// its block is freed (native code's inline releases read counts too, and a count that stays
+// higher for a while only makes them leave the last release to the heap later); liveObjects()
+// and bytesInUse() drop the ring first.
 void Heap::destroy(Object* o) {
   // Iterative along list tails, so that releasing a long list cannot overflow the stack.
   while (o) {
