@@ -330,7 +330,7 @@ void Heap::destroy(Object* o) {
     if (k == TypeKind::List || (k != TypeKind::String && !plainItems(o->type)))
       rest = visitItems(types_, o, [&](TypeId t, Value v) { releaseStored(t, v); });
     recycle(o, objectBytes(k, o));
-    if (rest && deferTails_) rest = deferTail(rest);
+    if (rest && !nodes_) rest = deferTail(rest);  // (not where node references are counted)
     o = rest && dropReference(rest) ? rest : nullptr;
   }
 }

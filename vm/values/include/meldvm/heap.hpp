@@ -75,8 +75,7 @@ inline std::span<const Value> tupleItems(Value v) {
 class Heap {
  public:
   // nodes: where the node references of stored values are counted (node_references.hpp), if any.
-  explicit Heap(const TypeTable& types, NodeReferences* nodes = nullptr)
-      : types_(types), nodes_(nodes), deferTails_(nodes == nullptr) {}
+  explicit Heap(const TypeTable& types, NodeReferences* nodes = nullptr) : types_(types), nodes_(nodes) {}
   ~Heap();
   Heap(const Heap&) = delete;
   Heap& operator=(const Heap&) = delete;
@@ -228,7 +227,7 @@ class Heap {
   void shareObject(Object* o);
 
   const TypeTable& types_;
-  NodeReferences* nodes_;
+  NodeReferences* const nodes_;      // fixed: destroy() decides from it whether to put tails off
   std::vector<std::uint8_t> plain_;  // per type: plainItems, once known
   FreeBlock* free_[kSmallClasses + kLargeClasses] = {};
   std::vector<void*> slabs_;   // operator new's, the first kSlabsAlone
@@ -245,7 +244,6 @@ class Heap {
   static constexpr std::size_t kDeferredTails = 16;
   Object* deferredTails_[kDeferredTails] = {};
   std::size_t nextDeferred_ = 0;
-  bool deferTails_;
 };
 
 }  // namespace meldvm
