@@ -80,13 +80,15 @@ void Interpreter::setUpNativeContext() {
   for (PredId p = 0; p < program_.predicates.size(); ++p) {
     FactTable& t = db_.tableForNativeCode(p);
     const bool buffered = machine_.tables_.plainLinear[p] && !db_.holdsReferences(p);
+    const bool bufferedBoxed = machine_.tables_.plainLinear[p] && db_.referenceFields(p).objectsOnly();
     const PredicateDesc& d = program_.predicates[p];
     const bool persistentSent = !d.linear && !d.action && !d.thread && !db_.holdsReferences(p);
     static_assert(sizeof(FactRef) == sizeof(std::uint32_t));
     nativeTables_.push_back(
         {reinterpret_cast<const std::uint64_t* const*>(t.slotArrayAddress()), t.stride(), t.argOffset(),
          (t.plainWords() ? MELD_NATIVE_TABLE_PLAIN : 0u) | (buffered ? MELD_NATIVE_TABLE_BUFFERED : 0u) |
-             (persistentSent ? MELD_NATIVE_TABLE_PERSISTENT_SENT : 0u),
+             (persistentSent ? MELD_NATIVE_TABLE_PERSISTENT_SENT : 0u) |
+             (bufferedBoxed ? MELD_NATIVE_TABLE_BUFFERED_BOXED : 0u),
          0, t.freeListAddress(), t.liveAddress()});
   }
   meld_native_context& c = nativeContext_;

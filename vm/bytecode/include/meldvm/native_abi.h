@@ -88,6 +88,13 @@ typedef struct meld_native_table {
  * of it sent to a node, or a retraction of one, waits in the persistent sent buffer until the node
  * run ends (meld_native_context::sent_persistent). */
 #define MELD_NATIVE_TABLE_PERSISTENT_SENT 4u
+/* The predicate is linear, not an action, and the only references its facts hold are heap objects
+ * (boxed fields: no node the VM counts references to): native code that retains each boxed
+ * argument itself (its count one more, atomically when the count's top bit says it is shared) may
+ * append the fact to the derived or sent buffer as under MELD_NATIVE_TABLE_BUFFERED; the buffer's
+ * references then go to the stored fact, as the VM's own appends' do. (A separate flag: native
+ * code built before it appends under BUFFERED only, without retaining.) */
+#define MELD_NATIVE_TABLE_BUFFERED_BOXED 8u
 
 /* The start of a frame (meldvm::Interpreter::Frame, same layout): the running node and the loop
  * slots, which native code reads to begin a loop itself. */

@@ -31,6 +31,8 @@ class ReferenceFields {
 
   // No field holds a reference: copies of the arguments are plain words.
   bool empty() const { return objects_.empty() && nodes_.empty(); }
+  // Some field holds a heap object and none a counted node: a copy retains objects only.
+  bool objectsOnly() const { return !objects_.empty() && nodes_.empty(); }
   void retain(Heap& heap, const Value* args) const {
     for (std::uint32_t i : objects_) heap.retainObjectValue(args[i]);
     for (std::uint32_t i : nodes_) heap.retainNode(args[i]);
