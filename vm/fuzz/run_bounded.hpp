@@ -34,6 +34,10 @@ inline void runBounded(const meldvm::Program& program, std::ostream& out,
     meldvm::Machine machine(program, options);
     machine.run();
     machine.dump(out);
+    // What the heap holds at the end: native code that makes or drops objects itself must count
+    // them as the interpreter does.
+    out << "heap: " << machine.heap().liveObjects() << " objects, " << machine.heap().bytesInUse()
+        << " bytes\n";
   } catch (const meldvm::RuntimeError& e) {
     out << "run-time error: " << e.what() << '\n';
   }

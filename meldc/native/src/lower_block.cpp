@@ -181,6 +181,8 @@ void RegionLowering::lowerInstruction(Function& f, llvm::IRBuilder<>& b, std::ui
       return lowerSlotRun(f, b, pc);
     case Opcode::CALL:
       return lowerCall(f, b, pc);
+    case Opcode::CONS:
+      return lowerCons(f, b, pc);
     // ---- the interpreter's code, through the step helper: the fact store, the heap (boxed
     // registers own references), messages, the scheduler, errors ----
     case Opcode::MOV:
@@ -196,7 +198,6 @@ void RegionLowering::lowerInstruction(Function& f, llvm::IRBuilder<>& b, std::ui
     case Opcode::MODI:
     case Opcode::EQ:  // equality by type (strings, lists, structs: by content)
     case Opcode::NE:
-    case Opcode::CONS:
     case Opcode::HEAD:
     case Opcode::TAIL:
     case Opcode::STRUCT:
@@ -253,6 +254,7 @@ NativeTypes::NativeTypes(llvm::Module& m) : module(m), context(m.getContext()) {
   contextType = llvm::StructType::create(context, contextFields, "meld_native_context");
   consumedType = llvm::StructType::create(context, {ptr, i32, i32}, "meld_native_consumed");
   arrayType = llvm::StructType::create(context, {ptr, i32, i32}, "meld_native_array");
+  heapType = llvm::StructType::create(context, {ptr, ptr, ptr, ptr, ptr}, "meld_native_heap");
   tableType = llvm::StructType::create(context, {ptr, i32, i32, i32, i32, ptr, ptr}, "meld_native_table");
   frameHeadType = llvm::StructType::create(context, {ptr, ptr, ptr, ptr, ptr, ptr, i32, i8, i8},
                                            "meld_native_frame_head");

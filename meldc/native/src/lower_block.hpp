@@ -33,6 +33,7 @@ struct NativeTypes {
   llvm::StructType* frameHeadType;   // meld_native_frame_head
   llvm::StructType* consumedType;    // meld_native_consumed
   llvm::StructType* arrayType;       // meld_native_array
+  llvm::StructType* heapType;        // meld_native_heap
   llvm::FunctionType *loopType, *stepType, *testType, *consumeType, *updatedType, *slotArgsType,
       *releaseLastType, *loopBeginType, *builtinType;
   llvm::FunctionType *deriveType, *sendType;  // sendType: UPDATE's helper too

@@ -63,6 +63,7 @@ enum ContextField : unsigned {
   kContextDerived,
   kContextDerivedArgs,
   kContextSentPersistent,
+  kContextHeap,
   kContextHeadsPerNode,
   kContextRuleWords
 };
@@ -99,9 +100,16 @@ static_assert(offsetof(meld_native_context, tables) == 8 * kContextTables &&
               offsetof(meld_native_context, derived) == 8 * kContextDerived &&
               offsetof(meld_native_context, derived_args) == 8 * kContextDerivedArgs &&
               offsetof(meld_native_context, sent_persistent) == 8 * kContextSentPersistent &&
+              offsetof(meld_native_context, heap) == 8 * kContextHeap &&
               offsetof(meld_native_context, heads_per_node) == 8 * kContextHeadsPerNode &&
               offsetof(meld_native_context, rule_words) == 8 * kContextHeadsPerNode + 4 &&
               sizeof(meld_native_context) == 8 * kContextHeadsPerNode + 8);
+enum HeapField : unsigned { kHeapCellFreeList, kHeapBump, kHeapBumpEnd, kHeapLive, kHeapBytesInUse };
+static_assert(offsetof(meld_native_heap, bump) == 8 * kHeapBump &&
+              offsetof(meld_native_heap, bump_end) == 8 * kHeapBumpEnd &&
+              offsetof(meld_native_heap, live) == 8 * kHeapLive &&
+              offsetof(meld_native_heap, bytes_in_use) == 8 * kHeapBytesInUse &&
+              sizeof(meld_native_heap) == 40);
 static_assert(offsetof(meld_native_consumed, size) == 8 && offsetof(meld_native_consumed, capacity) == 12);
 static_assert(offsetof(meld_native_array, size) == 8 && offsetof(meld_native_array, capacity) == 12);
 // A sent fact's fields by byte.

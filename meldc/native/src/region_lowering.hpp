@@ -242,6 +242,9 @@ class RegionLowering {
   // old value.
   void setBoxed(Function& f, llvm::IRBuilder<>& b, std::uint32_t r, llvm::Value* value);
 
+  // CONS (lower_cons.cpp): the cell made inline where consInline says the element allows it.
+  bool consInline(std::uint32_t listType) const;
+  void lowerCons(Function& f, llvm::IRBuilder<>& b, std::uint32_t pc);
   // DERIVE, SEND and UPDATE: the registers' values gathered here (constant register numbers, no
   // decoding) and handed to the helper for that opcode.
   void lowerFactOut(Function& f, llvm::IRBuilder<>& b, std::uint32_t pc);

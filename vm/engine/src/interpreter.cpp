@@ -91,8 +91,13 @@ void Interpreter::setUpNativeContext() {
              (bufferedBoxed ? MELD_NATIVE_TABLE_BUFFERED_BOXED : 0u),
          0, t.freeListAddress(), t.liveAddress()});
   }
+  static_assert(sizeof(std::size_t) == sizeof(std::uint64_t));
+  const Heap::CellAllocation cells = heap_.cellAllocationForNativeCode();
+  nativeHeap_ = {cells.freeList, cells.bump, cells.bumpEnd, reinterpret_cast<std::uint64_t*>(cells.live),
+                 reinterpret_cast<std::uint64_t*>(cells.bytesInUse)};
   meld_native_context& c = nativeContext_;
   c.interpreter = this;
+  c.heap = &nativeHeap_;
   c.tables = nativeTables_.data();
   c.head_pages = reinterpret_cast<const std::uint32_t* const* const*>(db_.nodeHeads().pageTableAddress());
   c.heads_per_node = db_.nodeHeads().headsPerNode();

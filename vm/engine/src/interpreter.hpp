@@ -223,6 +223,7 @@ class Interpreter {
   const NativeCode* native_;
   // What native code's `vm` points at (native_abi.h): it begins and ends plain loops from it.
   meld_native_context nativeContext_{};
+  meld_native_heap nativeHeap_{};  // where native code takes list cells (nativeContext_.heap)
   std::vector<meld_native_table> nativeTables_;
   void setUpNativeContext();
   void setUpNativeBuffers(meld_native_context& c);  // the sent and derived facts' arrays

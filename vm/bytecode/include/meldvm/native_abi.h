@@ -26,8 +26,9 @@ extern "C" {
 /* Bumped whenever a helper, its meaning or the block signature changes. (9: the context and the
  * helpers of 2026-11-29; the commits that built them up called theirs 8, with other helper tables:
  * a shared object of one of them is refused, not misread. 10: UPDATE, SEND and DERIVE in native
- * code. 11: a rule's consumed facts unlinked by native code, the table's free list and count.) */
-#define MELD_NATIVE_ABI_VERSION 12u
+ * code. 11: a rule's consumed facts unlinked by native code, the table's free list and count. 13:
+ * meld_native_context::heap, CONS in native code.) */
+#define MELD_NATIVE_ABI_VERSION 13u
 
 typedef struct meld_native_vm meld_native_vm;       /* the VM's meld_native_context (below) */
 typedef struct meld_native_frame meld_native_frame; /* its frame (registers, loop slots) */
@@ -149,6 +150,19 @@ typedef struct meld_native_sent_fact {
   uint8_t cancelled;
 } meld_native_sent_fact;
 
+/* Where CONS takes a list cell (24 bytes: its 32-bit count, its 32-bit type, its head, its tail)
+ * without calling the VM: the first block of the heap's free list of 24-byte blocks (a free
+ * block's first word is the next one; null when empty), else the room left in the heap's current
+ * slab, [*bump, *bump_end); `live` and `bytes_in_use` count what the heap holds (one object and
+ * 24 bytes more per cell). With neither, the step helper makes the cell. */
+typedef struct meld_native_heap {
+  void** cell_free_list;
+  char** bump;
+  char* const* bump_end;
+  uint64_t* live;
+  uint64_t* bytes_in_use;
+} meld_native_heap;
+
 /* What a block's `vm` argument points at: what native code reads to begin and end an ITER loop,
  * to fire a rule, to update a fact and to derive or send one without calling the VM (the
  * predicate's table, the node's list heads, the step count, the consumed facts, the candidate
@@ -202,6 +216,7 @@ typedef struct meld_native_context {
    * conditions as a linear one's, but for the frame's sign; it counts facts_sent, and
    * facts_derived and run_derived when it is not a retraction. */
   meld_native_array* sent_persistent; /* of meld_native_sent_fact */
+  const meld_native_heap* heap;       /* the heap of this VM's values (the thread's) */
   uint32_t heads_per_node;
   uint32_t rule_words;
 } meld_native_context;

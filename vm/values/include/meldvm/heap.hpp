@@ -152,6 +152,21 @@ class Heap {
   }
   std::size_t bytesReserved() const { return bytesReserved_; }
 
+  // What native code reads and writes to take a list cell itself (native_abi.h, meld_native_heap):
+  // the free list of cells' size class, the current slab's room, the counts.
+  struct CellAllocation {
+    void** freeList;
+    char** bump;
+    char* const* bumpEnd;
+    std::size_t* live;
+    std::size_t* bytesInUse;
+  };
+  CellAllocation cellAllocationForNativeCode() {
+    static_assert(sizeof(FreeBlock*) == sizeof(void*) && sizeof(ConsCell) == 24);
+    return {reinterpret_cast<void**>(&free_[smallClassOf(sizeof(ConsCell))]), &bump_, &bumpEnd_, &live_,
+            &bytesInUse_};
+  }
+
  private:
   static constexpr std::size_t kSlabBytes = 64 * 1024;
   // A heap past kSlabsAlone slabs (2 MiB) takes them from chunks of huge pages (support's large
