@@ -1,7 +1,7 @@
 // The lists a loop fetches ahead, carried from visit to visit (vm/engine/src/list_pipeline.hpp):
 // at every visit, the cell on the way for the fact k on is that fact's list cell at depth
-// kListPipelineAhead - k, whatever the lengths of the lists (empty ones included) and however
-// near the list's end the loop is.
+// listPipelineDepth(k) (one level deeper every kListPipelineSpacing visits), whatever the lengths
+// of the lists (empty ones included) and however near the list's end the loop is.
 #define BOOST_TEST_MODULE vm_list_pipeline
 #include <boost/test/unit_test.hpp>
 
@@ -36,7 +36,7 @@ int visitAll(const Database& db, PredId placed) {
     pipeline.step(table, f, 1);
     for (int k = 1; k <= ListPipeline::kAhead; ++k)
       BOOST_TEST(
-          pipeline.cellAhead(k) == cellAt(db, placed, ahead(db, placed, f, k), ListPipeline::kAhead - k),
+          pipeline.cellAhead(k) == cellAt(db, placed, ahead(db, placed, f, k), ListPipeline::depthAhead(k)),
           "visit " << visits << ", fact " << k << " on");
   }
   return visits;

@@ -6,7 +6,8 @@
 namespace meldc::native::detail {
 
 namespace {
-using meldvm::detail::kListPipelineAhead;
+using meldvm::detail::kListPipelineFacts;
+using meldvm::detail::listPipelineDepth;
 }
 
 llvm::Value* RegionLowering::tailOrNull(Function& f, llvm::IRBuilder<>& b, llvm::Value* cell) {
@@ -66,14 +67,14 @@ RegionLowering::ListPipe RegionLowering::startListPipeline(Function& f, llvm::IR
                                                            const LoopView& loop, llvm::Value* first,
                                                            llvm::Value* nextWord, std::uint32_t field) {
   ListPipe pipe;
-  pipe.cellsType = llvm::ArrayType::get(b.getInt64Ty(), kListPipelineAhead);
+  pipe.cellsType = llvm::ArrayType::get(b.getInt64Ty(), kListPipelineFacts);
   pipe.cells = local(f, pipe.cellsType, "pipe.cells");
   pipe.ahead = local(f, b.getInt32Ty(), "pipe.ahead");
   llvm::Value* ahead = first;
-  for (int k = 1; k <= kListPipelineAhead; ++k) {
+  for (int k = 1; k <= kListPipelineFacts; ++k) {
     auto [next, cell] = nextWithList(f, b, loop, ahead, nextWord, field);
     ahead = next;
-    for (int d = kListPipelineAhead - k; d > 0; --d) cell = tailOrNull(f, b, cell);
+    for (int d = listPipelineDepth(k); d > 0; --d) cell = tailOrNull(f, b, cell);
     fetchCell(b, pipe, k, cell);
   }
   b.CreateStore(ahead, pipe.ahead);
@@ -82,14 +83,17 @@ RegionLowering::ListPipe RegionLowering::startListPipeline(Function& f, llvm::IR
 
 void RegionLowering::stepListPipeline(Function& f, llvm::IRBuilder<>& b, const LoopView& loop,
                                       const ListPipe& pipe, llvm::Value* nextWord, std::uint32_t field) {
-  for (int k = 1; k < kListPipelineAhead; ++k) {  // the fact k + 1 on is now k on: one cell deeper
+  for (int k = 1; k < kListPipelineFacts; ++k) {  // the fact k + 1 on is now k on
     llvm::Value* cell = b.CreateLoad(
         b.getInt64Ty(), b.CreateConstInBoundsGEP2_32(pipe.cellsType, pipe.cells, 0, unsigned(k)));
-    fetchCell(b, pipe, k, tailOrNull(f, b, cell));
+    if (listPipelineDepth(k) != listPipelineDepth(k + 1))  // one cell deeper
+      fetchCell(b, pipe, k, tailOrNull(f, b, cell));
+    else
+      b.CreateStore(cell, b.CreateConstInBoundsGEP2_32(pipe.cellsType, pipe.cells, 0, unsigned(k - 1)));
   }
   auto [next, cell] = nextWithList(f, b, loop, b.CreateLoad(b.getInt32Ty(), pipe.ahead), nextWord, field);
   b.CreateStore(next, pipe.ahead);
-  fetchCell(b, pipe, kListPipelineAhead, cell);
+  fetchCell(b, pipe, kListPipelineFacts, cell);
 }
 
 }  // namespace meldc::native::detail

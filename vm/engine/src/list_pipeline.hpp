@@ -1,8 +1,8 @@
 // The lists a loop fetches for the facts ahead of its visits, carried from one visit to the next
-// (detail::listsStayPut). At each visit the fact k facts on (k = 1 .. K, kListPipelineAhead) has
-// its cell at depth K - k on the way: the cell one visit before fetched for that fact, one cell
-// deeper, so a visit reads one cell per fact ahead, where walking every list again from its first
-// cell (walkListsAhead) read K (K - 1) / 2 of them.
+// (detail::listsStayPut). At each visit the fact k facts on (k = 1 .. kListPipelineFacts) has its
+// cell at depth listPipelineDepth(k) on the way: the cell fetched for that fact before, one cell
+// deeper every kListPipelineSpacing visits, so a visit reads one cell per depth, where walking
+// every list again from its first cell (walkListsAhead) read K (K - 1) / 2 of them.
 #pragma once
 
 #include <algorithm>
@@ -43,15 +43,22 @@ template <int K>
 
 class ListPipeline {
  public:
-  static constexpr int kAhead = detail::kListPipelineAhead;
+  static constexpr int kAhead = detail::kListPipelineFacts;  // the facts whose cells are on the way
+
+  // The depth of the cell on the way for the fact k on: one level deeper every
+  // kListPipelineSpacing visits, so that each cell has that many visits to arrive.
+  static constexpr int depthAhead(int k) { return detail::listPipelineDepth(k); }
 
   // Before visiting `fact` (the loop's first fact, then the next one at every call).
   void step(const FactTable& table, FactRef fact, std::uint32_t listField) {
     if (!started_) return start(table, fact, listField);
-    for (int k = 1; k < kAhead; ++k) {  // the fact k + 1 on is now k on: one cell deeper
+    for (int k = 1; k < kAhead; ++k) {  // the fact k + 1 on is now k on
       const ConsCell* c = cells_[k];
-      cells_[k - 1] = c ? c->tail : nullptr;
-      __builtin_prefetch(cells_[k - 1]);  // (a prefetch of address 0 is harmless)
+      if (depthAhead(k) != depthAhead(k + 1)) {  // one cell deeper
+        c = c ? c->tail : nullptr;
+        __builtin_prefetch(c);  // (a prefetch of address 0 is harmless)
+      }
+      cells_[k - 1] = c;
     }
     if (ahead_ != kNoFact) ahead_ = table.next(ahead_);
     cells_[kAhead - 1] = listOf(table, ahead_, listField);
@@ -66,7 +73,14 @@ class ListPipeline {
   }
   void start(const FactTable& table, FactRef fact, std::uint32_t listField) {
     started_ = true;
-    ahead_ = walkListsAhead<kAhead>(table, fact, listField, kAhead - 1, cells_);
+    ahead_ = fact;
+    for (int k = 1; k <= kAhead; ++k) {
+      if (ahead_ != kNoFact) ahead_ = table.next(ahead_);
+      const ConsCell* cell = listOf(table, ahead_, listField);
+      for (int d = depthAhead(k); d > 0 && cell; --d) cell = cell->tail;
+      __builtin_prefetch(cell);
+      cells_[k - 1] = cell;
+    }
   }
 
   bool started_ = false;

@@ -161,6 +161,17 @@ int listFetchDepth(const Program& program, std::span<const std::uint32_t> code, 
 // with 5 walked afresh, 5.92 s with 5 carried, 5.35 s with 9 carried; 8queens-12 5.47 s, 5.13 s,
 // 5.23 s (2-core VM in a slow window, 2026-11-28, medians of 9 and 7 interleaved runs).
 inline constexpr int kListPipelineAhead = 9;
+// A carried list goes one cell deeper every kListPipelineSpacing visits, so the facts whose cells
+// are on the way are that many times kListPipelineAhead, and each cell fetched has that many
+// visits to arrive before the step that reads its tail. One visit was too short on this VM: the
+// steps waited for the cells the step before fetched, a quarter of 8queens-12's samples. With 2:
+// 8queens-12 bytecode 2.190 -> 2.039 s, n-queens 13 2.270 -> 2.152 s (2-core AMD EPYC VM,
+// 2026-11-29, medians of 7 interleaved runs; 1.7 % more instructions, the shifts of a longer
+// array). 3 lost the gain to those shifts.
+inline constexpr int kListPipelineSpacing = 2;
+inline constexpr int kListPipelineFacts = kListPipelineAhead * kListPipelineSpacing;
+// The depth of the cell on the way for the fact k on (1 <= k <= kListPipelineFacts).
+constexpr int listPipelineDepth(int k) { return (kListPipelineFacts - k) / kListPipelineSpacing; }
 // Whether the lists of the facts a loop of this block visits stay put while it runs: no UPDATE in
 // the block gives a fact new arguments (and may free its old list). Then the loop may carry the
 // cells it fetched from one visit to the next, one cell deeper each time (ListPipeline), instead
