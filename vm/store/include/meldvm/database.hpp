@@ -227,7 +227,11 @@ class Database {
       __builtin_prefetch(tables_[p].slotAddress(last), 1);
   }
   // The next stage, once the list heads are cached: the first facts of the node's lists (the
-  // first two cache lines of each, which holds a few facts when they were stored together).
+  // first two cache lines of each, which holds a few facts when they were stored together), and
+  // the last fact of each longer list, which a fact appended or moved to the back links to (an
+  // UPDATE's move to the back waited for it: a sixth of heat-transfer's rule that updates
+  // neighbor-heat; the bytecode of heat-transfer ran 2.237 -> 2.062 s, B2 pagerank 4.761 ->
+  // 4.430 s, 9 and 5 interleaved runs, 2026-11-30, 2-core AMD EPYC VM).
   [[gnu::always_inline]] void prefetchNodeFacts(NodeId n) const {
     const ListHead* h = heads_.of(n);
     for (std::size_t t = 0; t < tableCount_; ++t)
@@ -235,6 +239,7 @@ class Database {
         const char* p = reinterpret_cast<const char*>(tables_[t].slotAddress(h[t].first));
         __builtin_prefetch(p);
         __builtin_prefetch(p + 64);
+        if (h[t].last != h[t].first) __builtin_prefetch(tables_[t].slotAddress(h[t].last));
       }
     for (const GroupInputs& g : nodeInputs_) g.prefetch(n);
   }
