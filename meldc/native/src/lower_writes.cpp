@@ -85,7 +85,11 @@ void RegionLowering::lowerSend(Function& f, llvm::IRBuilder<>& b, std::uint32_t 
                  {f.vm, f.frame, b.getInt32(pc), b.getInt32(pred), dest, args});
   };
   const meldvm::PredicateDesc& d = program_.predicates[pred];
-  if (d.action || d.thread) {  // run or stored elsewhere: the VM's
+  // Run or stored elsewhere; or a persistent fact that holds references, which the persistent
+  // sent buffer never takes (MELD_NATIVE_TABLE_PERSISTENT_SENT): the VM's.
+  const bool boxed = std::any_of(d.fields.begin(), d.fields.end(),
+                                 [&](meldvm::TypeId t) { return program_.types.boxed(t); });
+  if (d.action || d.thread || (!d.linear && boxed)) {
     viaVm();
     return (void)b.CreateBr(next);
   }
@@ -146,9 +150,7 @@ void RegionLowering::appendFact(Function& f, llvm::IRBuilder<>& b, Buffer buffer
   std::vector<std::uint32_t> boxedArgs;
   for (std::uint32_t i = 0; i < count; ++i)
     if (program_.types.boxed(types[i])) boxedArgs.push_back(i);
-  const std::uint32_t flag = !boxedArgs.empty() && buffer.flag == MELD_NATIVE_TABLE_BUFFERED
-                                 ? MELD_NATIVE_TABLE_BUFFERED_BOXED
-                                 : buffer.flag;
+  const std::uint32_t flag = boxedArgs.empty() ? buffer.flag : MELD_NATIVE_TABLE_BUFFERED_BOXED;
   llvm::Value* conditions[] = {
       more, writesHere(f, b, pred, flag, buffer.withSign),
       b.CreateICmpULT(size, b.CreateLoad(i32, arrayField(facts, 2))),
