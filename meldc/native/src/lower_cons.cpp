@@ -4,8 +4,6 @@
 // helper, which dispatched to Heap::cons, a cell cost n-queens 10 about 123 instructions. The
 // helper still makes the cell when the heap has neither a free block nor room (a new slab, the
 // blocks other threads freed), and for lists of nodes, whose references some heaps count.
-#include <llvm/IR/MDBuilder.h>
-
 #include "region_lowering.hpp"
 
 namespace meldc::native::detail {
