@@ -9,7 +9,7 @@
 namespace meldc::native::detail {
 
 namespace {
-constexpr std::uint64_t kCellBytes = 24;
+constexpr std::uint64_t kCellBytes = 8 * (MELD_NATIVE_LIST_TAIL_WORD + 1);  // count, type, head, tail
 }
 
 bool RegionLowering::consInline(std::uint32_t listType) const {

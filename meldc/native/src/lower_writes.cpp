@@ -87,9 +87,7 @@ void RegionLowering::lowerSend(Function& f, llvm::IRBuilder<>& b, std::uint32_t 
   const meldvm::PredicateDesc& d = program_.predicates[pred];
   // Run or stored elsewhere; or a persistent fact that holds references, which the persistent
   // sent buffer never takes (MELD_NATIVE_TABLE_PERSISTENT_SENT): the VM's.
-  const bool boxed = std::any_of(d.fields.begin(), d.fields.end(),
-                                 [&](meldvm::TypeId t) { return program_.types.boxed(t); });
-  if (d.action || d.thread || (!d.linear && boxed)) {
+  if (d.action || d.thread || (!d.linear && !boxedFields(pred).empty())) {
     viaVm();
     return (void)b.CreateBr(next);
   }
@@ -146,10 +144,7 @@ void RegionLowering::appendFact(Function& f, llvm::IRBuilder<>& b, Buffer buffer
   // A fact that carries lists, strings or structs: the buffer's copy holds a reference to each,
   // retained here (MELD_NATIVE_TABLE_BUFFERED_BOXED). Through the send helper, n-queens 10 took
   // 134 instructions a placement sent, and 8queens-12 sends and derives nothing else.
-  const std::vector<meldvm::TypeId>& types = program_.predicates[pred].fields;
-  std::vector<std::uint32_t> boxedArgs;
-  for (std::uint32_t i = 0; i < count; ++i)
-    if (program_.types.boxed(types[i])) boxedArgs.push_back(i);
+  const std::vector<std::uint32_t> boxedArgs = boxedFields(pred);
   const std::uint32_t flag = boxedArgs.empty() ? buffer.flag : MELD_NATIVE_TABLE_BUFFERED_BOXED;
   llvm::Value* conditions[] = {
       more, writesHere(f, b, pred, flag, buffer.withSign),
@@ -179,7 +174,8 @@ void RegionLowering::appendFact(Function& f, llvm::IRBuilder<>& b, Buffer buffer
     b.CreateStore(b.CreateLoad(i64, b.CreateConstInBoundsGEP2_32(argsType, args, 0, i)),
                   b.CreateConstInBoundsGEP1_64(i64, argsAt, i));
   for (std::uint32_t i : boxedArgs)
-    adjustCount(f, b, b.CreateLoad(i64, b.CreateConstInBoundsGEP2_32(argsType, args, 0, i)), true, types[i]);
+    adjustCount(f, b, b.CreateLoad(i64, b.CreateConstInBoundsGEP2_32(argsType, args, 0, i)), true,
+                program_.predicates[pred].fields[i]);
   b.CreateStore(b.CreateAdd(size, b.getInt32(1)), arrayField(facts, 1));
   b.CreateStore(b.CreateAdd(wordsSize, b.getInt32(count)), arrayField(words, 1));
   // A retraction derives nothing (Machine::sendAny).

@@ -214,6 +214,14 @@ class RegionLowering {
   void lowerInstruction(Function& f, llvm::IRBuilder<>& b, std::uint32_t pc);
 
   bool boxed(std::uint32_t r) const { return program_.types.boxed(block_.registerTypes[r]); }
+  // The fields of pred that hold heap objects (lists, strings, structs, arrays, sets), in order.
+  std::vector<std::uint32_t> boxedFields(std::uint32_t pred) const {
+    std::vector<std::uint32_t> out;
+    const std::vector<meldvm::TypeId>& fields = program_.predicates[pred].fields;
+    for (std::uint32_t i = 0; i < fields.size(); ++i)
+      if (program_.types.boxed(fields[i])) out.push_back(i);
+    return out;
+  }
 
   // The predicate a loop slot holds facts of, when every loop that binds it has the same one
   // (otherwise, or for a process's trigger slot, unknown: -1).

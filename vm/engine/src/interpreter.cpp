@@ -4,6 +4,7 @@
 #include <atomic>
 #include <cstddef>
 #include <cstring>
+#include <type_traits>
 
 #include "list_pipeline.hpp"
 #include "meldvm/arith.hpp"
@@ -91,10 +92,9 @@ void Interpreter::setUpNativeContext() {
              (bufferedBoxed ? MELD_NATIVE_TABLE_BUFFERED_BOXED : 0u),
          0, t.freeListAddress(), t.liveAddress()});
   }
-  static_assert(sizeof(std::size_t) == sizeof(std::uint64_t));
+  static_assert(std::is_same_v<std::size_t, std::uint64_t>, "meld_native_heap's counts are the heap's");
   const Heap::CellAllocation cells = heap_.cellAllocationForNativeCode();
-  nativeHeap_ = {cells.freeList, cells.bump, cells.bumpEnd, reinterpret_cast<std::uint64_t*>(cells.live),
-                 reinterpret_cast<std::uint64_t*>(cells.bytesInUse)};
+  nativeHeap_ = {cells.freeList, cells.bump, cells.bumpEnd, cells.live, cells.bytesInUse};
   meld_native_context& c = nativeContext_;
   c.interpreter = this;
   c.heap = &nativeHeap_;
@@ -511,6 +511,8 @@ struct NativeHelpers {
   static_assert(sizeof(Object) == 8 * MELD_NATIVE_LIST_HEAD_WORD &&
                 sizeof(Object) + sizeof(Value) == 8 * MELD_NATIVE_LIST_TAIL_WORD &&
                 sizeof(ConsCell) == 8 * (MELD_NATIVE_LIST_TAIL_WORD + 1));
+  // Native CONS writes the header as two 32-bit words: the count, then the type (meld_native_heap).
+  static_assert(offsetof(Object, refs) == 0 && offsetof(Object, type) == 4 && sizeof(TypeId) == 4);
   static_assert(sizeof(bool) == 1 && sizeof(std::atomic<bool>) == 1 && std::atomic<bool>::is_always_lock_free,
                 "native code reads the stop flags as bytes");
   static Interpreter& vm(meld_native_vm* v) {
