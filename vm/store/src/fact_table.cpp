@@ -228,10 +228,9 @@ void FactTable::linkInListOrder(const ListHead& list, FactRef f, std::uint32_t x
   // that the established VM makes for every match.)
   FactRef g = kNoFact;
   if (head != kNoFact && list.last != f) {
-    const KeySpec spec = indexes_[x].key;
-    const Value* key = args(f) + spec.first;
+    const Value* key = args(f) + indexes_[x].key.first;
     for (FactRef c = next(f); c != kNoFact && g == kNoFact; c = next(c))
-      if (keyEqual(c, key, spec)) g = c;
+      if (keyEqualIn(x, c, key)) g = c;
   }
   if (g == kNoFact) return linkIndex(f, x, head, h);
   const std::size_t w = linkWord(f, x), gw = linkWord(g, x);
@@ -314,7 +313,7 @@ FactRef FactTable::insertGrouped(ListHead& list, NodeId n, const Value* a, std::
   const KeySpec spec = indexes_[0].key;
   const std::uint64_t h = hashKey(n, a + spec.first, spec);
   const FactRef head = indexes_[0].heads.find(
-      h, [&](std::uint32_t g) { return node(g) == n && keyEqual(g, a + spec.first, spec); });
+      h, [&](std::uint32_t g) { return node(g) == n && keyEqualIn(0, g, a + spec.first); });
   const FactRef after = head == kNoFact ? kNoFact : lo(linkWord(head, 0));  // the head's prev is the tail
   const FactRef f = place(list, n, a, cnt, after);
   linkIndex(f, 0, head, h);
@@ -335,8 +334,7 @@ void FactTable::replaceIndexedArgs(const ListHead& list, FactRef f, const Value*
   std::uint64_t relink = 0;
   const bool last = list.last == f;
   for (std::uint32_t x = 0; x < indexCount(); ++x) {
-    const KeySpec spec = indexes_[x].key;
-    if (keyEqual(f, a + spec.first, spec) && (!last || hi(linkWord(f, x)) == kNoFact)) continue;
+    if (keyEqualIn(x, f, a + indexes_[x].key.first) && (!last || hi(linkWord(f, x)) == kNoFact)) continue;
     unlinkIndex(f, x);
     relink |= std::uint64_t(1) << x;
   }
