@@ -104,7 +104,7 @@ void Interpreter::setUpNativeContext() {
   c.steps_left = &machine_.stepsLeft_;
   c.facts_tried = &machine_.stats_.factsTried;
   c.stop = reinterpret_cast<const std::uint8_t*>(&machine_.stop_);
-  c.shared_stop = machine_.stopFlag_ ? reinterpret_cast<const std::uint8_t*>(machine_.stopFlag_) : c.stop;
+  c.shared_stop = reinterpret_cast<const std::uint8_t*>(machine_.stopFlag_);  // (noStop_ when alone)
   c.consumed = machine_.consumed_.forNativeCode();
   static_assert(sizeof(machine_.stats_.factsConsumed) == 8 && sizeof(machine_.runConsumed_) == 8 &&
                 sizeof(machine_.stats_.rulesFired) == 8);
@@ -152,7 +152,8 @@ void Interpreter::setUpNativeBuffers(meld_native_context& c) {
 void Interpreter::blockFlags(const CodeBlock& b, BlockInfo& info, bool scanLoops) const {
   const std::size_t regs = b.registerTypes.size();
   std::vector<std::uint8_t>& v = info.boxed;
-  v.assign(regs + 1, 0);
+  v.assign(regs, 0);
+  info.consumingSlots = 0;
   info.boxedRegs.clear();
   for (std::size_t r = 0; r < regs; ++r) {
     v[r] = program_.types.boxed(b.registerTypes[r]);
@@ -161,7 +162,8 @@ void Interpreter::blockFlags(const CodeBlock& b, BlockInfo& info, bool scanLoops
   info.slotFlags.assign(b.slots, 0);
   if (!scanLoops) return;
   detail::forEachInstruction(b.code, [&](std::size_t pc) {
-    if (detail::isLoop(b.code[pc]) && (b.code[pc + 3] & kIterConsume)) v[regs] = 1;
+    if (detail::isLoop(b.code[pc]) && (b.code[pc + 3] & kIterConsume))
+      info.consumingSlots |= b.slots > 64 ? ~std::uint64_t(0) : std::uint64_t(1) << b.code[pc + 2];
   });
   aliasedSlots(b, info);
   listReadingLoops(b, info);
@@ -272,14 +274,17 @@ void Interpreter::prepareRule(std::uint32_t rule, RuleRun& r) {
                   r.info->boxed.data(),
                   r.info->slotFlags.data(),
                   0,
-                  false};
+                  false,
+                  false,
+                  r.info->consumingSlots};
 }
 
 void Interpreter::runWith(const CodeBlock& block, const BlockInfo& info, NodeId host, bool negative,
                           PredId triggerPred, const Value* trigger) {
   const Alloc a = enter(block);
-  Frame f{&block, block.code.data(), a.regs, a.slots, info.boxed.data(), info.slotFlags.data(),
-          host,   negative};
+  Frame f{
+      &block, block.code.data(),  a.regs, a.slots, info.boxed.data(), info.slotFlags.data(), host, negative,
+      false,  info.consumingSlots};
   if (trigger) f.slots[0] = Slot{triggerPred, host, kNoFact, 0, trigger};
   try {
     start(f, info.native);
@@ -481,7 +486,9 @@ Interpreter::Status Interpreter::exec(Frame& f, std::uint32_t pc) {
         break;
 #include "straight_ops.inc"
       default:
-        throw RuntimeError("bad opcode " + std::to_string(c[0]));
+        // The loader verified every instruction (detail::instructionLength): no other opcode
+        // reaches here, and saying so drops the range check from every dispatch.
+        __builtin_unreachable();
     }
   }
 }
@@ -667,8 +674,16 @@ Value Interpreter::callFunction(std::uint32_t fn, const Value* args, NodeId host
   ++depth_;
   const Alloc a = enter(func.block);
   const BlockInfo& info = infoOf(func.block);
-  Frame f{&func.block,       func.block.code.data(), a.regs, a.slots,
-          info.boxed.data(), info.slotFlags.data(),  host,   false};
+  Frame f{&func.block,
+          func.block.code.data(),
+          a.regs,
+          a.slots,
+          info.boxed.data(),
+          info.slotFlags.data(),
+          host,
+          false,
+          false,
+          info.consumingSlots};
   const std::size_t n = func.params.size();
   for (std::size_t i = 0; i < n; ++i) {
     heap_.retain(func.params[i], args[i]);

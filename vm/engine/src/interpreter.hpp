@@ -9,6 +9,7 @@
 #pragma once
 
 #include <algorithm>
+#include <bit>
 #include <cstdint>
 #include <memory>
 #include <new>
@@ -70,6 +71,8 @@ class Interpreter {
     NodeId host;
     bool negative;
     bool updated = false;  // an UPDATE ran in this block (RET_IF_UPDATED)
+    // Bit s: a loop that consumes binds slot s (all bits for a block of more than 64 slots).
+    std::uint64_t consumingSlots = 0;
   };
   enum class Status : std::uint8_t { NotFired, Fired, Return };
 
@@ -103,8 +106,20 @@ class Interpreter {
   // The rule fired: consume the linear facts bound from firstSlot on (inline: a persistent rule's
   // firing consumes nothing and should cost next to nothing).
   [[gnu::always_inline]] void fire(Frame& f, std::uint32_t firstSlot) {
-    if (!f.boxed[f.block->registerTypes.size()]) return;  // no loop of the block consumes
-    for (std::uint32_t s = firstSlot; s < f.block->slots; ++s)
+    std::uint64_t m = f.consumingSlots;  // only those slots are looked at
+    if (!m || firstSlot >= 64) [[unlikely]] {
+      if (m) fireFromSlot64(f, firstSlot);
+      return;
+    }
+    for (m &= ~std::uint64_t(0) << firstSlot; m; m &= m - 1) {
+      const std::uint32_t s = std::uint32_t(std::countr_zero(m));
+      if (s >= f.block->slots) [[unlikely]]  // (a block of more than 64 slots: all bits set)
+        return fireFromSlot64(f, 64);
+      if (consumable(f.slots[s])) consumeSlot(f.slots[s]);
+    }
+  }
+  void fireFromSlot64(Frame& f, std::uint32_t firstSlot) {
+    for (std::uint32_t s = std::max<std::uint32_t>(firstSlot, 64); s < f.block->slots; ++s)
       if (consumable(f.slots[s])) consumeSlot(f.slots[s]);
   }
   // Whether FIRE consumes the fact of this slot: its loop consumes, and it is not consumed yet.
@@ -168,6 +183,7 @@ class Interpreter {
     std::size_t regMark, slotMark;
   };
   struct BlockInfo {
+    std::uint64_t consumingSlots = 0;      // Frame::consumingSlots (blockFlags)
     std::vector<std::uint8_t> boxed;       // blockFlags
     std::vector<std::uint8_t> slotFlags;   // Frame::slotFlags (blockFlags)
     std::vector<std::uint32_t> boxedRegs;  // the boxed registers, which leave() releases

@@ -32,7 +32,7 @@ Machine::Machine(const Program& program, MachineOptions options)
   shard_ = options_.shard;
   ownGraphSerial_ = !host_ && !shard_;
   if (shard_) graphOwners_ = shard_->graphOwners();
-  stopFlag_ = options_.stopFlag;
+  stopFlag_ = options_.stopFlag ? options_.stopFlag : &noStop_;
   safePointFlag_ = options_.shard ? options_.safePointFlag : nullptr;
   placement_ = options_.placement;
   if (shard_ && host_) throw std::invalid_argument("a Machine is either a shard or driven by a host");
@@ -514,7 +514,7 @@ void Machine::sendAny(NodeId host, NodeId dest, PredId p, const Value* args, boo
   const PredicateDesc& d = program_.predicates[p];
   if (!host_ && d.linear && !shard_) {  // stored in dest when the run ends (storeSentLinear)
     db_->prefetchListHead(dest, p);
-    sched_.prefetch(dest);
+    prefetchStoreTarget(dest);
   } else if (!host_) {
     prefetchMailEntry(dest);  // posted when the run ends (flushOutgoing)
   }
