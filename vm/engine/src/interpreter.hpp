@@ -107,16 +107,14 @@ class Interpreter {
   // firing consumes nothing and should cost next to nothing).
   [[gnu::always_inline]] void fire(Frame& f, std::uint32_t firstSlot) {
     std::uint64_t m = f.consumingSlots;  // only those slots are looked at
-    if (!m || firstSlot >= 64) [[unlikely]] {
-      if (m) fireFromSlot64(f, firstSlot);
-      return;
-    }
-    for (m &= ~std::uint64_t(0) << firstSlot; m; m &= m - 1) {
-      const std::uint32_t s = std::uint32_t(std::countr_zero(m));
-      if (s >= f.block->slots) [[unlikely]]  // (a block of more than 64 slots: all bits set)
-        return fireFromSlot64(f, 64);
-      if (consumable(f.slots[s])) consumeSlot(f.slots[s]);
-    }
+    if (!m) return;
+    if (firstSlot < 64)
+      for (m &= ~std::uint64_t(0) << firstSlot; m; m &= m - 1) {
+        const Slot& sl = f.slots[std::countr_zero(m)];
+        if (consumable(sl)) consumeSlot(sl);
+      }
+    if (f.block->slots > 64) [[unlikely]]  // (all bits set: the slots past 64 one by one)
+      fireFromSlot64(f, firstSlot);
   }
   void fireFromSlot64(Frame& f, std::uint32_t firstSlot) {
     for (std::uint32_t s = std::max<std::uint32_t>(firstSlot, 64); s < f.block->slots; ++s)
