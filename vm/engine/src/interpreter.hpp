@@ -106,14 +106,14 @@ class Interpreter {
   // The rule fired: consume the linear facts bound from firstSlot on (inline: a persistent rule's
   // firing consumes nothing and should cost next to nothing).
   [[gnu::always_inline]] void fire(Frame& f, std::uint32_t firstSlot) {
-    std::uint64_t m = f.consumingSlots;  // only those slots are looked at
-    if (!m) return;
+    const std::uint64_t all = f.consumingSlots;  // only those slots are looked at
+    if (!all) return;
     if (firstSlot < 64)
-      for (m &= ~std::uint64_t(0) << firstSlot; m; m &= m - 1) {
+      for (std::uint64_t m = all & ~std::uint64_t(0) << firstSlot; m; m &= m - 1) {
         const Slot& sl = f.slots[std::countr_zero(m)];
         if (consumable(sl)) consumeSlot(sl);
       }
-    if (f.block->slots > 64) [[unlikely]]  // (all bits set: the slots past 64 one by one)
+    if (all == ~std::uint64_t(0)) [[unlikely]]  // (a block of more than 64 slots: those past 64)
       fireFromSlot64(f, firstSlot);
   }
   void fireFromSlot64(Frame& f, std::uint32_t firstSlot) {
