@@ -66,7 +66,7 @@ class Interpreter {
     const std::uint32_t* code;
     Value* regs;
     Slot* slots;
-    const std::uint8_t* boxed;      // per register, then "some loop consumes"
+    const std::uint8_t* boxed;      // per register: its type is boxed
     const std::uint8_t* slotFlags;  // per slot: kSlotAliased, kSlotMovesLists, kSlotWalksLists
     NodeId host;
     bool negative;

@@ -1,8 +1,9 @@
 // The lists a loop fetches for the facts ahead of its visits, carried from one visit to the next
 // (detail::listsStayPut). At each visit the fact k facts on (k = 1 .. kListPipelineFacts) has its
 // cell at depth listPipelineDepth(k) on the way: the cell fetched for that fact before, one cell
-// deeper every kListPipelineSpacing visits, so a visit reads one cell per depth, where walking
-// every list again from its first cell (walkListsAhead) read K (K - 1) / 2 of them.
+// deeper every kListPipelineSpacing visits, so a visit reads at most one cell per fact ahead,
+// where walking every list again from its first cell (walkListsAhead) read the cells above each
+// fact's depth too: about D * D / 2 for lists fetched D cells deep.
 #pragma once
 
 #include <algorithm>
