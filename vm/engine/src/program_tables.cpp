@@ -82,6 +82,10 @@ void ruleTriggers(ProgramTables& t, const Program& program) {
     }
   }
   t.triggersFrom.push_back(std::uint32_t(t.triggers.size()));
+  t.triggerBits.assign(t.rulesOf.size(), 0);
+  for (PredId p = 0; p < t.rulesOf.size(); ++p)
+    for (std::uint32_t i = t.triggersFrom[p]; i < t.triggersFrom[p + 1]; ++i)
+      if (t.triggers[i].word == 0) t.triggerBits[p] |= t.triggers[i].bit;
 }
 
 }  // namespace

@@ -360,12 +360,15 @@ class Machine : private SchedulerView {
   void factAdded(NodeId n, PredId p) { factAdded(n, p, db_->listHeads(n)); }
   void factAdded(NodeId n, PredId p, const ListHead* heads) {  // heads: the node's list heads
     std::uint64_t* cand = candidates_.data() + std::size_t(n) * tables_.ruleWords;
-    const ProgramTables::RuleTrigger* t = tables_.triggers.data() + tables_.triggersFrom[p];
-    const ProgramTables::RuleTrigger* const end = tables_.triggers.data() + tables_.triggersFrom[p + 1];
-    for (; t != end; ++t)
-      if (!(cand[t->word] & t->bit) &&
-          (t->threadFacts ? allPresent(heads, t->rule) : nodeFactsPresent(heads, *t)))
-        cand[t->word] |= t->bit;
+    const std::uint64_t bits = tables_.triggerBits[p];
+    if (tables_.ruleWords != 1 || (cand[0] & bits) != bits) {
+      const ProgramTables::RuleTrigger* t = tables_.triggers.data() + tables_.triggersFrom[p];
+      const ProgramTables::RuleTrigger* const end = tables_.triggers.data() + tables_.triggersFrom[p + 1];
+      for (; t != end; ++t)
+        if (!(cand[t->word] & t->bit) &&
+            (t->threadFacts ? allPresent(heads, t->rule) : nodeFactsPresent(heads, *t)))
+          cand[t->word] |= t->bit;
+    }
     if (n == threadNode_ && inRun_ && running_ != threadNode_) [[unlikely]]
       threadFactAdded(p);
   }

@@ -29,6 +29,9 @@ struct ProgramTables {
   };
   std::vector<RuleTrigger> triggers;        // grouped by predicate, each group in rule order
   std::vector<std::uint32_t> triggersFrom;  // predicate p's: [triggersFrom[p], triggersFrom[p + 1])
+  // With ruleWords 1: the bits of predicate p's triggers. When a node has them all already (most
+  // facts stored), Machine::factAdded has nothing to look at.
+  std::vector<std::uint64_t> triggerBits;
   std::vector<PredId> needs;
   std::vector<std::vector<std::uint32_t>> processesOf;  // its processes (persistent rules, §6.5)
   std::vector<std::uint8_t> queuedPersistent;           // has processes or an aggregate: derive via the queue
