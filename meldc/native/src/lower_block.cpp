@@ -177,6 +177,14 @@ void RegionLowering::lowerInstruction(Function& f, llvm::IRBuilder<>& b, std::ui
     case Opcode::NOT:
       storeBool(f, b, c[1], isZero(c[2]));
       return (void)b.CreateBr(at(f, next));
+    case Opcode::EQ:  // ints, booleans, nodes, threads: their bits (the interpreter's valuesEqualFast)
+    case Opcode::NE:
+      if (bitsAreIdentity(c[4])) {
+        llvm::Value* same = b.CreateICmpEQ(loadReg(f, b, c[2]), loadReg(f, b, c[3]));
+        storeBool(f, b, c[1], Opcode(c[0]) == Opcode::EQ ? same : b.CreateNot(same));
+        return (void)b.CreateBr(at(f, next));
+      }
+      return step(f, b, pc);  // the others by content
     case Opcode::LOAD:
       return lowerSlotRun(f, b, pc);
     case Opcode::CALL:
@@ -196,8 +204,6 @@ void RegionLowering::lowerInstruction(Function& f, llvm::IRBuilder<>& b, std::ui
     case Opcode::ARG:
     case Opcode::DIVI:  // throws on a zero divisor
     case Opcode::MODI:
-    case Opcode::EQ:  // equality by type (strings, lists, structs: by content)
-    case Opcode::NE:
     case Opcode::HEAD:
     case Opcode::TAIL:
     case Opcode::STRUCT:

@@ -214,6 +214,11 @@ class RegionLowering {
   void lowerInstruction(Function& f, llvm::IRBuilder<>& b, std::uint32_t pc);
 
   bool boxed(std::uint32_t r) const { return program_.types.boxed(block_.registerTypes[r]); }
+  bool bitsAreIdentity(meldvm::TypeId t) const {  // equal values, equal bits
+    const meldvm::TypeKind k = program_.types.kind(t);
+    return k == meldvm::TypeKind::Int || k == meldvm::TypeKind::Bool || k == meldvm::TypeKind::Node ||
+           k == meldvm::TypeKind::Thread;
+  }
   // The fields of pred that hold heap objects (lists, strings, structs, arrays, sets), in order.
   std::vector<std::uint32_t> boxedFields(std::uint32_t pred) const {
     std::vector<std::uint32_t> out;
