@@ -436,34 +436,118 @@ bool Interpreter::loop(Frame& f, std::uint32_t pc, RunBody&& runBody) {
 
 inline void Interpreter::ruleFired() { machine_.stats_.rulesFired++; }
 
+// A loop whose body exec runs in place: a plain ITER that fetches no lists ahead, or an ITER_KEY
+// (what loop() does for them, without a call of loop() per loop and of exec() per fact visited).
+inline bool Interpreter::runsInPlace(const Frame& f, const std::uint32_t* c) const {
+  return Opcode(c[0]) == Opcode::ITER_KEY ||
+         (Opcode(c[0]) == Opcode::ITER && !(f.slotFlags[c[2]] & (kSlotWalksLists | kSlotMovesLists)));
+}
+
+// Binds the loop's slot and its first fact to visit; false (the loop closed) when there is none.
+inline bool Interpreter::openLoop(Frame& f, std::uint32_t pc, OpenLoop& l) {
+  const LoopHead h = beginLoop(f, pc);
+  l.pred = h.pred;
+  l.slot = h.slot;
+  l.body = h.body;
+  l.after = h.op == Opcode::ITER ? f.code[pc + 4] : f.code[pc + 6];
+  l.linear = h.flags & kIterLinear;
+  l.returnOnFire = h.flags & kIterReturnOnFire;
+  l.fired = false;
+  l.tried = 0;
+  if (h.op == Opcode::ITER_KEY) {  // the facts with the key, in insertion order (loop())
+    l.index = machine_.keyIndex(h.pred, h.keyField);
+    return visitFrom(f, l, db_.firstWithKey(h.at, h.pred, l.index, h.key));
+  }
+  l.index = OpenLoop::kPlain;
+  return visitFrom(f, l, db_.first(h.at, h.pred));
+}
+
+// Binds the first fact from `fact` on that the loop visits (loop()'s visit); false, the loop
+// closed, past the last.
+inline bool Interpreter::visitFrom(Frame& f, OpenLoop& l, FactRef fact) {
+  for (; fact != kNoFact; fact = l.index == OpenLoop::kPlain ? db_.next(l.pred, fact)
+                                                              : db_.nextWithKey(l.pred, l.index, fact)) {
+    ++l.tried;
+    if (l.linear && skipFact(f, l.slot, l.pred, fact)) continue;
+    f.slots[l.slot].fact = l.fact = fact;
+    return true;
+  }
+  machine_.stats_.factsTried += l.tried;
+  f.slots[l.slot].fact = kNoFact;
+  return false;
+}
+
+// After a body that ended with `st`: the loop's next fact bound (true), or the loop closed.
+inline bool Interpreter::visitNext(Frame& f, OpenLoop& l, Status st) {
+  if (st == Status::Fired) l.fired = true;
+  if ((st == Status::Fired && l.returnOnFire) || machine_.interrupted()) {
+    machine_.stats_.factsTried += l.tried;
+    f.slots[l.slot].fact = kNoFact;
+    return false;
+  }
+  const FactRef fact = l.index == OpenLoop::kPlain ? db_.next(l.pred, l.fact) : db_.nextWithKey(l.pred, l.index, l.fact);
+  return visitFrom(f, l, fact);
+}
+
+// Runs a block from pc. The bodies of the loops that run in place (runsInPlace) run here, their
+// loops on a stack of this call's; the others through loop(), which calls exec for each body.
 Interpreter::Status Interpreter::exec(Frame& f, std::uint32_t pc) {
   const std::uint32_t* code = f.code;
-  bool lastFired = false;
+  bool lastFired = false;  // the last loop of the current body fired
   Value* R = f.regs;
+  OpenLoop open[kOpenLoops];
+  std::uint32_t depth = 0;
+  Status ended;  // how the current body ended (bodyEnded)
   for (;;) {
     const std::uint32_t* c = code + pc;
     switch (Opcode(c[0])) {
       case Opcode::ITER:
       case Opcode::ITER_KEY:
+        if (depth < kOpenLoops && runsInPlace(f, c)) {
+          OpenLoop& l = open[depth];
+          lastFired = false;
+          if (openLoop(f, pc, l)) {
+            ++depth;
+            pc = l.body;
+          } else {
+            pc = l.after;
+            if (machine_.interrupted()) {
+              ended = Status::Return;
+              goto bodyEnded;
+            }
+          }
+          break;
+        }
+        [[fallthrough]];
       case Opcode::ITER_SORTED: {
         lastFired = loop(f, pc, [&](std::uint32_t body) { return exec(f, body); });
         pc = Opcode(c[0]) == Opcode::ITER ? c[4] : Opcode(c[0]) == Opcode::ITER_KEY ? c[6] : c[5];
-        if (machine_.interrupted()) return Status::Return;
+        if (machine_.interrupted()) {
+          ended = Status::Return;
+          goto bodyEnded;
+        }
         break;
       }
       case Opcode::NEXT:
-        return lastFired ? Status::Fired : Status::NotFired;
+        ended = lastFired ? Status::Fired : Status::NotFired;
+        goto bodyEnded;
       case Opcode::FIRE:
         fire(f, c[1]);
         ruleFired();
-        return Status::Fired;
+        ended = Status::Fired;
+        goto bodyEnded;
       case Opcode::CFIRE:
         fire(f, c[1]);
-        return Status::NotFired;
+        ended = Status::NotFired;
+        goto bodyEnded;
       case Opcode::RET:
-        return Status::Return;
+        ended = Status::Return;
+        goto bodyEnded;
       case Opcode::RET_IF_UPDATED:
-        if (f.updated) return Status::Return;
+        if (f.updated) {
+          ended = Status::Return;
+          goto bodyEnded;
+        }
         pc += 1;
         break;
       case Opcode::TEST:
@@ -489,6 +573,23 @@ Interpreter::Status Interpreter::exec(Frame& f, std::uint32_t pc) {
         // The loader verified every instruction (detail::instructionLength): no other opcode
         // reaches here, and saying so drops the range check from every dispatch.
         __builtin_unreachable();
+    }
+    continue;
+  bodyEnded:
+    // The body of the innermost open loop ended (the loop goes on or closes), or the block did.
+    for (;;) {
+      if (depth == 0) return ended;
+      OpenLoop& l = open[depth - 1];
+      if (visitNext(f, l, ended)) {
+        lastFired = false;
+        pc = l.body;
+        break;
+      }
+      --depth;
+      lastFired = l.fired;
+      pc = l.after;
+      if (!machine_.interrupted()) break;
+      ended = Status::Return;  // as loop()'s caller: the enclosing body ends too
     }
   }
 }

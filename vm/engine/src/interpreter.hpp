@@ -86,6 +86,20 @@ class Interpreter {
     NodeId at;  // the host, or the thread's node
   };
   [[gnu::always_inline]] LoopHead beginLoop(Frame& f, std::uint32_t pc);
+  // A loop that exec runs in place (runsInPlace): its slot, its fact and what it counted so far.
+  struct OpenLoop {
+    static constexpr std::uint32_t kPlain = ~0u;  // index: a plain ITER
+    FactRef fact;
+    PredId pred;
+    std::uint32_t slot, body, after, index;
+    std::uint64_t tried;
+    bool linear, returnOnFire, fired;
+  };
+  static constexpr std::uint32_t kOpenLoops = 12;  // deeper loops go through loop()
+  [[gnu::always_inline]] bool runsInPlace(const Frame& f, const std::uint32_t* c) const;
+  [[gnu::always_inline]] bool openLoop(Frame& f, std::uint32_t pc, OpenLoop& l);
+  [[gnu::always_inline]] bool visitFrom(Frame& f, OpenLoop& l, FactRef fact);
+  [[gnu::always_inline]] bool visitNext(Frame& f, OpenLoop& l, Status st);
   // The loop instruction at pc; runBody(bodyPc) runs its body once the slot is bound.
   template <class RunBody>
   [[gnu::noinline]] bool loop(Frame& f, std::uint32_t pc, RunBody&& runBody);  // kept out of exec
