@@ -177,6 +177,14 @@ void RegionLowering::lowerInstruction(Function& f, llvm::IRBuilder<>& b, std::ui
     case Opcode::NOT:
       storeBool(f, b, c[1], isZero(c[2]));
       return (void)b.CreateBr(at(f, next));
+    case Opcode::GLOBAL:  // an unboxed value is its word, read at each GLOBAL (SETGLOBAL may change it)
+      if (!boxed(c[1])) {
+        llvm::Value* globals = contextField(f, b, kContextGlobals, b.getPtrTy());
+        llvm::Value* word = b.CreateConstInBoundsGEP1_64(b.getInt64Ty(), globals, c[2]);
+        b.CreateStore(b.CreateLoad(b.getInt64Ty(), word), reg(f, b, c[1]));
+        return (void)b.CreateBr(at(f, next));
+      }
+      return step(f, b, pc);  // a boxed one is retained: the interpreter's case
     case Opcode::EQ:  // ints, booleans, nodes, threads: their bits (the interpreter's valuesEqualFast)
     case Opcode::NE:
       if (bitsAreIdentity(c[4])) {
@@ -196,7 +204,6 @@ void RegionLowering::lowerInstruction(Function& f, llvm::IRBuilder<>& b, std::ui
     case Opcode::MOV:
     case Opcode::MOVS:
     case Opcode::NIL:
-    case Opcode::GLOBAL:
     case Opcode::SETGLOBAL:
     case Opcode::WORLD:
     case Opcode::CPUS:

@@ -64,6 +64,7 @@ enum ContextField : unsigned {
   kContextDerivedArgs,
   kContextSentPersistent,
   kContextHeap,
+  kContextGlobals,
   kContextHeadsPerNode,
   kContextRuleWords
 };
@@ -101,6 +102,7 @@ static_assert(offsetof(meld_native_context, tables) == 8 * kContextTables &&
               offsetof(meld_native_context, derived_args) == 8 * kContextDerivedArgs &&
               offsetof(meld_native_context, sent_persistent) == 8 * kContextSentPersistent &&
               offsetof(meld_native_context, heap) == 8 * kContextHeap &&
+              offsetof(meld_native_context, globals) == 8 * kContextGlobals &&
               offsetof(meld_native_context, heads_per_node) == 8 * kContextHeadsPerNode &&
               offsetof(meld_native_context, rule_words) == 8 * kContextHeadsPerNode + 4 &&
               sizeof(meld_native_context) == 8 * kContextHeadsPerNode + 8);

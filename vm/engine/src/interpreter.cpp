@@ -98,6 +98,8 @@ void Interpreter::setUpNativeContext() {
   meld_native_context& c = nativeContext_;
   c.interpreter = this;
   c.heap = &nativeHeap_;
+  static_assert(sizeof(Value) == sizeof(std::uint64_t));
+  c.globals = reinterpret_cast<const std::uint64_t*>(machine_.globals_.data());  // sized before this
   c.tables = nativeTables_.data();
   c.head_pages = reinterpret_cast<const std::uint32_t* const* const*>(db_.nodeHeads().pageTableAddress());
   c.heads_per_node = db_.nodeHeads().headsPerNode();

@@ -46,7 +46,7 @@ Machine::Machine(const Program& program, MachineOptions options)
   for (const auto& [p, field] : tables_.keyLookups) requestKeyIndex(p, field);
   for (const std::string& s : program.strings) strings_.push_back(heap_.makeString(s));
   for (const std::string& a : options_.args) args_.push_back(heap_.makeString(a));
-  globals_.assign(program.globals.size(), Value());
+  globals_.assign(program.globals.size(), Value());  // never resized: native code reads them in place
   interp_ = std::make_unique<Interpreter>(*this, program_, *db_, builtinCtx_, options.native);
   std::vector<std::vector<ArgWidth>> shapes(preds);
   for (PredId p = 0; p < preds; ++p)

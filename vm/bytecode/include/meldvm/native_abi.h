@@ -28,7 +28,7 @@ extern "C" {
  * a shared object of one of them is refused, not misread. 10: UPDATE, SEND and DERIVE in native
  * code. 11: a rule's consumed facts unlinked by native code, the table's free list and count. 13:
  * meld_native_context::heap, CONS in native code.) */
-#define MELD_NATIVE_ABI_VERSION 13u
+#define MELD_NATIVE_ABI_VERSION 14u
 
 typedef struct meld_native_vm meld_native_vm;       /* the VM's meld_native_context (below) */
 typedef struct meld_native_frame meld_native_frame; /* its frame (registers, loop slots) */
@@ -217,6 +217,9 @@ typedef struct meld_native_context {
    * facts_derived and run_derived when it is not a retraction. */
   meld_native_array* sent_persistent; /* of meld_native_sent_fact */
   const meld_native_heap* heap;       /* the heap of this VM's values (the thread's) */
+  /* The global constants' values, one 8-byte word each: a GLOBAL into an unboxed register reads
+   * its word (SETGLOBAL may change it meanwhile; the array itself does not move). */
+  const uint64_t* globals;
   uint32_t heads_per_node;
   uint32_t rule_words;
 } meld_native_context;
