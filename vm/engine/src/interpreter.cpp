@@ -464,11 +464,15 @@ inline bool Interpreter::openLoop(Frame& f, std::uint32_t pc, OpenLoop& l) {
   return visitFrom(f, l, db_.first(h.at, h.pred));
 }
 
+// The fact after `fact` in the loop's list, or in its key's chain.
+inline FactRef Interpreter::nextInLoop(const OpenLoop& l, FactRef fact) const {
+  return l.index == OpenLoop::kPlain ? db_.next(l.pred, fact) : db_.nextWithKey(l.pred, l.index, fact);
+}
+
 // Binds the first fact from `fact` on that the loop visits (loop()'s visit); false, the loop
 // closed, past the last.
 inline bool Interpreter::visitFrom(Frame& f, OpenLoop& l, FactRef fact) {
-  for (; fact != kNoFact; fact = l.index == OpenLoop::kPlain ? db_.next(l.pred, fact)
-                                                              : db_.nextWithKey(l.pred, l.index, fact)) {
+  for (; fact != kNoFact; fact = nextInLoop(l, fact)) {
     ++l.tried;
     if (l.linear && skipFact(f, l.slot, l.pred, fact)) continue;
     f.slots[l.slot].fact = l.fact = fact;
@@ -487,8 +491,7 @@ inline bool Interpreter::visitNext(Frame& f, OpenLoop& l, Status st) {
     f.slots[l.slot].fact = kNoFact;
     return false;
   }
-  const FactRef fact = l.index == OpenLoop::kPlain ? db_.next(l.pred, l.fact) : db_.nextWithKey(l.pred, l.index, l.fact);
-  return visitFrom(f, l, fact);
+  return visitFrom(f, l, nextInLoop(l, l.fact));
 }
 
 // Runs a block from pc. The bodies of the loops that run in place (runsInPlace) run here, their

@@ -98,6 +98,7 @@ class Interpreter {
   static constexpr std::uint32_t kOpenLoops = 12;  // deeper loops go through loop()
   [[gnu::always_inline]] bool runsInPlace(const Frame& f, const std::uint32_t* c) const;
   [[gnu::always_inline]] bool openLoop(Frame& f, std::uint32_t pc, OpenLoop& l);
+  [[gnu::always_inline]] FactRef nextInLoop(const OpenLoop& l, FactRef fact) const;
   [[gnu::always_inline]] bool visitFrom(Frame& f, OpenLoop& l, FactRef fact);
   [[gnu::always_inline]] bool visitNext(Frame& f, OpenLoop& l, Status st);
   // The loop instruction at pc; runBody(bodyPc) runs its body once the slot is bound.
