@@ -364,82 +364,9 @@ inline Interpreter::LoopHead Interpreter::beginLoop(Frame& f, std::uint32_t pc) 
   return h;
 }
 
-template <class RunBody>
-bool Interpreter::loop(Frame& f, std::uint32_t pc, RunBody&& runBody) {
-  const LoopHead h = beginLoop(f, pc);
-  const auto op = h.op;
-  const PredId p = h.pred;
-  const std::uint32_t s = h.slot, flags = h.flags, body = h.body, keyField = h.keyField;
-  const Value key = h.key;
-  const NodeId at = h.at;
-  const bool linear = flags & kIterLinear;
-  const bool returnOnFire = flags & kIterReturnOnFire;
-  bool fired = false;
-  Slot& slot = f.slots[s];
-
-  std::uint64_t tried = 0;                  // added to the statistics once, after the loop
-  auto visit = [&](FactRef fact) -> bool {  // false: stop the loop
-    ++tried;
-    if (linear && skipFact(f, s, p, fact)) return true;
-    slot.fact = fact;
-    if (runBody(body) == Status::Fired) {
-      fired = true;
-      if (returnOnFire) return false;
-    }
-    return !machine_.interrupted();
-  };
-
-  if (op == Opcode::ITER_KEY) {
-    // The store's index lists the node's facts with that key in insertion order: the facts a
-    // scan with a test would visit, without the others (a join's cost does not grow with the
-    // node's number of facts).
-    const std::uint32_t ix = machine_.keyIndex(p, keyField);
-    for (FactRef fact = db_.firstWithKey(at, p, ix, key); fact != kNoFact;) {
-      if (!visit(fact)) break;
-      fact = db_.nextWithKey(p, ix, fact);
-    }
-  } else if (op != Opcode::ITER_SORTED) {
-    const int fetchDepth = f.slotFlags[s] & kSlotWalksLists   ? detail::kListFetchAhead - 1
-                           : f.slotFlags[s] & kSlotMovesLists ? 0
-                                                              : -1;
-    const FactTable& table = db_.table(p);  // (its slot array may move; the table does not)
-    const auto listField = std::uint32_t(fetchDepth >= 0 ? machine_.tables_.listField[p] : 0);
-    const bool pipelined = fetchDepth > 0 && (f.slotFlags[s] & kSlotListsStayPut);
-    ListPipeline pipeline;
-    for (FactRef fact = db_.first(at, p); fact != kNoFact;) {
-      if (pipelined)
-        pipeline.step(table, fact, listField);
-      else if (fetchDepth >= 0)
-        walkListsAhead<detail::kListFetchAhead>(table, fact, listField, fetchDepth, nullptr);
-      if (!visit(fact)) break;
-      fact = db_.next(p, fact);
-    }
-  } else {
-    const std::size_t begin = sorted_.size();
-    for (FactRef fact = db_.first(at, p); fact != kNoFact; fact = db_.next(p, fact))
-      if (!linear || !db_.consumedMark(p, fact)) sorted_.push_back(fact);
-    if (flags & kIterRandom) {
-      for (std::size_t i = sorted_.size() - begin; i > 1; --i)
-        std::swap(sorted_[begin + i - 1], sorted_[begin + ctx_.rng->next() % i]);
-    } else {
-      const TypeId t = program_.predicates[p].fields[keyField];
-      std::stable_sort(sorted_.begin() + std::ptrdiff_t(begin), sorted_.end(), [&](FactRef a, FactRef b) {
-        return compareValuesFast(program_.types, t, db_.args(p, a)[keyField], db_.args(p, b)[keyField]) < 0;
-      });
-    }
-    for (std::size_t i = begin; i < sorted_.size(); ++i)
-      if (!visit(sorted_[i])) break;
-    sorted_.resize(begin);
-  }
-  machine_.stats_.factsTried += tried;
-  slot.fact = kNoFact;
-  return fired;
-}
-
-inline void Interpreter::ruleFired() { machine_.stats_.rulesFired++; }
-
-// A loop whose body exec runs in place: a plain ITER that fetches no lists ahead, or an ITER_KEY
-// (what loop() does for them, without a call of loop() per loop and of exec() per fact visited).
+// A loop whose body exec runs in place: a plain ITER that fetches no lists ahead, or an ITER_KEY.
+// exec steps through it with the helpers below without a call per loop or per fact visited; loop()
+// takes the same steps with a call per body (a loop nested too deep, native code's helper).
 inline bool Interpreter::runsInPlace(const Frame& f, const std::uint32_t* c) const {
   return Opcode(c[0]) == Opcode::ITER_KEY ||
          (Opcode(c[0]) == Opcode::ITER && !(f.slotFlags[c[2]] & (kSlotWalksLists | kSlotMovesLists)));
@@ -456,7 +383,10 @@ inline bool Interpreter::openLoop(Frame& f, std::uint32_t pc, OpenLoop& l) {
   l.returnOnFire = h.flags & kIterReturnOnFire;
   l.fired = false;
   l.tried = 0;
-  if (h.op == Opcode::ITER_KEY) {  // the facts with the key, in insertion order (loop())
+  if (h.op == Opcode::ITER_KEY) {
+    // The store's index lists the node's facts with that key in insertion order: the facts a
+    // scan with a test would visit, without the others (a join's cost does not grow with the
+    // node's number of facts).
     l.index = machine_.keyIndex(h.pred, h.keyField);
     return visitFrom(f, l, db_.firstWithKey(h.at, h.pred, l.index, h.key));
   }
@@ -493,6 +423,76 @@ inline bool Interpreter::visitNext(Frame& f, OpenLoop& l, Status st) {
   }
   return visitFrom(f, l, nextInLoop(l, l.fact));
 }
+
+template <class RunBody>
+bool Interpreter::loop(Frame& f, std::uint32_t pc, RunBody&& runBody) {
+  if (runsInPlace(f, f.code + pc)) {
+    OpenLoop l;
+    if (!openLoop(f, pc, l)) return false;
+    while (visitNext(f, l, runBody(l.body))) {
+    }
+    return l.fired;
+  }
+  const LoopHead h = beginLoop(f, pc);
+  const auto op = h.op;
+  const PredId p = h.pred;
+  const std::uint32_t s = h.slot, flags = h.flags, body = h.body, keyField = h.keyField;
+  const NodeId at = h.at;
+  const bool linear = flags & kIterLinear;
+  const bool returnOnFire = flags & kIterReturnOnFire;
+  bool fired = false;
+  Slot& slot = f.slots[s];
+
+  std::uint64_t tried = 0;                  // added to the statistics once, after the loop
+  auto visit = [&](FactRef fact) -> bool {  // false: stop the loop
+    ++tried;
+    if (linear && skipFact(f, s, p, fact)) return true;
+    slot.fact = fact;
+    if (runBody(body) == Status::Fired) {
+      fired = true;
+      if (returnOnFire) return false;
+    }
+    return !machine_.interrupted();
+  };
+
+  if (op != Opcode::ITER_SORTED) {  // a plain ITER that fetches its facts' lists ahead
+    // (kSlotMovesLists: only the first cell of each list, fetchDepth 0.)
+    const int fetchDepth = f.slotFlags[s] & kSlotWalksLists ? detail::kListFetchAhead - 1 : 0;
+    const FactTable& table = db_.table(p);  // (its slot array may move; the table does not)
+    const auto listField = std::uint32_t(machine_.tables_.listField[p]);
+    const bool pipelined = fetchDepth > 0 && (f.slotFlags[s] & kSlotListsStayPut);
+    ListPipeline pipeline;
+    for (FactRef fact = db_.first(at, p); fact != kNoFact;) {
+      if (pipelined)
+        pipeline.step(table, fact, listField);
+      else
+        walkListsAhead<detail::kListFetchAhead>(table, fact, listField, fetchDepth, nullptr);
+      if (!visit(fact)) break;
+      fact = db_.next(p, fact);
+    }
+  } else {
+    const std::size_t begin = sorted_.size();
+    for (FactRef fact = db_.first(at, p); fact != kNoFact; fact = db_.next(p, fact))
+      if (!linear || !db_.consumedMark(p, fact)) sorted_.push_back(fact);
+    if (flags & kIterRandom) {
+      for (std::size_t i = sorted_.size() - begin; i > 1; --i)
+        std::swap(sorted_[begin + i - 1], sorted_[begin + ctx_.rng->next() % i]);
+    } else {
+      const TypeId t = program_.predicates[p].fields[keyField];
+      std::stable_sort(sorted_.begin() + std::ptrdiff_t(begin), sorted_.end(), [&](FactRef a, FactRef b) {
+        return compareValuesFast(program_.types, t, db_.args(p, a)[keyField], db_.args(p, b)[keyField]) < 0;
+      });
+    }
+    for (std::size_t i = begin; i < sorted_.size(); ++i)
+      if (!visit(sorted_[i])) break;
+    sorted_.resize(begin);
+  }
+  machine_.stats_.factsTried += tried;
+  slot.fact = kNoFact;
+  return fired;
+}
+
+inline void Interpreter::ruleFired() { machine_.stats_.rulesFired++; }
 
 // Runs a block from pc. The bodies of the loops that run in place (runsInPlace) run here, their
 // loops on a stack of this call's; the others through loop(), which calls exec for each body.
