@@ -268,7 +268,9 @@ NativeTypes::NativeTypes(llvm::Module& m) : module(m), context(m.getContext()) {
   consumedType = llvm::StructType::create(context, {ptr, i32, i32}, "meld_native_consumed");
   arrayType = llvm::StructType::create(context, {ptr, i32, i32}, "meld_native_array");
   heapType = llvm::StructType::create(context, {ptr, ptr, ptr, ptr, ptr}, "meld_native_heap");
-  tableType = llvm::StructType::create(context, {ptr, i32, i32, i32, i32, ptr, ptr}, "meld_native_table");
+  tableType =
+      llvm::StructType::create(context, {ptr, i32, i32, i32, i32, ptr, ptr, ptr}, "meld_native_table");
+  fieldIndexType = llvm::StructType::create(context, {ptr, ptr, ptr, i32, i32}, "meld_native_field_index");
   frameHeadType = llvm::StructType::create(context, {ptr, ptr, ptr, ptr, ptr, ptr, i32, i8, i8},
                                            "meld_native_frame_head");
   loopBeginType = llvm::FunctionType::get(voidTy, {ptr, ptr, i32, ptr}, false);

@@ -30,6 +30,7 @@ struct NativeTypes {
   llvm::StructType* slotType;        // meld_native_slot
   llvm::StructType* contextType;     // meld_native_context
   llvm::StructType* tableType;       // meld_native_table
+  llvm::StructType* fieldIndexType;  // meld_native_field_index
   llvm::StructType* frameHeadType;   // meld_native_frame_head
   llvm::StructType* consumedType;    // meld_native_consumed
   llvm::StructType* arrayType;       // meld_native_array

@@ -92,8 +92,8 @@ void RegionLowering::lowerNativeLoop(Function& f, llvm::IRBuilder<>& b, std::uin
   // calls see, the view was reloaded again and again in the loops of heat-transfer.)
   const bool viewInMemory = slotPredicate(slot) < 0;
   llvm::Value *first = nullptr, *nextWord = b.getInt64(0);
-  if (Opcode(code_[pc]) == Opcode::ITER && !(flags & meldvm::kIterThread)) {
-    first = beginLoop(f, b, pc, info, viewInMemory);
+  if (!(flags & meldvm::kIterThread)) {
+    std::tie(first, nextWord) = beginLoop(f, b, pc, info, viewInMemory);
   } else {
     b.CreateCall(t_.loopBeginType, helper(f, b, kLoopBegin), {f.vm, f.frame, b.getInt32(pc), info});
     first = loopField(b, info, kLoopFirst, i32);
@@ -165,9 +165,11 @@ void RegionLowering::lowerNativeLoop(Function& f, llvm::IRBuilder<>& b, std::uin
   endLoop(f, b, pc, b.CreateLoad(b.getInt1Ty(), firedVar), stopping());
 }
 
-llvm::Value* RegionLowering::beginLoop(Function& f, llvm::IRBuilder<>& b, std::uint32_t pc, llvm::Value* info,
-                                       bool fillInfo) {
+std::pair<llvm::Value*, llvm::Value*> RegionLowering::beginLoop(Function& f, llvm::IRBuilder<>& b,
+                                                                std::uint32_t pc, llvm::Value* info,
+                                                                bool fillInfo) {
   const std::uint32_t pred = code_[pc + 1], slot = code_[pc + 2], flags = code_[pc + 3];
+  const bool keyed = Opcode(code_[pc]) == Opcode::ITER_KEY;
   llvm::Type* i32 = b.getInt32Ty();
   llvm::Type* i64 = b.getInt64Ty();
   llvm::Type* ptr = b.getPtrTy();
@@ -177,10 +179,26 @@ llvm::Value* RegionLowering::beginLoop(Function& f, llvm::IRBuilder<>& b, std::u
   llvm::Value* steps = contextField(f, b, kContextStepsLeft, ptr);
   llvm::Value* left = b.CreateLoad(i64, steps);
   llvm::MDBuilder weights(t_.context);
-  b.CreateCondBr(b.CreateICmpEQ(left, b.getInt64(1)), atLimit, here, weights.createBranchWeights(1, 1 << 20));
+  llvm::Value* index = nullptr;  // ITER_KEY: the meld_native_field_index of its argument
+  if (keyed) {                   // an argument without an integer index of its own: the VM looks the key up
+    llvm::BasicBlock* indexed = newBlock(f, "begin.indexed");
+    llvm::Value* fields =
+        b.CreateLoad(ptr, b.CreateStructGEP(t_.tableType, tableOf(f, b, pred), kTableFields));
+    b.CreateCondBr(b.CreateOr(b.CreateICmpEQ(left, b.getInt64(1)), b.CreateIsNull(fields)), atLimit, indexed,
+                   weights.createBranchWeights(1, 1 << 20));
+    b.SetInsertPoint(indexed);
+    index = b.CreateConstInBoundsGEP1_64(t_.fieldIndexType, fields, code_[pc + 4]);
+    llvm::Value* integer = b.CreateLoad(i32, b.CreateStructGEP(t_.fieldIndexType, index, kIndexInteger));
+    b.CreateCondBr(b.CreateICmpEQ(integer, b.getInt32(0)), atLimit, here,
+                   weights.createBranchWeights(1, 1 << 20));
+  } else {
+    b.CreateCondBr(b.CreateICmpEQ(left, b.getInt64(1)), atLimit, here,
+                   weights.createBranchWeights(1, 1 << 20));
+  }
   b.SetInsertPoint(atLimit);
   b.CreateCall(t_.loopBeginType, helper(f, b, kLoopBegin), {f.vm, f.frame, b.getInt32(pc), info});
   llvm::Value* helperFirst = loopField(b, info, kLoopFirst, i32);
+  llvm::Value* helperNext = b.CreateZExt(loopField(b, info, kLoopNextWord, i32), i64);
   b.CreateBr(begun);
 
   b.SetInsertPoint(here);
@@ -191,9 +209,16 @@ llvm::Value* RegionLowering::beginLoop(Function& f, llvm::IRBuilder<>& b, std::u
   b.CreateStore(host, slotField(b, slots, slot, kSlotNode));
   b.CreateStore(b.getInt32(flags), slotField(b, slots, slot, kSlotFlags));
   b.CreateStore(llvm::ConstantPointerNull::get(b.getPtrTy()), slotField(b, slots, slot, kSlotFixed));
-  llvm::Value* first = b.CreateLoad(i32, listHead(f, b, nodeHeads(f, b, host), pred, kHeadFirst));
+  const LoopView view = tableView(f, b, pred);
+  llvm::Value *first = nullptr, *nextWord = b.getInt64(0);
+  if (keyed) {
+    first = findWithKey(f, b, view, index, host, code_[pc + 4], loadReg(f, b, code_[pc + 5]));
+    nextWord =
+        b.CreateZExt(b.CreateLoad(i32, b.CreateStructGEP(t_.fieldIndexType, index, kIndexLinkWord)), i64);
+  } else {
+    first = b.CreateLoad(i32, listHead(f, b, nodeHeads(f, b, host), pred, kHeadFirst));
+  }
   if (fillInfo) {
-    const LoopView view = tableView(f, b, pred);
     auto set = [&](LoopField k, llvm::Value* v) {
       b.CreateStore(v, b.CreateStructGEP(t_.loopStructType, info, k));
     };
@@ -203,16 +228,20 @@ llvm::Value* RegionLowering::beginLoop(Function& f, llvm::IRBuilder<>& b, std::u
     set(kLoopSharedStop, contextField(f, b, kContextSharedStop, ptr));
     set(kLoopFirst, first);
     set(kLoopStride, b.CreateTrunc(view.stride, i32));
-    set(kLoopNextWord, b.getInt32(0));
+    set(kLoopNextWord, b.CreateTrunc(nextWord, i32));
     set(kLoopArgOffset, b.CreateTrunc(view.argOffset, i32));
   }
   llvm::BasicBlock* nativeEnd = b.GetInsertBlock();
   b.CreateBr(begun);
   b.SetInsertPoint(begun);
-  llvm::PHINode* phi = b.CreatePHI(i32, 2, "first");
-  phi->addIncoming(helperFirst, atLimit);
-  phi->addIncoming(first, nativeEnd);
-  return phi;
+  llvm::PHINode* firstPhi = b.CreatePHI(i32, 2, "first");
+  firstPhi->addIncoming(helperFirst, atLimit);
+  firstPhi->addIncoming(first, nativeEnd);
+  if (!keyed) return {firstPhi, b.getInt64(0)};  // a list's links: word 0, whoever began the loop
+  llvm::PHINode* nextPhi = b.CreatePHI(i64, 2, "next.word");
+  nextPhi->addIncoming(helperNext, atLimit);
+  nextPhi->addIncoming(nextWord, nativeEnd);
+  return {firstPhi, nextPhi};
 }
 
 llvm::Value* RegionLowering::nodeHeads(Function& f, llvm::IRBuilder<>& b, llvm::Value* node) {

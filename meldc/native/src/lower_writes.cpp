@@ -52,10 +52,13 @@ void RegionLowering::lowerUpdate(Function& f, llvm::IRBuilder<>& b, std::uint32_
   llvm::Value* host = b.CreateLoad(i32, b.CreateStructGEP(t_.frameHeadType, f.frame, kFrameHost));
   llvm::Value* node = b.CreateLoad(i32, slotField(b, slots, s, kSlotNode));
   llvm::Value* fact = b.CreateLoad(i32, slotField(b, slots, s, kSlotFact));
-  llvm::Value* conditions[] = {writesHere(f, b, std::uint32_t(pred), MELD_NATIVE_TABLE_PLAIN),
-                               b.CreateICmpEQ(node, host)};
+  llvm::Value* conditions[] = {
+      writesHere(f, b, std::uint32_t(pred), MELD_NATIVE_TABLE_PLAIN | MELD_NATIVE_TABLE_KEYED),
+      b.CreateICmpEQ(node, host)};
   hereOrVm(f, b, conditions, "update", callVm);
   const TableWords table = tableWords(f, b, std::uint32_t(pred));
+  if (indexedLinear().count(std::uint32_t(pred)))
+    keysKeptOrVm(f, b, table, fact, args, count, toBack, callVm);
   llvm::Value* heads = nodeHeads(f, b, host);
   if (toBack) moveToBack(f, b, heads, std::uint32_t(pred), table, fact);
   llvm::Value* argsAt =

@@ -75,7 +75,8 @@ enum TableField : unsigned {
   kTableFlags,
   kTableReserved,
   kTableFreeList,
-  kTableLive
+  kTableLive,
+  kTableFields
 };
 enum HeadWord : unsigned { kHeadFirst, kHeadLast, kHeadSize };  // of a list head (ListHead)
 enum FrameHeadField : unsigned { kFrameSlots = 3, kFrameHost = 6, kFrameNegative, kFrameUpdated };
@@ -131,7 +132,12 @@ static_assert(offsetof(meld_native_sent_fact, pred) == kSentPred &&
               sizeof(meld_native_sent_fact) == 24);
 static_assert(offsetof(meld_native_table, stride) == 8 && offsetof(meld_native_table, arg_offset) == 12 &&
               offsetof(meld_native_table, flags) == 16 && offsetof(meld_native_table, free_list) == 24 &&
-              offsetof(meld_native_table, live) == 32 && sizeof(meld_native_table) == 40);
+              offsetof(meld_native_table, live) == 32 && offsetof(meld_native_table, fields) == 40 &&
+              sizeof(meld_native_table) == 48);
+enum FieldIndexField : unsigned { kIndexEntries, kIndexMask, kIndexSize, kIndexLinkWord, kIndexInteger };
+static_assert(offsetof(meld_native_field_index, mask) == 8 && offsetof(meld_native_field_index, size) == 16 &&
+              offsetof(meld_native_field_index, link_word) == 24 &&
+              offsetof(meld_native_field_index, integer) == 28 && sizeof(meld_native_field_index) == 32);
 static_assert(offsetof(meld_native_frame_head, slots) == 8 * kFrameSlots &&
               offsetof(meld_native_frame_head, host) == 8 * kFrameHost &&
               offsetof(meld_native_frame_head, negative) == 8 * kFrameHost + 4 &&

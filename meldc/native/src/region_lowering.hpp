@@ -174,12 +174,19 @@ class RegionLowering {
   // loop_begin); the facts are stepped through here, in the order, with the skips and the counts
   // of Interpreter::loop.
   void lowerNativeLoop(Function& f, llvm::IRBuilder<>& b, std::uint32_t pc);
-  // A plain ITER at the host begins as loop_begin would, from meld_native_context: the slot bound,
-  // the step counted (at the limit the VM's loop_begin is called, which throws), the first fact
-  // read from the host's list head and returned. `info` is filled as loop_begin fills it only when
-  // fillInfo (the code inside reads that loop's view from f.loops).
-  llvm::Value* beginLoop(Function& f, llvm::IRBuilder<>& b, std::uint32_t pc, llvm::Value* info,
-                         bool fillInfo);
+  // An ITER or ITER_KEY at the host begins as loop_begin would, from meld_native_context: the
+  // slot bound, the step counted (at the limit the VM's loop_begin is called, which throws), the
+  // first fact read from the host's list head (ITER) or looked up in the index (ITER_KEY, where
+  // the argument has an integer index; loop_begin looks the others up). Returns the first fact
+  // and the word that links the loop's facts (i64). `info` is filled as loop_begin fills it only
+  // when fillInfo (the code inside reads that loop's view from f.loops).
+  std::pair<llvm::Value*, llvm::Value*> beginLoop(Function& f, llvm::IRBuilder<>& b, std::uint32_t pc,
+                                                  llvm::Value* info, bool fillInfo);
+  // The first fact of `host` whose argument `field` is `key` (i64 bits), through the integer index
+  // `index` (a meld_native_field_index*), as FactTable::firstWithKey finds it; MELD_NATIVE_NO_FACT
+  // if none (lower_keys.cpp).
+  llvm::Value* findWithKey(Function& f, llvm::IRBuilder<>& b, const LoopView& table, llvm::Value* index,
+                           llvm::Value* host, std::uint32_t field, llvm::Value* key);
   // The address of node's list heads (an i32 node), and of word w of its head of pred's list.
   llvm::Value* nodeHeads(Function& f, llvm::IRBuilder<>& b, llvm::Value* node);
   llvm::Value* listHead(Function& f, llvm::IRBuilder<>& b, llvm::Value* heads, std::uint32_t pred,
@@ -319,6 +326,13 @@ class RegionLowering {
     }
   };
   TableWords tableWords(Function& f, llvm::IRBuilder<>& b, std::uint32_t pred);
+  // The predicates whose linear facts may have an index (the VM's ProgramTables::keyLookups: the
+  // program's index declarations and ITER_KEY loops), found once per block lowered.
+  const std::set<std::uint32_t>& indexedLinear();
+  // The update of a MELD_NATIVE_TABLE_KEYED table's fact goes on here only where its index chains
+  // stay as they are; `viaVm` otherwise. (A plain table's goes on at once.)
+  void keysKeptOrVm(Function& f, llvm::IRBuilder<>& b, const TableWords& table, llvm::Value* fact,
+                    llvm::Value* args, std::uint32_t count, bool toBack, const std::function<void()>& viaVm);
   // The list primitives of FactTable on a node's list of pred (its heads at `heads`): word 0 of a
   // fact links it, its previous fact in the low half and its next one in the high half
   // (MELD_NATIVE_NO_FACT at either end, where the list head's first or last is written instead).
@@ -458,6 +472,7 @@ class RegionLowering {
   std::map<std::uint32_t, QueensSite> queensSites_;  // by the CALL's pc
   std::uint32_t queensWords_ = 0;                    // their words after the loops' array
   std::map<std::uint32_t, std::int64_t> slotPreds_;  // slot -> predicate of every loop binding it
+  std::optional<std::set<std::uint32_t>> indexedLinear_;  // indexedLinear(), once asked
   const meldvm::CodeBlock& block_;
   std::span<const std::uint32_t> code_;
   std::string prefix_;

@@ -85,12 +85,14 @@ void Interpreter::setUpNativeContext() {
     const PredicateDesc& d = program_.predicates[p];
     const bool persistentSent = !d.linear && !d.action && !d.thread && !db_.holdsReferences(p);
     static_assert(sizeof(FactRef) == sizeof(std::uint32_t));
+    const bool keyed = describeIndexes(t, nativeFieldIndexes_.emplace_back());
     nativeTables_.push_back(
         {reinterpret_cast<const std::uint64_t* const*>(t.slotArrayAddress()), t.stride(), t.argOffset(),
          (t.plainWords() ? MELD_NATIVE_TABLE_PLAIN : 0u) | (buffered ? MELD_NATIVE_TABLE_BUFFERED : 0u) |
              (persistentSent ? MELD_NATIVE_TABLE_PERSISTENT_SENT : 0u) |
-             (bufferedBoxed ? MELD_NATIVE_TABLE_BUFFERED_BOXED : 0u),
-         0, t.freeListAddress(), t.liveAddress()});
+             (bufferedBoxed ? MELD_NATIVE_TABLE_BUFFERED_BOXED : 0u) | (keyed ? MELD_NATIVE_TABLE_KEYED : 0u),
+         0, t.freeListAddress(), t.liveAddress(),
+         nativeFieldIndexes_.back().empty() ? nullptr : nativeFieldIndexes_.back().data()});
   }
   static_assert(std::is_same_v<std::size_t, std::uint64_t>, "meld_native_heap's counts are the heap's");
   const Heap::CellAllocation cells = heap_.cellAllocationForNativeCode();
@@ -120,6 +122,26 @@ void Interpreter::setUpNativeContext() {
   c.run_derived = &machine_.runDerived_;
   c.rule_words = machine_.tables_.ruleWords;
   setUpNativeBuffers(c);
+}
+
+// A table's indexes as native code sees them (meld_native_table::fields, one per argument);
+// whether they make it MELD_NATIVE_TABLE_KEYED (every index on one argument of its own, facts
+// native code may write).
+bool Interpreter::describeIndexes(const FactTable& t, std::vector<meld_native_field_index>& fields) {
+  if (t.indexCount() == 0) return false;
+  fields.assign(t.arity(), meld_native_field_index{nullptr, nullptr, nullptr, 0, 0});
+  bool keyed = t.wordsUnderIndexes();
+  for (std::uint32_t x = 0; x < t.indexCount(); ++x) {
+    const FactTable::KeySpec key = t.indexKey(x);
+    if (key.count != 1 || fields[key.first].link_word != 0) {
+      keyed = false;  // a key of several arguments, or a second index on the same one
+      continue;
+    }
+    const SlotHash& heads = t.indexHeads(x);
+    fields[key.first] = {heads.entriesAddress(), heads.maskAddress(), heads.sizeAddress(),
+                         FactTable::indexLinkWord(x), t.integerIndex(x) ? 1u : 0u};
+  }
+  return keyed;
 }
 
 void Interpreter::setUpNativeBuffers(meld_native_context& c) {

@@ -254,8 +254,11 @@ class Interpreter {
   meld_native_context nativeContext_{};
   meld_native_heap nativeHeap_{};  // where native code takes list cells (nativeContext_.heap)
   std::vector<meld_native_table> nativeTables_;
+  // Each table's meld_native_table::fields (empty: the table has no index).
+  std::vector<std::vector<meld_native_field_index>> nativeFieldIndexes_;
   void setUpNativeContext();
   void setUpNativeBuffers(meld_native_context& c);  // the sent and derived facts' arrays
+  static bool describeIndexes(const FactTable& t, std::vector<meld_native_field_index>& fields);
   std::unordered_map<const CodeBlock*, BlockInfo> blocks_;
   // A rule's block info, found by number (into blocks_, whose entries never move), and the
   // registers and slots it keeps between its runs: rules never nest, so a rule's frame needs none

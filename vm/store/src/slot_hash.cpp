@@ -1,5 +1,8 @@
 #include "meldvm/slot_hash.hpp"
 
+#include <algorithm>
+#include <stdexcept>
+
 namespace meldvm {
 
 namespace {
@@ -9,36 +12,42 @@ bool overloaded(std::size_t entries, std::size_t capacity) { return entries * 2 
 }  // namespace
 
 void SlotHash::reserve(std::uint32_t entries) {
-  std::size_t cap = entries_.empty() ? 16 : entries_.size();
+  std::size_t cap = entries_ ? capacity() : 16;
   while (overloaded(entries, cap)) cap *= 2;
-  if (cap > entries_.size()) grow(cap);
+  if (cap > capacity()) grow(cap);
 }
 
-void SlotHash::grow(std::size_t capacity) {
-  LargeVector<Entry> old = std::move(entries_);
-  entries_.assign(capacity ? capacity : old.empty() ? 16 : old.size() * 2, Entry{0, kNone});
-  mask_ = std::uint32_t(entries_.size() - 1);
-  for (const Entry& e : old) {
+void SlotHash::grow(std::size_t cap) {
+  Entry* const old = entries_;
+  const std::size_t oldCapacity = capacity();
+  if (cap == 0) cap = old ? oldCapacity * 2 : 16;
+  if (cap - 1 > 0xFFFFFFFFu) throw std::length_error("meldvm: hash table too large");
+  entries_ = LargeAllocator<Entry>().allocate(cap);
+  std::fill(entries_, entries_ + cap, Entry{0, kNone});
+  mask_ = std::uint32_t(cap - 1);
+  for (std::size_t k = 0; k < oldCapacity; ++k) {
+    const Entry& e = old[k];
     if (e.slot == kNone) continue;
     std::uint32_t i = e.hash & mask_;
     while (entries_[i].slot != kNone) i = (i + 1) & mask_;
     entries_[i] = e;
   }
+  if (old) LargeAllocator<Entry>().deallocate(old, oldCapacity);
 }
 
 std::size_t SlotHash::shrink() {
   // A table below kMappedFrom came from operator new: its memory would stay with the process.
-  if (entries_.size() * sizeof(Entry) < support::kMappedFrom) return 0;
-  std::size_t cap = entries_.size();
+  if (capacity() * sizeof(Entry) < support::kMappedFrom) return 0;
+  std::size_t cap = capacity();
   while (cap / 2 >= 16 && std::size_t(size_) * 4 <= cap / 2) cap /= 2;
-  if (cap == entries_.size()) return 0;
-  const std::size_t before = entries_.size();
+  if (cap == capacity()) return 0;
+  const std::size_t before = capacity();
   grow(cap);
   return (before - cap) * sizeof(Entry);
 }
 
 void SlotHash::insert(std::uint64_t hash, std::uint32_t slot) {
-  if (entries_.empty() || overloaded(size_ + 1, entries_.size())) grow();
+  if (!entries_ || overloaded(size_ + 1, capacity())) grow();
   const std::uint32_t h = fold(hash);
   std::uint32_t i = h & mask_;
   while (entries_[i].slot != kNone) i = (i + 1) & mask_;

@@ -27,8 +27,9 @@ extern "C" {
  * helpers of 2026-11-29; the commits that built them up called theirs 8, with other helper tables:
  * a shared object of one of them is refused, not misread. 10: UPDATE, SEND and DERIVE in native
  * code. 11: a rule's consumed facts unlinked by native code, the table's free list and count. 13:
- * meld_native_context::heap, CONS in native code.) */
-#define MELD_NATIVE_ABI_VERSION 14u
+ * meld_native_context::heap, CONS in native code. 15: meld_native_table::fields, ITER_KEY begun and
+ * indexed facts updated in native code; also whenever meldvm/key_hash.hpp changes.) */
+#define MELD_NATIVE_ABI_VERSION 15u
 
 typedef struct meld_native_vm meld_native_vm;       /* the VM's meld_native_context (below) */
 typedef struct meld_native_frame meld_native_frame; /* its frame (registers, loop slots) */
@@ -72,7 +73,27 @@ typedef struct meld_native_table {
   uint32_t reserved;
   uint32_t* free_list; /* the first free fact (a free fact's word 0 links the next in its high half) */
   uint32_t* live;      /* how many facts the table holds */
+  /* One per argument (home excluded), or null when the table has no index: the index on that
+   * argument alone (meld_native_field_index). */
+  const struct meld_native_field_index* fields;
 } meld_native_table;
+
+/* The index of a table on one argument (link_word 0: none). A fact f's word link_word links the
+ * facts with its key in list order (the previous in its low half, the next in its high half). The
+ * index's hash table maps a key to the first fact with it: `size` entries in use (0: none, and then
+ * `entries` may not be there), *mask + 1 entries at *entries (they move when the table grows),
+ * each one 8-byte word, its low half the key's folded hash and its high half the fact
+ * (MELD_NATIVE_NO_FACT: an empty entry); a key's entry is found by linear probing from its folded
+ * hash & mask. With `integer` nonzero the key is an int, bool, node or thread whose hash is
+ * meldvm/key_hash.hpp's of the node and the argument's 8 bytes, and a fact has the key when its
+ * node (the low half of word 1) and the argument's bytes are the same. */
+typedef struct meld_native_field_index {
+  const uint64_t* const* entries;
+  const uint32_t* mask;
+  const uint32_t* size;
+  uint32_t link_word;
+  uint32_t integer;
+} meld_native_field_index;
 
 /* The table's facts are plain words: no index, no de-duplication, no argument that holds a
  * reference. Native code may then write a fact's arguments and relink it in its list itself, and
@@ -96,6 +117,12 @@ typedef struct meld_native_table {
  * references then go to the stored fact, as the VM's own appends' do. (A separate flag: native
  * code built before it appends under BUFFERED only, without retaining.) */
 #define MELD_NATIVE_TABLE_BUFFERED_BOXED 8u
+/* The table has indexes, each on one argument (meld_native_table::fields), no de-duplication and no
+ * argument that holds a reference. Native code may then update a fact in place as under
+ * MELD_NATIVE_TABLE_PLAIN when every indexed argument keeps its value and, if the fact moves to
+ * the end of its list, no fact with the same key follows it (its link words' high halves are
+ * MELD_NATIVE_NO_FACT): its index chains keep their order. */
+#define MELD_NATIVE_TABLE_KEYED 16u
 
 /* The start of a frame (meldvm::Interpreter::Frame, same layout): the running node and the loop
  * slots, which native code reads to begin a loop itself. */
@@ -266,8 +293,9 @@ struct meld_native_helpers {
   /* ITER or ITER_KEY at pc: binds its slot's predicate and node, counts the loop and fills `out`;
    * native code then binds each fact to slots[slot].fact and runs the body itself, and at the
    * loop's end adds the facts it visited to *facts_tried and unbinds the slot (its fact is
-   * MELD_NATIVE_NO_FACT). Native code begins a plain ITER at the host itself, from
-   * meld_native_context, and calls this for ITER_KEY, thread facts and the step at the limit. */
+   * MELD_NATIVE_NO_FACT). Native code begins an ITER at the host itself, from meld_native_context,
+   * and an ITER_KEY whose argument has an `integer` index, and calls this for the other ITER_KEY
+   * loops, thread facts and the step at the limit. */
   void (*loop_begin)(meld_native_vm* vm, meld_native_frame* f, uint32_t pc, meld_native_loop* out);
   /* builtins[ID] runs the built-in function with that id of builtins.def: CALL calls it directly. */
   const meld_native_builtin* builtins;

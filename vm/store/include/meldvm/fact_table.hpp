@@ -18,6 +18,7 @@
 #include <vector>
 
 #include "meldvm/heap.hpp"
+#include "meldvm/key_hash.hpp"
 #include "meldvm/large_allocator.hpp"
 #include "meldvm/reference_fields.hpp"
 #include "meldvm/slot_hash.hpp"
@@ -36,7 +37,7 @@ struct ListHead {
   std::uint32_t size = 0;  // number of slots (distinct facts) in the list
 };
 
-class FactTable {
+class alignas(64) FactTable {  // 256 bytes, whole cache lines: see fact_table.cpp
  public:
   struct KeySpec {
     std::uint32_t first, count;  // key = fields [first, first + count); count may be 0 (node only)
@@ -148,6 +149,13 @@ class FactTable {
   // writes the free list's head and the count of live facts.
   FactRef* freeListAddress() { return &freeList_; }
   std::uint32_t* liveAddress() { return &live_; }
+  // Native code looks keys up in an index and updates an indexed fact in place itself
+  // (native_abi.h's meld_native_field_index): the index's hash table, whether its key hashes as
+  // integerHash, and whether the facts are words native code may write while every index's key
+  // stays as it is (no de-duplication, no argument holding a reference).
+  const SlotHash& indexHeads(std::uint32_t index) const { return indexes_[index].heads; }
+  bool integerIndex(std::uint32_t index) const { return indexes_[index].integer; }
+  bool wordsUnderIndexes() const { return !dedup_ && references_.empty(); }
   // The slot word of index `index`'s chain (after the list links and the count): its high half
   // links a fact to the next one, its low half to the previous (the head's: to the tail).
   static constexpr std::uint32_t indexLinkWord(std::uint32_t index) { return 2 + index; }
@@ -188,14 +196,11 @@ class FactTable {
     SlotHash heads;
     bool integer = false;  // integerKey(key): firstWithKey hashes and compares the bits inline
   };
-  // Integer-like keys (their bits are their identity) hash by one multiplication a field, not
-  // three rounds of mixHash each: every ITER_KEY and every stored fact of an indexed or
-  // de-duplicated table hashes its key. Odd multipliers keep distinct keys apart; the product's
-  // high half, which SlotHash folds into the bucket number, depends on all the bits.
+  // Integer-like keys (their bits are their identity): key_hash.hpp, shared with native code.
   static std::uint64_t integerHash(NodeId node, const Value* key, std::uint32_t count) {
-    std::uint64_t h = (std::uint64_t(node) + 0x6d656c64) * 0x9e3779b97f4a7c15ull;
-    for (std::uint32_t i = 0; i < count; ++i) h = (h ^ key[i].bits()) * 0xbf58476d1ce4e5b9ull;
-    return h ^ (h >> 29);
+    std::uint64_t h = key_hash::start(node);
+    for (std::uint32_t i = 0; i < count; ++i) h = key_hash::addField(h, key[i].bits());
+    return key_hash::finish(h);
   }
   // The first fact with this key in index `index` (kNoFact if none), and the key's hash.
   [[gnu::always_inline]] FactRef findKey(NodeId n, std::uint32_t index, const Value* key,
@@ -285,7 +290,7 @@ class FactTable {
   ReferenceFields references_;  // the fields to retain/release (boxed, counted nodes)
   std::vector<Index> indexes_;
   // Slots whose pages releaseFreePages gave back, [first, end) ranges (nullptr: none yet). (The
-  // flags below sit after live_, in what was padding: the FactTable stays 256 bytes.)
+  // flags below sit after live_, in what was padding.)
   struct SlotRange {
     FactRef first, end;
   };

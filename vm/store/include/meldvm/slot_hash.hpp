@@ -5,9 +5,11 @@
 // allocates nothing.
 #pragma once
 
+#include <cstddef>
 #include <cstdint>
 #include <vector>
 
+#include "meldvm/key_hash.hpp"
 #include "meldvm/large_allocator.hpp"
 
 namespace meldvm {
@@ -38,18 +40,49 @@ class SlotHash {
   // away), if it is a mapping of its own (support::kMappedFrom); the bytes given back.
   std::size_t shrink();
   std::uint32_t size() const { return size_; }
-  std::size_t capacity() const { return entries_.size(); }
+  std::size_t capacity() const { return entries_ ? std::size_t(mask_) + 1 : 0; }
+  // Native code looks keys up itself (native_abi.h's meld_native_field_index): where the entries
+  // are (this address does not move; the entries do when the table grows), each one 8-byte word
+  // with the folded hash in its low half and the slot in its high half, and the mask and count.
+  const std::uint64_t* const* entriesAddress() const {
+    static_assert(sizeof(Entry) == 8 && offsetof(Entry, hash) == 0 && offsetof(Entry, slot) == 4);
+    return reinterpret_cast<const std::uint64_t* const*>(&entries_);
+  }
+  const std::uint32_t* maskAddress() const { return &mask_; }
+  const std::uint32_t* sizeAddress() const { return &size_; }
+
+  SlotHash() = default;
+  ~SlotHash() { release(); }
+  SlotHash(SlotHash&& o) noexcept : entries_(o.entries_), mask_(o.mask_), size_(o.size_) { o.forget(); }
+  SlotHash& operator=(SlotHash&& o) noexcept {
+    if (this != &o) {
+      release();
+      entries_ = o.entries_, mask_ = o.mask_, size_ = o.size_;
+      o.forget();
+    }
+    return *this;
+  }
+  SlotHash(const SlotHash&) = delete;
+  SlotHash& operator=(const SlotHash&) = delete;
 
  private:
   struct Entry {
     std::uint32_t hash;
     std::uint32_t slot;
   };
-  static std::uint32_t fold(std::uint64_t h) { return std::uint32_t(h ^ (h >> 32)); }
+  static std::uint32_t fold(std::uint64_t h) { return key_hash::fold(h); }
   std::uint32_t indexOf(std::uint32_t h, std::uint32_t slot) const;
   void grow(std::size_t capacity = 0);  // 0: double
 
-  LargeVector<Entry> entries_;
+  void release() noexcept {
+    if (entries_) LargeAllocator<Entry>().deallocate(entries_, capacity());
+  }
+  void forget() noexcept { entries_ = nullptr, mask_ = 0, size_ = 0; }
+
+  // capacity() entries, a power of two, or none (nullptr) before the first insertion. (A pointer
+  // and the mask, not a vector: the pointer's address is what native code reads, and a
+  // FactTable, which holds one SlotHash, stays 256 bytes.)
+  Entry* entries_ = nullptr;
   std::uint32_t mask_ = 0;
   std::uint32_t size_ = 0;
 };
