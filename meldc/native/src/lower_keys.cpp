@@ -6,24 +6,30 @@
 #include <llvm/IR/MDBuilder.h>
 
 #include <algorithm>
+#include <map>
 
 #include "meldvm/key_hash.hpp"
 #include "region_lowering.hpp"
 
 namespace meldc::native::detail {
 
-llvm::Value* RegionLowering::findWithKey(Function& f, llvm::IRBuilder<>& b, const LoopView& table,
-                                         llvm::Value* index, llvm::Value* host, std::uint32_t field,
-                                         llvm::Value* key) {
+llvm::Value* RegionLowering::foldedKeyHash(llvm::IRBuilder<>& b, llvm::Value* host, llvm::Value* key) {
   namespace kh = meldvm::key_hash;
-  llvm::Type* i32 = b.getInt32Ty();
   llvm::Type* i64 = b.getInt64Ty();
-  llvm::Type* ptr = b.getPtrTy();
   llvm::Value* h = b.CreateMul(b.CreateAdd(b.CreateZExt(host, i64), b.getInt64(kh::kNodeOffset)),
                                b.getInt64(kh::kNodeMultiplier));
   h = b.CreateMul(b.CreateXor(h, key), b.getInt64(kh::kFieldMultiplier));
   h = b.CreateXor(h, b.CreateLShr(h, kh::kFinalShift));
-  llvm::Value* folded = b.CreateTrunc(b.CreateXor(h, b.CreateLShr(h, 32)), i32);
+  return b.CreateTrunc(b.CreateXor(h, b.CreateLShr(h, 32)), b.getInt32Ty());
+}
+
+llvm::Value* RegionLowering::findWithKey(Function& f, llvm::IRBuilder<>& b, const LoopView& table,
+                                         llvm::Value* index, llvm::Value* host, std::uint32_t field,
+                                         llvm::Value* key) {
+  llvm::Type* i32 = b.getInt32Ty();
+  llvm::Type* i64 = b.getInt64Ty();
+  llvm::Type* ptr = b.getPtrTy();
+  llvm::Value* folded = foldedKeyHash(b, host, key);
   auto indexField = [&](FieldIndexField k, llvm::Type* type) {
     return b.CreateLoad(type, b.CreateStructGEP(t_.fieldIndexType, index, k));
   };
@@ -68,6 +74,50 @@ llvm::Value* RegionLowering::findWithKey(Function& f, llvm::IRBuilder<>& b, cons
   first->addIncoming(fact, sameHash);
   first->addIncoming(b.getInt32(MELD_NATIVE_NO_FACT), onward);
   return first;
+}
+
+std::optional<RegionLowering::KeyJoin> RegionLowering::keyJoinAt(std::uint32_t body,
+                                                                 std::uint32_t slot) const {
+  std::map<std::uint32_t, std::uint32_t> fieldOfRegister;
+  std::uint32_t pc = body;
+  for (; pc < code_.size() && Opcode(code_[pc]) == Opcode::LOAD && code_[pc + 1] == slot; pc += length(pc))
+    fieldOfRegister[code_[pc + 3]] = code_[pc + 2];
+  if (pc >= code_.size() || Opcode(code_[pc]) != Opcode::ITER_KEY || (code_[pc + 3] & meldvm::kIterThread))
+    return std::nullopt;
+  const auto it = fieldOfRegister.find(code_[pc + 5]);
+  if (it == fieldOfRegister.end()) return std::nullopt;
+  return KeyJoin{it->second, code_[pc + 1], code_[pc + 4]};
+}
+
+void RegionLowering::fetchKeyAhead(Function& f, llvm::IRBuilder<>& b, const LoopView& loop, llvm::Value* fact,
+                                   llvm::Value* nextWord, const KeyJoin& join) {
+  llvm::Type* i32 = b.getInt32Ty();
+  llvm::Type* i64 = b.getInt64Ty();
+  llvm::Type* ptr = b.getPtrTy();
+  llvm::Value* next = highHalf(b, fact, loop, nextWord);
+  llvm::Value* fields =
+      b.CreateLoad(ptr, b.CreateStructGEP(t_.tableType, tableOf(f, b, join.pred), kTableFields));
+  llvm::BasicBlock* fetch = newBlock(f, "key.ahead");
+  llvm::BasicBlock* on = newBlock(f, "key.ahead.done");
+  b.CreateCondBr(
+      b.CreateAnd(b.CreateICmpNE(next, b.getInt32(MELD_NATIVE_NO_FACT)), b.CreateIsNotNull(fields)), fetch,
+      on);
+  b.SetInsertPoint(fetch);
+  llvm::Value* index = b.CreateConstInBoundsGEP1_64(t_.fieldIndexType, fields, join.keyArg);
+  llvm::Value* key =
+      b.CreateLoad(i64, factWord(b, loop, next, b.CreateAdd(loop.argOffset, b.getInt64(join.field))));
+  llvm::Value* host = b.CreateLoad(i32, b.CreateStructGEP(t_.frameHeadType, f.frame, kFrameHost));
+  // Where an empty table's entries are not there, the address is nonsense: a prefetch never faults.
+  llvm::Value* entries =
+      b.CreateLoad(ptr, b.CreateLoad(ptr, b.CreateStructGEP(t_.fieldIndexType, index, kIndexEntries)));
+  llvm::Value* mask =
+      b.CreateLoad(i32, b.CreateLoad(ptr, b.CreateStructGEP(t_.fieldIndexType, index, kIndexMask)));
+  llvm::Value* home = b.CreateAnd(foldedKeyHash(b, host, key), mask);
+  b.CreateIntrinsic(llvm::Intrinsic::prefetch, {ptr},
+                    {b.CreateInBoundsGEP(i64, entries, b.CreateZExt(home, i64)), b.getInt32(0), b.getInt32(3),
+                     b.getInt32(1)});
+  b.CreateBr(on);
+  b.SetInsertPoint(on);
 }
 
 const std::set<std::uint32_t>& RegionLowering::indexedLinear() {

@@ -187,6 +187,8 @@ class RegionLowering {
   // if none (lower_keys.cpp).
   llvm::Value* findWithKey(Function& f, llvm::IRBuilder<>& b, const LoopView& table, llvm::Value* index,
                            llvm::Value* host, std::uint32_t field, llvm::Value* key);
+  // meldvm/key_hash.hpp's folded hash of an integer key (i64 bits) at node `host` (i32).
+  llvm::Value* foldedKeyHash(llvm::IRBuilder<>& b, llvm::Value* host, llvm::Value* key);
   // The address of node's list heads (an i32 node), and of word w of its head of pred's list.
   llvm::Value* nodeHeads(Function& f, llvm::IRBuilder<>& b, llvm::Value* node);
   llvm::Value* listHead(Function& f, llvm::IRBuilder<>& b, llvm::Value* heads, std::uint32_t pred,
@@ -326,6 +328,19 @@ class RegionLowering {
     }
   };
   TableWords tableWords(Function& f, llvm::IRBuilder<>& b, std::uint32_t pred);
+  // A loop body that begins by loading arguments of the loop's fact and looking one of them up
+  // as an ITER_KEY's key (pagerank's neighbour, new-heat-transfer's): what it looks up.
+  struct KeyJoin {
+    std::uint32_t field;   // of the outer loop's fact
+    std::uint32_t pred;    // the ITER_KEY's
+    std::uint32_t keyArg;  // the ITER_KEY's argument
+  };
+  std::optional<KeyJoin> keyJoinAt(std::uint32_t body, std::uint32_t slot) const;
+  // Before the body runs for `fact`, the index entry its next fact's key will be looked up in is
+  // fetched (a hint): the look-ups of consecutive facts land anywhere in the index's table, and
+  // each waited for its entry (a third of new-heat-transfer's misses).
+  void fetchKeyAhead(Function& f, llvm::IRBuilder<>& b, const LoopView& loop, llvm::Value* fact,
+                     llvm::Value* nextWord, const KeyJoin& join);
   // The predicates whose linear facts may have an index (the VM's ProgramTables::keyLookups: the
   // program's index declarations and ITER_KEY loops), found once per block lowered.
   const std::set<std::uint32_t>& indexedLinear();
