@@ -129,7 +129,8 @@ void RegionLowering::lowerNativeLoop(Function& f, llvm::IRBuilder<>& b, std::uin
   b.SetInsertPoint(visit);
   b.CreateStore(b.CreateAdd(b.CreateLoad(i64, triedVar), b.getInt64(1)), triedVar);
   if (fetchDepth >= 0 && !pipe) fetchListsAhead(f, b, loop, fact, nextWord, listField, fetchDepth);
-  if (const auto join = keyJoinAt(pc + length(pc), slot)) fetchKeyAhead(f, b, loop, fact, nextWord, *join);
+  if (const auto join = meldvm::detail::keyJoinAt(code_, pc + length(pc), slot))
+    fetchKeyAhead(f, b, loop, fact, nextWord, *join);
   if (flags & meldvm::kIterLinear) {  // skipFact: consumed, or bound by an enclosing loop (§6.4.3)
     llvm::BasicBlock* live = newBlock(f, "live");
     b.CreateCondBr(b.CreateICmpEQ(factCount(b, loop, fact), b.getInt32(0)), advance, live);

@@ -6,7 +6,6 @@
 #include <llvm/IR/MDBuilder.h>
 
 #include <algorithm>
-#include <map>
 
 #include "meldvm/key_hash.hpp"
 #include "region_lowering.hpp"
@@ -76,21 +75,8 @@ llvm::Value* RegionLowering::findWithKey(Function& f, llvm::IRBuilder<>& b, cons
   return first;
 }
 
-std::optional<RegionLowering::KeyJoin> RegionLowering::keyJoinAt(std::uint32_t body,
-                                                                 std::uint32_t slot) const {
-  std::map<std::uint32_t, std::uint32_t> fieldOfRegister;
-  std::uint32_t pc = body;
-  for (; pc < code_.size() && Opcode(code_[pc]) == Opcode::LOAD && code_[pc + 1] == slot; pc += length(pc))
-    fieldOfRegister[code_[pc + 3]] = code_[pc + 2];
-  if (pc >= code_.size() || Opcode(code_[pc]) != Opcode::ITER_KEY || (code_[pc + 3] & meldvm::kIterThread))
-    return std::nullopt;
-  const auto it = fieldOfRegister.find(code_[pc + 5]);
-  if (it == fieldOfRegister.end()) return std::nullopt;
-  return KeyJoin{it->second, code_[pc + 1], code_[pc + 4]};
-}
-
 void RegionLowering::fetchKeyAhead(Function& f, llvm::IRBuilder<>& b, const LoopView& loop, llvm::Value* fact,
-                                   llvm::Value* nextWord, const KeyJoin& join) {
+                                   llvm::Value* nextWord, const meldvm::detail::KeyJoin& join) {
   llvm::Type* i32 = b.getInt32Ty();
   llvm::Type* i64 = b.getInt64Ty();
   llvm::Type* ptr = b.getPtrTy();

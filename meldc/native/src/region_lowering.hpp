@@ -328,19 +328,11 @@ class RegionLowering {
     }
   };
   TableWords tableWords(Function& f, llvm::IRBuilder<>& b, std::uint32_t pred);
-  // A loop body that begins by loading arguments of the loop's fact and looking one of them up
-  // as an ITER_KEY's key (pagerank's neighbour, new-heat-transfer's): what it looks up.
-  struct KeyJoin {
-    std::uint32_t field;   // of the outer loop's fact
-    std::uint32_t pred;    // the ITER_KEY's
-    std::uint32_t keyArg;  // the ITER_KEY's argument
-  };
-  std::optional<KeyJoin> keyJoinAt(std::uint32_t body, std::uint32_t slot) const;
   // Before the body runs for `fact`, the index entry its next fact's key will be looked up in is
   // fetched (a hint): the look-ups of consecutive facts land anywhere in the index's table, and
   // each waited for its entry (a third of new-heat-transfer's misses).
   void fetchKeyAhead(Function& f, llvm::IRBuilder<>& b, const LoopView& loop, llvm::Value* fact,
-                     llvm::Value* nextWord, const KeyJoin& join);
+                     llvm::Value* nextWord, const meldvm::detail::KeyJoin& join);
   // The predicates whose linear facts may have an index (the VM's ProgramTables::keyLookups: the
   // program's index declarations and ITER_KEY loops), found once per block lowered.
   const std::set<std::uint32_t>& indexedLinear();
