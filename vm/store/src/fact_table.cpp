@@ -35,6 +35,7 @@ std::uint32_t FactTable::addIndex(KeySpec key) {
   if (indexCount() == kMaxIndexes) throw std::length_error("meldvm: too many indexes on one predicate");
   indexes_.push_back(Index{key, {}, integerKey(key)});
   plain_ = false;
+  keyedWords_ = (indexCount() == 1 || keyedWords_) && key.count == 1 && wordsUnderIndexes();
   argOffset_ = indexLinkWord(indexCount());  // the arguments follow the index links
   stride_ = argOffset_ + arity();
   return indexCount() - 1;
