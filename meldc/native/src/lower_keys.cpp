@@ -90,6 +90,11 @@ void RegionLowering::fetchKeyAhead(Function& f, llvm::IRBuilder<>& b, const Loop
       on);
   b.SetInsertPoint(fetch);
   llvm::Value* index = b.CreateConstInBoundsGEP1_64(t_.fieldIndexType, fields, join.keyArg);
+  llvm::BasicBlock* integer = newBlock(f, "key.ahead.integer");  // (else no index there, or no bits hash)
+  b.CreateCondBr(b.CreateICmpNE(b.CreateLoad(i32, b.CreateStructGEP(t_.fieldIndexType, index, kIndexInteger)),
+                                b.getInt32(0)),
+                 integer, on);
+  b.SetInsertPoint(integer);
   llvm::Value* key =
       b.CreateLoad(i64, factWord(b, loop, next, b.CreateAdd(loop.argOffset, b.getInt64(join.field))));
   llvm::Value* host = b.CreateLoad(i32, b.CreateStructGEP(t_.frameHeadType, f.frame, kFrameHost));

@@ -52,13 +52,14 @@ void RegionLowering::lowerUpdate(Function& f, llvm::IRBuilder<>& b, std::uint32_
   llvm::Value* host = b.CreateLoad(i32, b.CreateStructGEP(t_.frameHeadType, f.frame, kFrameHost));
   llvm::Value* node = b.CreateLoad(i32, slotField(b, slots, s, kSlotNode));
   llvm::Value* fact = b.CreateLoad(i32, slotField(b, slots, s, kSlotFact));
-  llvm::Value* conditions[] = {
-      writesHere(f, b, std::uint32_t(pred), MELD_NATIVE_TABLE_PLAIN | MELD_NATIVE_TABLE_KEYED),
-      b.CreateICmpEQ(node, host)};
+  // (A predicate with no index declared nor looked up never has a KEYED table: no check then.)
+  const bool indexed = indexedLinear().count(std::uint32_t(pred)) != 0;
+  llvm::Value* conditions[] = {writesHere(f, b, std::uint32_t(pred),
+                                          MELD_NATIVE_TABLE_PLAIN | (indexed ? MELD_NATIVE_TABLE_KEYED : 0u)),
+                               b.CreateICmpEQ(node, host)};
   hereOrVm(f, b, conditions, "update", callVm);
   const TableWords table = tableWords(f, b, std::uint32_t(pred));
-  if (indexedLinear().count(std::uint32_t(pred)))
-    keysKeptOrVm(f, b, table, fact, args, count, toBack, callVm);
+  if (indexed) keysKeptOrVm(f, b, table, fact, args, count, toBack, callVm);
   llvm::Value* heads = nodeHeads(f, b, host);
   if (toBack) moveToBack(f, b, heads, std::uint32_t(pred), table, fact);
   llvm::Value* argsAt =
