@@ -112,17 +112,10 @@ void RegionLowering::fetchKeyAhead(Function& f, llvm::IRBuilder<>& b, const Loop
 }
 
 const std::set<std::uint32_t>& RegionLowering::indexedLinear() {
-  if (indexedLinear_) return *indexedLinear_;
-  indexedLinear_.emplace();
-  for (const meldvm::IndexRequest& ix : program_.indexes) indexedLinear_->insert(ix.predicate);
-  auto scan = [&](const meldvm::CodeBlock& block) {
-    meldvm::detail::forEachInstruction(block.code, [&](std::size_t pc) {
-      if (Opcode(block.code[pc]) == Opcode::ITER_KEY) indexedLinear_->insert(block.code[pc + 1]);
-    });
-  };
-  for (const meldvm::Rule& r : program_.rules) scan(r.block);
-  for (const meldvm::Process& p : program_.processes) scan(p.block);
-  for (const meldvm::Function& fn : program_.functions) scan(fn.block);
+  if (!indexedLinear_) {
+    indexedLinear_.emplace();
+    for (const auto& [pred, field] : meldvm::detail::keyLookups(program_)) indexedLinear_->insert(pred);
+  }
   return *indexedLinear_;
 }
 

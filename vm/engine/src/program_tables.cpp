@@ -32,7 +32,7 @@ void perPredicate(ProgramTables& t, const Program& program) {
   if (t.justMoved == preds) t.justMoved = Program::kNoPred;
 }
 
-// One walk over the code: what processes read, the key look-ups, whether random numbers are drawn.
+// One walk over the code: what processes read, whether random numbers are drawn; and the key look-ups.
 void scanCode(ProgramTables& t, const Program& program) {
   t.processNeeds.resize(program.processes.size());
   for (std::uint32_t i = 0; i < program.processes.size(); ++i) {
@@ -42,13 +42,10 @@ void scanCode(ProgramTables& t, const Program& program) {
         t.processNeeds[i].push_back(code[pc + 1]);
     });
   }
-  for (const IndexRequest& ix : program.indexes)
-    if (ix.predicate < program.predicates.size() && ix.field < program.predicates[ix.predicate].arity())
-      t.keyLookups.emplace_back(ix.predicate, ix.field);
+  t.keyLookups = detail::keyLookups(program);
   auto scan = [&](const CodeBlock& b) {
     detail::forEachInstruction(b.code, [&](std::size_t pc) {
       const auto op = Opcode(b.code[pc]);
-      if (op == Opcode::ITER_KEY) t.keyLookups.emplace_back(b.code[pc + 1], b.code[pc + 4]);
       if (op == Opcode::NEWNODE) t.createsNodes = true;
       if ((op == Opcode::CALL && (b.code[pc + 2] == 1 || b.code[pc + 2] == 32)) ||
           (op == Opcode::ITER_SORTED && (b.code[pc + 3] & kIterRandom)))

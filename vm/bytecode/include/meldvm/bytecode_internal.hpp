@@ -7,6 +7,8 @@
 #include <optional>
 #include <span>
 #include <string>
+#include <utility>
+#include <vector>
 
 #include "meldvm/program.hpp"
 
@@ -157,6 +159,10 @@ inline constexpr int kListFetchAhead = 5;
 // the list; 0 (only the first cell of the fact kListFetchAhead on, which the load's reference count
 // touches) when the list is only moved on. The interpreter and native code fetch alike.
 int listFetchDepth(const Program& program, std::span<const std::uint32_t> code, std::size_t loopPc);
+// The (predicate, argument) pairs a program looks up by key: its `index p/N` directives (the valid
+// ones) and its ITER_KEY loops. The VM indexes each (ProgramTables::keyLookups); native code knows
+// from them which linear predicates may have indexed tables.
+std::vector<std::pair<PredId, std::uint32_t>> keyLookups(const Program& program);
 // A loop body (from `body`) that begins by loading arguments of the fact in `slot` and looks one of
 // them up as the key of an ITER_KEY (pagerank's neighbour, new-heat-transfer's): that argument,
 // and the ITER_KEY's predicate and argument. Its look-ups of consecutive facts land anywhere in
