@@ -64,6 +64,7 @@ Interpreter::Interpreter(Machine& machine, const Program& program, Database& db,
   args_.resize(64);
   rules_.resize(program_.rules.size());
   if (native_) setUpNativeContext();
+  nativeHelpers_ = helperTable();
 }
 
 Interpreter::~Interpreter() = default;
@@ -758,36 +759,12 @@ struct NativeHelpers {
   };
 };
 
+const meld_native_helpers* Interpreter::helperTable() { return &NativeHelpers::kTable; }
+
 Interpreter::Status Interpreter::start(Frame& f, meld_native_block native) {
   if (!native) return exec(f, 0);
   return Status(native(&NativeHelpers::kTable, reinterpret_cast<meld_native_vm*>(&nativeContext_),
                        reinterpret_cast<meld_native_frame*>(&f), reinterpret_cast<std::uint64_t*>(f.regs)));
-}
-
-// What runWith does, less the chunk stack: the frame is the rule's own, written afresh as enter()
-// writes one (registers zero, slots unbound), its block run (native code, else the interpreter)
-// and its boxed registers released after the run.
-void Interpreter::runInOwnFrame(RuleRun& r, NodeId host) {
-  Value* regs = r.regs.get();
-  clearFrame(regs, r.regCount, r.slots.get(), r.slotCount);
-  const BlockInfo& info = *r.info;
-  Frame& f = r.frame;
-  f.host = host;
-  f.updated = false;
-  r.running = true;
-  try {
-    if (info.native)
-      info.native(&NativeHelpers::kTable, reinterpret_cast<meld_native_vm*>(&nativeContext_),
-                  reinterpret_cast<meld_native_frame*>(&f), reinterpret_cast<std::uint64_t*>(regs));
-    else
-      exec(f, 0);
-  } catch (...) {
-    releaseBoxedRegs(f, info);
-    r.running = false;
-    throw;
-  }
-  releaseBoxedRegs(f, info);
-  r.running = false;
 }
 
 Value Interpreter::callFunction(std::uint32_t fn, const Value* args, NodeId host) {

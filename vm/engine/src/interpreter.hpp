@@ -274,7 +274,34 @@ class Interpreter {
   };
   std::vector<RuleRun> rules_;  // one per rule, from the start
   void prepareRule(std::uint32_t rule, RuleRun& r);
-  void runInOwnFrame(RuleRun& r, NodeId host);
+  // What runWith does, less the chunk stack: the frame is the rule's own, written afresh as
+  // enter() writes one (registers zero, slots unbound), its block run (native code, else the
+  // interpreter) and its boxed registers released after the run. (Inline, into the Machine's loop
+  // over a node's rules, Machine::runOnce.)
+  void runInOwnFrame(RuleRun& r, NodeId host) {
+    Value* regs = r.regs.get();
+    clearFrame(regs, r.regCount, r.slots.get(), r.slotCount);
+    const BlockInfo& info = *r.info;
+    Frame& f = r.frame;
+    f.host = host;
+    f.updated = false;
+    r.running = true;
+    try {
+      if (info.native)
+        info.native(nativeHelpers_, reinterpret_cast<meld_native_vm*>(&nativeContext_),
+                    reinterpret_cast<meld_native_frame*>(&f), reinterpret_cast<std::uint64_t*>(regs));
+      else
+        exec(f, 0);
+    } catch (...) {
+      releaseBoxedRegs(f, info);
+      r.running = false;
+      throw;
+    }
+    releaseBoxedRegs(f, info);
+    r.running = false;
+  }
+  static const meld_native_helpers* helperTable();  // NativeHelpers::kTable (interpreter.cpp)
+  const meld_native_helpers* nativeHelpers_ = nullptr;
   BlockInfo axiomInfo_;                     // infoOf an axiom block (not cached)
   const CodeBlock* lastBlock_ = nullptr;    // the processes of a program run the same few blocks
   const BlockInfo* lastInfo_ = nullptr;

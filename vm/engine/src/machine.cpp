@@ -349,7 +349,9 @@ void Machine::stepLimitReached() const {
                      "nodes created); the program may not terminate");
 }
 
-void Machine::runRule(NodeId n, std::uint32_t rule) {
+// runRule and finishRuleRun are runOnce's, inlined into its loop over the node's rules (with the
+// interpreter's runInOwnFrame): heat-transfer 100 x 100 natively ran 3.5 % fewer instructions.
+[[gnu::always_inline]] inline void Machine::runRule(NodeId n, std::uint32_t rule) {
   countStep();
   try {
     interp_->runRule(rule, n);
@@ -358,16 +360,26 @@ void Machine::runRule(NodeId n, std::uint32_t rule) {
   }
 }
 
-void Machine::finishRuleRun() {
-  for (std::size_t i = 0; i < consumed_.size(); ++i) {
-    if (tables_.linearLists) fetchListsOfConsumed(i);
-    const ConsumedFacts::Fact& c = consumed_[i];
-    db_->consumeTrusted(c.node, c.pred, c.fact);
-    factRemoved(c.node, c.pred);
+// A rule run that consumed a few facts unlinks them here; one that consumed many, or facts with
+// lists (whose cells it fetches ahead), in unlinkConsumed. (That loop inlined here took 0.9 %
+// more instructions on 8queens-12, whose rule runs consume thousands of facts each.)
+[[gnu::always_inline]] inline void Machine::finishRuleRun() {
+  if (const std::size_t n = consumed_.size(); n <= kConsumedInline && !tables_.linearLists) {
+    for (std::size_t i = 0; i < n; ++i) unlinkOne(consumed_[i]);
+    consumed_.clear();
+  } else {
+    unlinkConsumed();
   }
-  consumed_.clear();
   if (!linearOut_.empty()) storeDerivedLinear();  // (many rule runs derive no linear fact here)
   processPersistent();
+}
+
+void Machine::unlinkConsumed() {
+  for (std::size_t i = 0; i < consumed_.size(); ++i) {
+    if (tables_.linearLists) fetchListsOfConsumed(i);
+    unlinkOne(consumed_[i]);
+  }
+  consumed_.clear();
 }
 
 // A consumed fact's list dies with it when the fact held its last reference, and its death drops
