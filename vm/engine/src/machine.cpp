@@ -286,7 +286,7 @@ void Machine::runOnce(NodeId n) {
   runDerived_ = runConsumed_ = 0;
   sentItself_ = false;  // what it sent itself is in its store: this run takes it in
   ++stats_.nodeRuns;
-  deliverIncoming(n);
+  if (!mail_->empty(n)) deliverIncoming(n);  // (on its own graph one machine stores linear facts on arrival)
   processPersistent();
   const bool withThread = threadNode_ != kNoNode && n != threadNode_;
   if (withThread) markThreadCandidates(n);
@@ -319,7 +319,7 @@ void Machine::runOnce(NodeId n) {
   }
   inRun_ = false;
   flushOutgoing();
-  applyPriorityRequests();
+  if (!priorityRequests_.empty()) applyPriorityRequests();
   if (recycling_.counting()) [[unlikely]]
     freeDroppedNodes();
 }

@@ -28,40 +28,16 @@ void SerialScheduler::addNode() {
   nodes_.push_back(fresh);
 }
 
-bool SerialScheduler::pop(NodeId& node) {
-  if (!heap_.empty()) {
-    node = heap_[0];
-    heapRemove(node);
-    nodes_[node].where = Where::Idle;
-    return true;
-  }
-  while (fifoHead_ < fifo_.size()) {
-    const FifoEntry e = fifo_[fifoHead_++];
-    if (nodes_[e.node].where != Where::Fifo || nodes_[e.node].ticket != e.ticket) continue;
-    --fifoLive_;
-    nodes_[e.node].where = Where::Idle;
-    node = e.node;
-    if (fifoHead_ > 4096 && fifoHead_ * 2 > fifo_.size()) {
-      fifo_.erase(fifo_.begin(), fifo_.begin() + std::ptrdiff_t(fifoHead_));
-      fifoHead_ = 0;
-    }
-    return true;
-  }
-  return false;
+bool SerialScheduler::popHeap(NodeId& node) {
+  node = heap_[0];
+  heapRemove(node);
+  nodes_[node].where = Where::Idle;
+  return true;
 }
 
-void SerialScheduler::enqueue(NodeId n) {
-  if (nodes_[n].prio != noPriority_) {
-    heapPush(n);
-  } else {
-    fifoPush(n);
-  }
-}
-
-void SerialScheduler::fifoPush(NodeId n) {
-  nodes_[n].where = Where::Fifo;
-  fifo_.push_back({n, ++nodes_[n].ticket});
-  ++fifoLive_;
+void SerialScheduler::dropServedEntries() {
+  fifo_.erase(fifo_.begin(), fifo_.begin() + std::ptrdiff_t(fifoHead_));
+  fifoHead_ = 0;
 }
 
 void SerialScheduler::finished(NodeId n, bool hasWork) {
