@@ -293,22 +293,17 @@ void Machine::runOnce(NodeId n) {
   std::uint64_t* cand = candidates_.data() + std::size_t(n) * tables_.ruleWords;
   // §6.4.2: the lowest-numbered candidate, of the node or of its thread, until none is left
   // (stop-program too lets the run finish, §6.13: only another thread's stop or a cancel cuts it).
+  // (Most programs have at most 64 rules and no thread facts: one word, the node's, decides.)
+  const bool oneWord = tables_.ruleWords == 1 && !withThread;
   while (!interrupted()) {
-    const std::uint64_t* threadCand =
-        withThread ? candidates_.data() + std::size_t(threadNode_) * tables_.ruleWords : nullptr;
-    // A rule of the thread node's own candidates runs with the running node as its host (@host,
-    // §6.12), as the established VM runs it; the candidate bit is the thread node's.
-    std::uint32_t rule = ~0u;
-    NodeId owner = n;
-    for (std::uint32_t w = 0; w < tables_.ruleWords && rule == ~0u; ++w) {
-      const std::uint64_t bits = cand[w] | (threadCand ? threadCand[w] : 0);
-      if (!bits) continue;
-      rule = w * 64 + std::uint32_t(__builtin_ctzll(bits));
-      if (!(cand[w] & (std::uint64_t(1) << (rule % 64)))) owner = threadNode_;
+    std::uint32_t rule;
+    if (oneWord) {
+      if (!cand[0]) break;
+      rule = std::uint32_t(__builtin_ctzll(cand[0]));
+      cand[0] &= cand[0] - 1;
+    } else if (rule = takeCandidate(n, cand, withThread); rule == ~0u) {
+      break;
     }
-    if (rule == ~0u) break;
-    std::uint64_t* ownerCand = candidates_.data() + std::size_t(owner) * tables_.ruleWords;
-    ownerCand[rule / 64] &= ~(std::uint64_t(1) << (rule % 64));
     runRule(n, rule);
     finishRuleRun();
     // A long node run would hold up a rebalance until it ends: between two rules, the runtime may
@@ -322,6 +317,27 @@ void Machine::runOnce(NodeId n) {
   if (!priorityRequests_.empty()) applyPriorityRequests();
   if (recycling_.counting()) [[unlikely]]
     freeDroppedNodes();
+}
+
+// The lowest-numbered candidate rule of node n (cand: its words) or, with withThread, of its
+// thread node, its bit cleared; ~0u when there is none. A rule of the thread node's own
+// candidates runs with the running node as its host (@host, §6.12), as the established VM runs
+// it; the candidate bit is the thread node's.
+std::uint32_t Machine::takeCandidate(NodeId n, std::uint64_t* cand, bool withThread) {
+  const std::uint64_t* threadCand =
+      withThread ? candidates_.data() + std::size_t(threadNode_) * tables_.ruleWords : nullptr;
+  std::uint32_t rule = ~0u;
+  NodeId owner = n;
+  for (std::uint32_t w = 0; w < tables_.ruleWords && rule == ~0u; ++w) {
+    const std::uint64_t bits = cand[w] | (threadCand ? threadCand[w] : 0);
+    if (!bits) continue;
+    rule = w * 64 + std::uint32_t(__builtin_ctzll(bits));
+    if (!(cand[w] & (std::uint64_t(1) << (rule % 64)))) owner = threadNode_;
+  }
+  if (rule == ~0u) return rule;
+  std::uint64_t* ownerCand = candidates_.data() + std::size_t(owner) * tables_.ruleWords;
+  ownerCand[rule / 64] &= ~(std::uint64_t(1) << (rule % 64));
+  return rule;
 }
 
 // §6.12: while a normal node runs, its thread's facts are visible. The rules over node and thread

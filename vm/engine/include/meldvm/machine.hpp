@@ -327,6 +327,7 @@ class Machine : private SchedulerView {
   // ---- node runs ----
   void runRule(NodeId n, std::uint32_t rule);
   void finishRuleRun();
+  std::uint32_t takeCandidate(NodeId n, std::uint64_t* cand, bool withThread);
   void unlinkConsumed();  // the facts the rule run consumed leave the store
   static constexpr std::size_t kConsumedInline = 8;
   [[gnu::always_inline]] void unlinkOne(const ConsumedFacts::Fact& c) {
