@@ -31,8 +31,8 @@ class SerialScheduler {
   }
 
   // The next node to run (heap first, then FIFO), or false when none is waiting. (The FIFO's
-  // case inline, as wake's: a node run is a few hundred instructions in heat-transfer's native
-  // code, and these calls were a twentieth of them.)
+  // case inline, as wake's: the calls of pop, enqueue and fifoPush were 2 % of heat-transfer's
+  // native instructions.)
   bool pop(NodeId& node) {
     if (!heap_.empty()) return popHeap(node);
     while (fifoHead_ < fifo_.size()) {
