@@ -8,9 +8,11 @@
 using namespace meldvm;
 
 namespace {
+constexpr NodeId kNotANode = 0xFFFFFFFFu;  // what n holds until pop() sets it (pop is inline: GCC asks)
+
 std::vector<NodeId> drain(SerialScheduler& s) {
   std::vector<NodeId> order;
-  NodeId n;
+  NodeId n = kNotANode;
   while (s.pop(n)) order.push_back(n);
   return order;
 }
@@ -33,7 +35,7 @@ BOOST_AUTO_TEST_CASE(without_initial_priorities_nodes_start_in_the_fifo_in_id_or
 BOOST_AUTO_TEST_CASE(after_a_run_a_node_goes_to_the_fifo_and_the_heap_is_served_first) {
   SerialScheduler s(SchedulingOptions{});
   s.start(3, 0, 3);
-  NodeId n;
+  NodeId n = kNotANode;
   BOOST_REQUIRE(s.pop(n));
   BOOST_TEST(n == 0u);
   s.finished(0, true);  // back with no priority: FIFO, behind the heap
@@ -74,7 +76,7 @@ BOOST_AUTO_TEST_CASE(a_waiting_node_is_queued_once_and_a_finished_node_falls_bac
   // As the established VM: only the default changes; the node takes it when its run ends.
   s.setDefaultPriority(0, 4.0);
   BOOST_TEST(s.priority(0) == s.noPriority());
-  NodeId n;
+  NodeId n = kNotANode;
   BOOST_REQUIRE(s.pop(n));
   BOOST_TEST(n == 0u);
   s.setPriority(0, 9.0);

@@ -763,7 +763,7 @@ const meld_native_helpers* Interpreter::helperTable() { return &NativeHelpers::k
 
 Interpreter::Status Interpreter::start(Frame& f, meld_native_block native) {
   if (!native) return exec(f, 0);
-  return Status(native(&NativeHelpers::kTable, reinterpret_cast<meld_native_vm*>(&nativeContext_),
+  return Status(native(nativeHelpers_, reinterpret_cast<meld_native_vm*>(&nativeContext_),
                        reinterpret_cast<meld_native_frame*>(&f), reinterpret_cast<std::uint64_t*>(f.regs)));
 }
 

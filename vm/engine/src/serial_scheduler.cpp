@@ -28,11 +28,11 @@ void SerialScheduler::addNode() {
   nodes_.push_back(fresh);
 }
 
-bool SerialScheduler::popHeap(NodeId& node) {
-  node = heap_[0];
+NodeId SerialScheduler::popHeap() {
+  const NodeId node = heap_[0];
   heapRemove(node);
   nodes_[node].where = Where::Idle;
-  return true;
+  return node;
 }
 
 void SerialScheduler::dropServedEntries() {

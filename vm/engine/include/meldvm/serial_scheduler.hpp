@@ -34,7 +34,10 @@ class SerialScheduler {
   // case inline, as wake's: the calls of pop, enqueue and fifoPush were 2 % of heat-transfer's
   // native instructions.)
   bool pop(NodeId& node) {
-    if (!heap_.empty()) return popHeap(node);
+    if (!heap_.empty()) {
+      node = popHeap();
+      return true;
+    }
     while (fifoHead_ < fifo_.size()) {
       const FifoEntry e = fifo_[fifoHead_++];
       if (nodes_[e.node].where != Where::Fifo || nodes_[e.node].ticket != e.ticket) continue;
@@ -143,7 +146,7 @@ class SerialScheduler {
     fifo_.push_back({n, ++nodes_[n].ticket});
     ++fifoLive_;
   }
-  bool popHeap(NodeId& node);
+  NodeId popHeap();  // the heap's first node, out of the heap
   void dropServedEntries();
   void heapPush(NodeId n);
   void heapRemove(NodeId n);
