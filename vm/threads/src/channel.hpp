@@ -3,7 +3,7 @@
 // records (worker.cpp; meldvm/shard_mail.hpp) under the channel's lock; the receiver swaps
 // the buffer out under the same lock. Nobody else ever takes that lock, and it is taken once per batch, not
 // per fact. The two buffers trade places, so their capacity is reused: no allocation in the steady state
-// (a buffer that grew large is given back after use: BatchPolicy::kKeptBytes).
+// (a buffer that grew past what recent batches needed is given back after use: RecentBatches).
 #pragma once
 
 #include <atomic>

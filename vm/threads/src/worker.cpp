@@ -125,8 +125,9 @@ bool Worker::takeMail() {
 bool Worker::takeFrom(ThreadId from) {
   const std::uint32_t batches = shared_.channel(from, self_).take(incoming_);
   if (batches == 0) return false;
+  recentBatches_.sent(incoming_.size());
   decode(incoming_);
-  clearBuffer(incoming_);
+  clearBuffer(incoming_, recentBatches_.keptBytes());
   shared_.active.fetch_sub(batches);  // cannot reach zero: this thread is busy
   return true;
 }
@@ -172,8 +173,9 @@ void Worker::flush() {
     Bytes& w = outgoing_[to];
     if (w.empty()) continue;
     shared_.active.fetch_add(1);  // before the batch can be taken
+    recentBatches_.sent(w.size());
     shared_.channel(self_, to).push(w);
-    clearBuffer(w);  // push() left it empty: what it gives back is a large capacity
+    clearBuffer(w, recentBatches_.keptBytes());  // push() left it empty, maybe with a large capacity
     shared_.wake(to);
     ++stats_.batchesOut;
   }

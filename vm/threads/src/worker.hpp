@@ -97,6 +97,7 @@ class alignas(64) Worker final : public ShardLink {
   std::size_t outgoingBytes_ = 0;
   unsigned runsSinceFlush_ = 0;
   Bytes incoming_;
+  RecentBatches recentBatches_;  // sent and taken: how much memory the batch buffers keep
   const bool stealing_;  // not with `priority @static`
   ShardMail mail_;
   std::vector<std::pair<NodeId, ThreadId>> deferredMoves_;  // set-cpu of the node running at a safe point

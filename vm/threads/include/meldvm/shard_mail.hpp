@@ -25,20 +25,43 @@ struct BatchPolicy {
   static constexpr std::size_t kFlushBytes = 65536;
   static constexpr unsigned kFlushRuns = 64;
   // A buffer that grew past this (a rebalance moving nodes with their stored facts, or a long
-  // node run's facts for one thread) is given back once used. Kept, every buffer on the way (the
-  // sender's, the channel's, the receiver's, a move's scratch) held its largest size to the end of
-  // the run: 7.6 MB of 8queens-12's 37.5 MB at -j 2, when moves still copied the waiting messages.
+  // node run's facts for one thread) is given back once used, unless the thread's recent batches
+  // are as large (RecentBatches). Kept, every buffer on the way (the sender's, the channel's, the
+  // receiver's, a move's scratch) held its largest size to the end of the run: 7.6 MB of
+  // 8queens-12's 37.5 MB at -j 2, when moves still copied the waiting messages.
   static constexpr std::size_t kKeptBytes = 4 * kFlushBytes;
 };
 
-// Empties `buffer`, giving its memory back if it grew past BatchPolicy::kKeptBytes.
+// Empties `buffer`, giving its memory back if it grew past keptBytes.
 template <class Buffer>
-void clearBuffer(Buffer& buffer) {
-  if (buffer.capacity() * sizeof(typename Buffer::value_type) > BatchPolicy::kKeptBytes)
+void clearBuffer(Buffer& buffer, std::size_t keptBytes = BatchPolicy::kKeptBytes) {
+  if (buffer.capacity() * sizeof(typename Buffer::value_type) > keptBytes)
     Buffer().swap(buffer);
   else
     buffer.clear();
 }
+
+// How large a thread's batch buffers stay while its batches stay large: twice the largest recent
+// batch, which loses an eighth at each batch since, and at least BatchPolicy::kKeptBytes. A buffer
+// given back is mapped afresh when it grows again: B2 n-queens 13 at -j 2 sends batches of ~370
+// KB on average and took 25 K page faults (4 K serially), its unmaps stopping the other thread
+// too. With this: 15 K, and 1.31 -> 1.17 s (2-core VM, medians of 7 interleaved runs), 3 MB more.
+// Losing half at each batch kept too few (19 K faults); buffers kept up to 4 MiB whatever the
+// batches cost B2 belief-propagation, whose large batches are few, 2 MB more at -j 2 (1.25x its
+// serial memory) where this costs it 0.2 MB.
+class RecentBatches {
+ public:
+  void sent(std::size_t bytes) {  // a batch sent or taken
+    const std::size_t decayed = largest_ - largest_ / 8;
+    largest_ = bytes > decayed ? bytes : decayed;
+  }
+  std::size_t keptBytes() const {
+    return 2 * largest_ > BatchPolicy::kKeptBytes ? 2 * largest_ : BatchPolicy::kKeptBytes;
+  }
+
+ private:
+  std::size_t largest_ = 0;
+};
 
 class ShardMail {
  public:
