@@ -334,7 +334,7 @@ class Machine : private SchedulerView {
     db_->consumeTrusted(c.node, c.pred, c.fact);
     factRemoved(c.node, c.pred);
   }
-  void fetchListsOfConsumed(std::size_t i) const;  // finishRuleRun, before consuming consumed_[i]
+  void fetchListsOfConsumed(std::size_t i) const;  // unlinkConsumed, before consuming consumed_[i]
   void publishAdded(NodeId n, PredId p);
   void runOnce(NodeId n);  // one run of node n (runNode repeats it while the node sent itself facts)
   void markThreadCandidates(NodeId n);  // §6.12: at the start of a normal node's run
