@@ -529,7 +529,7 @@ void Machine::sendAny(NodeId host, NodeId dest, PredId p, const Value* args, boo
         // were sent (postAll), which this keeps, and another thread sees them only when the batch
         // is flushed, between runs or in a rebalance, which takes every batch in before a node
         // moves. A copy and a second owner look-up less than waiting for the run's end.
-        if (db_->holdsReferences(p)) retainArgs(p, args);  // the record takes them over
+        retainArgsInline(p, args);  // the record takes them over
         shard_->sendRemote(owner, dest, p, args, negative);
         return;
       }

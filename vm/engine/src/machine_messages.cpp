@@ -7,7 +7,7 @@
 namespace meldvm {
 
 void Machine::post(NodeId dest, PredId p, const Value* args, bool negative, bool adopt) {
-  if (!adopt && db_->holdsReferences(p)) retainArgs(p, args);
+  if (!adopt) retainArgsInline(p, args);
   linearPosted_ |= tables_.isLinear[p];
   mail_->post(dest, p, negative, args);
   // The thread node is served apart (runNext), never from the queue.

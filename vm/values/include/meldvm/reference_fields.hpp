@@ -33,6 +33,10 @@ class ReferenceFields {
   bool empty() const { return objects_.empty() && nodes_.empty(); }
   // Some field holds a heap object and none a counted node: a copy retains objects only.
   bool objectsOnly() const { return !objects_.empty() && nodes_.empty(); }
+  // The one field that holds a reference when it is a heap object's, else -1.
+  std::int32_t soleObject() const {
+    return objects_.size() == 1 && nodes_.empty() ? std::int32_t(objects_[0]) : -1;
+  }
   void retain(Heap& heap, const Value* args) const {
     for (std::uint32_t i : objects_) heap.retainObjectValue(args[i]);
     for (std::uint32_t i : nodes_) heap.retainNode(args[i]);
