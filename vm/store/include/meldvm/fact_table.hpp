@@ -85,7 +85,10 @@ class alignas(64) FactTable {  // 256 bytes, whole cache lines: see fact_table.c
     const FactRef p = std::uint32_t(w[0].bits()), nx = std::uint32_t(w[0].bits() >> 32);
     connect(list, p, nx);
     --list.size;
-    if (!references_.empty()) references_.release(heap_, w + argOffset_);
+    if (soleObject_ >= 0)
+      heap_.releaseObject(w[argOffset_ + std::uint32_t(soleObject_)]);
+    else if (soleObject_ == kReferences)
+      references_.release(heap_, w + argOffset_);
     w[1] = Value::fromBits(0);  // count 0 marks the slot free
     w[0] = Value::fromBits((std::uint64_t(freeList_) << 32) | p);
     freeList_ = f;
@@ -349,6 +352,11 @@ class alignas(64) FactTable {  // 256 bytes, whole cache lines: see fact_table.c
   // Indexes on one field each, no de-duplication, no reference (wordsUnderIndexes): an update
   // that keeps every key relinks nothing (replaceArgs' second case).
   bool keyedWords_ = false;
+  // What erase releases in one load: the one field that holds a reference when it is a heap
+  // object's (ReferenceFields::soleObject, if below 128), kNoReference or kReferences (several, or
+  // a counted node: references_ walks them).
+  static constexpr std::int8_t kNoReference = -1, kReferences = -2;
+  std::int8_t soleObject_ = kNoReference;
 };
 
 }  // namespace meldvm
