@@ -35,10 +35,7 @@ Database::Database(const PredicateTable& preds, Heap& heap) : preds_(preds), hea
   }
   for (PredId p = 0; p < preds.size(); ++p) {
     const PredicateDesc& d = preds[p];
-    const ReferenceFields& refs = references_.emplace_back(heap_, d.fields);
-    referencePattern_.push_back(refs.empty()             ? kNoReferences
-                                : refs.soleObject() >= 0 ? refs.soleObject()
-                                                         : kSeveralReferences);
+    referencePattern_.push_back(references_.emplace_back(heap_, d.fields).pattern());
     intMinMax_.push_back(d.aggregated() && d.aggregateField == 0 && d.arity() == 1 &&
                          (d.aggregate == AggregateKind::Min || d.aggregate == AggregateKind::Max) &&
                          types.kind(d.fields[0]) == TypeKind::Int);

@@ -16,10 +16,7 @@ static_assert(sizeof(FactTable) == 256);
 FactTable::FactTable(const TypeTable& types, Heap& heap, std::vector<TypeId> fields, bool dedup)
     : types_(types), heap_(heap), fields_(std::move(fields)), references_(heap_, fields_), dedup_(dedup) {
   for (TypeId t : fields_) allUnboxed_ = allUnboxed_ && !types_.boxed(t);
-  if (const std::int32_t sole = references_.soleObject(); sole >= 0 && sole < 128)
-    soleObject_ = std::int8_t(sole);
-  else if (!references_.empty())
-    soleObject_ = kReferences;
+  referencePattern_ = references_.pattern();
   for (std::size_t i = 0; i < fields_.size() && i < 32; ++i)
     if (integerLike(types_, fields_[i])) integerFields_ |= std::uint32_t(1) << i;
   argOffset_ = 2;

@@ -440,9 +440,9 @@ class Machine : private SchedulerView {
   // retainArgs, with a fact of one boxed field retained here (8queens-12's messages, each with its
   // list: the call took 57 instructions a message).
   void retainArgsInline(PredId p, const Value* args) {
-    if (const std::int32_t r = db_->referencePattern(p); r >= 0)
+    if (const std::int8_t r = db_->referencePattern(p); r >= 0)
       heap_.retainObjectValue(args[r]);
-    else if (r == Database::kSeveralReferences)
+    else if (r == ReferenceFields::kSeveralReferences)
       retainArgs(p, args);
   }
   [[gnu::noinline]] void retainArgs(PredId p, const Value* args);

@@ -55,11 +55,9 @@ class Database {
   void removeNode(NodeId n);
   // Whether p's facts hold references (a boxed field, or a node the Heap counts): copies of its
   // arguments are retained and released (referenceFields).
-  bool holdsReferences(PredId p) const { return referencePattern_[p] != kNoReferences; }
-  // The same in one load, for copying arguments fact by fact: kNoReferences, kSeveralReferences,
-  // or the index of the only field that holds one, a heap object's (a message with a list).
-  static constexpr std::int32_t kNoReferences = -1, kSeveralReferences = -2;
-  std::int32_t referencePattern(PredId p) const { return referencePattern_[p]; }
+  bool holdsReferences(PredId p) const { return referencePattern_[p] != ReferenceFields::kNoReferences; }
+  // ReferenceFields::pattern of p's fields, in one load (copying arguments fact by fact).
+  std::int8_t referencePattern(PredId p) const { return referencePattern_[p]; }
   // Those fields, to retain or release a copy of p's arguments held elsewhere (a message).
   const ReferenceFields& referenceFields(PredId p) const { return references_[p]; }
   // A removed node comes back, with no facts (a created node's id used again).
@@ -307,7 +305,7 @@ class Database {
   std::vector<GroupInputs> nodeInputs_;      // the inputs of the aggregates grouped by the node alone
   std::vector<std::uint32_t> groupInputs_;   // per predicate: its entry in nodeInputs_, or kNoTable
   std::vector<ReferenceFields> references_;  // per predicate: its fields that hold references (Heap)
-  std::vector<std::int32_t> referencePattern_;  // per predicate (referencePattern)
+  std::vector<std::int8_t> referencePattern_;  // per predicate (referencePattern)
   std::vector<std::uint8_t> intMinMax_;      // per predicate: `p(node, min int)` or max (intMinMaxChange)
   NodeHeads heads_{0};                       // set up once tableCount_ is known
   std::vector<std::uint8_t> alive_;

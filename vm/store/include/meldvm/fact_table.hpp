@@ -85,9 +85,9 @@ class alignas(64) FactTable {  // 256 bytes, whole cache lines: see fact_table.c
     const FactRef p = std::uint32_t(w[0].bits()), nx = std::uint32_t(w[0].bits() >> 32);
     connect(list, p, nx);
     --list.size;
-    if (soleObject_ >= 0)
-      heap_.releaseObject(w[argOffset_ + std::uint32_t(soleObject_)]);
-    else if (soleObject_ == kReferences)
+    if (referencePattern_ >= 0)
+      heap_.releaseObject(w[argOffset_ + std::uint32_t(referencePattern_)]);
+    else if (referencePattern_ == ReferenceFields::kSeveralReferences)
       references_.release(heap_, w + argOffset_);
     w[1] = Value::fromBits(0);  // count 0 marks the slot free
     w[0] = Value::fromBits((std::uint64_t(freeList_) << 32) | p);
@@ -352,11 +352,8 @@ class alignas(64) FactTable {  // 256 bytes, whole cache lines: see fact_table.c
   // Indexes on one field each, no de-duplication, no reference (wordsUnderIndexes): an update
   // that keeps every key relinks nothing (replaceArgs' second case).
   bool keyedWords_ = false;
-  // What erase releases in one load: the one field that holds a reference when it is a heap
-  // object's (ReferenceFields::soleObject, if below 128), kNoReference or kReferences (several, or
-  // a counted node: references_ walks them).
-  static constexpr std::int8_t kNoReference = -1, kReferences = -2;
-  std::int8_t soleObject_ = kNoReference;
+  // references_.pattern(): what erase releases, in one load (in the padding: still 256 bytes).
+  std::int8_t referencePattern_ = ReferenceFields::kNoReferences;
 };
 
 }  // namespace meldvm

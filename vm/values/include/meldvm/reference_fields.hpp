@@ -33,9 +33,15 @@ class ReferenceFields {
   bool empty() const { return objects_.empty() && nodes_.empty(); }
   // Some field holds a heap object and none a counted node: a copy retains objects only.
   bool objectsOnly() const { return !objects_.empty() && nodes_.empty(); }
-  // The one field that holds a reference when it is a heap object's, else -1.
-  std::int32_t soleObject() const {
-    return objects_.size() == 1 && nodes_.empty() ? std::int32_t(objects_[0]) : -1;
+  // The references of a copy in one byte, for the paths that copy or drop one fact at a time
+  // (a message with its list, a consumed fact): kNoReferences; the index of the only field that
+  // holds one, when it holds a heap object and is below 128; else kSeveralReferences (retain and
+  // release walk them).
+  static constexpr std::int8_t kNoReferences = -1, kSeveralReferences = -2;
+  std::int8_t pattern() const {
+    if (empty()) return kNoReferences;
+    if (objects_.size() == 1 && nodes_.empty() && objects_[0] < 128) return std::int8_t(objects_[0]);
+    return kSeveralReferences;
   }
   void retain(Heap& heap, const Value* args) const {
     for (std::uint32_t i : objects_) heap.retainObjectValue(args[i]);
