@@ -202,50 +202,57 @@ Change Database::aggregateChangeIn(NodeId n, PredId p, Group g, std::uint32_t co
 // millions of such inputs).
 Change Database::intMinMaxChange(NodeId n, PredId p, Value v, std::uint32_t copies, bool add) {
   GroupInputs& g = nodeInputs_[groupInputs_[p]];
-  FactTable& visible = tables_[p];
   ListHead& list = head(n, p);
   const FactRef old = list.first;
-  const bool min = preds_[p].aggregate == AggregateKind::Min;
+  const bool min = intMinMax_[p] == kIntMin;
   const std::int32_t x = v.asInt();
   auto beats = [min](std::int32_t a, std::int32_t b) { return min ? a < b : a > b; };
-  const std::uint32_t i = g.find(n, &v);
+  auto published = [&] { return tables_[p].args(old)[0].asInt(); };
+  const std::uint32_t i = g.findInt(n, x);
   Change c;
   std::int32_t best = x;
   bool has = true;
   if (add) {
     if (i != GroupInputs::kNone) {
-      g.setCount(n, i, g.count(n, i) + copies);
-      c.count = g.count(n, i);
+      c.count = g.count(n, i) + copies;
+      g.setCount(n, i, c.count);
       if (old != kNoFact) return c;  // one more copy of a stored input: same winner
     } else {
-      g.append(n, &v, copies);
+      g.appendInt(n, x, copies);
       c.count = copies;
     }
-    if (old != kNoFact && !beats(x, visible.args(old)[0].asInt())) return c;
+    if (old != kNoFact && !beats(x, published())) return c;
   } else {
     if (i == GroupInputs::kNone) {
       c.found = false;
       return c;
     }
     if (g.count(n, i) > copies) {
-      g.setCount(n, i, g.count(n, i) - copies);
-      c.count = g.count(n, i);
+      c.count = g.count(n, i) - copies;
+      g.setCount(n, i, c.count);
       if (old != kNoFact) return c;
     } else {
       // Only the published value's input can change the winner when it goes.
-      const bool wasWinner = old == kNoFact || x == visible.args(old)[0].asInt();
-      g.eraseUnordered(n, i);  // equal ints are interchangeable: the order of inputs is not seen
+      const bool wasWinner = old == kNoFact || x == published();
+      g.eraseIntUnordered(n, i);  // equal ints are interchangeable: the order of inputs is not seen
       if (!wasWinner) return c;
     }
     has = g.size(n) != 0;
     if (has) {
-      best = g.args(n, 0)[0].asInt();
+      best = g.intAt(n, 0);
       for (std::uint32_t k = 1; k < g.size(n); ++k)
-        if (beats(g.args(n, k)[0].asInt(), best)) best = g.args(n, k)[0].asInt();
-      if (old != kNoFact && best == visible.args(old)[0].asInt()) return c;
+        if (beats(g.intAt(n, k), best)) best = g.intAt(n, k);
+      if (old != kNoFact && best == published()) return c;
     }
   }
-  if (old != kNoFact) {
+  publishIntMinMax(n, p, list, has, best, c);
+  return c;
+}
+
+// The winner changed: the old published fact goes, the new one (if any input is left) comes.
+void Database::publishIntMinMax(NodeId n, PredId p, ListHead& list, bool has, std::int32_t best, Change& c) {
+  FactTable& visible = tables_[p];
+  if (const FactRef old = list.first; old != kNoFact) {
     keepRemoved(p, old);
     visible.erase(list, old);
     c.removed = true;
@@ -258,7 +265,6 @@ Change Database::intMinMaxChange(NodeId n, PredId p, Value v, std::uint32_t copi
     c.added = true;
     c.addedArgs = added_;
   }
-  return c;
 }
 
 }  // namespace meldvm

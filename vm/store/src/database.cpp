@@ -36,9 +36,12 @@ Database::Database(const PredicateTable& preds, Heap& heap) : preds_(preds), hea
   for (PredId p = 0; p < preds.size(); ++p) {
     const PredicateDesc& d = preds[p];
     referencePattern_.push_back(references_.emplace_back(heap_, d.fields).pattern());
-    intMinMax_.push_back(d.aggregated() && d.aggregateField == 0 && d.arity() == 1 &&
-                         (d.aggregate == AggregateKind::Min || d.aggregate == AggregateKind::Max) &&
-                         types.kind(d.fields[0]) == TypeKind::Int);
+    const bool intShape =
+        d.aggregated() && d.aggregateField == 0 && d.arity() == 1 && types.kind(d.fields[0]) == TypeKind::Int;
+    intMinMax_.push_back(!intShape                           ? kNotIntMinMax
+                         : d.aggregate == AggregateKind::Min ? kIntMin
+                         : d.aggregate == AggregateKind::Max ? kIntMax
+                                                             : kNotIntMinMax);
     if (!d.aggregated()) continue;
     if (d.aggregateField == 0) {
       groupInputs_[p] = std::uint32_t(nodeInputs_.size());

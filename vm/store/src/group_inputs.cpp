@@ -103,11 +103,9 @@ Value* GroupInputs::releaseRecord(const Run& r, std::uint32_t i) {
   return rec;
 }
 
-void GroupInputs::dropLast(Run& r) {
-  if (--r.size == 0) {  // an empty group gives its run back
-    free(r.offset, r.sizeClass);
-    r = Run{};
-  }
+void GroupInputs::giveBack(Run& r) {
+  free(r.offset, r.sizeClass);
+  r = Run{};
 }
 
 void GroupInputs::clear(NodeId n) {

@@ -290,6 +290,7 @@ class Database {
   void keepRemoved(PredId p, FactRef f);  // copies a visible fact into removed_ before erasing it
   Change aggregateChange(NodeId n, PredId p, const Value* args, std::uint32_t copies, bool add);
   Change intMinMaxChange(NodeId n, PredId p, Value v, std::uint32_t copies, bool add);
+  void publishIntMinMax(NodeId n, PredId p, ListHead& list, bool has, std::int32_t best, Change& c);
   // The same over one of the two input stores (aggregate.cpp's NodeGroup and KeyedGroup).
   template <class Group>
   Change aggregateChangeIn(NodeId n, PredId p, Group g, std::uint32_t copies, bool add);
@@ -306,7 +307,9 @@ class Database {
   std::vector<std::uint32_t> groupInputs_;   // per predicate: its entry in nodeInputs_, or kNoTable
   std::vector<ReferenceFields> references_;  // per predicate: its fields that hold references (Heap)
   std::vector<std::int8_t> referencePattern_;  // per predicate (referencePattern)
-  std::vector<std::uint8_t> intMinMax_;      // per predicate: `p(node, min int)` or max (intMinMaxChange)
+  // Per predicate: `p(node, min int)` or max (intMinMaxChange), which of the two, or neither.
+  enum : std::uint8_t { kNotIntMinMax = 0, kIntMin = 1, kIntMax = 2 };
+  std::vector<std::uint8_t> intMinMax_;
   NodeHeads heads_{0};                       // set up once tableCount_ is known
   std::vector<std::uint8_t> alive_;
   std::uint32_t removedNodes_ = 0;
