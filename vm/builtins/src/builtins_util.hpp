@@ -27,18 +27,23 @@ inline Value retained(Heap& heap, TypeId t, Value v) {
 // temporary buffer is needed. `finish` hands over the list (a new reference).
 class ListBuilder {
  public:
-  ListBuilder(Heap& heap, TypeId listType) : heap_(heap), type_(listType) {}
+  ListBuilder(Heap& heap, TypeId listType)
+      : heap_(heap),
+        type_(listType),
+        item_(heap.types().element(listType)),
+        itemHolds_(heap.holdsReferences(item_)) {}
   ~ListBuilder() { heap_.release(type_, head_); }  // only if finish() was not reached (exception)
   ListBuilder(const ListBuilder&) = delete;
   ListBuilder& operator=(const ListBuilder&) = delete;
 
   void push(Value item) {
-    const Value cell = heap_.cons(type_, item, Value::nil());
+    if (itemHolds_) heap_.retainStored(item_, item);
+    ConsCell* cell = heap_.lastCell(type_, item);
     if (last_)
-      last_->tail = static_cast<ConsCell*>(cell.asObject());
+      last_->tail = cell;
     else
-      head_ = cell;
-    last_ = static_cast<ConsCell*>(cell.asObject());
+      head_ = Value::fromObject(cell);
+    last_ = cell;
   }
   // Shares `rest` as the tail of the list built so far.
   Value finish(Value rest = Value::nil()) {
@@ -56,6 +61,8 @@ class ListBuilder {
  private:
   Heap& heap_;
   TypeId type_;
+  TypeId item_;
+  bool itemHolds_;  // the items are heap objects or counted nodes: each one is retained
   Value head_ = Value::nil();
   ConsCell* last_ = nullptr;
 };

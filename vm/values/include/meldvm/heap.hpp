@@ -23,6 +23,7 @@
 #include <atomic>
 #include <cstddef>
 #include <cstdint>
+#include <new>
 #include <span>
 #include <string_view>
 #include <vector>
@@ -86,6 +87,14 @@ class Heap {
   // result is a new reference that the caller owns and must release.
   Value makeString(std::string_view s);
   Value cons(TypeId listType, Value head, Value tail);
+  // A list's new last cell, its tail nil, for a builder that retains `head` itself where the item
+  // type holds references (holdsReferences): cons without the call and the type tests per cell.
+  ConsCell* lastCell(TypeId listType, Value head) {
+    ConsCell* c = newCell(listType);
+    c->head = head;
+    c->tail = nullptr;
+    return c;
+  }
   Value makeList(TypeId listType, std::span<const Value> items, Value tail = Value::nil());  // items ++ tail
   // Struct, array or set (`type` says which); a set keeps the first copy of equal items.
   Value makeTuple(TypeId type, std::span<const Value> items);
@@ -260,5 +269,32 @@ class Heap {
   Object* deferredTails_[kDeferredTails] = {};
   std::size_t nextDeferred_ = 0;
 };
+
+// Inline: the built-ins make their lists one cell at a time (ListBuilder; B2 belief-propagation:
+// 65 million cells of float lists).
+[[gnu::always_inline]] inline void* Heap::allocate(std::size_t bytes) {
+  if (bytes <= kSmallMax) {
+    const std::size_t cls = smallClassOf(bytes);
+    if (FreeBlock* f = free_[cls]) {
+      free_[cls] = f->next;
+      // The block the next allocation of this class takes (it reads its link, then the caller
+      // writes it) was freed long ago and is often cold: nine in ten of the samples of n-queens
+      // 13's cons waited for it. Fetched now, it arrives while this one is used (cons went from
+      // 8.7 % of the native run's samples to 2.9 %).
+      __builtin_prefetch(f->next, 1);
+      ++live_;
+      bytesInUse_ += classBytes(cls);
+      return f;
+    }
+  }
+  return allocateSlow(bytes);
+}
+
+[[gnu::always_inline]] inline ConsCell* Heap::newCell(TypeId listType) {
+  auto* c = new (allocate(sizeof(ConsCell))) ConsCell;
+  c->refs = 1;
+  c->type = listType;
+  return c;
+}
 
 }  // namespace meldvm
