@@ -56,9 +56,9 @@ class GroupInputs {
   void clear(NodeId n);
 
   // The same for a group of one int field (records [count][value], nothing to retain): the
-  // shape of `p(node, min int)`, whose inputs arrive by the tens of millions (B2 shortest-path).
-  // Inline, and without the general case's moves and releases, they take a third of the
-  // instructions a change spent in the calls above.
+  // shape of `p(node, min int)`, whose inputs arrive by the tens of millions (B2 shortest-path:
+  // inline, without the general case's calls, moves and releases, its native run takes 8 % fewer
+  // instructions).
   std::uint32_t findInt(NodeId n, std::int32_t x) const { return findWord(n, Value::fromInt(x).bits()); }
   std::int32_t intAt(NodeId n, std::uint32_t i) const { return record(n, i)[1].asInt(); }
   void appendInt(NodeId n, std::int32_t x, std::uint32_t count) {
