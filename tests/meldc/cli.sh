@@ -61,6 +61,28 @@ case_emit_bytecode() {
   run 0 --emit=bytecode "$WORK/g.meld" -o "$WORK/out.mbc"
   cmp -s "$WORK/g.mbc" "$WORK/out.mbc" || fail "-o output differs from the default output"
 }
+case_output_replaces_file() {
+  # An existing output is replaced, not overwritten: a VM running the old .mbc reads its data
+  # file's facts from the file's mapping, so the old file (here a second link to it) stays whole.
+  cp valid/gradient.meld "$WORK/g.meld"
+  printf 'old bytes\n' >"$WORK/g.mbc"
+  ln "$WORK/g.mbc" "$WORK/old.mbc"
+  run 0 "$WORK/g.meld" -o "$WORK/g.mbc"
+  [ "$(cat "$WORK/old.mbc")" = "old bytes" ] || fail "the old file was written over"
+  [ "$(head -c 4 "$WORK/g.mbc")" = "MBC1" ] || fail "g.mbc is not the new bytecode"
+  ls "$WORK" | grep -q tmp && fail "a temporary file was left: $(ls "$WORK")"
+  # Through a symbolic link: the file it names is replaced, the link stays.
+  ln -s g.mbc "$WORK/link.mbc"
+  run 0 --emit=asm "$WORK/g.meld" -o "$WORK/link.mbc"
+  [ -L "$WORK/link.mbc" ] || fail "the symbolic link was replaced"
+  has "$WORK/g.mbc" "rule 0"
+  # A device is written in place, never replaced.
+  run 0 "$WORK/g.meld" -o /dev/null
+  [ -c /dev/null ] || fail "/dev/null is no longer a device"
+  # A folder that is not there: an error.
+  run 1 "$WORK/g.meld" -o "$WORK/missing/g.mbc"
+  has "$ERR" "cannot write '$WORK/missing/g.mbc'"
+}
 case_output_dash() {
   # -o - is standard output, bytecode included (for a pipe), and never a file named '-'.
   cp valid/gradient.meld "$WORK/g.meld"

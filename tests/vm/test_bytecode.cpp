@@ -222,7 +222,15 @@ BOOST_AUTO_TEST_CASE(source_lines_round_trip_and_are_checked) {
 // A block of literal facts only (AXIOM_FACTS and RET, no registers, no slots) comes back in
 // Program::literalAxioms, numbered after the other axiom blocks, its lines and label kept; the
 // verifier checks it as it checks the others.
-BOOST_AUTO_TEST_CASE(literal_axiom_blocks_are_read_back_to_back) {
+namespace {
+
+// fullProgram() with a block of literal facts (`literal`) as the file's axiom block 0; the general
+// one is 1.
+struct WithLiteralAxioms {
+  std::unique_ptr<Program> program;
+  CodeBlock literal;
+};
+WithLiteralAxioms withLiteralAxioms() {
   auto p = fullProgram();
   const PredId c = p->predicates.find("c"), edge = p->predicates.find("edge");
   CodeBlock literal;
@@ -231,9 +239,17 @@ BOOST_AUTO_TEST_CASE(literal_axiom_blocks_are_read_back_to_back) {
   emit(literal, Opcode::AXIOM_FACTS, {c, 3, 4, lo(0.25), hi(0.25)});
   emit(literal, Opcode::RET);
   literal.lines = {{3, 0, 20}, {4, 1, 21}, {5, 0, 22}};
-  const std::vector<std::uint32_t> code = literal.code;
-  p->axiomBlocks.insert(p->axiomBlocks.begin(), literal);  // file block 0: literal, 1: general
+  p->axiomBlocks.insert(p->axiomBlocks.begin(), literal);
   p->nodeAxioms = {1, 0, 1, Program::kNoAxioms};
+  return {std::move(p), std::move(literal)};
+}
+
+}  // namespace
+
+BOOST_AUTO_TEST_CASE(literal_axiom_blocks_are_read_back_to_back) {
+  auto [p, literal] = withLiteralAxioms();
+  const PredId edge = p->predicates.find("edge");
+  const std::vector<std::uint32_t> code = literal.code;
   BOOST_REQUIRE_EQUAL(verifyError(*p), "");
   const auto bytes = writeBytecode(*p);
   const auto q = readBytecode(bytes.data(), bytes.size());
@@ -283,6 +299,64 @@ BOOST_AUTO_TEST_CASE(literal_axiom_blocks_are_read_back_to_back) {
   auto far = readBytecode(bytes.data(), bytes.size());
   far->nodeAxioms[3] = 2;
   BOOST_TEST(contains(verifyError(*far), "node 3: unknown axiom block 2"), verifyError(*far));
+}
+
+// Read in place (readBytecodeInPlace, readBytecodeFile), literal axiom blocks are not copied: their
+// code, label and lines are those of the bytes, which the program keeps alive; the program is the
+// one a copying read makes. Bytes that cannot be read as words where they lie are copied.
+BOOST_AUTO_TEST_CASE(literal_axiom_blocks_are_read_in_place) {
+  const WithLiteralAxioms made = withLiteralAxioms();
+  const CodeBlock* literal = &made.literal;
+  const auto bytes = writeBytecode(*made.program);
+  const auto copied = readBytecode(bytes.data(), bytes.size());
+  BOOST_TEST(!copied->literalAxioms.viewing());
+  auto owner = std::make_shared<std::vector<std::uint8_t>>(bytes);
+  const std::uint8_t* from = owner->data();
+  const std::weak_ptr<std::vector<std::uint8_t>> watch = owner;
+  auto viewed = readBytecodeInPlace(from, bytes.size(), std::move(owner));
+  BOOST_REQUIRE(viewed->literalAxioms.viewing());
+  BOOST_REQUIRE_EQUAL(viewed->literalAxioms.size(), 1u);
+  const auto code = viewed->literalAxioms.code(0);
+  const auto* at = reinterpret_cast<const std::uint8_t*>(code.data());
+  BOOST_TEST((at > from && at + code.size_bytes() <= from + bytes.size()));  // in the bytes, not a copy
+  BOOST_TEST((std::vector<std::uint32_t>(code.begin(), code.end()) == literal->code));
+  BOOST_TEST(viewed->literalAxioms.label(0) == "axioms of node 1");
+  const auto lines = viewed->literalAxioms.lines(0);
+  BOOST_TEST((std::vector<SourceLine>(lines.begin(), lines.end()) == literal->lines));
+  BOOST_TEST((writeBytecode(*viewed) == bytes));
+  BOOST_TEST(listing(*viewed) == listing(*copied));
+  BOOST_TEST(!watch.expired());  // kept by the program
+  viewed.reset();
+  BOOST_TEST(watch.expired());
+
+  // Not on a word boundary: copied, the same program.
+  std::vector<std::uint8_t> shifted(bytes.size() + 1);
+  std::copy(bytes.begin(), bytes.end(), shifted.begin() + 1);
+  const auto unaligned = readBytecodeInPlace(shifted.data() + 1, bytes.size(), nullptr);
+  BOOST_TEST(!unaligned->literalAxioms.viewing());
+  BOOST_TEST((writeBytecode(*unaligned) == bytes));
+
+  // From a file: its mapping, kept by the program.
+  const auto path = std::filesystem::path(MELD_BINARY_DIR) / "tests/vm_test_bytecode_in_place.mbc";
+  std::ofstream(path, std::ios::binary).write(reinterpret_cast<const char*>(bytes.data()), bytes.size());
+  const auto mapped = readBytecodeFile(path.string());
+  std::filesystem::remove(path);
+  BOOST_TEST(mapped->literalAxioms.viewing());
+  BOOST_TEST(listing(*mapped) == listing(*copied));
+
+  // A bad source line of a literal block is refused either way, with the same message.
+  auto badLines = withLiteralAxioms().program;
+  badLines->axiomBlocks[0].lines = {{3, 0, 20}, {3, 0, 21}};  // not increasing
+  const auto bad = writeBytecode(*badLines);
+  const std::string copiedError = readError(bad);
+  BOOST_TEST(contains(copiedError, "source line 1 of block 'axioms of node 1' is out of order"), copiedError);
+  auto badOwner = std::make_shared<std::vector<std::uint8_t>>(bad);
+  try {
+    readBytecodeInPlace(badOwner->data(), badOwner->size(), badOwner);
+    BOOST_ERROR("bad source lines read in place were accepted");
+  } catch (const BytecodeError& e) {
+    BOOST_TEST(std::string(e.what()) == copiedError);
+  }
 }
 
 BOOST_AUTO_TEST_CASE(reader_verifies) {

@@ -2,6 +2,8 @@
 // lowers the program and writes bytecode (.mbc) or its disassembly.
 #include <unistd.h>
 
+#include <cstdio>
+#include <filesystem>
 #include <fstream>
 #include <iostream>
 #include <sstream>
@@ -23,16 +25,34 @@
 
 namespace {
 
-// Writes `text` to `path` (binary); false on failure.
-// "-" is standard output.
+bool writeDirectly(const std::string& path, const std::string& bytes) {
+  std::ofstream out(path, std::ios::binary);
+  if (out) out.write(bytes.data(), std::streamsize(bytes.size()));
+  return out && (out.close(), bool(out));
+}
+
+// Writes `bytes` to `path` (binary); false on failure. "-" is standard output.
+// A regular file (or a new one) is written next to its place under another name, then renamed
+// over it: a VM running the old file keeps reading it unchanged (meld maps a .mbc and reads a
+// data file's facts from the mapping), and an interrupted write leaves the old file whole. Other
+// files (a device, a pipe) are written in place.
 bool writeFile(const std::string& path, const std::string& bytes) {
   if (path == "-") {
     std::cout.write(bytes.data(), std::streamsize(bytes.size()));
     return bool(std::cout.flush());
   }
-  std::ofstream out(path, std::ios::binary);
-  if (out) out.write(bytes.data(), std::streamsize(bytes.size()));
-  return out && (out.close(), bool(out));
+  namespace fs = std::filesystem;
+  std::error_code ec;
+  fs::path target = path;
+  if (fs::is_symlink(path, ec)) target = fs::weakly_canonical(path, ec);
+  const fs::file_type type = ec ? fs::file_type::unknown : fs::status(target, ec).type();
+  if (type != fs::file_type::not_found && type != fs::file_type::regular) return writeDirectly(path, bytes);
+  const std::string temporary = target.string() + ".tmp" + std::to_string(getpid());
+  if (!writeDirectly(temporary, bytes) || std::rename(temporary.c_str(), target.c_str()) != 0) {
+    std::remove(temporary.c_str());
+    return false;
+  }
+  return true;
 }
 
 // FILE.meld -> FILE.mbc (FILE -> FILE.mbc when there is no extension).

@@ -40,6 +40,7 @@ void addDescription(llvm::Module& m, const meldvm::Program& program) {
       m, llvm::ArrayType::get(llvm::Type::getInt8Ty(c), bytes.size()), true,
       llvm::GlobalValue::PrivateLinkage, llvm::ConstantDataArray::get(c, llvm::ArrayRef<std::uint8_t>(bytes)),
       "meld_bytecode");
+  bytecode->setAlignment(llvm::Align(8));  // so that the VM reads its words in place
   const std::size_t count = meldvm::nativeCodeBlocks(program).size();
   std::vector<llvm::Constant*> entries;
   for (std::size_t k = 0; k < count; ++k)  // blocks of the other partitions are declared here

@@ -20,6 +20,8 @@ class Cursor {
   Cursor(const std::uint8_t* data, std::size_t size) : data_(data), end_(size) {}
 
   std::size_t pos() const { return pos_; }
+  const std::uint8_t* data() const { return data_; }
+  void skip(std::size_t bytes) { pos_ += bytes; }  // the caller checked that they are there
   std::size_t left() const { return end_ - pos_; }
 
   [[noreturn]] void fail(const std::string& what) const {
@@ -107,9 +109,20 @@ class Cursor {
   // slots, literalAxiomCode), otherwise into p.axiomBlocks. `code` is scratch.
   enum class AxiomKind : bool { General, Literal };
   AxiomKind axiomBlock(Program& p, std::vector<std::uint32_t>& code) {
+    const std::size_t labelAt = pos_ + 4;
     const std::string_view label = strView("block label");
     std::vector<TypeId> registerTypes = words("register types");  // (none: no allocation)
     const std::uint32_t slots = word("slot count");
+    if (p.literalAxioms.viewing() && registerTypes.empty() && slots == 0) {
+      const std::size_t countAt = pos_;
+      const std::uint32_t n = count("code", 4);
+      if (literalAxiomCode({reinterpret_cast<const std::uint32_t*>(data_ + pos_), n})) {
+        p.literalAxioms.addViewed(pos_, n, labelAt, std::uint32_t(label.size()));
+        pos_ += std::size_t(n) * 4;
+        return AxiomKind::Literal;
+      }
+      pos_ = countAt;  // a general block after all: read it again below
+    }
     code.clear();
     appendWords("code", code);
     if (registerTypes.empty() && slots == 0 && literalAxiomCode(code)) {
@@ -222,6 +235,17 @@ struct ReadState {
   std::vector<Cursor::AxiomKind> axiomKinds;
 };
 
+// Checked here, not by the verifier: a wrong line only misleads a message, but it is refused.
+void checkLines(const Cursor& c, std::span<const SourceLine> lines, std::size_t files, std::size_t codeSize,
+                std::string_view label) {
+  for (std::size_t i = 0; i < lines.size(); ++i) {
+    const SourceLine& l = lines[i];
+    if (l.pc >= codeSize || l.file >= files || (i && l.pc <= lines[i - 1].pc))
+      c.fail("source line " + std::to_string(i) + " of block '" + std::string(label) +
+             "' is out of order or out of range");
+  }
+}
+
 // A block's source lines, appended to `out`.
 void readLines(Cursor& c, std::size_t files, std::size_t codeSize, std::string_view label,
                std::vector<SourceLine>& out) {
@@ -229,19 +253,31 @@ void readLines(Cursor& c, std::size_t files, std::size_t codeSize, std::string_v
   const std::size_t from = out.size();
   out.resize(from + n);
   c.copyWords(out.data() + from, "source line", std::size_t(n) * 3);  // count() checked they are there
-  for (std::uint32_t i = 0; i < n; ++i) {
-    const SourceLine& l = out[from + i];
-    if (l.pc >= codeSize || l.file >= files || (i && l.pc <= out[from + i - 1].pc))
-      c.fail("source line " + std::to_string(i) + " of block '" + std::string(label) +
-             "' is out of order or out of range");
+  checkLines(c, std::span<const SourceLine>(out).subspan(from), files, codeSize, label);
+}
+
+// The source lines of literal axiom block i, viewed in place or copied.
+void readLiteralLines(Cursor& c, std::size_t files, LiteralAxioms& axioms, std::size_t i,
+                      std::vector<SourceLine>& scratch) {
+  if (!axioms.viewing()) {
+    scratch.clear();
+    readLines(c, files, axioms.code(i).size(), axioms.label(i), scratch);
+    axioms.addLines(scratch);
+    return;
   }
+  const std::uint32_t n = c.count("source line", 12);
+  const std::size_t at = c.pos();
+  c.skip(std::size_t(n) * 12);  // count() checked they are there
+  checkLines(c, {reinterpret_cast<const SourceLine*>(c.data() + at), n}, files, axioms.code(i).size(),
+             axioms.label(i));
+  axioms.addLinesViewed(at, n);
 }
 
 void readAxioms(Cursor& c, Program& p, ReadState& st) {
   p.nodeAxioms = c.words("node axioms");
   const std::uint32_t n = c.count("axiom block", 4 * 4);
   st.axiomKinds.reserve(n);
-  p.literalAxioms.reserveCode(c.left() / 4);
+  if (!p.literalAxioms.viewing()) p.literalAxioms.reserveCode(c.left() / 4);
   std::vector<std::uint32_t> code;
   for (std::uint32_t i = 0; i < n; ++i) st.axiomKinds.push_back(c.axiomBlock(p, code));
   // Blocks are numbered axiomBlocks first, then literalAxioms: renumber the nodes' blocks.
@@ -256,22 +292,19 @@ void readAxioms(Cursor& c, Program& p, ReadState& st) {
 void readSources(Cursor& c, Program& p, const ReadState& st) {
   const std::uint32_t files = c.count("source file", 4);
   for (std::uint32_t i = 0; i < files; ++i) p.sourceFiles.push_back(c.str("source file name"));
-  // Checked here, not by the verifier: a wrong line only misleads a message, but it is refused.
   forEachCodeBlockBeforeAxioms(p,
                                [&](CodeBlock& b) { readLines(c, files, b.code.size(), b.label, b.lines); });
   std::size_t general = 0, literal = 0;
-  if (!p.literalAxioms.empty()) p.literalAxioms.reserveLines(c.left() / sizeof(SourceLine));
-  std::vector<SourceLine> lines;
+  if (!p.literalAxioms.empty() && !p.literalAxioms.viewing())
+    p.literalAxioms.reserveLines(c.left() / sizeof(SourceLine));
+  std::vector<SourceLine> scratch;
   for (const Cursor::AxiomKind kind : st.axiomKinds) {
     if (kind == Cursor::AxiomKind::General) {
       CodeBlock& b = p.axiomBlocks[general++];
       readLines(c, files, b.code.size(), b.label, b.lines);
       continue;
     }
-    lines.clear();
-    readLines(c, files, p.literalAxioms.code(literal).size(), p.literalAxioms.label(literal), lines);
-    p.literalAxioms.addLines(lines);
-    ++literal;
+    readLiteralLines(c, files, p.literalAxioms, literal++, scratch);
   }
 }
 
@@ -393,9 +426,9 @@ void readSection(Cursor& c, std::uint32_t tag, Program& p, ReadState& st) {
   }
 }
 
-}  // namespace
-
-std::unique_ptr<Program> readBytecode(const std::uint8_t* data, std::size_t size) {
+// owner: null to copy the literal axioms, else the keeper of `data` for viewing them in place.
+std::unique_ptr<Program> parse(const std::uint8_t* data, std::size_t size,
+                               std::shared_ptr<const void>* owner) {
   Cursor c(data, size);
   c.need(4, "magic");
   if (std::memcmp(data, kMagic, 4) != 0) c.fail("not a Meld bytecode file (magic is not MBC1)");
@@ -409,6 +442,9 @@ std::unique_ptr<Program> readBytecode(const std::uint8_t* data, std::size_t size
     c.fail("section count " + std::to_string(sections) + " (expected " + std::to_string(expected) + ")");
 
   auto p = std::make_unique<Program>();
+  // In place only where the words can be read as they lie: aligned, in the file's byte order.
+  if (owner && std::endian::native == std::endian::little && reinterpret_cast<std::uintptr_t>(data) % 4 == 0)
+    p->literalAxioms.view(data, std::move(*owner));
   ReadState st;
   for (std::uint32_t want = 1; want <= expected; ++want) {
     const std::uint32_t tag = c.word("section tag");
@@ -428,10 +464,21 @@ std::unique_ptr<Program> readBytecode(const std::uint8_t* data, std::size_t size
   return p;
 }
 
+}  // namespace
+
+std::unique_ptr<Program> readBytecode(const std::uint8_t* data, std::size_t size) {
+  return parse(data, size, nullptr);
+}
+
+std::unique_ptr<Program> readBytecodeInPlace(const std::uint8_t* data, std::size_t size,
+                                             std::shared_ptr<const void> owner) {
+  return parse(data, size, &owner);
+}
+
 std::unique_ptr<Program> readBytecodeFile(const std::string& path) {
-  const detail::FileBytes bytes(path);
+  auto bytes = std::make_shared<const detail::FileBytes>(path);
   try {
-    return readBytecode(bytes.data(), bytes.size());
+    return readBytecodeInPlace(bytes->data(), bytes->size(), bytes);
   } catch (const BytecodeError& e) {
     throw BytecodeError(path + ": " + e.what(), e.offset());
   }

@@ -3,8 +3,11 @@
 // the same descriptor (POSIX, as the rest of the VM: dlopen, mmap).
 //
 // Why: reading pagerank-movies' 1.9 MB `.mbc` into a growing vector zeroed, copied and faulted in
-// about 2.5 times its size; that was a quarter of the run's page faults. (A file that another
-// process truncates during the few milliseconds of the read ends the run with SIGBUS.)
+// about 2.5 times its size; that was a quarter of the run's page faults. readBytecodeFile keeps
+// the mapping as long as the program, whose literal axioms are read from it (LiteralAxioms). So a
+// file changed in place during the run is read changed, and one truncated ends the run with
+// SIGBUS, as a shared object's would: meldc replaces its output instead (a new file renamed over
+// the old one, which a running VM keeps), as linkers do.
 #pragma once
 
 #include <cstddef>

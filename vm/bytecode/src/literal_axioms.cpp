@@ -1,5 +1,6 @@
 #include "meldvm/literal_axioms.hpp"
 
+#include <cstring>
 #include <stdexcept>
 
 #include "meldvm/bytecode_internal.hpp"
@@ -7,17 +8,58 @@
 
 namespace meldvm {
 
+void LiteralAxioms::checkMode(bool viewed) const {
+  if (viewing() != viewed)
+    throw std::logic_error(viewed ? "meldvm: a viewed literal axiom block added to copied ones"
+                                  : "meldvm: a copied literal axiom block added to viewed ones");
+}
+
 void LiteralAxioms::add(std::span<const std::uint32_t> code, std::string_view label) {
-  code_.insert(code_.end(), code.begin(), code.end());
-  codeStart_.push_back(code_.size());
-  labels_.append(label);
-  labelStart_.push_back(labels_.size());
+  checkMode(false);
+  Block b;
+  b.label = words_.size() * 4;
+  b.labelBytes = std::uint32_t(label.size());
+  words_.resize(words_.size() + (label.size() + 3) / 4);
+  if (!label.empty()) std::memcpy(words_.data() + b.label / 4, label.data(), label.size());
+  b.code = words_.size() * 4;
+  b.codeWords = std::uint32_t(code.size());
+  words_.insert(words_.end(), code.begin(), code.end());
+  blocks_.push_back(b);
 }
 
 void LiteralAxioms::addLines(std::span<const SourceLine> lines) {
-  if (lineStart_.size() > size()) throw std::logic_error("meldvm: source lines for a block not added");
-  lines_.insert(lines_.end(), lines.begin(), lines.end());
-  lineStart_.push_back(lines_.size());
+  checkMode(false);
+  if (linesAdded_ >= size()) throw std::logic_error("meldvm: source lines for a block not added");
+  Block& b = blocks_[linesAdded_++];
+  b.lines = words_.size() * 4;
+  b.lineCount = std::uint32_t(lines.size());
+  words_.resize(words_.size() + lines.size() * kLineWords);
+  if (!lines.empty()) std::memcpy(words_.data() + b.lines / 4, lines.data(), lines.size_bytes());
+}
+
+void LiteralAxioms::view(const std::uint8_t* bytes, std::shared_ptr<const void> owner) {
+  if (!empty() || !words_.empty()) throw std::logic_error("meldvm: viewing bytes after blocks were added");
+  view_ = bytes;
+  owner_ = std::move(owner);
+}
+
+void LiteralAxioms::addViewed(std::size_t codeAt, std::uint32_t codeWords, std::size_t labelAt,
+                              std::uint32_t labelBytes) {
+  checkMode(true);
+  Block b;
+  b.code = codeAt;
+  b.codeWords = codeWords;
+  b.label = labelAt;
+  b.labelBytes = labelBytes;
+  blocks_.push_back(b);
+}
+
+void LiteralAxioms::addLinesViewed(std::size_t linesAt, std::uint32_t lineCount) {
+  checkMode(true);
+  if (linesAdded_ >= size()) throw std::logic_error("meldvm: source lines for a block not added");
+  Block& b = blocks_[linesAdded_++];
+  b.lines = linesAt;
+  b.lineCount = lineCount;
 }
 
 CodeBlock LiteralAxioms::block(std::size_t i) const {

@@ -41,7 +41,8 @@ std::unique_ptr<NativeLibrary> NativeLibrary::open(const std::string& path) {
                         ", this VM reads version " + std::to_string(kBytecodeVersion) +
                         ": compile the program again with this meldc");
   try {
-    lib->program_ = readBytecode(d->bytecode, std::size_t(d->bytecode_size));
+    // In place: the library stays open until program_ is gone (~NativeLibrary).
+    lib->program_ = readBytecodeInPlace(d->bytecode, std::size_t(d->bytecode_size), nullptr);
   } catch (const BytecodeError& e) {
     throw bad(path, std::string("its bytecode is bad: ") + e.what());
   }

@@ -43,6 +43,12 @@ class BytecodeError : public std::runtime_error {
 std::vector<std::uint8_t> writeBytecode(const Program& program);
 // Parses and verifies; throws BytecodeError.
 std::unique_ptr<Program> readBytecode(const std::uint8_t* data, std::size_t size);
+// As readBytecode, but the program's literal axioms (a data file's facts, most of a big file) are
+// read where they lie in `data` instead of being copied: `data` must stay unchanged while the
+// program lives, and the program keeps `owner` (which may keep `data` alive; may be empty).
+std::unique_ptr<Program> readBytecodeInPlace(const std::uint8_t* data, std::size_t size,
+                                             std::shared_ptr<const void> owner);
+// Reads the file in place: the program keeps the file's mapping (see file_bytes.hpp).
 std::unique_ptr<Program> readBytecodeFile(const std::string& path);  // also BytecodeError for I/O
 
 // Checks every code block of a program built in memory (also run by readBytecode); throws
