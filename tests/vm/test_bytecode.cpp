@@ -329,6 +329,15 @@ BOOST_AUTO_TEST_CASE(literal_axiom_blocks_are_read_in_place) {
   viewed.reset();
   BOOST_TEST(watch.expired());
 
+  // Nothing to view (no literal axiom block): the bytes are not kept.
+  auto plainOwner = std::make_shared<std::vector<std::uint8_t>>(writeBytecode(*fullProgram()));
+  const std::weak_ptr<std::vector<std::uint8_t>> plainWatch = plainOwner;
+  const std::uint8_t* plainBytes = plainOwner->data();
+  const std::size_t plainSize = plainOwner->size();
+  const auto plain = readBytecodeInPlace(plainBytes, plainSize, std::move(plainOwner));
+  BOOST_TEST(!plain->literalAxioms.viewing());
+  BOOST_TEST(plainWatch.expired());
+
   // Not on a word boundary: copied, the same program.
   std::vector<std::uint8_t> shifted(bytes.size() + 1);
   std::copy(bytes.begin(), bytes.end(), shifted.begin() + 1);

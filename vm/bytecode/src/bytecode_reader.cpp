@@ -277,6 +277,7 @@ void readAxioms(Cursor& c, Program& p, ReadState& st) {
   p.nodeAxioms = c.words("node axioms");
   const std::uint32_t n = c.count("axiom block", 4 * 4);
   st.axiomKinds.reserve(n);
+  p.literalAxioms.reserveBlocks(n);  // a bound: general blocks take none
   if (!p.literalAxioms.viewing()) p.literalAxioms.reserveCode(c.left() / 4);
   std::vector<std::uint32_t> code;
   for (std::uint32_t i = 0; i < n; ++i) st.axiomKinds.push_back(c.axiomBlock(p, code));
@@ -460,6 +461,8 @@ std::unique_ptr<Program> parse(const std::uint8_t* data, std::size_t size,
     c.leave(outer, sectionName(tag));
   }
   if (c.left() != 0) c.fail(std::to_string(c.left()) + " bytes of trailing garbage after the last section");
+  // Nothing viewed: the bytes (a file's mapping, which counts in the run's memory) go now.
+  if (p->literalAxioms.viewing() && p->literalAxioms.empty()) p->literalAxioms = LiteralAxioms();
   verifyProgram(*p);
   return p;
 }

@@ -4,6 +4,7 @@
 #include <stdexcept>
 
 #include "meldvm/bytecode_internal.hpp"
+#include "meldvm/large_allocator.hpp"
 #include "meldvm/program.hpp"
 
 namespace meldvm {
@@ -35,6 +36,11 @@ void LiteralAxioms::addLines(std::span<const SourceLine> lines) {
   b.lineCount = std::uint32_t(lines.size());
   words_.resize(words_.size() + lines.size() * kLineWords);
   if (!lines.empty()) std::memcpy(words_.data() + b.lines / 4, lines.data(), lines.size_bytes());
+}
+
+void LiteralAxioms::reserveBlocks(std::size_t blocks) {
+  blocks_.reserve(blocks_.size() + blocks);
+  support::prefault(blocks_.data() + blocks_.size(), blocks * sizeof(Block));
 }
 
 void LiteralAxioms::view(const std::uint8_t* bytes, std::shared_ptr<const void> owner) {

@@ -14,6 +14,8 @@ void SerialScheduler::start(NodeId nodes, NodeId first, NodeId end) {
   NodeState init;
   init.prio = initial_;
   init.defaultPrio = default_;
+  nodes_.reserve(nodes);
+  support::prefault(nodes_.data(), std::size_t(nodes) * sizeof(NodeState));  // all written now
   nodes_.assign(nodes, init);
   for (NodeId n = first; n < end; ++n) {
     nodes_[n].held = 1;

@@ -117,7 +117,10 @@ std::uint32_t Mailboxes::freshCells(std::uint32_t cells) {
     ++slabCount_;
     slabUsed_ = 0;
   }
-  const std::uint32_t c = ((firstSlab_ + slabCount_ - 1) << kSlabShift) | slabUsed_;
+  const std::uint32_t slab = firstSlab_ + slabCount_ - 1, c = (slab << kSlabShift) | slabUsed_;
+  const std::size_t cellBytes = std::size_t(cellWords_) * sizeof(Value);
+  support::prefaultAhead(table_[slab], slabCapacity(slabCount_ - 1) * cellBytes, slabUsed_ * cellBytes,
+                         (slabUsed_ + cells) * cellBytes);  // cells are handed out in order
   slabUsed_ += cells;
   return c;
 }

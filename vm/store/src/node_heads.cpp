@@ -1,6 +1,11 @@
 #include "meldvm/node_heads.hpp"
 
 #include <algorithm>
+#include <memory>
+#include <new>
+#include <type_traits>
+
+#include "meldvm/large_allocator.hpp"
 
 namespace meldvm {
 
@@ -17,13 +22,18 @@ void NodeHeads::addNodes(NodeId count) {
   pageTable_ = pages_.data();
 }
 
-std::unique_ptr<ListHead[]> NodeHeads::newPage(std::size_t nodes) {
-  headsAllocated_ += nodes * perNode_;
-  return std::unique_ptr<ListHead[]>(new ListHead[nodes * perNode_]);
+NodeHeads::Page NodeHeads::newPage(std::size_t nodes) {
+  static_assert(std::is_trivially_destructible_v<ListHead>);
+  const std::size_t heads = nodes * perNode_;
+  headsAllocated_ += heads;
+  auto* page = static_cast<ListHead*>(::operator new(heads * sizeof(ListHead)));
+  support::prefault(page, heads * sizeof(ListHead));
+  std::uninitialized_default_construct_n(page, heads);
+  return Page(page);
 }
 
 void NodeHeads::resizeFirstPage(std::size_t nodes) {
-  std::unique_ptr<ListHead[]> page = newPage(nodes);
+  Page page = newPage(nodes);
   if (firstPageNodes_ != 0) std::copy_n(pages_[0], firstPageNodes_ * perNode_, page.get());
   headsAllocated_ -= firstPageNodes_ * perNode_;  // the old page goes
   firstPageNodes_ = nodes;

@@ -23,6 +23,7 @@ void SlotHash::grow(std::size_t cap) {
   if (cap == 0) cap = old ? oldCapacity * 2 : 16;
   if (cap - 1 > 0xFFFFFFFFu) throw std::length_error("meldvm: hash table too large");
   entries_ = LargeAllocator<Entry>().allocate(cap);
+  support::prefault(entries_, cap * sizeof(Entry));  // all written at once
   std::fill(entries_, entries_ + cap, Entry{0, kNone});
   mask_ = std::uint32_t(cap - 1);
   for (std::size_t k = 0; k < oldCapacity; ++k) {

@@ -107,6 +107,7 @@ char* Heap::newSlab() {
     char* slab = static_cast<char*>(::operator new(kSlabBytes, std::align_val_t(kSlabBytes)));
     slabs_.push_back(slab);
     bytesReserved_ += kSlabBytes;
+    support::prefault(slab, kSlabBytes);  // its blocks are handed out one after the other
     return slab;
   }
   if (chunkNext_ == chunkEnd_) {  // a chunk is aligned to 2 MiB: its slabs to their size

@@ -31,6 +31,9 @@ class LiteralAxioms {
   void add(std::span<const std::uint32_t> code, std::string_view label);
   // The source lines of the next block that has none yet (blocks without lines: an empty span).
   void addLines(std::span<const SourceLine> lines);
+  // For the reader: makes room for `blocks` more blocks (their records are written as the file
+  // is read: prefaulted).
+  void reserveBlocks(std::size_t blocks);
   // For the reader: makes room for `words` more code words.
   void reserveCode(std::size_t words) { words_.reserve(words_.size() + words); }
   // For the reader: makes room for `lines` more source lines (a bound: the pages of the room

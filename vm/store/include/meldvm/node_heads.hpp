@@ -47,7 +47,13 @@ class NodeHeads {
   }
 
  private:
-  std::unique_ptr<ListHead[]> newPage(std::size_t nodes);  // empty heads, counted
+  // A page's heads are all written as it is made: its memory is prefaulted first (operator new,
+  // then the heads constructed in place; freed with operator delete).
+  struct PageFree {
+    void operator()(ListHead* heads) const { ::operator delete(heads); }
+  };
+  using Page = std::unique_ptr<ListHead[], PageFree>;
+  Page newPage(std::size_t nodes);  // empty heads, counted
   ListHead* allocate(std::size_t page);
   // Page 0 for `nodes` nodes (all of a small store, or a full page), keeping its heads.
   void resizeFirstPage(std::size_t nodes);
@@ -56,10 +62,10 @@ class NodeHeads {
   NodeId nodes_ = 0;
   std::size_t firstPageNodes_ = 0;
   std::size_t headsAllocated_ = 0;
-  std::unique_ptr<ListHead[]> empty_;  // once the store has more than one page
+  Page empty_;                         // once the store has more than one page
   std::vector<ListHead*> pages_;       // empty_.get() until a node of the page is written
   const ListHead* const* pageTable_ = nullptr;  // pages_.data(), kept at a fixed address
-  std::vector<std::unique_ptr<ListHead[]>> owned_;
+  std::vector<Page> owned_;
 };
 
 }  // namespace meldvm

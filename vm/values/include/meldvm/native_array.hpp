@@ -7,8 +7,11 @@
 #include <algorithm>
 #include <cstddef>
 #include <cstdint>
+#include <iterator>
 #include <span>
 #include <vector>
+
+#include "meldvm/large_allocator.hpp"
 
 namespace meldvm {
 
@@ -57,8 +60,16 @@ class NativeArray {
   [[gnu::noinline]] void grow(std::size_t more) {
     resize(std::max<std::size_t>(state_.size + more, storage_.size() * 2));
   }
+  // Grows to n (more than the capacity): every element of the new storage is written here, so its
+  // pages are prefaulted first, in one call (n-queens 13's send buffers took 2,000 page faults).
   void resize(std::size_t n) {
-    storage_.resize(n);
+    std::vector<T> grown;
+    grown.reserve(n);
+    support::prefault(grown.data(), n * sizeof(T));
+    grown.insert(grown.end(), std::make_move_iterator(storage_.begin()),
+                 std::make_move_iterator(storage_.end()));
+    grown.resize(n);
+    storage_.swap(grown);
     state_.data = storage_.data();
     state_.capacity = std::uint32_t(n);
   }
