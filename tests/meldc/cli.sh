@@ -66,9 +66,11 @@ case_output_replaces_file() {
   # file's facts from the file's mapping, so the old file (here a second link to it) stays whole.
   cp valid/gradient.meld "$WORK/g.meld"
   printf 'old bytes\n' >"$WORK/g.mbc"
+  chmod 640 "$WORK/g.mbc"
   ln "$WORK/g.mbc" "$WORK/old.mbc"
   run 0 "$WORK/g.meld" -o "$WORK/g.mbc"
   [ "$(cat "$WORK/old.mbc")" = "old bytes" ] || fail "the old file was written over"
+  [ "$(stat -c %a "$WORK/g.mbc")" = 640 ] || fail "the new file lost the old one's permissions"
   [ "$(head -c 4 "$WORK/g.mbc")" = "MBC1" ] || fail "g.mbc is not the new bytecode"
   ls "$WORK" | grep -q tmp && fail "a temporary file was left: $(ls "$WORK")"
   # Through a symbolic link: the file it names is replaced, the link stays.

@@ -48,7 +48,10 @@ bool writeFile(const std::string& path, const std::string& bytes) {
   const fs::file_type type = ec ? fs::file_type::unknown : fs::status(target, ec).type();
   if (type != fs::file_type::not_found && type != fs::file_type::regular) return writeDirectly(path, bytes);
   const std::string temporary = target.string() + ".tmp" + std::to_string(getpid());
-  if (!writeDirectly(temporary, bytes) || std::rename(temporary.c_str(), target.c_str()) != 0) {
+  bool written = writeDirectly(temporary, bytes);
+  if (written && type == fs::file_type::regular)  // the replaced file's permissions stay
+    fs::permissions(temporary, fs::status(target, ec).permissions(), ec);
+  if (!written || std::rename(temporary.c_str(), target.c_str()) != 0) {
     std::remove(temporary.c_str());
     return false;
   }
