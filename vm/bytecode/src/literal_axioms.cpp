@@ -25,7 +25,7 @@ void LiteralAxioms::add(std::span<const std::uint32_t> code, std::string_view la
   b.code = words_.size() * 4;
   b.codeWords = std::uint32_t(code.size());
   words_.insert(words_.end(), code.begin(), code.end());
-  blocks_.push_back(b);
+  pushBlock(b);
 }
 
 void LiteralAxioms::addLines(std::span<const SourceLine> lines) {
@@ -38,9 +38,11 @@ void LiteralAxioms::addLines(std::span<const SourceLine> lines) {
   if (!lines.empty()) std::memcpy(words_.data() + b.lines / 4, lines.data(), lines.size_bytes());
 }
 
-void LiteralAxioms::reserveBlocks(std::size_t blocks) {
-  blocks_.reserve(blocks_.size() + blocks);
-  support::prefault(blocks_.data() + blocks_.size(), blocks * sizeof(Block));
+void LiteralAxioms::pushBlock(const Block& b) {
+  const std::size_t from = blocks_.size() * sizeof(Block);
+  blocks_.push_back(b);
+  // The room reserveBlocks made is a bound (general blocks take none): prefaulted as it fills.
+  support::prefaultAhead(blocks_.data(), blocks_.capacity() * sizeof(Block), from, from + sizeof(Block));
 }
 
 void LiteralAxioms::view(const std::uint8_t* bytes, std::shared_ptr<const void> owner) {
@@ -57,7 +59,7 @@ void LiteralAxioms::addViewed(std::size_t codeAt, std::uint32_t codeWords, std::
   b.codeWords = codeWords;
   b.label = labelAt;
   b.labelBytes = labelBytes;
-  blocks_.push_back(b);
+  pushBlock(b);
 }
 
 void LiteralAxioms::addLinesViewed(std::size_t linesAt, std::uint32_t lineCount) {

@@ -31,9 +31,8 @@ class LiteralAxioms {
   void add(std::span<const std::uint32_t> code, std::string_view label);
   // The source lines of the next block that has none yet (blocks without lines: an empty span).
   void addLines(std::span<const SourceLine> lines);
-  // For the reader: makes room for `blocks` more blocks (their records are written as the file
-  // is read: prefaulted).
-  void reserveBlocks(std::size_t blocks);
+  // For the reader: makes room for `blocks` more blocks (a bound: the file's axiom blocks).
+  void reserveBlocks(std::size_t blocks) { blocks_.reserve(blocks_.size() + blocks); }
   // For the reader: makes room for `words` more code words.
   void reserveCode(std::size_t words) { words_.reserve(words_.size() + words); }
   // For the reader: makes room for `lines` more source lines (a bound: the pages of the room
@@ -75,6 +74,7 @@ class LiteralAxioms {
     return view_ ? view_ : reinterpret_cast<const std::uint8_t*>(words_.data());
   }
   void checkMode(bool viewed) const;
+  void pushBlock(const Block& b);
 
   std::vector<Block> blocks_;
   std::size_t linesAdded_ = 0;        // blocks whose lines were added (a prefix)
