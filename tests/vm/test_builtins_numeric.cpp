@@ -5,6 +5,7 @@
 #include <vector>
 
 #include "builtins_fixture.hpp"
+#include "meldvm/plain_libm.hpp"
 
 using namespace bitest;
 
@@ -197,6 +198,46 @@ BOOST_AUTO_TEST_CASE(damp_agrees_with_the_definition) {
       BOOST_CHECK_EQUAL(listHead(list).asFloat(), got);
     }
   }
+}
+
+// The built-ins' exp and log (glibc's entry points without the errno wrapper where the build found
+// them) give exactly what std::exp and std::log give: the extremes, the specials and a sweep.
+BOOST_AUTO_TEST_CASE(plain_exp_and_log_are_the_libm_functions) {
+#if defined(__GLIBC__) && defined(__x86_64__)
+  BOOST_CHECK_MESSAGE(MELD_GLIBC_MATH_ENTRIES, "glibc on x86-64, but its entry points were not found");
+#endif
+  const auto same = [](double a, double b) {
+    return std::isnan(a) ? std::isnan(b) : a == b && std::signbit(a) == std::signbit(b);
+  };
+  constexpr double inf = std::numeric_limits<double>::infinity();
+  std::vector<double> xs = {0.0,
+                            -0.0,
+                            1.0,
+                            -1.0,
+                            0.5,
+                            709.78,
+                            709.79,
+                            710.0,
+                            -708.39,
+                            -745.13,
+                            -745.14,
+                            -746.0,
+                            1e-310,
+                            -1e-310,
+                            std::numeric_limits<double>::min(),
+                            std::numeric_limits<double>::max(),
+                            -std::numeric_limits<double>::max(),
+                            inf,
+                            -inf,
+                            std::numeric_limits<double>::quiet_NaN()};
+  for (int i = -20000; i <= 20000; ++i) xs.push_back(i * 0.0371 + 1e-7 * (i % 7));
+  for (int e = -1070; e <= 1023; e += 3) xs.push_back(std::ldexp(1.37, e));
+  int differ = 0;
+  for (double x : xs) {
+    if (!same(meldvm::plainExp(x), std::exp(x))) ++differ;
+    if (!same(meldvm::plainLog(x), std::log(x))) ++differ;
+  }
+  BOOST_CHECK_EQUAL(differ, 0);
 }
 
 BOOST_AUTO_TEST_SUITE_END()

@@ -6,6 +6,7 @@
 #include <limits>
 
 #include "builtins_util.hpp"
+#include "meldvm/plain_libm.hpp"
 
 namespace meldvm::builtins {
 
@@ -53,8 +54,8 @@ void normalizeEach(std::span<const T> xs, Write&& write) {
   double mx = toDouble(xs[0]);
   for (const T& x : xs) mx = std::max(mx, toDouble(x));
   double sum = 0;
-  for (const T& x : xs) sum += std::exp(toDouble(x) - mx);
-  const double lsum = std::log(sum);
+  for (const T& x : xs) sum += plainExp(toDouble(x) - mx);
+  const double lsum = plainLog(sum);
   for (std::size_t i = 0; i < xs.size(); ++i) write(i, toDouble(xs[i]) - mx - lsum);
 }
 
@@ -80,8 +81,8 @@ bool allModerate(std::span<const T> xs) {
 // exponential instead of two (belief propagation damps every message it sends).
 double dampOne(double a, double b, double f) {
   if (std::fabs(a) <= kModerate && std::fabs(b) <= kModerate)
-    return a + std::log((1.0 - f) + f * std::exp(b - a));
-  return std::log(f * std::exp(b) + (1.0 - f) * std::exp(a));
+    return a + plainLog((1.0 - f) + f * plainExp(b - a));
+  return plainLog(f * plainExp(b) + (1.0 - f) * plainExp(a));
 }
 
 // exp of each entry of m, from ctx's cache when m is the matrix of the last call; null when m has
@@ -101,7 +102,7 @@ const double* matrixExponentials(BuiltinContext& ctx, std::span<const T> m) {
   ctx.convolveMatrixExp.resize(m.size());
   for (std::size_t i = 0; i < m.size(); ++i) {
     last[i] = toDouble(m[i]);
-    ctx.convolveMatrixExp[i] = std::exp(last[i]);
+    ctx.convolveMatrixExp[i] = plainExp(last[i]);
   }
   return ctx.convolveMatrixExp.data();
 }
@@ -117,26 +118,26 @@ void convolveInto(BuiltinContext& ctx, std::span<const T> m, std::span<const T> 
   const double* expM = n <= kMaxCached && allModerate(v) ? matrixExponentials(ctx, m) : nullptr;
   if (expM) {
     double expV[kMaxCached];
-    for (std::size_t j = 0; j < n; ++j) expV[j] = std::exp(toDouble(v[j]));
+    for (std::size_t j = 0; j < n; ++j) expV[j] = plainExp(toDouble(v[j]));
     for (std::size_t i = 0; i < n; ++i) {
       double sum = 0;
       for (std::size_t j = 0; j < n; ++j) sum += expM[i * n + j] * expV[j];
-      out[i] = Value::fromFloat(std::log(sum));
+      out[i] = Value::fromFloat(plainLog(sum));
     }
     return;
   }
   for (std::size_t i = 0; i < n; ++i) {
     double sum = 0;
-    for (std::size_t j = 0; j < n; ++j) sum += std::exp(toDouble(m[i * n + j]) + toDouble(v[j]));
+    for (std::size_t j = 0; j < n; ++j) sum += plainExp(toDouble(m[i * n + j]) + toDouble(v[j]));
     if (sum == 0) sum = std::numeric_limits<double>::min();
-    out[i] = Value::fromFloat(std::log(sum));
+    out[i] = Value::fromFloat(plainLog(sum));
   }
 }
 
 }  // namespace
 
 Value sigmoid(BuiltinContext&, std::span<const Value> a, TypeId) {
-  return Value::fromFloat(1.0 / (1.0 + std::exp(-a[0].asFloat())));
+  return Value::fromFloat(1.0 / (1.0 + plainExp(-a[0].asFloat())));
 }
 
 Value randint(BuiltinContext& ctx, std::span<const Value> a, TypeId) {
@@ -182,7 +183,7 @@ Value residual(BuiltinContext&, std::span<const Value> a, TypeId) {
   double sum = 0;
   std::size_t n = 0;
   for (Value x = a[0], y = a[1]; !x.isNil() && !y.isNil(); x = listTail(x), y = listTail(y), ++n)
-    sum += std::fabs(std::exp(listHead(x).asFloat()) - std::exp(listHead(y).asFloat()));
+    sum += std::fabs(plainExp(listHead(x).asFloat()) - plainExp(listHead(y).asFloat()));
   return Value::fromFloat(n == 0 ? 0.0 : sum / double(n));
 }
 
@@ -239,7 +240,7 @@ Value residualstruct(BuiltinContext&, std::span<const Value> a, TypeId) {
   if (x.empty()) return Value::fromFloat(0.0);
   double sum = 0;
   for (std::size_t i = 0; i < x.size(); ++i)
-    sum += std::fabs(std::exp(x[i].asFloat()) - std::exp(y[i].asFloat()));
+    sum += std::fabs(plainExp(x[i].asFloat()) - plainExp(y[i].asFloat()));
   return Value::fromFloat(sum / double(x.size()));
 }
 
