@@ -228,11 +228,7 @@ Value Heap::makeList(TypeId listType, std::span<const Value> items, Value tail) 
 [[gnu::always_inline]] inline TupleObject* Heap::newTuple(TypeId type, TypeKind k, std::size_t size) {
   if (k == TypeKind::Struct && size != types_.fields(type).size())
     throw std::invalid_argument("meldvm: struct " + types_.name(type) + " built with a wrong field count");
-  auto* t = new (allocate(sizeof(TupleObject) + sizeof(Value) * size)) TupleObject;
-  t->refs = 1;
-  t->type = type;
-  t->size = t->capacity = std::uint32_t(size);
-  return t;
+  return newPlainTuple(type, std::uint32_t(size));
 }
 
 Value Heap::makeTuple(TypeId type, std::span<const Value> items) {
@@ -262,11 +258,15 @@ Value Heap::makeTuple(TypeId type, std::span<const Value> items) {
   return Value::fromObject(t);
 }
 
-Value* Heap::makePlainTuple(TypeId type, std::uint32_t size, Value& result) {
+Value* Heap::makePlainTupleChecked(TypeId type, std::uint32_t size, Value& result) {
   const TypeKind k = types_.kind(type);
   if ((k != TypeKind::Struct && k != TypeKind::Array) || !plainItems(type))
     throw std::invalid_argument("meldvm: makePlainTuple needs a struct or array of unboxed items");
-  TupleObject* t = newTuple(type, k, size);
+  TupleObject* t = newTuple(type, k, size);  // checks a struct's field count
+  if (k == TypeKind::Struct) {
+    if (plainStructFields_.size() <= type) plainStructFields_.resize(types_.size(), kNotPlainStruct);
+    plainStructFields_[type] = size;
+  }
   result = Value::fromObject(t);
   return reinterpret_cast<Value*>(t + 1);
 }

@@ -102,7 +102,15 @@ class Heap {
   // propagation), built in place: result gets the new object (a reference the caller owns), the
   // items are returned for the caller to write, every one, before anything can read or release
   // the object (they start as whatever the block held).
-  Value* makePlainTuple(TypeId type, std::uint32_t size, Value& result);
+  // Inline for a struct type seen before (belief-propagation-50 makes 3.6 million of them).
+  Value* makePlainTuple(TypeId type, std::uint32_t size, Value& result) {
+    if (type < plainStructFields_.size() && plainStructFields_[type] == size) [[likely]] {
+      TupleObject* t = newPlainTuple(type, size);
+      result = Value::fromObject(t);
+      return reinterpret_cast<Value*>(t + 1);
+    }
+    return makePlainTupleChecked(type, size, result);
+  }
 
   // No-ops for unboxed types and for nil.
   void retain(TypeId t, Value v) {
@@ -247,12 +255,19 @@ class Heap {
     return t < plain_.size() && plain_[t] != kUnknown ? plain_[t] == kPlain : computePlainItems(t);
   }
   bool computePlainItems(TypeId t);
+  // makePlainTuple's first call for a type, and every call for an array: checks the type (throws
+  // where it is not a struct or array of plain items, or a struct's field count is not size) and
+  // notes a plain struct's field count.
+  Value* makePlainTupleChecked(TypeId type, std::uint32_t size, Value& result);
+  TupleObject* newPlainTuple(TypeId type, std::uint32_t size);
+  static constexpr std::uint32_t kNotPlainStruct = UINT32_MAX;
   static constexpr std::uint8_t kUnknown = 0, kPlain = 1, kHolds = 2;
   void shareObject(Object* o);
 
   const TypeTable& types_;
-  NodeReferences* const nodes_;      // fixed: destroy() decides from it whether to put tails off
-  std::vector<std::uint8_t> plain_;  // per type: plainItems, once known
+  NodeReferences* const nodes_;                   // fixed: destroy() decides from it whether to put tails off
+  std::vector<std::uint8_t> plain_;               // per type: plainItems, once known
+  std::vector<std::uint32_t> plainStructFields_;  // per type: the field count of a plain struct, once seen
   FreeBlock* free_[kSmallClasses + kLargeClasses] = {};
   std::vector<void*> slabs_;   // operator new's, the first kSlabsAlone
   std::vector<char*> chunks_;  // then kChunkBytes at a time, cut into slabs
@@ -288,6 +303,14 @@ class Heap {
     }
   }
   return allocateSlow(bytes);
+}
+
+[[gnu::always_inline]] inline TupleObject* Heap::newPlainTuple(TypeId type, std::uint32_t size) {
+  auto* t = new (allocate(sizeof(TupleObject) + sizeof(Value) * size)) TupleObject;
+  t->refs = 1;
+  t->type = type;
+  t->size = t->capacity = size;
+  return t;
 }
 
 [[gnu::always_inline]] inline ConsCell* Heap::newCell(TypeId listType) {
