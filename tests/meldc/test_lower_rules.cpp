@@ -205,3 +205,23 @@ BOOST_AUTO_TEST_CASE(list_patterns_destructure) {
   BOOST_TEST(opNames(l.rule(1)) ==
              "HOST ITER LOAD JNIL HEAD TAIL DERIVE FIRE NEXT HOST ITER LOAD JNOTNIL FIRE NEXT RET");
 }
+
+// A variable written once in the whole rule binds nothing that is read: no LOAD. One that joins
+// two subgoals, or that a head, a constraint or a comprehension reads, is loaded.
+BOOST_AUTO_TEST_CASE(variables_written_once_are_not_loaded) {
+  Lowered l(
+      "type linear a(node, node, int).\ntype linear b(node, node, int).\ntype linear c(node, int).\n"
+      "a(A, B, X), b(A, B, Y) -o c(A, Y).\n");
+  BOOST_REQUIRE_MESSAGE(l.ok(), l.errors());
+  // a's B (the join) and b's Y (the head) are loaded; a's X is not.
+  BOOST_TEST(opNames(l.rule(1)) == "HOST ITER LOAD ITER TEST LOAD DERIVE FIRE NEXT NEXT RET");
+
+  Lowered used(
+      "type linear a(node, int).\ntype linear b(node, int).\ntype linear c(node, int).\n"
+      "type linear d(node, int).\ntype e(node, int).\n"
+      "a(A, X), b(A, Y), X > 2 -o c(A, Y).\n"
+      "d(A, X) -o {Z | !e(A, Z), Z > X | c(A, Z)}.\n");
+  BOOST_REQUIRE_MESSAGE(used.ok(), used.errors());
+  BOOST_TEST(only(used.rule(1), Opcode::LOAD).size() == 2u);  // X (the constraint reads it), Y
+  BOOST_TEST(only(used.rule(2), Opcode::LOAD).size() == 2u);  // X (the comprehension reads it), Z
+}

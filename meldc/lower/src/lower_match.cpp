@@ -126,6 +126,7 @@ void RuleLowering::threadHome(const Expr& home, Label fail) {
 void RuleLowering::pattern(std::uint32_t slot, std::uint32_t field, TypeId type, const Expr& arg,
                            Label fail) {
   if (arg.kind == ExprKind::Anon) return;
+  if (arg.kind == ExprKind::Var && ignored_.count(arg.name) && !ex.env.count(arg.name)) return;
   const bool newVar = arg.kind == ExprKind::Var && !ex.env.count(arg.name);
   if (newVar || isPattern(arg) || !ex.bound(arg)) {
     Reg r = cb_.reg(type);

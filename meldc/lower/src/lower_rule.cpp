@@ -24,6 +24,7 @@ struct Analyzed {
 void lowerPart(Lowering& L, CodeBuilder& cb, const Analyzed& a, const BodyPlan& plan, bool prebound) {
   L.at(cb, a.rule->loc);
   RuleLowering rl(L, cb, a.host);
+  rl.ignoreVariables(singletonVariables(*a.rule));
   rl.bindHost();
   CodeBuilder::Label end = cb.label();
   const auto inner = std::uint32_t(plan.subgoals.size());

@@ -5,6 +5,7 @@
 
 #include <functional>
 #include <optional>
+#include <set>
 #include <string>
 #include <vector>
 
@@ -23,6 +24,8 @@ class RuleLowering {
   RuleLowering(Lowering& L, CodeBuilder& cb, std::string hostVar)
       : L_(L), cb_(cb), ex(L, cb), hostVar_(std::move(hostVar)) {}
 
+  // Body arguments that are these variables are matched as `_` (singletonVariables).
+  void ignoreVariables(std::set<std::string> names) { ignored_ = std::move(names); }
   // HOST r and binds the host variable to it (nothing for a rule without one: thread facts only).
   void bindHost();
 
@@ -72,6 +75,7 @@ class RuleLowering {
   std::string hostVar_;
   Reg host_ = 0;
   std::vector<Pending> pending_;
+  std::set<std::string> ignored_;
   std::optional<std::uint32_t> keyField;  // the loop being lowered matches this field by its index
 };
 

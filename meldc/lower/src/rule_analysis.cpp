@@ -1,6 +1,7 @@
 #include "rule_analysis.hpp"
 
 #include <algorithm>
+#include <map>
 
 namespace meldc {
 
@@ -31,6 +32,44 @@ bool derivesAt(const Term& h, Symbol pred, const std::string& home) {
 }
 
 }  // namespace
+
+namespace {
+
+using VariableCounts = std::map<std::string, int>;
+
+void countVariables(const Expr& e, VariableCounts& n) {
+  if (e.kind == ExprKind::Var || e.kind == ExprKind::Let) ++n[e.name];
+  for (const Expr& a : e.args) countVariables(a, n);
+}
+
+void countVariables(const std::vector<Term>& terms, VariableCounts& n) {
+  for (const Term& t : terms) {
+    for (const Expr& a : t.args) countVariables(a, n);
+    countVariables(t.cond, n);
+    for (const VarDecl& v : t.vars) ++n[v.name];
+    for (const AggSpec& s : t.specs) {
+      ++n[s.var];
+      countVariables(s.start, n);
+    }
+    countVariables(t.body, n);
+    countVariables(t.perMatch, n);
+    countVariables(t.head, n);
+    countVariables(t.elseHead, n);
+  }
+}
+
+}  // namespace
+
+std::set<std::string> singletonVariables(const Rule& rule) {
+  VariableCounts n;
+  countVariables(rule.body, n);
+  countVariables(rule.head, n);
+  if (rule.selector) ++n[rule.selector->var];
+  std::set<std::string> once;
+  for (const auto& [name, count] : n)
+    if (count == 1) once.insert(name);
+  return once;
+}
 
 bool sameExpr(const Expr& a, const Expr& b) {
   if (a.kind != b.kind || a.args.size() != b.args.size() || a.hasTail != b.hasTail) return false;
@@ -94,7 +133,8 @@ std::string hostVariable(const Lowering& L, const Rule& rule) {
 // established compiler has it.
 std::string hostConstraintVariable(const std::vector<Term>& body) {
   for (const Term& t : body) {
-    if (t.kind != TermKind::Constraint || t.cond.kind != ExprKind::Compare || t.cond.op != BinOp::Eq) continue;
+    if (t.kind != TermKind::Constraint || t.cond.kind != ExprKind::Compare || t.cond.op != BinOp::Eq)
+      continue;
     const Expr& a = t.cond.args.at(0);
     const Expr& b = t.cond.args.at(1);
     if (a.kind == ExprKind::Var && b.kind == ExprKind::Host) return a.name;
