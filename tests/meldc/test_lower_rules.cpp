@@ -224,4 +224,11 @@ BOOST_AUTO_TEST_CASE(variables_written_once_are_not_loaded) {
   BOOST_REQUIRE_MESSAGE(used.ok(), used.errors());
   BOOST_TEST(only(used.rule(1), Opcode::LOAD).size() == 2u);  // X (the constraint reads it), Y
   BOOST_TEST(only(used.rule(2), Opcode::LOAD).size() == 2u);  // X (the comprehension reads it), Z
+
+  // A comprehension's declared variable that its body writes once and nothing reads.
+  Lowered declared(
+      "type linear a(node, int).\ntype e(node, node, int).\ntype linear c(node, node).\n"
+      "a(A, X) -o {B, W | !e(A, B, W) | c(B, A)}.\n");
+  BOOST_REQUIRE_MESSAGE(declared.ok(), declared.errors());
+  BOOST_TEST(opNames(declared.rule(1)) == "HOST ITER ITER LOAD SEND CFIRE NEXT FIRE NEXT RET");
 }

@@ -46,7 +46,8 @@ void countVariables(const std::vector<Term>& terms, VariableCounts& n) {
   for (const Term& t : terms) {
     for (const Expr& a : t.args) countVariables(a, n);
     countVariables(t.cond, n);
-    for (const VarDecl& v : t.vars) ++n[v.name];
+    // (A comprehension's or an aggregate's declared variables are not counted: a declaration
+    // reads nothing, and `{B, W | !edge(A, B, W) | ...}` need not load W.)
     for (const AggSpec& s : t.specs) {
       ++n[s.var];
       countVariables(s.start, n);

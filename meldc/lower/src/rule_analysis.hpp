@@ -53,9 +53,9 @@ bool isPersistentRule(const BodyPlan& plan, const ast::Rule& rule);
 std::vector<ast::Symbol> bodyPredicates(const BodyPlan& plan);
 
 // The variables written once in the whole rule (body, head, nested bodies and heads, aggregate
-// results, declarations, the selector): a body argument that is such a variable binds a value
-// nothing reads, so it is matched as `_` (no LOAD: belief-propagation-50's rule 2 retained and
-// released a cold struct for every fact it tried).
+// results, the selector; declarations do not count): a body argument that is such a variable
+// binds a value nothing reads, so it is matched as `_` (no LOAD: belief-propagation-50's rule 2
+// retained and released a cold struct for every fact it tried).
 std::set<std::string> singletonVariables(const ast::Rule& rule);
 
 bool sameExpr(const ast::Expr& a, const ast::Expr& b);
