@@ -18,20 +18,12 @@ __asm__(".symver meldvm_glibc_log_entry, __log_finite@GLIBC_2.15");
 
 namespace meldvm {
 
-inline double plainExp(double x) {
 #if MELD_GLIBC_MATH_ENTRIES
-  return meldvm_glibc_exp_entry(x);
+inline double plainExp(double x) { return meldvm_glibc_exp_entry(x); }
+inline double plainLog(double x) { return meldvm_glibc_log_entry(x); }
 #else
-  return std::exp(x);
+inline double plainExp(double x) { return std::exp(x); }
+inline double plainLog(double x) { return std::log(x); }
 #endif
-}
-
-inline double plainLog(double x) {
-#if MELD_GLIBC_MATH_ENTRIES
-  return meldvm_glibc_log_entry(x);
-#else
-  return std::log(x);
-#endif
-}
 
 }  // namespace meldvm
