@@ -218,8 +218,18 @@ BOOST_AUTO_TEST_CASE(plain_tuples_are_built_in_place) {
   BOOST_CHECK_THROW(e.heap.makePlainTuple(st, 2, unused), std::invalid_argument);
   BOOST_CHECK_THROW(e.heap.makePlainTuple(e.types.set(TypeTable::kInt), 2, unused), std::invalid_argument);
   BOOST_TEST(e.heap.liveObjects() == 2u);
-  for (Value v : {built, copied}) e.heap.release(st, v);
+
+  // Once the type is known, the inline path builds the same object, and still refuses a wrong
+  // field count; a dying plain struct (either builder's) gives its block back.
+  Value again;
+  Value* more = e.heap.makePlainTuple(st, 3, again);
+  for (int i = 0; i < 3; ++i) more[i] = Value::fromFloat(0.5 * i - 1);
+  BOOST_TEST(valuesEqual(e.types, st, again, copied));
+  BOOST_CHECK_THROW(e.heap.makePlainTuple(st, 4, unused), std::invalid_argument);
+  BOOST_TEST(e.heap.liveObjects() == 3u);
+  for (Value v : {built, copied, again}) e.heap.release(st, v);
   BOOST_TEST(e.heap.liveObjects() == 0u);
+  BOOST_TEST(e.heap.bytesInUse() == 0u);
 }
 
 // §8 table: float like printf("%.5g").

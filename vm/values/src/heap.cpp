@@ -302,7 +302,7 @@ void Heap::destroy(Object* o) {
   // A plain struct (belief propagation's float structs: 3.6 million die in belief-propagation-50)
   // holds nothing to release and has no tail: its block goes straight back.
   if (o->type < plainStructFields_.size() && plainStructFields_[o->type] != kNotPlainStruct) {
-    recycle(o, sizeof(TupleObject) + sizeof(Value) * static_cast<const TupleObject*>(o)->capacity);
+    recycle(o, objectBytes(TypeKind::Struct, o));
     return;
   }
   // Iterative along list tails, so that releasing a long list cannot overflow the stack.
