@@ -4,6 +4,7 @@
 #include <algorithm>
 #include <bit>
 #include <boost/test/unit_test.hpp>
+#include <limits>
 
 #include "lower_support.hpp"
 
@@ -139,6 +140,35 @@ BOOST_AUTO_TEST_CASE(constants_fold_or_become_globals) {
   const auto ints = movi(l.rule(1));
   BOOST_TEST(std::count(ints.begin(), ints.end(), 7) == 1);
   BOOST_TEST(std::count(ints.begin(), ints.end(), 2) == 1);  // @world: two nodes
+}
+
+BOOST_AUTO_TEST_CASE(arithmetic_on_constants_folds_in_rule_bodies_and_heads) {
+  // `size - 1`, `(1.0 - d)`, `d / float(size)`: one move each, computed as the VM computes them
+  // (doubles from single-precision literals, 32-bit wrap-around); a division by zero is left to the
+  // run-time error, and anything with a variable is computed at run time.
+  Lowered l(
+      "type linear a(node, int).\ntype linear b(node, float).\nconst size = 11.\nconst d = 0.15.\n"
+      "a(@0, 1). b(@0, 1.0).\n"
+      "a(A, X) -o a(A, X + (size - 1) * 2 + (2147483647 + 1)).\n"
+      "b(A, F) -o b(A, F * (1.0 - d) + d / float(size)).\n"
+      "a(A, X), X > 5 -o a(A, X + 1 / (size - 11)).\n");
+  BOOST_REQUIRE_MESSAGE(l.ok(), l.errors());
+  const auto ints = movi(l.rule(1));
+  BOOST_TEST(std::count(ints.begin(), ints.end(), 20) == 1);
+  BOOST_TEST(std::count(ints.begin(), ints.end(), std::numeric_limits<std::int32_t>::min()) == 1);
+  BOOST_TEST(only(l.rule(1), Opcode::ADDI).size() == 2u);  // X + 20, then + INT32_MIN
+  BOOST_TEST(only(l.rule(1), Opcode::SUBI).empty());
+  BOOST_TEST(only(l.rule(1), Opcode::MULI).empty());
+  const double dd = double(0.15f);
+  std::vector<double> floats;
+  for (const Instr& i : only(l.rule(2), Opcode::MOVF)) floats.push_back(movf(i));
+  BOOST_TEST(floats == (std::vector<double>{1.0 - dd, dd / 11.0}));
+  BOOST_TEST(only(l.rule(2), Opcode::MULF).size() == 1u);
+  BOOST_TEST(only(l.rule(2), Opcode::ADDF).size() == 1u);
+  BOOST_TEST(only(l.rule(2), Opcode::SUBF).empty());
+  BOOST_TEST(only(l.rule(2), Opcode::DIVF).empty());
+  BOOST_TEST(only(l.rule(2), Opcode::I2F).empty());
+  BOOST_TEST(only(l.rule(3), Opcode::DIVI).size() == 1u);  // 1 / 0: the VM's error at run time
 }
 
 BOOST_AUTO_TEST_CASE(functions_take_registers_and_return_in_the_next) {

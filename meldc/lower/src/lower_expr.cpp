@@ -157,6 +157,7 @@ Reg ExprLowerer::value(const Expr& e) {
     case ExprKind::Call:
       return call(e.sym, e.args, e.loc, L_.typeOf(e));
     case ExprKind::Convert: {
+      if (std::optional<Reg> r = foldedArithmetic(e)) return *r;
       Reg a = valueAs(e.args.at(0), TypeTable::kInt);
       Reg r = cb_.reg(TypeTable::kFloat);
       cb_.emit(Opcode::I2F, {r, a});
@@ -164,6 +165,7 @@ Reg ExprLowerer::value(const Expr& e) {
     }
     case ExprKind::Binary:
       if (e.op == BinOp::Append) return call(L_.ast.symbols.find("lappend"), e.args, e.loc, L_.typeOf(e));
+      if (std::optional<Reg> r = foldedArithmetic(e)) return *r;
       return arithmetic(e);
     case ExprKind::Compare:
       if (!nilTest(e)) return compareValue(e);
@@ -243,6 +245,20 @@ Reg ExprLowerer::list(const Expr& e) {
     tail = r;
   }
   return tail;
+}
+
+// Arithmetic on constants alone (`size - 1`, `damping / float(pages)`) becomes one move: the
+// interpreter ran every operation of such an expression at each rule run (8queens' `!coord(A,
+// size - 1, _)`: two moves and a subtraction before each test). foldConstant computes as the VM
+// does (32-bit wrap-around, doubles, §5.5) and leaves a division by zero to the run-time error.
+std::optional<Reg> ExprLowerer::foldedArithmetic(const Expr& e) {
+  const std::optional<Folded> f = foldConstant(L_, e);
+  if (!f) return std::nullopt;
+  const TypeId t = L_.typeOf(e);
+  if (!(f->kind == Folded::Float && t == TypeTable::kFloat) &&
+      !(f->kind == Folded::Int && t == TypeTable::kInt))
+    return std::nullopt;
+  return folded(*f, t);
 }
 
 Reg ExprLowerer::arithmetic(const Expr& e) {

@@ -3,6 +3,7 @@
 #pragma once
 
 #include <map>
+#include <optional>
 #include <set>
 #include <string>
 
@@ -46,6 +47,7 @@ class ExprLowerer {
 
  private:
   Reg arithmetic(const ast::Expr& e);
+  std::optional<Reg> foldedArithmetic(const ast::Expr& e);  // nothing unless it folds
   Reg compareValue(const ast::Expr& e);
   Reg list(const ast::Expr& e);
   // Emits a comparison whose truth is `sense` -> jump.
