@@ -78,6 +78,12 @@ class LargeBuffer {
     }
     size_ = n;
   }
+  // n more items within the capacity, not zeroed: for a caller that writes every word of them
+  // (a fact table's fresh slot, where the memset was a tenth of a store on pagerank-movies).
+  void extendWithin(std::size_t n) {
+    prefaultAhead(data_, capacity_ * sizeof(T), size_ * sizeof(T), (size_ + n) * sizeof(T));
+    size_ += n;
+  }
   void clear() { size_ = 0; }
 
  private:

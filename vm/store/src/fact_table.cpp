@@ -172,7 +172,7 @@ FactRef FactTable::find(NodeId n, const Value* a) const {
   return facts_.find(dedupHash(n, a), [&](std::uint32_t f) { return node(f) == n && keyEqual(f, a, all); });
 }
 
-FactRef FactTable::firstWithKey(NodeId n, std::uint32_t index, const Value* key) const {
+FactRef FactTable::firstWithKeyOfTypes(NodeId n, std::uint32_t index, const Value* key) const {
   std::uint64_t hash;
   return findKey(n, index, key, hash);
 }
@@ -183,10 +183,30 @@ FactRef FactTable::chainHead(FactRef f, std::uint32_t x, std::uint64_t& hash) co
 }
 
 void FactTable::linkIndexes(FactRef f, std::uint32_t fromIndex) {
+  const NodeId n = node(f);
   for (std::uint32_t x = fromIndex; x < indexCount(); ++x) {
-    std::uint64_t h;
-    const FactRef head = chainHead(f, x, h);
-    linkIndex(f, x, head, h);
+    Index& ix = indexes_[x];
+    const KeySpec spec = ix.key;
+    const Value* key = args(f) + spec.first;
+    // The chain's head found, or f entered as a new one, in one probe of the hash table.
+    const FactRef head =
+        ix.integer ? ix.heads.findOrInsert(
+                         integerHash(n, key, spec.count),
+                         [&](std::uint32_t g) { return node(g) == n && bitsEqual(g, key, spec); }, f)
+                   : ix.heads.findOrInsert(
+                         hashKey(n, key, spec),
+                         [&](std::uint32_t g) { return node(g) == n && keyEqual(g, key, spec); }, f);
+    const std::size_t w = linkWord(f, x);
+    setHi(w, kNoFact);
+    if (head == kNoFact) {
+      setLo(w, f);  // a one-fact chain: the head is its own tail
+    } else {
+      const std::size_t hw = linkWord(head, x);
+      const FactRef tail = lo(hw);
+      setHi(linkWord(tail, x), f);
+      setLo(w, tail);
+      setLo(hw, f);
+    }
   }
 }
 
@@ -252,6 +272,17 @@ void FactTable::linkInListOrder(const ListHead& list, FactRef f, std::uint32_t x
 }
 
 // Takes a slot, stores the fact and links it into the node's list (not into the hash tables).
+// `a` may point into words_ (arguments read from this very table), which growing may move: it is
+// re-pointed into the new array then.
+const Value* FactTable::grownForOneMore(const Value* a) {
+  const Value* begin = words_.data();
+  const bool inTable =
+      std::greater_equal<const Value*>()(a, begin) && std::less<const Value*>()(a, begin + words_.size());
+  const std::size_t off = inTable ? std::size_t(a - begin) : 0;
+  growFor(1);
+  return inTable ? words_.data() + off : a;
+}
+
 FactRef FactTable::place(ListHead& list, NodeId n, const Value* a, std::uint32_t cnt, FactRef after,
                          bool adopt) {
   if (cnt == 0) throw std::invalid_argument("meldvm: a stored fact has a count of at least 1");
@@ -267,17 +298,9 @@ FactRef FactTable::place(ListHead& list, NodeId n, const Value* a, std::uint32_t
   } else {
     if (slots_ >= kNoFact - 1) throw std::length_error("meldvm: too many facts");
     f = slots_++;  // counted, not words_.size() / stride_: a division per new fact
-    growFor(1);
-    // `a` may point into words_ (arguments read from this very table), which the resize may move:
-    // re-point it into the new array then.
-    const Value* begin = words_.data();
-    if (std::greater_equal<const Value*>()(a, begin) && std::less<const Value*>()(a, begin + words_.size())) {
-      const std::size_t off = std::size_t(a - begin);
-      words_.resize(words_.size() + stride_);
-      a = words_.data() + off;
-    } else {
-      words_.resize(words_.size() + stride_);
-    }
+    if (words_.size() + stride_ > words_.capacity()) [[unlikely]]
+      a = grownForOneMore(a);
+    words_.extendWithin(stride_);  // not zeroed: fill and the index links write every word
   }
   const FactRef p = after == kNoFact ? list.last : after;
   const FactRef nx = after == kNoFact ? kNoFact : next(after);
@@ -308,7 +331,7 @@ void FactTable::appendEach(ListHead& list, NodeId n, const Value* a, std::uint32
   const std::uint32_t fresh = facts - i;
   if (slots_ + std::uint64_t(fresh) >= kNoFact) throw std::length_error("meldvm: too many facts");
   growFor(fresh);
-  words_.resize(words_.size() + std::size_t(fresh) * stride_);
+  words_.extendWithin(std::size_t(fresh) * stride_);  // fill writes every word of each slot
   for (; i < facts; ++i, a += arity()) {
     if (!references_.empty()) retainArgs(a);
     const FactRef f = slots_++;

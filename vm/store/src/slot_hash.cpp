@@ -5,12 +5,6 @@
 
 namespace meldvm {
 
-namespace {
-// At most half full: linear probing with deletions slows down quickly above that (measured: a
-// load of 0.7 made the B2 shortest-path run 2.5 times slower).
-bool overloaded(std::size_t entries, std::size_t capacity) { return entries * 2 > capacity; }
-}  // namespace
-
 void SlotHash::reserve(std::uint32_t entries) {
   std::size_t cap = entries_ ? capacity() : 16;
   while (overloaded(entries, cap)) cap *= 2;
