@@ -172,7 +172,7 @@ FactRef FactTable::find(NodeId n, const Value* a) const {
   return facts_.find(dedupHash(n, a), [&](std::uint32_t f) { return node(f) == n && keyEqual(f, a, all); });
 }
 
-FactRef FactTable::firstWithKeyOfTypes(NodeId n, std::uint32_t index, const Value* key) const {
+FactRef FactTable::firstWithKey(NodeId n, std::uint32_t index, const Value* key) const {
   std::uint64_t hash;
   return findKey(n, index, key, hash);
 }
