@@ -196,26 +196,20 @@ void FactTable::linkIndexes(FactRef f, std::uint32_t fromIndex) {
                    : ix.heads.findOrInsert(
                          hashKey(n, key, spec),
                          [&](std::uint32_t g) { return node(g) == n && keyEqual(g, key, spec); }, f);
-    const std::size_t w = linkWord(f, x);
-    setHi(w, kNoFact);
-    if (head == kNoFact) {
-      setLo(w, f);  // a one-fact chain: the head is its own tail
-    } else {
-      const std::size_t hw = linkWord(head, x);
-      const FactRef tail = lo(hw);
-      setHi(linkWord(tail, x), f);
-      setLo(w, tail);
-      setLo(hw, f);
-    }
+    chainAtEnd(f, x, head);
   }
 }
 
 void FactTable::linkIndex(FactRef f, std::uint32_t x, FactRef head, std::uint64_t h) {
+  chainAtEnd(f, x, head);
+  if (head == kNoFact) indexes_[x].heads.insert(h, f);
+}
+
+void FactTable::chainAtEnd(FactRef f, std::uint32_t x, FactRef head) {
   const std::size_t w = linkWord(f, x);
   setHi(w, kNoFact);
   if (head == kNoFact) {
     setLo(w, f);  // a one-fact chain: the head is its own tail
-    indexes_[x].heads.insert(h, f);
   } else {
     const std::size_t hw = linkWord(head, x);
     const FactRef tail = lo(hw);

@@ -259,22 +259,15 @@ class alignas(64) FactTable {  // 256 bytes, whole cache lines: see fact_table.c
     words_[w] = Value::fromBits((words_[w].bits() & 0xFFFFFFFFull) | (std::uint64_t(v) << 32));
   }
   FactRef prevOf(FactRef f) const { return lo(base(f)); }
-  // Stores a fact in the taken slot f and links it into the list between p and nx. Its link
-  // word is written whole (a fresh slot is not zeroed; connect would read it).
+  // Stores a fact in the taken slot f and links it into the list between p and nx. (A fresh slot
+  // is not zeroed: the two connects write both halves of its link word.)
   void fill(ListHead& list, FactRef f, NodeId n, const Value* args, std::uint32_t count, FactRef p,
             FactRef nx) {
     Value* w = words_.data() + base(f);
     copyArgs(w + argOffset_, args, arity());
     w[1] = Value::fromBits((std::uint64_t(count) << 32) | n);
-    w[0] = Value::fromBits((std::uint64_t(nx) << 32) | p);
-    if (p == kNoFact)
-      list.first = f;
-    else
-      setHi(base(p), f);
-    if (nx == kNoFact)
-      list.last = f;
-    else
-      setLo(base(nx), f);
+    connect(list, p, f);
+    connect(list, f, nx);
     ++list.size;
     ++live_;
   }
@@ -317,6 +310,8 @@ class alignas(64) FactTable {  // 256 bytes, whole cache lines: see fact_table.c
   // Links f into its index chains; for index 0 the chain head and key hash may be known already.
   void linkIndexes(FactRef f, std::uint32_t fromIndex = 0);
   void linkIndex(FactRef f, std::uint32_t x, FactRef head, std::uint64_t hash);
+  // f at the end of head's chain in index x (head kNoFact: a chain of its own, hashed by the caller).
+  void chainAtEnd(FactRef f, std::uint32_t x, FactRef head);
   void growFor(std::size_t facts);  // room for that many more slots, growing by a quarter when full
   const Value* grownForOneMore(const Value* a);  // growFor(1), `a` re-pointed if it was in the table
   FactRef place(ListHead& list, NodeId n, const Value* a, std::uint32_t cnt, FactRef after,
