@@ -186,16 +186,9 @@ void FactTable::linkIndexes(FactRef f, std::uint32_t fromIndex) {
   const NodeId n = node(f);
   for (std::uint32_t x = fromIndex; x < indexCount(); ++x) {
     Index& ix = indexes_[x];
-    const KeySpec spec = ix.key;
-    const Value* key = args(f) + spec.first;
     // The chain's head found, or f entered as a new one, in one probe of the hash table.
-    const FactRef head =
-        ix.integer ? ix.heads.findOrInsert(
-                         integerHash(n, key, spec.count),
-                         [&](std::uint32_t g) { return node(g) == n && bitsEqual(g, key, spec); }, f)
-                   : ix.heads.findOrInsert(
-                         hashKey(n, key, spec),
-                         [&](std::uint32_t g) { return node(g) == n && keyEqual(g, key, spec); }, f);
+    const FactRef head = withKey(ix, n, args(f) + ix.key.first,
+                                 [&](std::uint64_t h, auto&& eq) { return ix.heads.findOrInsert(h, eq, f); });
     chainAtEnd(f, x, head);
   }
 }
@@ -265,7 +258,6 @@ void FactTable::linkInListOrder(const ListHead& list, FactRef f, std::uint32_t x
   setLo(gw, f);
 }
 
-// Takes a slot, stores the fact and links it into the node's list (not into the hash tables).
 // `a` may point into words_ (arguments read from this very table), which growing may move: it is
 // re-pointed into the new array then.
 const Value* FactTable::grownForOneMore(const Value* a) {
@@ -277,6 +269,7 @@ const Value* FactTable::grownForOneMore(const Value* a) {
   return inTable ? words_.data() + off : a;
 }
 
+// Takes a slot, stores the fact and links it into the node's list (not into the hash tables).
 FactRef FactTable::place(ListHead& list, NodeId n, const Value* a, std::uint32_t cnt, FactRef after,
                          bool adopt) {
   if (cnt == 0) throw std::invalid_argument("meldvm: a stored fact has a count of at least 1");

@@ -225,13 +225,23 @@ class alignas(64) FactTable {  // 256 bytes, whole cache lines: see fact_table.c
   [[gnu::always_inline]] FactRef findKey(NodeId n, std::uint32_t index, const Value* key,
                                          std::uint64_t& hash) const {
     const Index& x = indexes_[index];
+    return withKey(x, n, key, [&](std::uint64_t h, auto&& eq) {
+      hash = h;
+      return x.heads.find(h, eq);
+    });
+  }
+  // probe(hash, eq) with the key's hash and the test of a stored fact g against it (node and key
+  // fields): integer keys (pagerank's neighbour, every ITER_KEY on a node) hashed and compared as
+  // bits inline, the others through the types. The one place that chooses; look-ups and
+  // linkIndexes probe through it.
+  template <class Probe>
+  [[gnu::always_inline]] FactRef withKey(const Index& x, NodeId n, const Value* key, Probe&& probe) const {
     const KeySpec spec = x.key;
-    if (x.integer) {  // pagerank's neighbour, every ITER_KEY on a node: no call per look-up
-      hash = integerHash(n, key, spec.count);
-      return x.heads.find(hash, [&](std::uint32_t f) { return node(f) == n && bitsEqual(f, key, spec); });
-    }
-    hash = hashKey(n, key, spec);
-    return x.heads.find(hash, [&](std::uint32_t f) { return node(f) == n && keyEqual(f, key, spec); });
+    if (x.integer)
+      return probe(integerHash(n, key, spec.count),
+                   [&](std::uint32_t g) { return node(g) == n && bitsEqual(g, key, spec); });
+    return probe(hashKey(n, key, spec),
+                 [&](std::uint32_t g) { return node(g) == n && keyEqual(g, key, spec); });
   }
   bool bitsEqual(FactRef f, const Value* key, KeySpec spec) const {
     const Value* a = args(f) + spec.first;
