@@ -13,11 +13,11 @@
 namespace bctest {
 
 // Node n belongs to owners[n] (thread 0 past the end); each safe point is counted and runs
-// atSafePoint, if set.
+// atSafePoint, if set; facts for other threads are only counted.
 class TestShardLink final : public ShardLink {
  public:
   ThreadId ownerOf(NodeId n) const override { return n < owners.size() ? owners[n] : 0; }
-  void sendRemote(ThreadId, NodeId, PredId, const Value*, bool) override {}
+  void sendRemote(ThreadId, NodeId, PredId, const Value*, bool) override { ++remoteSends; }
   void coordinateRemote(ThreadId, Opcode, NodeId, double) override {}
   NodeId allocateNodeBlock(ThreadId, NodeId& count) override {
     count = 0;
@@ -33,6 +33,7 @@ class TestShardLink final : public ShardLink {
   }
   std::vector<ThreadId> owners;
   int safePoints = 0;
+  int remoteSends = 0;
   std::function<void()> atSafePoint;
 };
 

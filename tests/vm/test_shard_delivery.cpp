@@ -3,6 +3,8 @@
 // the whole box); and with a safe point for the runtime every 256 facts stored, not only between
 // rules, so that a rebalance does not wait for thousands of facts. At such a safe point the running
 // node does not move, and facts the runtime hands it meanwhile wait until the delivery is over.
+// And which linear facts a run sends skip the mailbox (Machine::storeSentLinear): those for a node
+// of the shard's own with an empty mailbox and a short list of the predicate.
 #define BOOST_TEST_MODULE vm_shard_delivery
 #include <atomic>
 #include <boost/test/unit_test.hpp>
@@ -109,4 +111,110 @@ BOOST_AUTO_TEST_CASE(at_a_delivery_safe_point_the_running_node_stays_and_its_new
   BOOST_TEST(given == (std::vector<NodeId>{1, 2}), boost::test_tools::per_element());
   BOOST_TEST(s.machine->database().factCount(0, s.program.a) == 301u);
   BOOST_TEST(!s.machine->runNext());  // node 1 was handed out of the queue, node 0 is done
+}
+
+namespace {
+
+// Three nodes; rule 0 consumes `_init` and sends a(@1, 0), ..., a(@1, 39) (all three nodes run
+// it). No rule reads `a`.
+constexpr std::uint32_t kSent = 40;
+struct SendingProgram {
+  PredId a = 0;
+  std::unique_ptr<Program> program = [this] {
+    auto p = std::make_unique<Program>();
+    p->initPredicate = pred(*p, "_init", {}, true);
+    a = pred(*p, "a", {TypeTable::kInt}, true);
+    emit(p->globalsInit, Opcode::RET);
+    for (std::uint32_t n = 0; n < 3; ++n) {
+      p->nodeSourceIds.push_back(n);
+      p->nodeAxioms.push_back(Program::kNoAxioms);
+    }
+    Rule r;
+    r.block.slots = 1;
+    r.block.registerTypes = {TypeTable::kNode, TypeTable::kInt};
+    r.bodyPredicates = {p->initPredicate};
+    loop(r.block, Opcode::ITER, {p->initPredicate, 0, kLinConsume | kIterConsumableClass}, [&] {
+      emit(r.block, Opcode::MOVN, {0, 1});
+      for (std::uint32_t i = 0; i < kSent; ++i) {
+        emit(r.block, Opcode::MOVI, {1, i});
+        emit(r.block, Opcode::SEND, {a, 0, 1, 1});
+      }
+      emit(r.block, Opcode::FIRE, {0});
+    });
+    emit(r.block, Opcode::RET);
+    p->rules.push_back(std::move(r));
+    verifyProgram(*p);
+    return p;
+  }();
+};
+
+struct SendingShard {
+  SendingProgram program;
+  TestShardLink link;
+  MailSlabs mailSlabs{2};
+  std::unique_ptr<Machine> machine;
+  explicit SendingShard(bool asShard, std::vector<ThreadId> owners = {}) {
+    link.owners = std::move(owners);
+    MachineOptions o;
+    if (asShard) {
+      o.shard = &link;
+      o.placement = {0, 2, 0, 3};
+      o.mailSlabs = &mailSlabs;
+    }
+    machine = std::make_unique<Machine>(*program.program, std::move(o));
+  }
+  std::vector<std::int64_t> factsOfNode1() const {
+    const Database& db = machine->database();
+    std::vector<std::int64_t> values;
+    for (FactRef f = db.first(1, program.a); f != kNoFact; f = db.next(program.a, f))
+      values.push_back(db.args(program.a, f)[0].asInt());
+    return values;
+  }
+};
+
+}  // namespace
+
+BOOST_AUTO_TEST_CASE(a_shard_stores_what_a_run_sends_its_own_node_at_once_up_to_32_facts) {
+  SendingShard s(true);
+  BOOST_REQUIRE(s.machine->runNext());  // node 0 runs and sends node 1 forty facts
+  // The first 32 delivered are in node 1's list already, the other 8 in its mailbox.
+  BOOST_TEST(s.machine->database().factCount(1, s.program.a) == 32u);
+  BOOST_TEST(s.machine->hasWork(1));
+  while (s.machine->runNext()) {
+  }
+  // Node 1 took in the 8, then sent itself 40 (to its mailbox: its list was long), as did node 2.
+  // The serial VM stores all of them on arrival: the same list, in the same order (the
+  // established VM's delivery order, send_order.hpp: one run's facts for one node and predicate
+  // in reverse sending order).
+  SendingShard serial(false);
+  BOOST_REQUIRE(serial.machine->runNext());
+  BOOST_TEST(serial.machine->database().factCount(1, serial.program.a) == kSent);
+  while (serial.machine->runNext()) {
+  }
+  std::vector<std::int64_t> expected;
+  for (int from = 0; from < 3; ++from)
+    for (std::uint32_t i = kSent; i-- > 0;) expected.push_back(i);
+  BOOST_TEST(serial.factsOfNode1() == expected, boost::test_tools::per_element());
+  BOOST_TEST(s.factsOfNode1() == expected, boost::test_tools::per_element());
+}
+
+BOOST_AUTO_TEST_CASE(a_fact_for_a_node_with_mail_waiting_goes_behind_the_mail) {
+  SendingShard s(true);
+  const Value early = Value::fromInt(-1);
+  s.machine->receive(1, s.program.a, &early, false);  // from another thread: in node 1's mailbox
+  BOOST_REQUIRE(s.machine->runNext());                // node 0's forty follow it there
+  BOOST_TEST(s.machine->database().factCount(1, s.program.a) == 0u);
+  while (s.machine->runNext()) {
+  }
+  const std::vector<std::int64_t> facts = s.factsOfNode1();  // in arrival order
+  BOOST_REQUIRE(facts.size() == 3 * kSent + 1);
+  BOOST_TEST(facts[0] == -1);
+  for (std::uint32_t i = 0; i < kSent; ++i) BOOST_TEST(facts[1 + i] == std::int64_t(kSent - 1 - i));
+}
+
+BOOST_AUTO_TEST_CASE(facts_for_another_threads_node_go_to_that_thread) {
+  SendingShard s(true, {0, 1, 0});
+  BOOST_REQUIRE(s.machine->runNext());
+  BOOST_TEST(s.link.remoteSends == int(kSent));
+  BOOST_TEST(s.machine->database().factCount(1, s.program.a) == 0u);
 }

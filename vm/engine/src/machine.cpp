@@ -541,9 +541,10 @@ void Machine::sendAny(NodeId host, NodeId dest, PredId p, const Value* args, boo
   }
   if (dest >= db_->nodeCount()) noSuchNode(p, dest);
   const PredicateDesc& d = program_.predicates[p];
-  if (!host_ && d.linear && !shard_) {  // stored in dest when the run ends (storeSentLinear)
+  if (!host_ && d.linear) {  // stored in dest when the run ends (storeSentLinear)
     db_->prefetchListHead(dest, p);
     prefetchStoreTarget(dest);
+    if (shard_) mail_->prefetchBox(dest);  // whether its mailbox is empty (storedOnArrival)
   } else if (!host_) {
     prefetchMailEntry(dest);  // posted when the run ends (flushOutgoing)
   }

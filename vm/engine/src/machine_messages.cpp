@@ -38,9 +38,7 @@ void Machine::flushOutgoing() {
     const std::vector<std::uint32_t>* order = sendOrder_->arrange(
         sentLinear_.size(), [&](std::size_t i) { return sentLinear_[i].node; },
         [&](std::size_t i) { return sentLinear_[i].pred; });
-    if (shard_)
-      postAll(sentLinear_.items(), order);
-    else if (order)
+    if (order)
       storeSentLinear([&](std::size_t i) -> const PendingFact& { return sentLinear_[(*order)[i]]; });
     else
       storeSentLinear([&](std::size_t i) -> const PendingFact& { return sentLinear_[i]; });
@@ -77,10 +75,14 @@ void Machine::postAll(std::span<const PendingFact> facts, const std::vector<std:
 // as the established VM stores them on arrival (no mailbox: a copy and a pass less per fact). The
 // order is the one a mailbox would give: nothing else adds facts to a node before its next run,
 // and a node that sent itself facts runs again (runNode). The thread node's facts are visible to
-// every node's rules: they wait in its mailbox until it runs. A threaded run's shards keep their
-// linear facts in mailboxes too, where a node takes its messages in slices and moves to another
-// thread with them as a chain of chunks (stored on arrival, 8queens-12 at -j 2 took 3.3-3.6 s and
-// 53-83 MB instead of 2.2-2.4 s and 35-39 MB).
+// every node's rules: they wait in its mailbox until it runs.
+// A threaded run's shard stores them so only for a node it owns whose mailbox is empty (so the
+// arrival order stays the mailbox's) and whose list of that predicate is short
+// (kStoredOnArrivalBelow); the others go to mailboxes, where a node takes its messages in slices
+// and moves to another thread with them as a chain of chunks. (Everything stored on arrival,
+// 8queens-12 at -j 2 took 3.3-3.6 s and 53-83 MB instead of 2.2-2.4 s and 35-39 MB: its nodes
+// pile up tens of thousands of placements. Everything through mailboxes, the post and the
+// delivery were a sixth of heat-transfer's run at -j 2, where a node holds a few facts.)
 // at(i): the i-th fact in delivery order. Each receiver's list heads are looked up once, for the
 // fact and for the rules it wakes; storing linear facts takes no scratch value, so what the store
 // held from before is released once.
@@ -88,14 +90,23 @@ template <class At>
 void Machine::storeSentLinear(At at) {
   constexpr std::size_t kTailAhead = 4;  // send() fetched the list heads: now their last facts
   const std::size_t n = sentLinear_.size();
+  // (A shard's facts may name nodes of other threads beyond its own arrays: no prefetch there.)
+  const NodeId nodes = db_->nodeCount();
+  auto prefetch = [&](const PendingFact& e) {
+    if (!shard_ || e.node < nodes) db_->prefetchListTail(e.node, e.pred);
+  };
   db_->releaseHeldScratch();
-  for (std::size_t i = 0; i < n && i < kTailAhead; ++i) db_->prefetchListTail(at(i).node, at(i).pred);
+  for (std::size_t i = 0; i < n && i < kTailAhead; ++i) prefetch(at(i));
   for (std::size_t i = 0; i < n; ++i) {
-    if (i + kTailAhead < n) db_->prefetchListTail(at(i + kTailAhead).node, at(i + kTailAhead).pred);
+    if (i + kTailAhead < n) prefetch(at(i + kTailAhead));
     const PendingFact& e = at(i);
     const Value* args = sentArgs_.data() + e.args;
     if (e.node == threadNode_) [[unlikely]] {
       post(e.node, e.pred, args, false, /*adopt=*/true);
+      continue;
+    }
+    if (shard_ && !storedOnArrival(e)) {
+      postOrRoute(e, args);  // takes the buffer's references
       continue;
     }
     ListHead* heads = db_->listHeadsForWrite(e.node);
@@ -106,6 +117,11 @@ void Machine::storeSentLinear(At at) {
     else
       sched_.wake(e.node);
   }
+}
+
+bool Machine::storedOnArrival(const PendingFact& e) const {
+  return ownerOf(e.node) == placement_.self && mail_->empty(e.node) &&
+         db_->listHeads(e.node)[e.pred].size < kStoredOnArrivalBelow;
 }
 
 void Machine::deliverIncoming(NodeId n) {

@@ -280,6 +280,8 @@ class Machine : private SchedulerView {
   void deriveEach(NodeId host, PredId p, const Value* args, std::uint32_t count);
   // The common case inline: a linear fact sent by a run of the VM on its own graph and one thread,
   // which waits in a buffer for the run's end (storeSentLinear); every other case in sendAny.
+  // (A shard's own nodes' case inline too cost B2 pagerank and n-queens 3-6 % at -j 2: the
+  // interpreter's loop, where it lands, is sensitive to what GCC inlines into it.)
   void send(NodeId host, NodeId dest, PredId p, const Value* args, bool negative, std::uint32_t delayMs = 0) {
     if (ownGraphSerial_ && tables_.plainLinear[p] && !negative && dest < db_->nodeCount() &&
         db_->alive(dest)) {
@@ -495,6 +497,10 @@ class Machine : private SchedulerView {
   // serial VM takes in the whole mailbox, as the established VM does; with threads, a node that
   // takes in the earliest arrivals first is a node that ran earlier.
   static constexpr std::uint32_t kChunksPerShardDelivery = 16;
+  // A shard stores a linear fact it sends to one of its own nodes at once when that node holds
+  // fewer facts of the predicate than this (and no mail): see storeSentLinear.
+  static constexpr std::uint32_t kStoredOnArrivalBelow = 32;
+  bool storedOnArrival(const PendingFact& e) const;
   ShardPlacement placement_;
   NodeId nextCreated_ = 0, createdEnd_ = 0;                   // a shard's block of ids for created nodes
   void postOrRoute(const PendingFact& e, const Value* args);  // takes over the references of args
