@@ -71,6 +71,11 @@ void Machine::postAll(std::span<const PendingFact> facts, const std::vector<std:
   }
 }
 
+inline bool Machine::storedOnArrival(const PendingFact& e) const {
+  return ownerOf(e.node) == placement_.self && mail_->empty(e.node) &&
+         db_->listHeads(e.node)[e.pred].size < kStoredOnArrivalBelow;
+}
+
 // One machine on its own graph stores the linear facts a run sent straight into their receivers,
 // as the established VM stores them on arrival (no mailbox: a copy and a pass less per fact). The
 // order is the one a mailbox would give: nothing else adds facts to a node before its next run,
@@ -117,11 +122,6 @@ void Machine::storeSentLinear(At at) {
     else
       sched_.wake(e.node);
   }
-}
-
-bool Machine::storedOnArrival(const PendingFact& e) const {
-  return ownerOf(e.node) == placement_.self && mail_->empty(e.node) &&
-         db_->listHeads(e.node)[e.pred].size < kStoredOnArrivalBelow;
 }
 
 void Machine::deliverIncoming(NodeId n) {
