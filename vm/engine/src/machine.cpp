@@ -541,15 +541,8 @@ void Machine::sendAny(NodeId host, NodeId dest, PredId p, const Value* args, boo
     // The common case of a shard, first: a linear fact for one of its own nodes, which may go
     // straight into the node's store when the run ends (storeSentLinear).
     if (tables_.plainLinear[p] && !negative && dest < db_->nodeCount() && db_->alive(dest)) {
-      db_->prefetchListHead(dest, p);
-      prefetchStoreTarget(dest);
       mail_->prefetchBox(dest);  // whether its mailbox is empty (storedOnArrival)
-      ++stats_.factsDerived;
-      ++runDerived_;
-      ++stats_.factsSent;
-      sentLinear_.push_back({dest, p, false, std::uint32_t(sentArgs_.size())});
-      pushArgs(sentArgs_, p, args);
-      return;
+      return bufferSentLinear(dest, p, args);
     }
   }
   if (dest >= db_->nodeCount()) noSuchNode(p, dest);

@@ -283,18 +283,20 @@ class Machine : private SchedulerView {
   // (A shard's own nodes' case inline too cost B2 pagerank and n-queens 3-6 % at -j 2: the
   // interpreter's loop, where it lands, is sensitive to what GCC inlines into it.)
   void send(NodeId host, NodeId dest, PredId p, const Value* args, bool negative, std::uint32_t delayMs = 0) {
-    if (ownGraphSerial_ && tables_.plainLinear[p] && !negative && dest < db_->nodeCount() &&
-        db_->alive(dest)) {
-      db_->prefetchListHead(dest, p);
-      prefetchStoreTarget(dest);
-      ++stats_.factsDerived;
-      ++runDerived_;
-      ++stats_.factsSent;
-      sentLinear_.push_back({dest, p, false, std::uint32_t(sentArgs_.size())});
-      pushArgs(sentArgs_, p, args);
-      return;
-    }
+    if (ownGraphSerial_ && tables_.plainLinear[p] && !negative && dest < db_->nodeCount() && db_->alive(dest))
+      return bufferSentLinear(dest, p, args);
     sendAny(host, dest, p, args, negative, delayMs);
+  }
+  // A linear fact for a live node of this thread, into the buffer that storeSentLinear empties
+  // when the run ends; what storing it touches is fetched now.
+  [[gnu::always_inline]] void bufferSentLinear(NodeId dest, PredId p, const Value* args) {
+    db_->prefetchListHead(dest, p);
+    prefetchStoreTarget(dest);
+    ++stats_.factsDerived;
+    ++runDerived_;
+    ++stats_.factsSent;
+    sentLinear_.push_back({dest, p, false, std::uint32_t(sentArgs_.size())});
+    pushArgs(sentArgs_, p, args);
   }
   void sendAny(NodeId host, NodeId dest, PredId p, const Value* args, bool negative, std::uint32_t delayMs);
   void action(NodeId from, NodeId dest, PredId p, const Value* args);
