@@ -23,22 +23,32 @@ struct ThreeNodes {
       initOnlyProgram(3, [this](Program& p) { a = pred(p, "a", {TypeTable::kInt}, true); });
 };
 
-// A shard of a threaded run, or (asShard false) the serial VM.
-struct Shard {
-  ThreeNodes program;
+// A Machine running program P: a shard of a threaded run (thread 0 of 2, owning the three nodes
+// unless owners says otherwise), or (asShard false) the serial VM; with safePoints, the shard
+// looks at rebalanceWanted.
+template <class P>
+struct MachineFor {
+  P program;
   TestShardLink link;
   std::atomic<bool> rebalanceWanted{true};
   MailSlabs mailSlabs{2};
   std::unique_ptr<Machine> machine;
-  explicit Shard(bool asShard = true) {
+  MachineFor(bool asShard, bool safePoints, std::vector<ThreadId> owners = {}) {
+    link.owners = std::move(owners);
     MachineOptions o;
     if (asShard) {
       o.shard = &link;
       o.placement = {0, 2, 0, 3};
       o.mailSlabs = &mailSlabs;
-      o.safePointFlag = &rebalanceWanted;
+      if (safePoints) o.safePointFlag = &rebalanceWanted;
     }
     machine = std::make_unique<Machine>(*program.program, std::move(o));
+  }
+};
+
+// ThreeNodes run until quiescent (their `_init` consumed), the safe points counted from then on.
+struct Shard : MachineFor<ThreeNodes> {
+  explicit Shard(bool asShard = true) : MachineFor(asShard, true) {
     while (machine->runNext()) {
     }
     link.safePoints = 0;
@@ -148,21 +158,9 @@ struct SendingProgram {
   }();
 };
 
-struct SendingShard {
-  SendingProgram program;
-  TestShardLink link;
-  MailSlabs mailSlabs{2};
-  std::unique_ptr<Machine> machine;
-  explicit SendingShard(bool asShard, std::vector<ThreadId> owners = {}) {
-    link.owners = std::move(owners);
-    MachineOptions o;
-    if (asShard) {
-      o.shard = &link;
-      o.placement = {0, 2, 0, 3};
-      o.mailSlabs = &mailSlabs;
-    }
-    machine = std::make_unique<Machine>(*program.program, std::move(o));
-  }
+struct SendingShard : MachineFor<SendingProgram> {
+  explicit SendingShard(bool asShard, std::vector<ThreadId> owners = {})
+      : MachineFor(asShard, false, std::move(owners)) {}
   std::vector<std::int64_t> factsOfNode1() const {
     const Database& db = machine->database();
     std::vector<std::int64_t> values;
